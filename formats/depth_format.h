@@ -1,0 +1,156 @@
+/* Storage formats of a depth buffer (SPEC section 4), shared verbatim by the OpenCL kernels and
+ * the C++ host: what the GPU stores is computed by exactly this code on both sides.
+ *
+ *   unorm<b>   code = round(d * (2^b - 1)), b = 1..32
+ *   float<N>   IEEE-style unsigned float, E exponent and M mantissa bits, bias 2^(E-1) - 1,
+ *              the all-ones exponent reserved (no code stands for inf or NaN)
+ *   e<E>m<M>   Lapidous-Jiao eq. 2: no sign, bias 2^E, every exponent field value is a number,
+ *              so every code lies in [0, 1)
+ *
+ * Encoding is exact: a binary32 depth d is split into m * 2^k with an integer m < 2^24, scaled in
+ * 64-bit integers and rounded once. Nothing goes through a binary32 product such as
+ * d * 16777215.0f, which rounds twice for unorm24 and unorm32.
+ *
+ * Inputs outside [0, 1]: negative values, -0 and NaN store code 0; values above the largest code
+ * (including +inf) saturate to it. */
+#ifndef DF_DEPTH_FORMAT_H
+#define DF_DEPTH_FORMAT_H
+
+#include "formats/df_prelude.h"
+
+#define DF_KIND_UNORM 0u
+#define DF_KIND_FLOAT 1u
+
+#define DF_ROUND_NEAREST_EVEN 0u
+#define DF_ROUND_TRUNCATE 1u
+
+typedef struct df_format {
+  df_u32 kind;     /* DF_KIND_UNORM or DF_KIND_FLOAT */
+  df_u32 bits;     /* total storage bits, 1..32 */
+  df_i32 exp_bits; /* E (0 for unorm) */
+  df_i32 man_bits; /* M (b for unorm) */
+  df_i32 bias;     /* exponent bias (0 for unorm) */
+  df_u32 max_code; /* largest code that stands for a finite value */
+  df_u32 rounding; /* DF_ROUND_* */
+  df_u32 flush;    /* 1: a code that would be subnormal is stored as 0 */
+} df_format;
+
+DF_FN df_format df_make_unorm(df_u32 bits, df_u32 rounding, df_u32 flush) {
+  df_format f;
+  f.kind = DF_KIND_UNORM;
+  f.bits = bits;
+  f.exp_bits = 0;
+  f.man_bits = (df_i32)bits;
+  f.bias = 0;
+  f.max_code = (df_u32)((((df_u64)1) << bits) - 1u);
+  f.rounding = rounding;
+  f.flush = flush;
+  return f;
+}
+
+/* ieee_style = 1: bias 2^(E-1) - 1 and the all-ones exponent reserved; 0: LJ bias 2^E. */
+DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_style, df_u32 rounding,
+                              df_u32 flush) {
+  df_format f;
+  f.kind = DF_KIND_FLOAT;
+  f.bits = (df_u32)(exp_bits + man_bits) + (ieee_style ? 1u : 0u); /* IEEE-style keeps a sign bit, always 0 */
+  f.exp_bits = exp_bits;
+  f.man_bits = man_bits;
+  f.bias = ieee_style ? (1 << (exp_bits - 1)) - 1 : (1 << exp_bits);
+  f.max_code = ieee_style ? (df_u32)(((((df_u64)1) << exp_bits) - 1u) << man_bits) - 1u
+                          : (df_u32)((((df_u64)1) << (exp_bits + man_bits)) - 1u);
+  f.rounding = rounding;
+  f.flush = flush;
+  return f;
+}
+
+/* floor or round-half-even of p / 2^s for s in 1..63 */
+DF_FN df_u64 df_shift_round(df_u64 p, df_u32 s, df_u32 rounding) {
+  df_u64 q = p >> s;
+  if (rounding == DF_ROUND_NEAREST_EVEN) {
+    df_u64 rem = p - (q << s);
+    df_u64 halfway = ((df_u64)1) << (s - 1u);
+    if (rem > halfway || (rem == halfway && (q & 1u))) q += 1u;
+  }
+  return q;
+}
+
+DF_FN df_u32 df_encode_unorm(df_u32 u, df_format f) {
+  df_u32 ex = u >> 23;
+  if (ex >= 127u) return f.max_code; /* d >= 1 (and +inf) */
+  df_u32 m = ex ? ((u & 0x7fffffu) | 0x800000u) : (u & 0x7fffffu);
+  /* d * max_code = m * max_code * 2^-s, s >= 24; the product has at most 56 bits */
+  df_u32 s = 150u - (ex ? ex : 1u);
+  if (s >= 60u) return 0u; /* product * 2^-s < 2^-4: both rounding modes give 0 */
+  df_u64 q = df_shift_round((df_u64)m * (df_u64)f.max_code, s, f.rounding);
+  return (df_u32)q;
+}
+
+DF_FN df_u32 df_encode_float(df_u32 u, df_format f) {
+  df_u32 ex = u >> 23;
+  df_u32 m = ex ? ((u & 0x7fffffu) | 0x800000u) : (u & 0x7fffffu);
+  if (m == 0u) return 0u;
+  df_i32 k = (df_i32)(ex ? ex : 1u) - 150; /* d = m * 2^k exactly */
+  df_i32 p = (31 - (df_i32)df_clz32(m)) + k; /* binade: 2^p <= d < 2^(p+1) */
+  df_i32 min_p = 1 - f.bias;                 /* binade of the smallest normal */
+  df_i32 qp = p > min_p ? p : min_p;
+  df_i32 sh = k - (qp - f.man_bits); /* d / quantum = m * 2^sh */
+  df_u64 n;
+  if (sh >= 0) {
+    n = ((df_u64)m) << sh; /* exact; sh <= M so n < 2^(M+1) */
+  } else if (sh <= -40) {
+    n = 0u; /* m * 2^sh < 2^-16: rounds to 0 either way */
+  } else {
+    n = df_shift_round((df_u64)m, (df_u32)(-sh), f.rounding);
+  }
+  /* n carries the hidden bit for normal values, so the exponent field enters as (e - 1); a
+   * mantissa that rounds up to 2^(M+1) carries into the exponent by the same addition. */
+  df_u64 field = (df_u64)(qp + f.bias - 1);
+  df_u64 code = (field << f.man_bits) + n;
+  if (code > (df_u64)f.max_code) code = f.max_code;
+  if (f.flush && code < (((df_u64)1) << f.man_bits)) code = 0u;
+  return (df_u32)code;
+}
+
+/* Storage code of a binary32 window depth. */
+DF_FN df_u32 df_encode(float d, df_format f) {
+  df_u32 u = df_float_bits(d);
+  if (u >> 31) return 0u;          /* negative, -0 */
+  if (u > 0x7f800000u) return 0u;  /* NaN */
+  if (u == 0x7f800000u) return f.max_code;
+  return f.kind == DF_KIND_UNORM ? df_encode_unorm(u, f) : df_encode_float(u, f);
+}
+
+/* The neighbouring codes, saturating at the ends of the code range. */
+DF_FN df_u32 df_code_above(df_u32 c, df_format f) { return c < f.max_code ? c + 1u : c; }
+DF_FN df_u32 df_code_below(df_u32 c) { return c > 0u ? c - 1u : c; }
+
+/* A kernel specialised with -D defines (see host/storage_format.cpp) gets its format as a
+ * compile-time constant, so every branch on the kind folds away. */
+#if defined(DF_KIND) && defined(DF_ROUNDING) && defined(DF_FLUSH)
+#if DF_KIND == 0
+#define DF_FORMAT_FROM_DEFINES() df_make_unorm(DF_BITS, DF_ROUNDING, DF_FLUSH)
+#else
+#define DF_FORMAT_FROM_DEFINES() df_make_float(DF_E, DF_M, DF_IEEE, DF_ROUNDING, DF_FLUSH)
+#endif
+#endif
+
+#if !defined(DF_OPENCL) || defined(DF_ENABLE_FP64)
+#if defined(DF_OPENCL)
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#else
+#include <math.h>
+#endif
+/* Exact value of a code for float formats; correctly rounded binary64 of c / (2^b - 1) for unorm
+ * (the only quotient here that binary64 cannot hold exactly). */
+DF_FN double df_decode(df_u32 c, df_format f) {
+  if (c > f.max_code) c = f.max_code;
+  if (f.kind == DF_KIND_UNORM) return (double)c / (double)f.max_code;
+  df_u32 e = (df_u32)(((df_u64)c) >> f.man_bits);
+  df_u64 frac = ((df_u64)c) & ((((df_u64)1) << f.man_bits) - 1u);
+  if (e == 0u) return ldexp((double)frac, 1 - f.bias - f.man_bits);
+  return ldexp((double)((((df_u64)1) << f.man_bits) + frac), (df_i32)e - f.bias - f.man_bits);
+}
+#endif
+
+#endif /* DF_DEPTH_FORMAT_H */

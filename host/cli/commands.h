@@ -1,0 +1,18 @@
+// Subcommands of the depthprec executable. Each add_* registers its CLI11 subcommand and the
+// callback that runs it; errors propagate as depthprec::Error to main's single handler.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace depthprec::cli {
+
+struct GlobalOptions {
+  std::string device;  // --device, else $DEPTHPREC_DEVICE
+  bool verbose = false;
+};
+
+void add_devices_command(CLI::App& app, GlobalOptions& global);
+void add_formats_command(CLI::App& app, GlobalOptions& global);
+
+}  // namespace depthprec::cli

@@ -1,0 +1,45 @@
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "host/cl.h"
+#include "host/cli/commands.h"
+#include "host/errors.h"
+#include "host/version.h"
+
+int main(int argc, char** argv) {
+  using namespace depthprec;
+  CLI::App app{fmt::format(
+      "depthprec {} - how much depth precision a depth-buffer set-up gives.\n"
+      "Emulates per fragment what a GPU computes and stores (OpenCL on PoCL) and measures the\n"
+      "minimum triangle separation (Gilg et al. 2021) and the Lapidous-Jiao average depth error.\n"
+      "Exit codes: 0 ok, 1 internal error, 2 usage, 3 bad input, 4 OpenCL device/runtime,\n"
+      "5 output not writable, 130 interrupted.",
+      kVersion)};
+  app.set_version_flag("--version", kVersion);
+  app.require_subcommand(1);
+  cli::GlobalOptions global;
+  app.add_option("--device", global.device,
+                 "OpenCL device: P:D as `depthprec devices` lists, or part of its name "
+                 "(default: $DEPTHPREC_DEVICE, else the PoCL CPU device)");
+  app.add_flag("-v,--verbose", global.verbose, "Say which kernel variants were built");
+  cli::add_devices_command(app, global);
+  cli::add_formats_command(app, global);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : static_cast<int>(ExitCode::usage);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "depthprec: %s\n", e.what());
+    return static_cast<int>(e.code());
+  } catch (const cl::Error& e) {
+    std::fprintf(stderr, "depthprec: OpenCL call %s failed with error %d\n", e.what(), e.err());
+    return static_cast<int>(ExitCode::runtime);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "depthprec: internal error: %s\n", e.what());
+    return static_cast<int>(ExitCode::internal);
+  }
+  return 0;
+}

@@ -1,0 +1,70 @@
+// The OpenCL build of formats/depth_format.h must agree bit for bit with the host build, for every
+// format family, both rounding modes and both denormal modes (sampled here; the exhaustive proof
+// in exhaustive_formats.cpp covers the main formats on every input).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "host/device_encode.h"
+#include "host/opencl_runtime.h"
+#include "host/storage_format.h"
+
+using namespace depthprec;
+
+namespace {
+OpenClRuntime& runtime() {
+  static OpenClRuntime rt;
+  return rt;
+}
+}  // namespace
+
+TEST_CASE("device and host encoders agree on sampled inputs", "[formats][device]") {
+  std::mt19937 rng(2021);
+  std::vector<std::string> names = {"unorm1", "unorm7", "unorm16", "unorm24", "unorm31", "unorm32",
+                                    "float16", "float24", "float32", "e1m15", "e2m5", "e4m12",
+                                    "e8m23", "e5m0", "e3m29"};
+  for (const auto& name : names) {
+    for (const Rounding r : {Rounding::nearest_even, Rounding::truncate}) {
+      for (const Denormals dn : {Denormals::keep, Denormals::flush}) {
+        const auto f = StorageFormat::parse(name, r, dn);
+        const uint32_t first = rng() % 0x3f000000u;
+        std::vector<uint32_t> dev;
+        device_encode_range(runtime(), f, first, 1u << 16, dev);
+        for (uint32_t i = 0; i < dev.size(); ++i) {
+          float d;
+          const uint32_t bits = first + i;
+          std::memcpy(&d, &bits, sizeof d);
+          INFO(name << " " << to_string(r) << " " << to_string(dn) << " bits " << bits);
+          REQUIRE(dev[i] == f.encode(d));
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("device encoder handles values outside [0,1] like the host", "[formats][device]") {
+  const std::vector<float> specials = {-1.0f,     -0.0f,     0.0f,   1.0f, 1.5f, 3e38f,
+                                       INFINITY,  -INFINITY, NAN,    1e-45f, 0.99999994f};
+  for (const char* name : {"unorm24", "float32", "float16", "e4m12"}) {
+    const auto f = StorageFormat::parse(name);
+    const auto dev = device_encode(runtime(), f, specials);
+    for (size_t i = 0; i < specials.size(); ++i) {
+      INFO(name << " value " << specials[i]);
+      CHECK(dev[i] == f.encode(specials[i]));
+    }
+  }
+}
+
+TEST_CASE("float16 nearest-even matches the compiler's _Float16 conversion", "[formats]") {
+  const auto f = StorageFormat::parse("float16");
+  for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 4093) {
+    float d;
+    std::memcpy(&d, &bits, sizeof d);
+    const _Float16 h = static_cast<_Float16>(d);
+    uint16_t hb;
+    std::memcpy(&hb, &h, sizeof hb);
+    INFO("bits " << bits);
+    REQUIRE(f.encode(d) == hb);
+  }
+}
