@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", global.verbose, "Say which kernel variants were built");
   cli::add_devices_command(app, global);
   cli::add_formats_command(app, global);
+  cli::add_mts_commands(app, global, argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,35 @@
+// Scene selection and overrides shared by every command that runs a scene: a scene file
+// (default: the embedded data/gilg2021.json), --set key=value for any field, and named flags for
+// the common ones (each is a --set in disguise, so one code path validates them all).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "host/scene.h"
+
+namespace depthprec::cli {
+
+struct SceneOptions {
+  std::string scene_file;
+  std::vector<std::string> sets;
+  std::vector<std::string> techniques, formats, depth_ranges;
+  std::string near, far, kernel, frames, rel_precision, matrix_precision, compose, divide,
+      rounding, denormals, log_k, fov;
+  std::vector<std::string> distances;
+
+  void add_to(CLI::App& cmd, bool with_pairs);
+  // Loads the scene with every override applied; --technique/--format/--depth-range replace the
+  // scene's pair list with their cross product.
+  Scene load() const;
+};
+
+struct OutputOptions {
+  std::string format_out = "text";
+  std::string output;  // file; "" = stdout
+  bool no_timing = false;
+  void add_to(CLI::App& cmd);
+};
+
+}  // namespace depthprec::cli

@@ -1,0 +1,192 @@
+#include "host/mts_evaluator.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace depthprec {
+
+namespace {
+
+constexpr int kTriStride = 32;
+constexpr int kProbeStride = 24;
+constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8;
+constexpr int kCountShift = 8;
+
+// Frames per launch: most fighting probes fight in their first frames, so start small; a clean
+// probe needs every frame, so grow.
+int batch_frames(int done, int total) {
+  const int want = done == 0 ? 4 : done < 20 ? 16 : 64;
+  return std::min(want, total - done);
+}
+
+// Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
+// launch (a new size for every batch shape) recompiles again and again.
+constexpr size_t kLocal = 16;
+cl::NDRange padded(size_t n) { return cl::NDRange((n + kLocal - 1) / kLocal * kLocal); }
+
+int triangles(const Scene& s) { return 2 * s.plane_subdivisions * s.plane_subdivisions; }
+
+}  // namespace
+
+const char* to_string(Outcome o) {
+  switch (o) {
+    case Outcome::clean: return "clean";
+    case Outcome::fight: return "fight";
+    case Outcome::clipped: return "clipped";
+    case Outcome::non_finite: return "non_finite";
+  }
+  return "?";
+}
+
+MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair)
+    : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)) {
+  const cl::Program program = rt_.program(variant_.program, variant_.options);
+  setup_ = cl::Kernel(program, "mts_setup");
+  raster_ = cl::Kernel(program, "mts_raster");
+  codes_ = cl::Kernel(program, "mts_codes");
+}
+
+void MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                         int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& tris,
+                         cl::Buffer& vflags) {
+  const size_t n = active.size();
+  std::vector<float> consts(n * kProbeStride);
+  std::vector<float> mats(n * frames * 2 * 16);
+  for (size_t i = 0; i < n; ++i) {
+    const Probe& p = probes[active[i]];
+    const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
+    const auto packed = pc.packed();
+    std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
+    for (int f = 0; f < frames; ++f) {
+      const Mat4f a = plane_matrix(scene_, pc, p.z, first_frame + f);
+      const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, first_frame + f);
+      float* dst = mats.data() + ((i * frames + f) * 2) * 16;
+      std::copy(a.begin(), a.end(), dst);
+      std::copy(b.begin(), b.end(), dst + 16);
+    }
+  }
+  probe_buf = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                         sizeof(float) * consts.size(), consts.data());
+  cl::Buffer mat_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                     sizeof(float) * mats.size(), mats.data());
+  const size_t planes = n * frames * 2;
+  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
+                    sizeof(float) * planes * triangles(scene_) * kTriStride);
+  vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
+  setup_.setArg(0, probe_buf);
+  setup_.setArg(1, mat_buf);
+  setup_.setArg(2, static_cast<cl_uint>(frames));
+  setup_.setArg(3, 0.5f * static_cast<float>(scene_.viewport_w));
+  setup_.setArg(4, 0.5f * static_cast<float>(scene_.viewport_h));
+  setup_.setArg(5, tris);
+  setup_.setArg(6, vflags);
+  setup_.setArg(7, static_cast<cl_uint>(planes));
+  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal));
+  ++launches_;
+}
+
+std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
+  std::vector<ProbeResult> results(probes.size());
+  std::vector<bool> decided(probes.size(), false);
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const float ox = static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2);
+  const float oy = static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2);
+  int done = 0;
+  while (done < scene_.frames) {
+    std::vector<size_t> active;
+    for (size_t i = 0; i < probes.size(); ++i)
+      if (!decided[i]) active.push_back(i);
+    if (active.empty()) break;
+    const int frames = batch_frames(done, scene_.frames);
+    const auto t0 = std::chrono::steady_clock::now();
+    cl::Buffer probe_buf, tris, vflags;
+    setup(probes, active, done, frames, probe_buf, tris, vflags);
+    const size_t items = active.size() * frames * kh;
+    std::vector<uint32_t> rows(items);
+    cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
+    raster_.setArg(0, probe_buf);
+    raster_.setArg(1, tris);
+    raster_.setArg(2, vflags);
+    raster_.setArg(3, kw);
+    raster_.setArg(4, kh);
+    raster_.setArg(5, ox);
+    raster_.setArg(6, oy);
+    raster_.setArg(7, static_cast<cl_uint>(frames));
+    raster_.setArg(8, result);
+    raster_.setArg(9, static_cast<cl_uint>(items));
+    rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal));
+    rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
+    ++launches_;
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    kernel_seconds_ += secs;
+
+    uint64_t launch_pairs = 0;
+    std::vector<uint64_t> probe_pairs(active.size(), 0);
+    for (size_t i = 0; i < active.size(); ++i) {
+      ProbeResult& r = results[active[i]];
+      for (int f = 0; f < frames; ++f) {
+        uint32_t flags = 0;
+        for (cl_uint y = 0; y < kh; ++y) {
+          const uint32_t v = rows[(i * frames + f) * kh + y];
+          flags |= v;
+          probe_pairs[i] += v >> kCountShift;
+        }
+        if (decided[active[i]]) continue;  // frames after the deciding one: work, not outcome
+        r.frames = done + f + 1;
+        r.any_clipped |= (flags & kClipped) != 0;
+        r.any_uncovered |= (flags & kUncovered) != 0;
+        if (flags & kNonFinite) {
+          r.any_non_finite = true;
+          r.outcome = Outcome::non_finite;
+          decided[active[i]] = true;
+        } else if (flags & kFight) {
+          r.outcome = Outcome::fight;
+          decided[active[i]] = true;
+        }
+      }
+      r.fragment_pairs += probe_pairs[i];
+      launch_pairs += probe_pairs[i];
+    }
+    for (size_t i = 0; i < active.size(); ++i)
+      results[active[i]].seconds +=
+          launch_pairs ? secs * static_cast<double>(probe_pairs[i]) / static_cast<double>(launch_pairs)
+                       : secs / static_cast<double>(active.size());
+    pairs_ += launch_pairs;
+    done += frames;
+  }
+  for (size_t i = 0; i < probes.size(); ++i)
+    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
+  return results;
+}
+
+FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
+  cl::Buffer probe_buf, tris, vflags;
+  setup({probe}, {0}, frame, 1, probe_buf, tris, vflags);
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const size_t pixels = static_cast<size_t>(kw) * kh;
+  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * 4 * pixels);
+  codes_.setArg(0, probe_buf);
+  codes_.setArg(1, tris);
+  codes_.setArg(2, kw);
+  codes_.setArg(3, static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2));
+  codes_.setArg(4, static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2));
+  codes_.setArg(5, out);
+  codes_.setArg(6, kh);
+  rt_.queue().enqueueNDRangeKernel(codes_, cl::NullRange, padded(kh), cl::NDRange(kLocal));
+  std::vector<uint32_t> raw(4 * pixels);
+  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * raw.size(), raw.data());
+  uint32_t vf[2] = {0, 0};
+  rt_.queue().enqueueReadBuffer(vflags, CL_TRUE, 0, sizeof vf, vf);
+  FrameCodes fc;
+  fc.width = static_cast<int>(kw);
+  fc.height = static_cast<int>(kh);
+  for (size_t i = 0; i < pixels; ++i) {
+    fc.code_a.push_back(raw[4 * i]);
+    fc.code_b.push_back(raw[4 * i + 1]);
+    fc.status_a.push_back(vf[0] ? 2 : static_cast<uint8_t>(raw[4 * i + 2]));
+    fc.status_b.push_back(vf[1] ? 2 : static_cast<uint8_t>(raw[4 * i + 3]));
+  }
+  return fc;
+}
+
+}  // namespace depthprec

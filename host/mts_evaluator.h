@@ -1,0 +1,66 @@
+// Runs kernels/mts.cl for batches of probes (z, s) of one pair: each probe is rendered frame by
+// frame until its first fight (SPEC 5.2: "frames stop at the first fight"), many probes and
+// frames per launch so independent distances share the device.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/frame_setup.h"
+#include "host/kernel_variant.h"
+#include "host/opencl_runtime.h"
+#include "host/scene.h"
+
+namespace depthprec {
+
+struct Probe {
+  double z;  // requested distance of plane A
+  double s;  // requested separation: plane B at fl32(z + s)
+};
+
+enum class Outcome { clean, fight, clipped, non_finite };
+const char* to_string(Outcome o);
+
+struct ProbeResult {
+  Outcome outcome = Outcome::clean;
+  int frames = 0;               // frames up to and including the deciding one (all if clean)
+  uint64_t fragment_pairs = 0;  // pairs the kernel evaluated for this probe
+  bool any_clipped = false, any_non_finite = false, any_uncovered = false;
+  double seconds = 0;  // share of the launches' wall time, by fragment pairs
+};
+
+// Stored codes and status (0 ok, 1 clipped, 2 non-finite, 3 uncovered) of both planes at every
+// kernel pixel of one frame, row-major from the kernel's bottom-left pixel.
+struct FrameCodes {
+  int width = 0, height = 0;
+  std::vector<uint32_t> code_a, code_b;
+  std::vector<uint8_t> status_a, status_b;
+};
+
+class MtsEvaluator {
+ public:
+  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair);
+
+  std::vector<ProbeResult> run(const std::vector<Probe>& probes);
+  FrameCodes codes(const Probe& probe, int frame);
+
+  const KernelVariant& variant() const { return variant_; }
+  uint64_t fragment_pairs() const { return pairs_; }
+  uint64_t launches() const { return launches_; }
+  double kernel_seconds() const { return kernel_seconds_; }
+
+ private:
+  void setup(const std::vector<Probe>& probes, const std::vector<size_t>& active, int first_frame,
+             int frames, cl::Buffer& probe_buf, cl::Buffer& tris, cl::Buffer& vflags);
+
+  OpenClRuntime& rt_;
+  const Scene& scene_;
+  EvalPair pair_;
+  KernelVariant variant_;
+  cl::Kernel setup_, raster_, codes_;
+  uint64_t pairs_ = 0, launches_ = 0;
+  double kernel_seconds_ = 0;
+};
+
+}  // namespace depthprec

@@ -1,0 +1,240 @@
+#include "host/report.h"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "host/errors.h"
+#include "host/version.h"
+
+namespace depthprec {
+
+using nlohmann::json;
+
+std::string human(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (std::isnan(v)) return "nan";
+  if (v == 0) return "0";
+  return fmt::format("{:.4g}", v);
+}
+
+std::string exact(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return fmt::format("{:.17g}", v);
+}
+
+namespace {
+
+json number_or_string(double v) {
+  if (std::isfinite(v)) return v;
+  return exact(v);
+}
+
+json header(const Scene& scene, const RunInfo& run) {
+  json h = {{"program", "depthprec"},
+            {"version", kVersion},
+            {"command", run.command},
+            {"device", run.device},
+            {"scene_source", scene.source},
+            {"scene", scene.json},
+            {"kernel_variants", run.variants},
+            {"fragment_pairs", run.fragment_pairs},
+            {"kernel_launches", run.launches},
+            {"separation_reported", "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)"}};
+  if (run.timing) h["wall_seconds"] = run.wall_seconds;
+  return h;
+}
+
+json row_json(const MtsRow& r, bool timing) {
+  json j = {{"technique", info(r.pair.technique).name},
+            {"format", r.pair.format},
+            {"depth_range", to_string(r.pair.depth_range)},
+            {"z", r.z},
+            {"mts", number_or_string(r.mts)},
+            {"lo", r.lo},
+            {"hi", number_or_string(r.hi)},
+            {"mts_seen", number_or_string(r.mts_seen)},
+            {"vertex_bound", r.vertex_bound},
+            {"probes", r.probes},
+            {"clipped_probes", r.clipped_probes},
+            {"frames", r.frames},
+            {"fragment_pairs", r.fragment_pairs},
+            {"flags", r.flags()}};
+  if (timing) j["seconds"] = r.seconds;
+  return j;
+}
+
+struct Column {
+  std::string name;
+  bool left = false;
+};
+
+// Aligned text or Markdown from a header and string cells.
+std::string grid(const std::vector<Column>& cols, const std::vector<std::vector<std::string>>& cells,
+                 bool markdown) {
+  std::vector<size_t> w(cols.size());
+  for (size_t c = 0; c < cols.size(); ++c) {
+    w[c] = cols[c].name.size();
+    for (const auto& row : cells) w[c] = std::max(w[c], row[c].size());
+  }
+  auto line = [&](const std::vector<std::string>& v) {
+    std::string s = markdown ? "|" : "";
+    for (size_t c = 0; c < cols.size(); ++c) {
+      const std::string cell = cols[c].left ? fmt::format("{:<{}}", v[c], w[c]) : fmt::format("{:>{}}", v[c], w[c]);
+      s += markdown ? " " + cell + " |" : (c ? "  " : "") + cell;
+    }
+    return s + "\n";
+  };
+  std::vector<std::string> names;
+  for (const auto& c : cols) names.push_back(c.name);
+  std::string out = line(names);
+  if (markdown) {
+    std::string sep = "|";
+    for (size_t c = 0; c < cols.size(); ++c)
+      sep += cols[c].left ? " :" + std::string(w[c] - 1, '-') + " |" : " " + std::string(w[c] - 1, '-') + ": |";
+    out += sep + "\n";
+  }
+  for (const auto& row : cells) out += line(row);
+  return out;
+}
+
+std::string csv(const std::vector<Column>& cols, const std::vector<std::vector<std::string>>& cells) {
+  std::string out;
+  for (size_t c = 0; c < cols.size(); ++c) out += (c ? "," : "") + cols[c].name;
+  out += "\n";
+  for (const auto& row : cells) {
+    for (size_t c = 0; c < row.size(); ++c) {
+      const bool quote = row[c].find(',') != std::string::npos;
+      out += (c ? "," : "") + (quote ? "\"" + row[c] + "\"" : row[c]);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string footer(const RunInfo& run) {
+  std::string s = fmt::format("fragment pairs evaluated: {}, kernel launches: {}, variants built: {}",
+                              run.fragment_pairs, run.launches, run.variants.size());
+  if (run.timing && run.wall_seconds > 0)
+    s += fmt::format(", wall time: {:.2f} s, {:.3g} fragment pairs/s", run.wall_seconds,
+                     static_cast<double>(run.fragment_pairs) / run.wall_seconds);
+  return s;
+}
+
+}  // namespace
+
+std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
+                        const std::string& format) {
+  if (format == "json") {
+    json j = header(scene, run);
+    j["rows"] = json::array();
+    for (const auto& r : rows) j["rows"].push_back(row_json(r, run.timing));
+    return j.dump(2) + "\n";
+  }
+  const bool full = format == "csv";
+  auto num = [full](double v) { return full ? exact(v) : human(v); };
+  std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true},
+                              {"z"}, {"mts"}, {"lo"}, {"hi"}, {"mts_seen"}, {"vertex_bound"},
+                              {"mts/vb"}, {"probes"}, {"frames"}, {"fragment_pairs"}};
+  if (run.timing) cols.push_back({"seconds"});
+  cols.push_back({"flags", true});
+  std::vector<std::vector<std::string>> cells;
+  for (const auto& r : rows) {
+    std::vector<std::string> c = {info(r.pair.technique).name, r.pair.format,
+                                  to_string(r.pair.depth_range), num(r.z), num(r.mts), num(r.lo),
+                                  num(r.hi), num(r.mts_seen), num(r.vertex_bound),
+                                  num(r.mts / r.vertex_bound), std::to_string(r.probes),
+                                  std::to_string(r.frames), std::to_string(r.fragment_pairs)};
+    if (run.timing) c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
+    c.push_back(r.flags());
+    cells.push_back(c);
+  }
+  if (format == "csv") return csv(cols, cells);
+  std::string out = grid(cols, cells, format == "markdown");
+  out += (format == "markdown" ? "\n" : "") + footer(run) + "\n";
+  return out;
+}
+
+std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
+                         const std::string& format) {
+  if (format == "json") return render_rows(scene, rows, run, "json");
+  // Columns in the scene's pair order, rows in distance order.
+  std::vector<std::string> labels;
+  std::map<std::string, size_t> col_of;
+  for (const auto& p : scene.evaluate) {
+    const std::string l = p.label();
+    if (col_of.emplace(l, labels.size()).second) labels.push_back(l);
+  }
+  std::vector<double> zs = scene.distances;
+  std::map<std::pair<double, std::string>, const MtsRow*> at;
+  for (const auto& r : rows) at[{r.z, r.pair.label()}] = &r;
+  const bool full = format == "csv";
+  std::vector<Column> cols = {{"z"}, {"vertex_bound"}};
+  for (const auto& l : labels) cols.push_back({l});
+  std::vector<std::vector<std::string>> cells;
+  bool any_mark = false;
+  for (double z : zs) {
+    std::vector<std::string> c = {full ? exact(z) : human(z), full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
+    for (const auto& l : labels) {
+      const auto it = at.find({z, l});
+      if (it == at.end()) {
+        c.push_back("");
+        continue;
+      }
+      const MtsRow& r = *it->second;
+      std::string v = full ? exact(r.mts) : human(r.mts);
+      if (!full && (r.non_monotone || r.non_finite || r.clipped || r.uncovered)) {
+        v += "*";
+        any_mark = true;
+      }
+      c.push_back(v);
+    }
+    cells.push_back(c);
+  }
+  if (format == "csv") return csv(cols, cells);
+  const bool md = format == "markdown";
+  std::string out;
+  if (md) {
+    out += fmt::format("MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
+                       "rel. precision {}); inf = unresolvable\n\n",
+                       scene.name, human(scene.near), human(scene.far), scene.kernel_w,
+                       scene.kernel_h, scene.frames, human(scene.rel_precision));
+  }
+  out += grid(cols, cells, md);
+  if (any_mark) {
+    out += md ? "\n" : "";
+    out += "* flagged (non_finite, clipped, non_monotone or uncovered); see --format-out json\n";
+  }
+  out += (md ? "\n" : "") + footer(run) + "\n";
+  return out;
+}
+
+void check_writable(const std::string& path) {
+  if (path.empty()) return;
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "w");
+  if (!f) throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+  std::fclose(f);
+  std::remove(tmp.c_str());
+}
+
+void write_output(const std::string& path, const std::string& text) {
+  if (path.empty()) {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "w");
+  if (!f) throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+}
+
+}  // namespace depthprec

@@ -1,0 +1,73 @@
+// A scene: every parameter of the MTS measurement (SPEC 5.1), the pipeline options (SPEC 2) and
+// the (technique, format[, depth_range]) pairs to evaluate. data/gilg2021.json, embedded in the
+// binary, is the one source of the defaults: a scene file or a --set override only says what
+// differs from it.
+#pragma once
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "host/storage_format.h"
+#include "host/technique.h"
+
+namespace depthprec {
+
+enum class MatrixPrecision { single, binary64 };  // "float", "double"
+enum class Compose { separate, premultiplied };
+enum class Divide { reciprocal, exact };
+
+struct Pipeline {
+  DepthRange depth_range = DepthRange::gl;
+  MatrixPrecision matrix_precision = MatrixPrecision::single;
+  Compose compose = Compose::separate;
+  Divide divide = Divide::reciprocal;
+  Rounding rounding = Rounding::nearest_even;
+  Denormals denormals = Denormals::keep;
+  bool contraction = false;
+};
+
+struct EvalPair {
+  Technique technique;
+  std::string format;
+  DepthRange depth_range;
+  std::string label() const;  // "reversed/float32/zero_to_one"
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string source;  // file path, or "embedded:data/gilg2021.json"
+  double near = 0, far = 0;
+  int kernel_w = 0, kernel_h = 0, viewport_w = 0, viewport_h = 0;
+  double fov_y_deg = 0;
+  double plane_margin = 0;
+  int plane_subdivisions = 0;
+  int frames = 0;
+  double delta_a = 0;
+  double rotation_range_deg = 0;
+  std::array<double, 3> rotation_step{}, rotation_offset{};
+  std::vector<double> distances;
+  double rel_precision = 0;
+  double max_separation_factor = 0;
+  Pipeline pipeline;
+  TechniqueParams params;
+  std::vector<EvalPair> evaluate;
+
+  nlohmann::json json;  // the merged, validated scene as JSON (for output headers)
+
+  StorageFormat storage_format(const EvalPair& p) const {
+    return StorageFormat::parse(p.format, pipeline.rounding, pipeline.denormals);
+  }
+};
+
+// path empty: the embedded default. overrides: "key=value" with a JSON value (bare words are
+// taken as strings), dotted keys for nested objects: "pipeline.depth_range=zero_to_one",
+// "kernel=[50,50]", "near=0.1". Throws InputError naming the file, line:column and key.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// The JSON text of the embedded default scene.
+const std::string& default_scene_text();
+
+}  // namespace depthprec

@@ -1,0 +1,117 @@
+#include "host/technique.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "host/errors.h"
+
+namespace depthprec {
+
+const char* to_string(DepthRange r) { return r == DepthRange::gl ? "gl" : "zero_to_one"; }
+
+DepthRange parse_depth_range(const std::string& s) {
+  if (s == "gl") return DepthRange::gl;
+  if (s == "zero_to_one") return DepthRange::zero_to_one;
+  throw InputError(fmt::format("unknown depth range '{}': expected gl or zero_to_one", s));
+}
+
+const std::vector<TechniqueInfo>& technique_table() {
+  using D = DepthFrom;
+  using F = FragmentDepth;
+  static const std::vector<TechniqueInfo> table = {
+      {Technique::standard, "standard", D::projection, F::none, false, "Gilg eq. 1"},
+      {Technique::infinite, "infinite", D::projection, F::none, false, "Gilg eq. 2"},
+      {Technique::reversed, "reversed", D::projection, F::none, true, "Gilg eq. 3, LJ complementary Z"},
+      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, "Gilg eq. 4"},
+      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, "Gilg eq. 5-6"},
+      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, "Gilg sec. 2.5"},
+      {Technique::linear, "linear", D::fragment, F::linear, false, "Gilg sec. 2.6"},
+      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, "LJ eq. 4"},
+      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, "LJ eq. 5"},
+      {Technique::layered, "layered", D::projection, F::none, false, "Gilg sec. 2.7"},
+  };
+  return table;
+}
+
+const TechniqueInfo& info(Technique t) {
+  for (const auto& i : technique_table())
+    if (i.id == t) return i;
+  throw Error(ExitCode::internal, "technique missing from the table");
+}
+
+std::string technique_names() {
+  std::string s;
+  for (const auto& i : technique_table()) s += (s.empty() ? "" : ", ") + std::string(i.name);
+  return s;
+}
+
+Technique parse_technique(const std::string& s) {
+  for (const auto& i : technique_table())
+    if (s == i.name) return i.id;
+  throw InputError(fmt::format("unknown technique '{}': expected one of {}", s, technique_names()));
+}
+
+Row3 projection_row3(Technique t, DepthRange r, double n, double f) {
+  const bool gl = r == DepthRange::gl;
+  switch (t) {
+    case Technique::standard:
+      return gl ? Row3{-(f + n) / (f - n), -2 * f * n / (f - n)} : Row3{-f / (f - n), -f * n / (f - n)};
+    case Technique::infinite:
+      return gl ? Row3{-1, -2 * n} : Row3{-1, -n};
+    case Technique::reversed:
+      return gl ? Row3{(f + n) / (f - n), 2 * f * n / (f - n)} : Row3{n / (f - n), f * n / (f - n)};
+    case Technique::reversed_infinite:
+    case Technique::inverse_w:  // d = n/w: the same matrix as reversed_infinite
+      return gl ? Row3{1, 2 * n} : Row3{0, n};
+    default:
+      // Techniques whose depth is not the projection's: z_clip is rewritten (log_vertex) or
+      // unused (fragment depth), so the row is the standard one.
+      return projection_row3(Technique::standard, r, n, f);
+  }
+}
+
+double depth_of_distance(Technique t, DepthRange r, double n, double f, const TechniqueParams& p,
+                         double w) {
+  switch (t) {
+    case Technique::standard:
+    case Technique::infinite:
+    case Technique::reversed:
+    case Technique::reversed_infinite:
+    case Technique::inverse_w: {
+      // z_ndc = (a * (-w) + b) / w with z_eye = -w and w_clip = w
+      const Row3 row = projection_row3(t, r, n, f);
+      const double ndc = (-row.a * w + row.b) / w;
+      return r == DepthRange::gl ? 0.5 * ndc + 0.5 : ndc;
+    }
+    case Technique::log_vertex:
+    case Technique::log_fragment:
+      return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
+    case Technique::linear:
+      return (w - n) / (f - n);
+    case Technique::w_buffer:
+      return w / f;
+    case Technique::layered: {
+      const Layer l = layer_bounds(layer_of(w, n, f, p), n, f, p);
+      return depth_of_distance(p.layer_mapping, r, l.near, l.far, p, w);
+    }
+  }
+  return NAN;
+}
+
+Layer layer_bounds(int i, double n, double f, const TechniqueParams& p) {
+  const double ratio = f / n;
+  const double lo = n * std::pow(ratio, static_cast<double>(i) / p.layers);
+  const double hi = i + 1 == p.layers ? f : n * std::pow(ratio, static_cast<double>(i + 1) / p.layers);
+  return {i == 0 ? n : lo, i + 1 == p.layers ? f : hi * (1.0 + p.layer_overlap)};
+}
+
+int layer_of(double z, double n, double f, const TechniqueParams& p) {
+  for (int i = p.layers - 1; i > 0; --i) {
+    const double lo = n * std::pow(f / n, static_cast<double>(i) / p.layers);
+    if (z >= lo) return i;
+  }
+  return 0;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,79 @@
+// The technique table (SPEC section 3), the one place that says how each technique turns eye
+// distance w into window depth d: where depth is computed, the compare function, the third row of
+// P, and the exact mapping D(w) the metrics invert.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace depthprec {
+
+enum class DepthRange { gl, zero_to_one };
+const char* to_string(DepthRange r);
+DepthRange parse_depth_range(const std::string& s);  // throws InputError
+
+// Where d comes from, which decides the kernel's code path.
+enum class DepthFrom {
+  projection,  // d = z_ndc of P (window transform per depth range)
+  vertex_log,  // z_clip rewritten per vertex (Gilg eq. 5), then as projection
+  fragment,    // d written by the fragment stage from the perspective-correct w
+};
+enum class FragmentDepth { none, linear, w_buffer, log };
+
+enum class Technique {
+  standard,
+  infinite,
+  reversed,
+  reversed_infinite,
+  log_vertex,
+  log_fragment,
+  linear,
+  w_buffer,
+  inverse_w,
+  layered,
+};
+
+struct TechniqueInfo {
+  Technique id;
+  const char* name;
+  DepthFrom from;
+  FragmentDepth fragment;
+  bool greater;  // reversed mapping: nearer is larger, compare GEQUAL
+  const char* seed;
+};
+
+const std::vector<TechniqueInfo>& technique_table();
+const TechniqueInfo& info(Technique t);
+Technique parse_technique(const std::string& s);  // throws InputError listing the names
+std::string technique_names();                    // "standard, infinite, ..." for help texts
+
+// Third row of P as (P[2][2], P[2][3]) for projection techniques, in binary64.
+// far may be +inf for the infinite techniques (and gives NaN entries for standard/reversed, a
+// result the evaluator reports as non_finite).
+struct Row3 {
+  double a, b;
+};
+Row3 projection_row3(Technique t, DepthRange r, double near, double far);
+
+// Parameters of the techniques that have them.
+struct TechniqueParams {
+  double log_k = 1.0;
+  int layers = 3;
+  Technique layer_mapping = Technique::standard;
+  double layer_overlap = 0.01;
+};
+
+// Window depth in [0,1] of eye distance w, exact mapping in binary64 (for the metrics, the
+// inverse mappings and the reference, never for the emulated pipeline).
+double depth_of_distance(Technique t, DepthRange r, double near, double far,
+                         const TechniqueParams& p, double w);
+
+// Layer i = 0..L-1 of `layered`: geometric bounds between near and far, each layer's far bound
+// pushed out by the overlap (the last ends at far). layer_of() is the layer holding distance z.
+struct Layer {
+  double near, far;
+};
+Layer layer_bounds(int i, double near, double far, const TechniqueParams& p);
+int layer_of(double z, double near, double far, const TechniqueParams& p);
+
+}  // namespace depthprec

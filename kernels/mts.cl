@@ -1,0 +1,328 @@
+// The emulated pipeline of SPEC section 2 for Gilg et al.'s MTS measurement: two planes (plane A
+// in front, plane B behind), each a GRID x GRID grid of quads, rasterised at the pixel centres of
+// the measurement kernel only, depth stored in one storage format and tested.
+//
+// One program variant per (technique class, storage format, depth range, pipeline options),
+// chosen by -D defines (host/kernel_variant.cpp), so the per-pixel loop has no run-time switch:
+//   GRID               quads per plane side (vertices (GRID+1)^2, triangles 2*GRID^2)
+//   DEPTH_FROM         0 projection, 1 vertex-stage log (Gilg eq. 5), 2 fragment-stage depth
+//   FRAG_DEPTH         with DEPTH_FROM 2: 1 linear, 2 w_buffer, 3 log
+//   RANGE_GL           1: d = 0.5 * z_ndc + 0.5 (clip z in [-w, w]); 0: d = z_ndc
+//   COMPARE_GREATER    1: GEQUAL (reversed mappings); 0: LEQUAL
+//   DIVIDE_EXACT       1: z_clip / w_clip correctly rounded; 0: z_clip * fl(1 / w_clip)
+//   COMPOSE_PREMULT    1: the host uploads P*MV, one product per vertex; 0: P * (MV * v)
+//   CONTRACT           1: the compiler may fuse a*b+c; 0: every operation rounds on its own
+//   DF_*               the storage format (formats/depth_format.h)
+//
+// Arithmetic forms (the host reference, host/reference_pipeline.cpp, uses the same ones):
+//   matrix * vector     r_i = ((m_i0 x + m_i1 y) + m_i2 z) + m_i3 w
+//   window x, y         x_w = x_ndc * (W/2) + W/2
+//   edge function       E = dx * (py - ay) - dy * (px - ax), anchored at the lower vertex index
+//                       of the edge so both triangles sharing it compute the same value
+//   ownership (E == 0)  the triangle for which the oriented edge has s*dy < 0, or dy == 0 and
+//                       s*dx < 0 (a top-left rule: exactly one of two neighbours owns the edge)
+//   depth (plane eq.)   d = (d0 + dzdx * (px - x0)) + dzdy * (py - y0), from vertex 0 of the
+//                       triangle, dzdx = (e1d e2y - e2d e1y) / det, dzdy = (e2d e1x - e1d e2x) / det
+//   1/w (perspective)   the same plane equation over q = 1/w_clip; w = 1 / q
+#include "formats/depth_format.h"
+
+#if CONTRACT
+#pragma OPENCL FP_CONTRACT ON
+#else
+#pragma OPENCL FP_CONTRACT OFF
+#endif
+
+#define NV ((GRID + 1) * (GRID + 1))
+#define NT (2 * GRID * GRID)
+#define TRI_STRIDE 32
+#define PROBE_STRIDE 24
+#define MAT_STRIDE 16
+
+// Triangle record offsets
+#define T_EDGES 0 /* 3 x (ax, ay, dx, dy) */
+#define T_BITS 12 /* uint: bit e negate edge e, bit 3+e owns edge e, bit 6 valid */
+#define T_X0 13
+#define T_Y0 14
+#define T_D0 15
+#define T_DZDX 16
+#define T_DZDY 17
+#define T_Q0 18
+#define T_DQDX 19
+#define T_DQDY 20
+#define T_YMIN 21
+#define T_YMAX 22
+
+// Probe constants offsets (after P[16])
+#define C_NEAR 16
+#define C_FAR 17
+#define C_RANGE 18
+#define C_LOGK 19
+#define C_LOGL 20
+
+// Per-row result bits; the number of fragment pairs evaluated sits above them.
+#define R_FIGHT 1u
+#define R_CLIPPED 2u
+#define R_NONFINITE 4u
+#define R_UNCOVERED 8u
+#define R_COUNT_SHIFT 8
+
+#define S_OK 0
+#define S_CLIPPED 1
+#define S_NONFINITE 2
+#define S_UNCOVERED 3
+
+static inline float4 mat_vec(__global const float* m, float4 v) {
+  float4 r;
+  r.x = ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
+  r.y = ((m[4] * v.x + m[5] * v.y) + m[6] * v.z) + m[7] * v.w;
+  r.z = ((m[8] * v.x + m[9] * v.y) + m[10] * v.z) + m[11] * v.w;
+  r.w = ((m[12] * v.x + m[13] * v.y) + m[14] * v.z) + m[15] * v.w;
+  return r;
+}
+
+// Vertex stage, divide, window transform and triangle set-up of one plane in one frame.
+// Global id: (probe * frames + frame) * 2 + plane.
+__kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
+                        const uint frames, const float half_w, const float half_h,
+                        __global float* restrict tris, __global uint* restrict vflags,
+                        const uint count) {
+  const uint id = get_global_id(0);
+  if (id >= count) return;
+  const uint probe = id / (frames * 2u);
+  __global const float* P = probes + probe * PROBE_STRIDE;
+  __global const float* M = mats + id * MAT_STRIDE;
+  float xw[NV], yw[NV], dw[NV], qw[NV];
+  uint nonfinite = 0u;
+  for (int j = 0; j <= GRID; ++j) {
+    for (int i = 0; i <= GRID; ++i) {
+      const int v = j * (GRID + 1) + i;
+      const float4 obj = (float4)((float)i / (float)GRID - 0.5f, (float)j / (float)GRID - 0.5f,
+                                  0.0f, 1.0f);
+#if COMPOSE_PREMULT
+      float4 clip = mat_vec(M, obj);
+#else
+      float4 clip = mat_vec(P, mat_vec(M, obj));
+#endif
+#if DEPTH_FROM == 1
+      {
+        const float t = log(P[C_LOGK] * clip.w + 1.0f);
+#if RANGE_GL
+        clip.z = ((2.0f * t) / P[C_LOGL] - 1.0f) * clip.w;
+#else
+        clip.z = (t / P[C_LOGL]) * clip.w;
+#endif
+      }
+#endif
+      const float inv_w = 1.0f / clip.w;
+#if DIVIDE_EXACT
+      const float3 ndc = (float3)(clip.x / clip.w, clip.y / clip.w, clip.z / clip.w);
+#else
+      const float3 ndc = (float3)(clip.x * inv_w, clip.y * inv_w, clip.z * inv_w);
+#endif
+      xw[v] = ndc.x * half_w + half_w;
+      yw[v] = ndc.y * half_h + half_h;
+#if RANGE_GL
+      dw[v] = ndc.z * 0.5f + 0.5f;
+#else
+      dw[v] = ndc.z;
+#endif
+      qw[v] = inv_w;
+      if (!isfinite(xw[v]) || !isfinite(yw[v]) || !isfinite(qw[v])) nonfinite = 1u;
+#if DEPTH_FROM != 2
+      if (!isfinite(dw[v])) nonfinite = 1u;
+#endif
+    }
+  }
+  vflags[id] = nonfinite;
+  __global float* T = tris + id * (NT * TRI_STRIDE);
+  for (int t = 0; t < NT; ++t) {
+    const int quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
+    const int a = qj * (GRID + 1) + qi, b = a + 1, c = a + GRID + 2, d = a + GRID + 1;
+    const int i0 = a, i1 = (t & 1) ? c : b, i2 = (t & 1) ? d : c;
+    const int vi[3] = {i0, i1, i2};
+    __global float* R = T + t * TRI_STRIDE;
+    uint bits = 0u;
+    for (int e = 0; e < 3; ++e) {
+      const int va = vi[e], vb = vi[(e + 1) % 3];
+      const int lo = min(va, vb), hi = max(va, vb);
+      R[T_EDGES + 4 * e + 0] = xw[lo];
+      R[T_EDGES + 4 * e + 1] = yw[lo];
+      R[T_EDGES + 4 * e + 2] = xw[hi] - xw[lo];
+      R[T_EDGES + 4 * e + 3] = yw[hi] - yw[lo];
+      if (va > vb) bits |= 1u << e;
+    }
+    // orientation: edge 0 evaluated at vertex 2
+    float orient = R[2] * (yw[i2] - R[1]) - R[3] * (xw[i2] - R[0]);
+    if (bits & 1u) orient = -orient;
+    if (orient < 0.0f) bits ^= 7u;
+    const int valid = orient != 0.0f && isfinite(orient);
+    for (int e = 0; e < 3; ++e) {
+      const float s = (bits >> e) & 1u ? -1.0f : 1.0f;
+      const float dx = s * R[T_EDGES + 4 * e + 2], dy = s * R[T_EDGES + 4 * e + 3];
+      if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
+    }
+    if (valid) bits |= 64u;
+    const float e1x = xw[i1] - xw[i0], e1y = yw[i1] - yw[i0];
+    const float e2x = xw[i2] - xw[i0], e2y = yw[i2] - yw[i0];
+    const float det = e1x * e2y - e2x * e1y;
+    const float e1d = dw[i1] - dw[i0], e2d = dw[i2] - dw[i0];
+    const float e1q = qw[i1] - qw[i0], e2q = qw[i2] - qw[i0];
+    R[T_X0] = xw[i0];
+    R[T_Y0] = yw[i0];
+    R[T_D0] = dw[i0];
+    R[T_DZDX] = (e1d * e2y - e2d * e1y) / det;
+    R[T_DZDY] = (e2d * e1x - e1d * e2x) / det;
+    R[T_Q0] = qw[i0];
+    R[T_DQDX] = (e1q * e2y - e2q * e1y) / det;
+    R[T_DQDY] = (e2q * e1x - e1q * e2x) / det;
+    R[T_YMIN] = fmin(fmin(yw[i0], yw[i1]), yw[i2]);
+    R[T_YMAX] = fmax(fmax(yw[i0], yw[i1]), yw[i2]);
+    ((__global uint*)R)[T_BITS] = bits;
+  }
+}
+
+static inline int inside(__global const float* R, uint bits, float px, float py) {
+  for (int e = 0; e < 3; ++e) {
+    const float ax = R[4 * e], ay = R[4 * e + 1], dx = R[4 * e + 2], dy = R[4 * e + 3];
+    float E = dx * (py - ay) - dy * (px - ax);
+    if ((bits >> e) & 1u) E = -E;
+    if (!(E > 0.0f || (E == 0.0f && ((bits >> (3 + e)) & 1u)))) return 0;
+  }
+  return 1;
+}
+
+// Triangles of a plane whose y-range holds the row: the only ones a pixel of it can be in.
+static inline int row_candidates(__global const float* T, float py, uchar* cand) {
+  __global const uint* TB = (__global const uint*)T;
+  int n = 0;
+  for (int t = 0; t < NT; ++t) {
+    __global const float* R = T + t * TRI_STRIDE;
+    if ((TB[t * TRI_STRIDE + T_BITS] & 64u) && R[T_YMIN] <= py && py <= R[T_YMAX]) cand[n++] = (uchar)t;
+  }
+  return n;
+}
+
+// Depth code of one plane's fragment at a pixel centre; *last caches the triangle that covered
+// the previous pixel of the row, the likeliest to cover this one.
+static inline int fragment(__global const float* T, __global const float* P, const uchar* cand,
+                           int ncand, int* last, float px, float py, uint* code) {
+  __global const uint* TB = (__global const uint*)T;
+  int t = -1;
+  if (*last >= 0 && inside(T + *last * TRI_STRIDE, TB[*last * TRI_STRIDE + T_BITS], px, py)) {
+    t = *last;
+  } else {
+    for (int k = 0; k < ncand; ++k) {
+      const int c = cand[k];
+      if (inside(T + c * TRI_STRIDE, TB[c * TRI_STRIDE + T_BITS], px, py)) {
+        t = c;
+        break;
+      }
+    }
+  }
+  if (t < 0) return S_UNCOVERED;
+  *last = t;
+  __global const float* R = T + t * TRI_STRIDE;
+  const float tx = px - R[T_X0], ty = py - R[T_Y0];
+#if DEPTH_FROM == 2
+  const float q = (R[T_Q0] + R[T_DQDX] * tx) + R[T_DQDY] * ty;
+  const float w = 1.0f / q;
+  if (!isfinite(w)) return S_NONFINITE;
+  if (w < P[C_NEAR] || w > P[C_FAR]) return S_CLIPPED;
+#if FRAG_DEPTH == 1
+  float d = (w - P[C_NEAR]) / P[C_RANGE];
+#elif FRAG_DEPTH == 2
+  float d = w / P[C_FAR];
+#else
+  float d = log(P[C_LOGK] * w + 1.0f) / P[C_LOGL];
+#endif
+  if (isnan(d)) return S_NONFINITE;
+  d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
+#else
+  const float d = (R[T_D0] + R[T_DZDX] * tx) + R[T_DZDY] * ty;
+  if (!isfinite(d)) return S_NONFINITE;
+  if (!(d >= 0.0f && d <= 1.0f)) return S_CLIPPED;
+#endif
+  *code = df_encode(d, DF_FORMAT_FROM_DEFINES());
+  return S_OK;
+}
+
+static inline int fights(uint code_a, uint code_b) {
+#if COMPARE_GREATER
+  return code_b >= code_a;
+#else
+  return code_b <= code_a;
+#endif
+}
+
+// One kernel row of one (probe, frame): stops at the row's first fighting pixel.
+// Global id: (probe * frames + frame) * kernel_h + row.
+__kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
+                         __global const uint* restrict vflags, const uint kernel_w,
+                         const uint kernel_h, const float origin_x, const float origin_y,
+                         const uint frames, __global uint* restrict result, const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint pf = id / kernel_h; /* probe * frames + frame */
+  const uint row = id - pf * kernel_h;
+  const uint probe = pf / frames;
+  __global const float* P = probes + probe * PROBE_STRIDE;
+  if (vflags[2u * pf] | vflags[2u * pf + 1u]) {
+    result[id] = R_NONFINITE;
+    return;
+  }
+  __global const float* TA = tris + (2u * pf) * (NT * TRI_STRIDE);
+  __global const float* TBp = tris + (2u * pf + 1u) * (NT * TRI_STRIDE);
+  const float py = origin_y + (float)row + 0.5f;
+  uchar cand_a[NT], cand_b[NT];
+  const int na = row_candidates(TA, py, cand_a);
+  const int nb = row_candidates(TBp, py, cand_b);
+  int last_a = -1, last_b = -1;
+  uint flags = 0u, count = 0u;
+  for (uint x = 0; x < kernel_w; ++x) {
+    const float px = origin_x + (float)x + 0.5f;
+    uint ca = 0u, cb = 0u;
+    const int sa = fragment(TA, P, cand_a, na, &last_a, px, py, &ca);
+    const int sb = fragment(TBp, P, cand_b, nb, &last_b, px, py, &cb);
+    ++count;
+    if (sa == S_UNCOVERED || sb == S_UNCOVERED) {
+      flags |= R_UNCOVERED;
+    } else if (sa == S_NONFINITE || sb == S_NONFINITE) {
+      flags |= R_NONFINITE;
+    } else if (sa == S_CLIPPED || sb == S_CLIPPED) {
+      flags |= R_CLIPPED;
+    } else if (fights(ca, cb)) {
+      flags |= R_FIGHT;
+      break;
+    }
+  }
+  result[id] = flags | (count << R_COUNT_SHIFT);
+}
+
+// Stored codes and fragment status of both planes at every kernel pixel of one (probe, frame),
+// for the comparison with the host reference. Global id: row; out holds 4 uints per pixel:
+// code A, code B, status A, status B.
+__kernel void mts_codes(__global const float* restrict probes, __global const float* restrict tris,
+                        const uint kernel_w, const float origin_x, const float origin_y,
+                        __global uint* restrict out, const uint kernel_h) {
+  const uint row = get_global_id(0);
+  if (row >= kernel_h) return;
+  __global const float* P = probes;
+  __global const float* TA = tris;
+  __global const float* TBp = tris + NT * TRI_STRIDE;
+  const float py = origin_y + (float)row + 0.5f;
+  uchar cand_a[NT], cand_b[NT];
+  const int na = row_candidates(TA, py, cand_a);
+  const int nb = row_candidates(TBp, py, cand_b);
+  int last_a = -1, last_b = -1;
+  for (uint x = 0; x < kernel_w; ++x) {
+    const float px = origin_x + (float)x + 0.5f;
+    uint ca = 0u, cb = 0u;
+    const int sa = fragment(TA, P, cand_a, na, &last_a, px, py, &ca);
+    const int sb = fragment(TBp, P, cand_b, nb, &last_b, px, py, &cb);
+    __global uint* o = out + 4u * (row * kernel_w + x);
+    o[0] = ca;
+    o[1] = cb;
+    o[2] = (uint)sa;
+    o[3] = (uint)sb;
+  }
+}
