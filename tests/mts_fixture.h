@@ -1,0 +1,31 @@
+// Shared helpers for tests that run the MTS evaluator on the PoCL device.
+#pragma once
+
+#include <vector>
+
+#include "host/mts_search.h"
+#include "host/opencl_runtime.h"
+#include "host/scene.h"
+
+namespace depthprec::test {
+
+inline OpenClRuntime& runtime() {
+  static OpenClRuntime rt;
+  return rt;
+}
+
+// MTS rows of one pair at the given distances, on the scene (default: the paper's).
+inline std::vector<MtsRow> mts_rows(const Scene& scene, Technique t, const std::string& format,
+                                    DepthRange range, const std::vector<double>& distances) {
+  const EvalPair pair{t, format, range};
+  MtsEvaluator ev(runtime(), scene, pair);
+  return search_pair(ev, scene, pair, distances);
+}
+
+inline std::vector<double> powers_of_two(int from, int to) {
+  std::vector<double> z;
+  for (int i = from; i <= to; ++i) z.push_back(static_cast<double>(1ull << i));
+  return z;
+}
+
+}  // namespace depthprec::test

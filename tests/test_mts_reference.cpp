@@ -1,0 +1,84 @@
+// The kernel's stored codes against the plain C++ reference pipeline (host/reference_pipeline):
+// bit for bit for every technique without transcendental functions, within one code for log_*.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+
+#include "host/frame_setup.h"
+#include "host/reference_pipeline.h"
+#include "mts_fixture.h"
+
+using namespace depthprec;
+using namespace depthprec::test;
+
+namespace {
+
+struct Compared {
+  size_t pixels = 0, ok_pixels = 0, differ = 0, off_by_more_than_one = 0, status_differ = 0;
+};
+
+Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, int frame) {
+  MtsEvaluator ev(runtime(), scene, pair);
+  const FrameCodes k = ev.codes(probe, frame);
+  const FrameCodes r = reference_frame(scene, pair, probe, frame);
+  Compared c;
+  c.pixels = k.code_a.size();
+  for (size_t i = 0; i < c.pixels; ++i) {
+    if (k.status_a[i] != r.status_a[i] || k.status_b[i] != r.status_b[i]) {
+      ++c.status_differ;
+      continue;
+    }
+    if (k.status_a[i] == 0 && k.status_b[i] == 0) ++c.ok_pixels;
+    for (const auto& [x, y] : {std::pair{k.code_a[i], r.code_a[i]}, std::pair{k.code_b[i], r.code_b[i]}}) {
+      if (x != y) ++c.differ;
+      if (std::llabs(static_cast<long long>(x) - static_cast<long long>(y)) > 1) ++c.off_by_more_than_one;
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("kernel codes equal the host reference for every technique and depth range", "[mts][reference]") {
+  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]"});
+  const std::vector<std::pair<double, double>> zs = {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}, {3e8, 3e8}};
+  const int frames[] = {0, 37, 99};
+  for (const auto& ti : technique_table()) {
+    for (const DepthRange range : {DepthRange::gl, DepthRange::zero_to_one}) {
+      for (const char* format : {"float32", "unorm24", "e4m12"}) {
+        const EvalPair pair{ti.id, format, range};
+        const bool log = ti.id == Technique::log_vertex || ti.id == Technique::log_fragment;
+        size_t compared = 0;
+        for (size_t k = 0; k < zs.size(); ++k) {
+          const Probe probe{zs[k].first, zs[k].second};
+          const Compared c = compare(scene, pair, probe, frames[k % 3]);
+          INFO(pair.label() << " z = " << probe.z << " s = " << probe.s);
+          CHECK(c.status_differ == 0);
+          if (log) CHECK(c.off_by_more_than_one == 0);
+          else CHECK(c.differ == 0);
+          compared += c.ok_pixels;
+        }
+        INFO(pair.label());
+        CHECK(compared > 0);  // some pixels were real depth comparisons, not all clipped
+      }
+    }
+  }
+}
+
+TEST_CASE("the same run gives bit-identical rows", "[mts]") {
+  const Scene scene = load_scene("", {"kernel=[40,40]", "viewport=[40,40]", "frames=20"});
+  const std::vector<double> z = {1.005, 100, 1e6};
+  for (const Technique t : {Technique::standard, Technique::log_vertex, Technique::layered}) {
+    const auto a = mts_rows(scene, t, "unorm24", DepthRange::gl, z);
+    const auto b = mts_rows(scene, t, "unorm24", DepthRange::gl, z);
+    for (size_t i = 0; i < a.size(); ++i) {
+      INFO(info(t).name << " z = " << z[i]);
+      CHECK(a[i].mts == b[i].mts);
+      CHECK(a[i].lo == b[i].lo);
+      CHECK(a[i].probes == b[i].probes);
+      CHECK(a[i].frames == b[i].frames);
+      CHECK(a[i].fragment_pairs == b[i].fragment_pairs);
+      CHECK(a[i].flags() == b[i].flags());
+    }
+  }
+}
