@@ -128,17 +128,16 @@ class PlaneRow {
     for (size_t t = 0; t < p.tris.size(); ++t)
       if (p.tris[t].valid && p.tris[t].ymin <= py && py <= p.tris[t].ymax) cand_.push_back(static_cast<int>(t));
   }
-  int find(float px, float py) {
-    if (last_ >= 0 && inside(plane_.tris[last_], px, py)) return last_;
+  // The lowest-index triangle whose edge tests pass (candidates are in index order).
+  int find(float px, float py) const {
     for (int c : cand_)
-      if (inside(plane_.tris[c], px, py)) return last_ = c;
+      if (inside(plane_.tris[c], px, py)) return c;
     return -1;
   }
 
  private:
   const Plane& plane_;
   std::vector<int> cand_;
-  int last_ = -1;
 };
 
 Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,

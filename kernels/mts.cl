@@ -21,6 +21,7 @@
 //                       of the edge so both triangles sharing it compute the same value
 //   ownership (E == 0)  the triangle for which the oriented edge has s*dy < 0, or dy == 0 and
 //                       s*dx < 0 (a top-left rule: exactly one of two neighbours owns the edge)
+//   covering triangle   the lowest-index triangle whose three edge tests pass
 //   depth (plane eq.)   d = (d0 + dzdx * (px - x0)) + dzdy * (py - y0), from vertex 0 of the
 //                       triangle, dzdx = (e1d e2y - e2d e1y) / det, dzdy = (e2d e1x - e1d e2x) / det
 //   1/w (perspective)   the same plane equation over q = 1/w_clip; w = 1 / q
@@ -181,50 +182,124 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
   }
 }
 
-static inline int inside(__global const float* R, uint bits, float px, float py) {
-  for (int e = 0; e < 3; ++e) {
-    const float ax = R[4 * e], ay = R[4 * e + 1], dx = R[4 * e + 2], dy = R[4 * e + 3];
-    float E = dx * (py - ay) - dy * (px - ax);
-    if ((bits >> e) & 1u) E = -E;
-    if (!(E > 0.0f || (E == 0.0f && ((bits >> (3 + e)) & 1u)))) return 0;
-  }
-  return 1;
+// Does the pixel centre px (row py) pass edge e of triangle R? The same float expression for every
+// pixel, so span search below and the host reference agree on every pixel.
+static inline int edge_passes(__global const float* R, uint bits, int e, float px, float py) {
+  const float ax = R[4 * e], ay = R[4 * e + 1], dx = R[4 * e + 2], dy = R[4 * e + 3];
+  float E = dx * (py - ay) - dy * (px - ax);
+  if ((bits >> e) & 1u) E = -E;
+  return E > 0.0f || (E == 0.0f && ((bits >> (3 + e)) & 1u));
 }
 
-// Triangles of a plane whose y-range holds the row: the only ones a pixel of it can be in.
-static inline int row_candidates(__global const float* T, float py, uchar* cand) {
+// Along a row, px - ax, dy * (.) and C - (.) are all monotone in px, so each edge's test is
+// monotone: the pixels passing it form a prefix or a suffix of the row, and the pixels inside the
+// triangle form one interval. Found here by walking from the analytic crossing to the exact
+// boundary of the very test a per-pixel rasteriser would do.
+static inline void edge_range(__global const float* R, uint bits, int e, float py, float ox, int W,
+                              int* lo, int* hi) {
+  const float dy = R[4 * e + 3];
+  const float sdy = ((bits >> e) & 1u) ? -dy : dy;
+  if (sdy == 0.0f) { /* constant along the row */
+    if (!edge_passes(R, bits, e, ox + 0.5f, py)) *hi = 0;
+    return;
+  }
+  const float ax = R[4 * e], ay = R[4 * e + 1], dx = R[4 * e + 2];
+  const float cross = ax + (dx * (py - ay)) / dy - ox - 0.5f; /* pixel index where E = 0 */
+  int g = isfinite(cross) ? (int)clamp(ceil(cross), -1.0f, (float)W + 1.0f) : 0;
+  g = clamp(g, 0, W);
+  if (sdy < 0.0f) {
+    /* s*E grows with px: pixels g.. pass; find the first passing index */
+    while (g > 0 && edge_passes(R, bits, e, ox + (float)(g - 1) + 0.5f, py)) --g;
+    while (g < W && !edge_passes(R, bits, e, ox + (float)g + 0.5f, py)) ++g;
+    *lo = max(*lo, g);
+  } else {
+    /* s*E falls with px: pixels ..g-1 pass; find the first failing index */
+    while (g < W && edge_passes(R, bits, e, ox + (float)g + 0.5f, py)) ++g;
+    while (g > 0 && !edge_passes(R, bits, e, ox + (float)(g - 1) + 0.5f, py)) --g;
+    *hi = min(*hi, g);
+  }
+}
+
+// The row's coverage by one plane as segments [seg_x[k], seg_x[k+1]) owned by triangle seg_t[k]
+// (-1: uncovered); where rounding lets two triangles claim a pixel, the lower index owns it.
+// Returns the number of segments; seg_x[n] == W.
+#define MAX_SEG (2 * NT + 2)
+static inline int row_segments(__global const float* T, float py, float ox, int W, int* seg_x,
+                               int* seg_t) {
   __global const uint* TB = (__global const uint*)T;
-  int n = 0;
+  int lo[NT], hi[NT], tri[NT], n = 0;
   for (int t = 0; t < NT; ++t) {
     __global const float* R = T + t * TRI_STRIDE;
-    if ((TB[t * TRI_STRIDE + T_BITS] & 64u) && R[T_YMIN] <= py && py <= R[T_YMAX]) cand[n++] = (uchar)t;
-  }
-  return n;
-}
-
-// Depth code of one plane's fragment at a pixel centre; *last caches the triangle that covered
-// the previous pixel of the row, the likeliest to cover this one.
-static inline int fragment(__global const float* T, __global const float* P, const uchar* cand,
-                           int ncand, int* last, float px, float py, uint* code) {
-  __global const uint* TB = (__global const uint*)T;
-  int t = -1;
-  if (*last >= 0 && inside(T + *last * TRI_STRIDE, TB[*last * TRI_STRIDE + T_BITS], px, py)) {
-    t = *last;
-  } else {
-    for (int k = 0; k < ncand; ++k) {
-      const int c = cand[k];
-      if (inside(T + c * TRI_STRIDE, TB[c * TRI_STRIDE + T_BITS], px, py)) {
-        t = c;
-        break;
-      }
+    const uint bits = TB[t * TRI_STRIDE + T_BITS];
+    if (!(bits & 64u) || !(R[T_YMIN] <= py && py <= R[T_YMAX])) continue;
+    int a = 0, b = W;
+    for (int e = 0; e < 3 && a < b; ++e) edge_range(R, bits, e, py, ox, W, &a, &b);
+    if (a < b) {
+      lo[n] = a;
+      hi[n] = b;
+      tri[n] = t;
+      ++n;
     }
   }
-  if (t < 0) return S_UNCOVERED;
-  *last = t;
+  /* boundaries: 0, W and every span end, sorted */
+  int bx[MAX_SEG];
+  int nb = 0;
+  bx[nb++] = 0;
+  for (int i = 0; i < n; ++i) {
+    bx[nb++] = lo[i];
+    bx[nb++] = hi[i];
+  }
+  for (int i = 1; i < nb; ++i) {
+    const int v = bx[i];
+    int j = i - 1;
+    while (j >= 0 && bx[j] > v) {
+      bx[j + 1] = bx[j];
+      --j;
+    }
+    bx[j + 1] = v;
+  }
+  int ns = 0;
+  for (int i = 0; i < nb; ++i) {
+    const int x0 = bx[i];
+    const int x1 = i + 1 < nb ? bx[i + 1] : W;
+    if (x1 <= x0 || x0 >= W) continue;
+    int owner = -1;
+    for (int k = 0; k < n; ++k)
+      if (lo[k] <= x0 && x0 < hi[k] && (owner < 0 || tri[k] < owner)) owner = tri[k];
+    if (ns > 0 && seg_t[ns - 1] == owner) continue; /* extend the previous segment */
+    seg_x[ns] = x0;
+    seg_t[ns] = owner;
+    ++ns;
+  }
+  seg_x[ns] = W;
+  return ns;
+}
+
+// A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
+typedef struct {
+  float c0, slope, x0, row_term;
+} row_plane_t;
+
+static inline row_plane_t row_plane(__global const float* T, int t, float py) {
   __global const float* R = T + t * TRI_STRIDE;
-  const float tx = px - R[T_X0], ty = py - R[T_Y0];
+  row_plane_t rp;
+  rp.x0 = R[T_X0];
 #if DEPTH_FROM == 2
-  const float q = (R[T_Q0] + R[T_DQDX] * tx) + R[T_DQDY] * ty;
+  rp.c0 = R[T_Q0];
+  rp.slope = R[T_DQDX];
+  rp.row_term = R[T_DQDY] * (py - R[T_Y0]);
+#else
+  rp.c0 = R[T_D0];
+  rp.slope = R[T_DZDX];
+  rp.row_term = R[T_DZDY] * (py - R[T_Y0]);
+#endif
+  return rp;
+}
+
+// Stored code of a fragment, or its status (clipped / non-finite).
+static inline int fragment_code(row_plane_t rp, __global const float* P, float px, uint* code) {
+#if DEPTH_FROM == 2
+  const float q = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
   const float w = 1.0f / q;
   if (!isfinite(w)) return S_NONFINITE;
   if (w < P[C_NEAR] || w > P[C_FAR]) return S_CLIPPED;
@@ -238,7 +313,7 @@ static inline int fragment(__global const float* T, __global const float* P, con
   if (isnan(d)) return S_NONFINITE;
   d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
 #else
-  const float d = (R[T_D0] + R[T_DZDX] * tx) + R[T_DZDY] * ty;
+  const float d = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
   if (!isfinite(d)) return S_NONFINITE;
   if (!(d >= 0.0f && d <= 1.0f)) return S_CLIPPED;
 #endif
@@ -254,7 +329,22 @@ static inline int fights(uint code_a, uint code_b) {
 #endif
 }
 
-// One kernel row of one (probe, frame): stops at the row's first fighting pixel.
+// Walks the row in pieces where both planes' covering triangles stay the same.
+#define FOR_EACH_PIECE(...)                                                            \
+  {                                                                                    \
+    int ka = 0, kb = 0, x = 0;                                                         \
+    while (x < W) {                                                                    \
+      while (seg_xa[ka + 1] <= x) ++ka;                                                \
+      while (seg_xb[kb + 1] <= x) ++kb;                                                \
+      const int x_end = min(seg_xa[ka + 1], seg_xb[kb + 1]);                           \
+      const int ta = seg_ta[ka], tb = seg_tb[kb];                                      \
+      __VA_ARGS__                                                                      \
+      x = x_end;                                                                       \
+    }                                                                                  \
+  }
+
+// One kernel row of one (probe, frame). A piece of the row whose pixels all evaluate is checked
+// as a whole; the row stops after the first piece with a fight.
 // Global id: (probe * frames + frame) * kernel_h + row.
 __kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
                          __global const uint* restrict vflags, const uint kernel_w,
@@ -272,29 +362,33 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   }
   __global const float* TA = tris + (2u * pf) * (NT * TRI_STRIDE);
   __global const float* TBp = tris + (2u * pf + 1u) * (NT * TRI_STRIDE);
+  const int W = (int)kernel_w;
   const float py = origin_y + (float)row + 0.5f;
-  uchar cand_a[NT], cand_b[NT];
-  const int na = row_candidates(TA, py, cand_a);
-  const int nb = row_candidates(TBp, py, cand_b);
-  int last_a = -1, last_b = -1;
+  int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
+  row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
+  row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
   uint flags = 0u, count = 0u;
-  for (uint x = 0; x < kernel_w; ++x) {
-    const float px = origin_x + (float)x + 0.5f;
-    uint ca = 0u, cb = 0u;
-    const int sa = fragment(TA, P, cand_a, na, &last_a, px, py, &ca);
-    const int sb = fragment(TBp, P, cand_b, nb, &last_b, px, py, &cb);
-    ++count;
-    if (sa == S_UNCOVERED || sb == S_UNCOVERED) {
+  FOR_EACH_PIECE({
+    count += (uint)(x_end - x);
+    if (ta < 0 || tb < 0) {
       flags |= R_UNCOVERED;
-    } else if (sa == S_NONFINITE || sb == S_NONFINITE) {
-      flags |= R_NONFINITE;
-    } else if (sa == S_CLIPPED || sb == S_CLIPPED) {
-      flags |= R_CLIPPED;
-    } else if (fights(ca, cb)) {
-      flags |= R_FIGHT;
-      break;
+    } else {
+      const row_plane_t ra = row_plane(TA, ta, py), rb = row_plane(TBp, tb, py);
+      uint piece = 0u;
+      for (int i = x; i < x_end; ++i) {
+        const float px = origin_x + (float)i + 0.5f;
+        uint ca = 0u, cb = 0u;
+        const int sa = fragment_code(ra, P, px, &ca);
+        const int sb = fragment_code(rb, P, px, &cb);
+        const uint bad = (sa == S_NONFINITE || sb == S_NONFINITE) ? R_NONFINITE
+                         : (sa == S_CLIPPED || sb == S_CLIPPED)   ? R_CLIPPED
+                                                                  : 0u;
+        piece |= bad ? bad : (fights(ca, cb) ? R_FIGHT : 0u);
+      }
+      flags |= piece;
+      if (piece & R_FIGHT) break;
     }
-  }
+  })
   result[id] = flags | (count << R_COUNT_SHIFT);
 }
 
@@ -309,20 +403,23 @@ __kernel void mts_codes(__global const float* restrict probes, __global const fl
   __global const float* P = probes;
   __global const float* TA = tris;
   __global const float* TBp = tris + NT * TRI_STRIDE;
+  const int W = (int)kernel_w;
   const float py = origin_y + (float)row + 0.5f;
-  uchar cand_a[NT], cand_b[NT];
-  const int na = row_candidates(TA, py, cand_a);
-  const int nb = row_candidates(TBp, py, cand_b);
-  int last_a = -1, last_b = -1;
-  for (uint x = 0; x < kernel_w; ++x) {
-    const float px = origin_x + (float)x + 0.5f;
-    uint ca = 0u, cb = 0u;
-    const int sa = fragment(TA, P, cand_a, na, &last_a, px, py, &ca);
-    const int sb = fragment(TBp, P, cand_b, nb, &last_b, px, py, &cb);
-    __global uint* o = out + 4u * (row * kernel_w + x);
-    o[0] = ca;
-    o[1] = cb;
-    o[2] = (uint)sa;
-    o[3] = (uint)sb;
-  }
+  int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
+  row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
+  row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
+  FOR_EACH_PIECE({
+    for (int i = x; i < x_end; ++i) {
+      const float px = origin_x + (float)i + 0.5f;
+      uint ca = 0u, cb = 0u;
+      int sa = S_UNCOVERED, sb = S_UNCOVERED;
+      if (ta >= 0) sa = fragment_code(row_plane(TA, ta, py), P, px, &ca);
+      if (tb >= 0) sb = fragment_code(row_plane(TBp, tb, py), P, px, &cb);
+      __global uint* o = out + 4u * (row * kernel_w + (uint)i);
+      o[0] = ca;
+      o[1] = cb;
+      o[2] = (uint)sa;
+      o[3] = (uint)sb;
+    }
+  })
 }
