@@ -1,0 +1,90 @@
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "run_cli.h"
+
+using depthprec::test::run_cli;
+using Catch::Matchers::Contains;
+
+namespace {
+const std::string kSmall = "--kernel 24x24 --frames 6 --distances 2,1024 ";
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+TEST_CASE("mts prints one row per pair and distance with the SPEC 5.4 fields", "[cli][mts]") {
+  const auto r = run_cli("mts -t standard,reversed -f unorm24 " + kSmall);
+  REQUIRE(r.exit_code == 0);
+  for (const char* col : {"mts", "lo", "hi", "mts_seen", "vertex_bound", "frames", "fragment_pairs", "seconds", "flags"})
+    CHECK_THAT(r.output, Contains(col));
+  CHECK_THAT(r.output, Contains("standard"));
+  CHECK_THAT(r.output, Contains("reversed"));
+  CHECK_THAT(r.output, Contains("fragment pairs evaluated"));
+}
+
+TEST_CASE("--no-timing output is byte-identical across runs", "[cli][mts]") {
+  const auto a = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmall);
+  const auto b = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmall);
+  REQUIRE(a.exit_code == 0);
+  CHECK(a.output == b.output);
+  CHECK_THAT(a.output, !Contains("seconds"));
+}
+
+TEST_CASE("table in every output format", "[cli][table]") {
+  const std::string args = "table -t linear,w_buffer -f unorm16 --no-timing " + kSmall;
+  const auto md = run_cli(args + "--format-out markdown");
+  REQUIRE(md.exit_code == 0);
+  CHECK_THAT(md.output, Contains("| z |") || Contains("|    z |") || Contains("| z"));
+  CHECK_THAT(md.output, Contains("linear/unorm16/gl"));
+  const auto csv = run_cli(args + "--format-out csv");
+  REQUIRE(csv.exit_code == 0);
+  CHECK_THAT(csv.output, Contains("z,vertex_bound,linear/unorm16/gl,w_buffer/unorm16/gl"));
+  const auto js = run_cli(args + "--format-out json");
+  REQUIRE(js.exit_code == 0);
+  const auto j = nlohmann::json::parse(js.output);
+  CHECK(j["program"] == "depthprec");
+  CHECK(j["rows"].size() == 4);
+  CHECK(j["kernel_variants"].size() == 2);
+  CHECK(j["fragment_pairs"].get<long long>() > 0);
+  CHECK(j["scene"]["kernel"][0] == 24);
+  CHECK_FALSE(j.contains("wall_seconds"));
+}
+
+TEST_CASE("--output writes the file; an unwritable path fails before the run", "[cli][table]") {
+  const std::string path = "/tmp/depthprec_test_table.csv";
+  std::remove(path.c_str());
+  const auto r = run_cli("table -t linear -f unorm24 --format-out csv -o " + path + " " + kSmall);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(slurp(path), Contains("linear/unorm24/gl"));
+  const auto bad = run_cli("table -o /nonexistent-dir/x.csv " + kSmall);
+  CHECK(bad.exit_code == 5);
+  CHECK_THAT(bad.output, Contains("cannot write output '/nonexistent-dir/x.csv'"));
+}
+
+TEST_CASE("-v names the kernel variants built, and only the ones needed", "[cli][mts]") {
+  const auto r = run_cli("-v mts -t standard,infinite -f unorm24 " + kSmall);
+  REQUIRE(r.exit_code == 0);
+  // standard and infinite share one variant (same depth path and format): built once
+  size_t n = 0, at = 0;
+  while ((at = r.output.find("kernel variant ", at)) != std::string::npos) ++n, ++at;
+  CHECK(n == 1);
+  CHECK_THAT(r.output, Contains("-DDF_BITS=24u"));
+}
+
+TEST_CASE("scene and option errors exit 3 with the key named", "[cli][errors]") {
+  const auto r = run_cli("mts -t zbuffer " + kSmall);
+  CHECK(r.exit_code == 3);
+  CHECK_THAT(r.output, Contains("unknown technique 'zbuffer'"));
+  const auto n = run_cli("mts --near -1 " + kSmall);
+  CHECK(n.exit_code == 3);
+  CHECK_THAT(n.output, Contains("'near' must be > 0"));
+  const auto k = run_cli("mts --kernel 20 --frames 6 --distances 2");
+  CHECK(k.exit_code == 2);
+  CHECK_THAT(k.output, Contains("expected WxH"));
+}
