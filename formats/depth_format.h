@@ -154,6 +154,24 @@ DF_FN double df_decode(df_u32 c, df_format f) {
   if (e == 0u) return ldexp((double)frac, 1 - f.bias - f.man_bits);
   return ldexp((double)((((df_u64)1) << f.man_bits) + frac), (df_i32)e - f.bias - f.man_bits);
 }
+
+/* Spacing between the code at or below v and the next code above it (SPEC 6: the per-pixel
+ * error dDp), exact: 1/(2^b - 1) correctly rounded for unorm, a power of two for floats (the
+ * quantum of v's binade, or of the subnormal range); at or above the largest code, the spacing
+ * below it. */
+DF_FN double df_spacing_at(double v, df_format f) {
+  if (f.kind == DF_KIND_UNORM) return 1.0 / (double)f.max_code;
+  const double top = df_decode(f.max_code, f);
+  if (v >= top) return top - df_decode(f.max_code - 1u, f);
+  int e = 0;
+  const int min_p = 1 - f.bias;
+  int p = min_p;
+  if (v > 0.0) {
+    (void)frexp(v, &e);
+    p = e - 1 > min_p ? e - 1 : min_p;
+  }
+  return ldexp(1.0, p - f.man_bits);
+}
 #endif
 
 #endif /* DF_DEPTH_FORMAT_H */

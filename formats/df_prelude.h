@@ -8,6 +8,7 @@
 typedef uint df_u32;
 typedef ulong df_u64;
 typedef int df_i32;
+typedef long df_i64;
 #define DF_FN static inline
 #define df_float_bits(x) as_uint(x)
 #define df_bits_float(u) as_float(u)
@@ -18,6 +19,7 @@ typedef int df_i32;
 typedef uint32_t df_u32;
 typedef uint64_t df_u64;
 typedef int32_t df_i32;
+typedef int64_t df_i64;
 #define DF_FN static inline
 DF_FN df_u32 df_float_bits(float x) {
   df_u32 u;

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/errors.h"
+#include "host/text_table.h"
 #include "host/version.h"
 
 namespace depthprec {
@@ -67,54 +68,6 @@ json row_json(const MtsRow& r, bool timing) {
             {"flags", r.flags()}};
   if (timing) j["seconds"] = r.seconds;
   return j;
-}
-
-struct Column {
-  std::string name;
-  bool left = false;
-};
-
-// Aligned text or Markdown from a header and string cells.
-std::string grid(const std::vector<Column>& cols, const std::vector<std::vector<std::string>>& cells,
-                 bool markdown) {
-  std::vector<size_t> w(cols.size());
-  for (size_t c = 0; c < cols.size(); ++c) {
-    w[c] = cols[c].name.size();
-    for (const auto& row : cells) w[c] = std::max(w[c], row[c].size());
-  }
-  auto line = [&](const std::vector<std::string>& v) {
-    std::string s = markdown ? "|" : "";
-    for (size_t c = 0; c < cols.size(); ++c) {
-      const std::string cell = cols[c].left ? fmt::format("{:<{}}", v[c], w[c]) : fmt::format("{:>{}}", v[c], w[c]);
-      s += markdown ? " " + cell + " |" : (c ? "  " : "") + cell;
-    }
-    return s + "\n";
-  };
-  std::vector<std::string> names;
-  for (const auto& c : cols) names.push_back(c.name);
-  std::string out = line(names);
-  if (markdown) {
-    std::string sep = "|";
-    for (size_t c = 0; c < cols.size(); ++c)
-      sep += cols[c].left ? " :" + std::string(w[c] - 1, '-') + " |" : " " + std::string(w[c] - 1, '-') + ": |";
-    out += sep + "\n";
-  }
-  for (const auto& row : cells) out += line(row);
-  return out;
-}
-
-std::string csv(const std::vector<Column>& cols, const std::vector<std::vector<std::string>>& cells) {
-  std::string out;
-  for (size_t c = 0; c < cols.size(); ++c) out += (c ? "," : "") + cols[c].name;
-  out += "\n";
-  for (const auto& row : cells) {
-    for (size_t c = 0; c < row.size(); ++c) {
-      const bool quote = row[c].find(',') != std::string::npos;
-      out += (c ? "," : "") + (quote ? "\"" + row[c] + "\"" : row[c]);
-    }
-    out += "\n";
-  }
-  return out;
 }
 
 std::string footer(const RunInfo& run) {

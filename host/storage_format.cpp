@@ -100,11 +100,7 @@ uint32_t StorageFormat::code_floor(double v) const {
   return static_cast<uint32_t>(std::min<uint64_t>(code, spec_.max_code));
 }
 
-double StorageFormat::spacing_at(double v) const {
-  const uint32_t c = code_floor(v);
-  if (c == spec_.max_code) return decode(c) - decode(c - 1);
-  return decode(c + 1) - decode(c);
-}
+double StorageFormat::spacing_at(double v) const { return df_spacing_at(v, spec_); }
 
 std::string StorageFormat::defines() const {
   if (spec_.kind == DF_KIND_UNORM)

@@ -71,32 +71,50 @@ Row3 projection_row3(Technique t, DepthRange r, double n, double f) {
   }
 }
 
-double depth_of_distance(Technique t, DepthRange r, double n, double f, const TechniqueParams& p,
-                         double w) {
+double depth_of_distance(Technique t, double n, double f, const TechniqueParams& p, double w) {
+  // The gl and zero_to_one window depths are the same function of w (only their binary32
+  // evaluation differs), so one closed form per technique, each without cancellation.
   switch (t) {
-    case Technique::standard:
-    case Technique::infinite:
-    case Technique::reversed:
+    case Technique::standard: return f * (w - n) / ((f - n) * w);
+    case Technique::infinite: return (w - n) / w;
+    case Technique::reversed: return n * (f - w) / ((f - n) * w);
     case Technique::reversed_infinite:
-    case Technique::inverse_w: {
-      // z_ndc = (a * (-w) + b) / w with z_eye = -w and w_clip = w
-      const Row3 row = projection_row3(t, r, n, f);
-      const double ndc = (-row.a * w + row.b) / w;
-      return r == DepthRange::gl ? 0.5 * ndc + 0.5 : ndc;
-    }
+    case Technique::inverse_w: return n / w;
     case Technique::log_vertex:
-    case Technique::log_fragment:
-      return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
-    case Technique::linear:
-      return (w - n) / (f - n);
-    case Technique::w_buffer:
-      return w / f;
+    case Technique::log_fragment: return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
+    case Technique::linear: return (w - n) / (f - n);
+    case Technique::w_buffer: return w / f;
     case Technique::layered: {
       const Layer l = layer_bounds(layer_of(w, n, f, p), n, f, p);
-      return depth_of_distance(p.layer_mapping, r, l.near, l.far, p, w);
+      return depth_of_distance(p.layer_mapping, l.near, l.far, p, w);
     }
   }
   return NAN;
+}
+
+double distance_of_depth(Technique t, double n, double f, const TechniqueParams& p, double D) {
+  switch (t) {
+    case Technique::standard:  // D = f(Ze - n)/((f - n)Ze); 1 - D is exact for D >= 0.5
+      return n * f / (f * (1.0 - D) + n * D);
+    case Technique::infinite:
+      return n / (1.0 - D);
+    case Technique::reversed:  // D = n(f - Ze)/((f - n)Ze)
+      return n * f / (n + D * (f - n));
+    case Technique::reversed_infinite:
+    case Technique::inverse_w:
+      return n / D;
+    case Technique::linear:
+      return n + D * (f - n);
+    case Technique::w_buffer:
+      return D * f;
+    case Technique::log_vertex:
+    case Technique::log_fragment:
+      return std::expm1(D * std::log1p(p.log_k * f)) / p.log_k;
+    case Technique::layered:
+      break;
+  }
+  throw InputError(
+      "layered has one mapping per layer: ask for its layer_mapping with the layer's near and far");
 }
 
 Layer layer_bounds(int i, double n, double f, const TechniqueParams& p) {

@@ -63,10 +63,14 @@ struct TechniqueParams {
   double layer_overlap = 0.01;
 };
 
-// Window depth in [0,1] of eye distance w, exact mapping in binary64 (for the metrics, the
-// inverse mappings and the reference, never for the emulated pipeline).
-double depth_of_distance(Technique t, DepthRange r, double near, double far,
-                         const TechniqueParams& p, double w);
+// Window depth in [0,1] of eye distance w, the exact mapping in binary64 (for the metrics and
+// the code/distance queries, never for the emulated pipeline). The same in both depth ranges.
+double depth_of_distance(Technique t, double near, double far, const TechniqueParams& p, double w);
+
+// Eye distance of window depth D: the inverse of depth_of_distance, in forms that keep full
+// binary64 accuracy near D = 0 and D = 1 (no 1 - D·c with D·c close to 1). Throws InputError for
+// `layered`, which has one mapping per layer.
+double distance_of_depth(Technique t, double near, double far, const TechniqueParams& p, double D);
 
 // Layer i = 0..L-1 of `layered`: geometric bounds between near and far, each layer's far bound
 // pushed out by the overlap (the last ends at far). layer_of() is the layer holding distance z.

@@ -28,7 +28,7 @@ TEST_CASE("mts prints one row per pair and distance with the SPEC 5.4 fields", "
   CHECK_THAT(r.output, Contains("fragment pairs evaluated"));
 }
 
-TEST_CASE("--no-timing output is byte-identical across runs", "[cli][mts]") {
+TEST_CASE("no-timing output is byte-identical across runs", "[cli][mts]") {
   const auto a = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmall);
   const auto b = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmall);
   REQUIRE(a.exit_code == 0);
@@ -56,7 +56,7 @@ TEST_CASE("table in every output format", "[cli][table]") {
   CHECK_FALSE(j.contains("wall_seconds"));
 }
 
-TEST_CASE("--output writes the file; an unwritable path fails before the run", "[cli][table]") {
+TEST_CASE("output option writes the file and an unwritable path fails before the run", "[cli][table]") {
   const std::string path = "/tmp/depthprec_test_table.csv";
   std::remove(path.c_str());
   const auto r = run_cli("table -t linear -f unorm24 --format-out csv -o " + path + " " + kSmall);
@@ -67,7 +67,7 @@ TEST_CASE("--output writes the file; an unwritable path fails before the run", "
   CHECK_THAT(bad.output, Contains("cannot write output '/nonexistent-dir/x.csv'"));
 }
 
-TEST_CASE("-v names the kernel variants built, and only the ones needed", "[cli][mts]") {
+TEST_CASE("verbose mode names the kernel variants built and only the ones needed", "[cli][mts]") {
   const auto r = run_cli("-v mts -t standard,infinite -f unorm24 " + kSmall);
   REQUIRE(r.exit_code == 0);
   // standard and infinite share one variant (same depth path and format): built once

@@ -43,7 +43,7 @@ TEST_CASE("device and host encoders agree on sampled inputs", "[formats][device]
   }
 }
 
-TEST_CASE("device encoder handles values outside [0,1] like the host", "[formats][device]") {
+TEST_CASE("device encoder handles values outside 0..1 like the host", "[formats][device]") {
   const std::vector<float> specials = {-1.0f,     -0.0f,     0.0f,   1.0f, 1.5f, 3e38f,
                                        INFINITY,  -INFINITY, NAN,    1e-45f, 0.99999994f};
   for (const char* name : {"unorm24", "float32", "float16", "e4m12"}) {

@@ -9,7 +9,7 @@
 using namespace depthprec;
 using namespace depthprec::test;
 
-TEST_CASE("linear in unorm24 comes within 2x of (f-n)/2^24 for z in [2^12, 2^26]", "[mts][paper]") {
+TEST_CASE("linear in unorm24 comes within 2x of (f-n)/2^24 for z from 2^12 to 2^26", "[mts][paper]") {
   const Scene scene = load_scene("");
   const double bound = (scene.far - scene.near) / std::ldexp(1.0, 24);
   for (const auto& r : mts_rows(scene, Technique::linear, "unorm24", DepthRange::gl, powers_of_two(12, 26))) {
@@ -37,7 +37,7 @@ TEST_CASE("standard (gl): MTS < 1e-6 at z = 2, unresolvable from z = 2^24", "[mt
   }
 }
 
-TEST_CASE("reversed float32 zero_to_one stays within 8x the vertex bound; gl is 100x worse at 2^20",
+TEST_CASE("reversed float32 zero_to_one stays within 8x the vertex bound and gl is 100x worse at 2^20",
           "[mts][paper]") {
   const Scene scene = load_scene("");
   const auto rows = mts_rows(scene, Technique::reversed, "float32", DepthRange::zero_to_one, powers_of_two(1, 22));

@@ -37,7 +37,7 @@ TEST_CASE("the probe sequence starts at z, doubles while fighting, then bisects 
   CHECK((b.hi() - b.lo()) / b.hi() <= std::ldexp(1.0, -10));
 }
 
-TEST_CASE("a separation below z bisects down from [0, z]", "[search]") {
+TEST_CASE("a separation below z bisects down from 0..z", "[search]") {
   const Bisection b = run(2.0, 3e-7);
   CHECK(b.history()[0].first == 2.0);
   CHECK(b.history()[1].first == 1.0);  // s = 0 counts as fighting

@@ -16,5 +16,7 @@ void add_devices_command(CLI::App& app, GlobalOptions& global);
 void add_formats_command(CLI::App& app, GlobalOptions& global);
 // mts and table; argc/argv are kept for the command line in JSON headers.
 void add_mts_commands(CLI::App& app, GlobalOptions& global, int argc, char** argv);
+// lj, select, lj-table, resolve.
+void add_lj_commands(CLI::App& app, GlobalOptions& global);
 
 }  // namespace depthprec::cli

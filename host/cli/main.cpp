@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   cli::add_devices_command(app, global);
   cli::add_formats_command(app, global);
   cli::add_mts_commands(app, global, argc, argv);
+  cli::add_lj_commands(app, global);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

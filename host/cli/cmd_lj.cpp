@@ -1,0 +1,338 @@
+// lj, select, lj-table and resolve: the Lapidous-Jiao metric and code/distance queries.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "host/cli/commands.h"
+#include "host/cli/scene_options.h"
+#include "host/errors.h"
+#include "host/lj_metric.h"
+#include "host/lj_pipeline.h"
+#include "host/report.h"
+#include "host/resolve.h"
+#include "host/text_table.h"
+#include "host/version.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct LjOptions {
+  std::string buffer = "z", format = "unorm16", sampling = "uniform", rounding = "nearest_even";
+  double near = 1, far = 100;
+  long long samples = 1000000;
+  int bits = 16;
+  OutputOptions out;
+
+  LjConfig config() const {
+    LjConfig c;
+    c.buffer = parse_lj_buffer(buffer);
+    c.near = near;
+    c.far = far;
+    c.samples = samples;
+    c.sampling = parse_lj_sampling(sampling);
+    validate(c);
+    return c;
+  }
+};
+
+void add_lj_common(CLI::App* cmd, LjOptions& o, bool with_buffer) {
+  if (with_buffer)
+    cmd->add_option("--buffer", o.buffer, "z, w, inverse_w or complementary_z")->capture_default_str();
+  cmd->add_option("--near", o.near, "Near plane distance d")->capture_default_str();
+  cmd->add_option("--far", o.far, "Far plane distance f")->capture_default_str();
+  cmd->add_option("--samples", o.samples, "N sampled distances from d to f, both ends included")
+      ->capture_default_str();
+  cmd->add_option("--sampling", o.sampling, "uniform, or increasing (weight Ze - d)")->capture_default_str();
+  o.out.add_to(*cmd);
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The formats of a `bits`-bit buffer: E = 0 (integer) .. min(8, bits - 1).
+std::vector<std::string> split_formats(int bits) {
+  std::vector<std::string> out = {fmt::format("unorm{}", bits)};
+  for (int e = 1; e <= std::min(8, bits - 1); ++e) out.push_back(fmt::format("e{}m{}", e, bits - e));
+  return out;
+}
+
+void run_lj(const LjOptions& o, const GlobalOptions& g) {
+  const LjConfig c = o.config();
+  const StorageFormat f = StorageFormat::parse(o.format, parse_rounding(o.rounding));
+  check_writable(o.out.output);
+  auto t0 = std::chrono::steady_clock::now();
+  const LjResult host = lj_average_error(c, f);
+  const double host_ms = ms_since(t0);
+  OpenClRuntime rt(g.device);
+  lj_average_error_device(rt, c, f);  // builds the program: compile time is not compute time
+  t0 = std::chrono::steady_clock::now();
+  const LjResult dev = lj_average_error_device(rt, c, f);
+  const double dev_ms = ms_since(t0);
+  Pipeline pipeline;
+  pipeline.depth_range = DepthRange::zero_to_one;
+  pipeline.rounding = f.rounding();
+  t0 = std::chrono::steady_clock::now();
+  const LjPipelineResult pipe = lj_pipeline_error(c, f, pipeline);
+  const double pipe_ms = ms_since(t0);
+  const bool timing = !o.out.no_timing;
+  std::string text;
+  if (o.out.format_out == "json") {
+    nlohmann::json j = {{"program", "depthprec"}, {"version", kVersion}, {"device", rt.description()},
+                        {"buffer", o.buffer}, {"format", f.name()}, {"near", c.near}, {"far", c.far},
+                        {"samples", c.samples}, {"sampling", o.sampling},
+                        {"ae_host", exact(host.ae)}, {"ae_device", exact(dev.ae)},
+                        {"ae_pipeline", exact(pipe.ae)}, {"vertex_limited_fraction", host.vertex_limited},
+                        {"infinite_samples", host.infinite_samples},
+                        {"pipeline_clipped_samples", pipe.clipped}, {"pipeline_off_code_samples", pipe.off_code}};
+    if (timing) j["ms"] = {{"host", host_ms}, {"device", dev_ms}, {"pipeline", pipe_ms}};
+    text = j.dump(2) + "\n";
+  } else {
+    std::vector<Column> cols = {{"metric", true}, {"ae"}};
+    if (timing) cols.push_back({"ms"});
+    cols.push_back({"notes", true});
+    Cells cells = {
+        {"analytic, host binary64", human(host.ae), fmt::format("{:.1f}", host_ms),
+         fmt::format("per-vertex term limits {:.1f} % of samples{}", 100 * host.vertex_limited,
+                     host.infinite_samples ? fmt::format("; {} samples past the Z pole", host.infinite_samples) : "")},
+        {"analytic, device binary64", human(dev.ae), fmt::format("{:.1f}", dev_ms), rt.info().device_name},
+        {"pipeline-measured", human(pipe.ae), fmt::format("{:.1f}", pipe_ms),
+         fmt::format("{} samples stored off the exact code, {} clipped", pipe.off_code, pipe.clipped)}};
+    if (!timing)
+      for (auto& row : cells) row.erase(row.begin() + 2);
+    text = fmt::format("Lapidous-Jiao average error: {} buffer, {}, near {}, far {} (f/d {}), N = {}, {} sampling\n\n",
+                       o.buffer, f.name(), human(c.near), human(c.far), human(c.far / c.near), c.samples, o.sampling) +
+           render_cells(cols, cells, o.out.format_out);
+  }
+  write_output(o.out.output, text);
+}
+
+struct Ranked {
+  std::string format;
+  int e = 0;
+  double ae = 0;
+};
+
+std::vector<Ranked> sweep(OpenClRuntime& rt, const LjConfig& c, int bits) {
+  std::vector<Ranked> out;
+  int e = 0;
+  for (const auto& name : split_formats(bits))
+    out.push_back({name, e++, lj_average_error_device(rt, c, StorageFormat::parse(name)).ae});
+  return out;
+}
+
+void run_select(const LjOptions& o, const GlobalOptions& g) {
+  const LjConfig c = o.config();
+  if (o.bits < 2 || o.bits > 32) throw InputError(fmt::format("--bits must be 2..32, not {}", o.bits));
+  check_writable(o.out.output);
+  OpenClRuntime rt(g.device);
+  auto ranked = sweep(rt, c, o.bits);
+  std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) { return a.ae < b.ae; });
+  std::string text;
+  if (o.out.format_out == "json") {
+    nlohmann::json j = {{"buffer", o.buffer}, {"bits", o.bits}, {"near", c.near}, {"far", c.far},
+                        {"samples", c.samples}, {"sampling", o.sampling}, {"ranking", nlohmann::json::array()}};
+    for (const auto& r : ranked) j["ranking"].push_back({{"format", r.format}, {"E", r.e}, {"ae", exact(r.ae)}});
+    text = j.dump(2) + "\n";
+  } else {
+    Cells cells;
+    int rank = 1;
+    for (const auto& r : ranked)
+      cells.push_back({std::to_string(rank++), r.format, std::to_string(r.e), std::to_string(o.bits - r.e),
+                       human(r.ae), human(r.ae / ranked.front().ae)});
+    text = fmt::format("Best {}-bit storage for a {} buffer, near {}, far {} ({} sampling, N = {}):\n\n", o.bits,
+                       o.buffer, human(c.near), human(c.far), o.sampling, c.samples) +
+           render_cells({{"rank"}, {"format", true}, {"E"}, {"M"}, {"ae"}, {"x best"}}, cells, o.out.format_out);
+  }
+  write_output(o.out.output, text);
+}
+
+void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
+  check_writable(o.out.output);
+  OpenClRuntime rt(g.device);
+  const std::vector<double> ratios = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 1e4, 1e6};
+  const bool md = o.out.format_out == "markdown";
+  std::string text = md ? "# Lapidous-Jiao average depth error: the paper's experiments\n\n" : "";
+  text += fmt::format("ae per exponent width E (E = 0: integer unorm<bits>; E >= 1: LJ e<E>m<bits-E>), near 1, "
+                      "N = {} samples. inf: a sample passes the Z buffer's pole. best E 0/1: the integer "
+                      "format (LJ99 eq. 2 makes E = 0 and E = 1 the same; unorm's codes are 2^-bits relatively "
+                      "wider apart).\n",
+                      o.samples);
+  for (const char* sampling : {"uniform", "increasing"}) {
+    for (int bits : {16, 24}) {
+      for (const LjBuffer b : {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w, LjBuffer::complementary_z}) {
+        std::vector<Column> cols = {{"f/d"}};
+        for (int e = 0; e <= 8; ++e) cols.push_back({fmt::format("E={}", e)});
+        cols.push_back({"best E"});
+        Cells cells;
+        for (double r : ratios) {
+          LjConfig c;
+          c.buffer = b;
+          c.near = 1;
+          c.far = r;
+          c.samples = o.samples;
+          c.sampling = parse_lj_sampling(sampling);
+          const auto sw = sweep(rt, c, bits);
+          std::vector<std::string> row = {human(r)};
+          size_t best = 0;
+          for (size_t k = 0; k < sw.size(); ++k) {
+            row.push_back(human(sw[k].ae));
+            if (sw[k].ae < sw[best].ae) best = k;
+          }
+          // LJ99 eq. 2 makes E = 0 and E = 1 one integer format; unorm's 1/(2^b - 1) spacing
+          // differs from e1's 2^-b by 2^-b relative, so call that a tie.
+          const bool integer_tie = sw[best].e <= 1 && std::abs(sw[0].ae - sw[1].ae) <= std::ldexp(2.0, -bits) * sw[1].ae;
+          row.push_back(std::isinf(sw[best].ae) ? "-" : integer_tie ? "0/1" : std::to_string(sw[best].e));
+          cells.push_back(row);
+        }
+        text += fmt::format("\n{}{}-bit {} buffer, {} sampling\n\n", md ? "## " : "", bits, to_string(b), sampling);
+        text += render_cells(cols, cells, o.out.format_out);
+      }
+    }
+  }
+  // LJ99 fig. 11: 32-bit buffers.
+  struct Pick {
+    LjBuffer buffer;
+    const char* format;
+  };
+  const std::vector<Pick> picks = {{LjBuffer::z, "float32"},           {LjBuffer::z, "unorm24"},
+                                   {LjBuffer::z, "unorm32"},           {LjBuffer::w, "unorm32"},
+                                   {LjBuffer::inverse_w, "float32"},   {LjBuffer::complementary_z, "float32"},
+                                   {LjBuffer::complementary_z, "e4m24"}};
+  std::vector<Column> cols = {{"f/d"}};
+  for (const auto& p : picks) cols.push_back({fmt::format("{} {}", to_string(p.buffer), p.format)});
+  Cells cells;
+  for (double r : ratios) {
+    std::vector<std::string> row = {human(r)};
+    for (const auto& p : picks) {
+      LjConfig c;
+      c.buffer = p.buffer;
+      c.near = 1;
+      c.far = r;
+      c.samples = o.samples;
+      row.push_back(human(lj_average_error_device(rt, c, StorageFormat::parse(p.format)).ae));
+    }
+    cells.push_back(row);
+  }
+  text += fmt::format("\n{}32-bit comparisons (LJ99 fig. 11), uniform sampling; e4m24 is the paper's 28-bit "
+                      "\"24.4\" format\n\n", md ? "## " : "");
+  text += render_cells(cols, cells, o.out.format_out);
+  write_output(o.out.output, text);
+}
+
+struct ResolveOptions {
+  std::string technique = "standard", format = "unorm24", rounding = "nearest_even";
+  double near = 1, far = 100, log_k = 1;
+  long long code = -1;
+  double distance = -1;
+  bool curve = false;
+  int points = 50;
+  OutputOptions out;
+};
+
+void run_resolve(const ResolveOptions& o) {
+  ResolveSetup s;
+  s.technique = parse_technique(o.technique);
+  s.near = o.near;
+  s.far = o.far;
+  s.params.log_k = o.log_k;
+  const StorageFormat f = StorageFormat::parse(o.format, parse_rounding(o.rounding));
+  const int modes = (o.code >= 0) + (o.distance >= 0) + (o.curve ? 1 : 0);
+  if (modes != 1)
+    throw Error(ExitCode::usage, "resolve: give exactly one of --code N, --distance w or --curve");
+  check_writable(o.out.output);
+  std::string text;
+  const auto digits = [](double v) { return fmt::format("{:.10g}", v); };
+  if (o.code >= 0) {
+    if (o.code > 0xffffffffLL) throw InputError(fmt::format("--code {} is beyond 32 bits", o.code));
+    const CodeInterval ci = resolve_code(s, f, static_cast<uint32_t>(o.code));
+    text = render_cells({{"code"}, {"depth"}, {"distance"}, {"distance_lo"}, {"distance_hi"}, {"width"}},
+                        {{std::to_string(ci.code), digits(ci.depth), digits(ci.distance), digits(ci.distance_lo),
+                          digits(ci.distance_hi), human(ci.distance_hi - ci.distance_lo)}},
+                        o.out.format_out);
+  } else {
+    std::vector<DistanceResolution> rows;
+    if (o.curve) rows = resolution_curve(s, f, o.points);
+    else rows.push_back(resolve_distance(s, f, o.distance));
+    Cells cells;
+    for (const auto& r : rows)
+      cells.push_back({digits(r.distance), digits(r.depth), std::to_string(r.code), human(r.gap_below),
+                       human(r.gap_above), human(r.resolution)});
+    text = render_cells({{"distance"}, {"depth"}, {"code"}, {"gap_below"}, {"gap_above"}, {"resolution"}}, cells,
+                        o.out.format_out);
+  }
+  if (o.out.format_out == "text")
+    text = fmt::format("{} in {} ({}), near {}, far {}:\n", o.technique, f.name(), o.rounding, human(s.near),
+                       human(s.far)) + text;
+  write_output(o.out.output, text);
+}
+
+}  // namespace
+
+void add_lj_commands(CLI::App& app, GlobalOptions& global) {
+  auto lj = std::make_shared<LjOptions>();
+  auto* cmd = app.add_subcommand(
+      "lj",
+      "Lapidous-Jiao average depth error (LJ99 eqs. 6-7, SPEC 6) of a buffer type and storage\n"
+      "format: analytic in binary64 on the host and on the device, and measured on the emulated\n"
+      "binary32 pipeline. ae is the average eye-distance error normalised by (f - d).\n"
+      "Examples:\n"
+      "  depthprec lj --buffer z --format unorm16 --near 1 --far 100\n"
+      "  depthprec lj --buffer complementary_z --format e4m12 --far 1000 --sampling increasing\n"
+      "  depthprec lj --buffer inverse_w --format float32 --far 1e4 --format-out json");
+  add_lj_common(cmd, *lj, true);
+  cmd->add_option("-f,--format", lj->format, "Storage format")->capture_default_str();
+  cmd->add_option("--rounding", lj->rounding, "nearest_even or truncate")->capture_default_str();
+  cmd->callback([lj, &global]() { run_lj(*lj, global); });
+
+  auto sel = std::make_shared<LjOptions>();
+  auto* scmd = app.add_subcommand(
+      "select",
+      "LJ99's driver-side format choice: every split of --bits into exponent E and mantissa\n"
+      "(E = 0 is the integer format), ranked by the Lapidous-Jiao average error.\n"
+      "Examples:\n"
+      "  depthprec select --buffer inverse_w --bits 16 --far 500\n"
+      "  depthprec select --buffer complementary_z --bits 24 --far 1e4 --sampling increasing");
+  add_lj_common(scmd, *sel, true);
+  scmd->add_option("--bits", sel->bits, "Buffer size in bits (2..32)")->capture_default_str();
+  scmd->callback([sel, &global]() { run_select(*sel, global); });
+
+  auto tab = std::make_shared<LjOptions>();
+  auto* tcmd = app.add_subcommand(
+      "lj-table",
+      "The paper's experiments: for 16 and 24 bits, each buffer type and f/d from 2 to 1e6, ae per\n"
+      "exponent width and the best one; and the 32-bit comparisons (LJ99 fig. 11).\n"
+      "Example:\n"
+      "  depthprec lj-table --format-out markdown -o docs/lapidous-jiao-tables.md");
+  tcmd->add_option("--samples", tab->samples, "N samples per evaluation")->capture_default_str();
+  tab->out.add_to(*tcmd);
+  tcmd->callback([tab, &global]() { run_lj_table(*tab, global); });
+
+  auto res = std::make_shared<ResolveOptions>();
+  auto* rcmd = app.add_subcommand(
+      "resolve",
+      "Code <-> eye distance: which distances a stored code stands for (--code), which code a\n"
+      "distance gets and the gap to its neighbours (--distance), or the resolution across the\n"
+      "range (--curve). Exact mappings; no emulated arithmetic.\n"
+      "Examples:\n"
+      "  depthprec resolve --technique standard --format unorm16 --near 0.01 --far 1000 --code 1\n"
+      "  depthprec resolve --technique reversed --format float32 --near 0.1 --far 1e4 --distance 5000\n"
+      "  depthprec resolve --technique reversed_infinite --format float32 --near 0.1 --far 1e4 --curve");
+  rcmd->add_option("-t,--technique", res->technique, "Technique: " + technique_names())->capture_default_str();
+  rcmd->add_option("-f,--format", res->format, "Storage format")->capture_default_str();
+  rcmd->add_option("--near", res->near, "Near plane")->capture_default_str();
+  rcmd->add_option("--far", res->far, "Far plane (inf for the infinite techniques)")->capture_default_str();
+  rcmd->add_option("--log-k", res->log_k, "k of the log techniques")->capture_default_str();
+  rcmd->add_option("--rounding", res->rounding, "nearest_even or truncate")->capture_default_str();
+  rcmd->add_option("--code", res->code, "A stored code");
+  rcmd->add_option("--distance", res->distance, "An eye distance");
+  rcmd->add_flag("--curve", res->curve, "Resolution at --points distances, geometric from near to far");
+  rcmd->add_option("--points", res->points, "Points of --curve")->capture_default_str();
+  res->out.add_to(*rcmd);
+  rcmd->callback([res]() { run_resolve(*res); });
+}
+
+}  // namespace depthprec::cli
