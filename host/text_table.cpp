@@ -20,6 +20,7 @@ std::string grid(const std::vector<Column>& cols, const Cells& cells,
       const std::string cell = cols[c].left ? fmt::format("{:<{}}", v[c], w[c]) : fmt::format("{:>{}}", v[c], w[c]);
       s += markdown ? " " + cell + " |" : (c ? "  " : "") + cell;
     }
+    while (!markdown && !s.empty() && s.back() == ' ') s.pop_back();
     return s + "\n";
   };
   std::vector<std::string> names;

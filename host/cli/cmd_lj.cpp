@@ -143,7 +143,7 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
     for (const auto& r : ranked)
       cells.push_back({std::to_string(rank++), r.format, std::to_string(r.e), std::to_string(o.bits - r.e),
                        human(r.ae), human(r.ae / ranked.front().ae)});
-    text = fmt::format("Best {}-bit storage for a {} buffer, near {}, far {} ({} sampling, N = {}):\n\n", o.bits,
+    text = fmt::format("Best {}-bit storage for the {} buffer, near {}, far {} ({} sampling, N = {}):\n\n", o.bits,
                        o.buffer, human(c.near), human(c.far), o.sampling, c.samples) +
            render_cells({{"rank"}, {"format", true}, {"E"}, {"M"}, {"ae"}, {"x best"}}, cells, o.out.format_out);
   }
