@@ -52,6 +52,7 @@
 #define T_DQDY 20
 #define T_YMIN 21
 #define T_YMAX 22
+#define T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
 
 // Probe constants offsets (after P[16])
 #define C_NEAR 16
@@ -178,6 +179,7 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     R[T_DQDY] = (e2q * e1x - e1q * e2x) / det;
     R[T_YMIN] = fmin(fmin(yw[i0], yw[i1]), yw[i2]);
     R[T_YMAX] = fmax(fmax(yw[i0], yw[i1]), yw[i2]);
+    for (int e = 0; e < 3; ++e) R[T_DXDY + e] = R[T_EDGES + 4 * e + 2] / R[T_EDGES + 4 * e + 3];
     ((__global uint*)R)[T_BITS] = bits;
   }
 }
@@ -203,8 +205,16 @@ static inline void edge_range(__global const float* R, uint bits, int e, float p
     if (!edge_passes(R, bits, e, ox + 0.5f, py)) *hi = 0;
     return;
   }
-  const float ax = R[4 * e], ay = R[4 * e + 1], dx = R[4 * e + 2];
-  const float cross = ax + (dx * (py - ay)) / dy - ox - 0.5f; /* pixel index where E = 0 */
+  /* The test is monotone, so its value at the row's two ends says whether there is a boundary
+   * to find at all; an edge far from the row (a near-horizontal one, say) passes or fails whole. */
+  const int first = edge_passes(R, bits, e, ox + 0.5f, py);
+  const int last = edge_passes(R, bits, e, ox + (float)(W - 1) + 0.5f, py);
+  if (first && last) return;
+  if (!first && !last) {
+    *hi = 0;
+    return;
+  }
+  const float cross = R[4 * e] + (py - R[4 * e + 1]) * R[T_DXDY + e] - ox - 0.5f; /* E ~ 0 here */
   int g = isfinite(cross) ? (int)clamp(ceil(cross), -1.0f, (float)W + 1.0f) : 0;
   g = clamp(g, 0, W);
   if (sdy < 0.0f) {
@@ -240,6 +250,41 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
       tri[n] = t;
       ++n;
     }
+  }
+  /* Usually the spans are disjoint (each pixel owned by one triangle): sorted by start they are
+   * the segments, with uncovered gaps between. Otherwise fall through to the general sweep. */
+  for (int i = 1; i < n; ++i) {
+    const int l = lo[i], h = hi[i], t = tri[i];
+    int j = i - 1;
+    while (j >= 0 && lo[j] > l) {
+      lo[j + 1] = lo[j];
+      hi[j + 1] = hi[j];
+      tri[j + 1] = tri[j];
+      --j;
+    }
+    lo[j + 1] = l;
+    hi[j + 1] = h;
+    tri[j + 1] = t;
+  }
+  int disjoint = 1;
+  for (int i = 1; i < n; ++i) disjoint &= hi[i - 1] <= lo[i];
+  if (disjoint) {
+    int ns = 0, cur = 0;
+    for (int i = 0; i < n; ++i) {
+      if (lo[i] > cur) {
+        seg_x[ns] = cur;
+        seg_t[ns++] = -1;
+      }
+      seg_x[ns] = lo[i];
+      seg_t[ns++] = tri[i];
+      cur = hi[i];
+    }
+    if (cur < W) {
+      seg_x[ns] = cur;
+      seg_t[ns++] = -1;
+    }
+    seg_x[ns] = W;
+    return ns;
   }
   /* boundaries: 0, W and every span end, sorted */
   int bx[MAX_SEG];
@@ -296,39 +341,28 @@ static inline row_plane_t row_plane(__global const float* T, int t, float py) {
   return rp;
 }
 
-// Stored code of a fragment, or its status (clipped / non-finite).
-static inline int fragment_code(row_plane_t rp, __global const float* P, float px, uint* code) {
-#if DEPTH_FROM == 2
-  const float q = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
-  const float w = 1.0f / q;
-  if (!isfinite(w)) return S_NONFINITE;
-  if (w < P[C_NEAR] || w > P[C_FAR]) return S_CLIPPED;
-#if FRAG_DEPTH == 1
-  float d = (w - P[C_NEAR]) / P[C_RANGE];
-#elif FRAG_DEPTH == 2
-  float d = w / P[C_FAR];
-#else
-  float d = log(P[C_LOGK] * w + 1.0f) / P[C_LOGL];
-#endif
-  if (isnan(d)) return S_NONFINITE;
-  d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
-#else
-  const float d = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
-  if (!isfinite(d)) return S_NONFINITE;
-  if (!(d >= 0.0f && d <= 1.0f)) return S_CLIPPED;
-#endif
-  *code = df_encode(d, DF_FORMAT_FROM_DEFINES());
-  return S_OK;
+// Row planes of 16 lanes: one triangle broadcast, or one triangle per lane (per piece).
+typedef struct {
+  float16 c0, slope, x0, row_term;
+} row_plane16_t;
+
+static inline row_plane16_t broadcast16(row_plane_t rp) {
+  row_plane16_t r;
+  r.c0 = (float16)rp.c0;
+  r.slope = (float16)rp.slope;
+  r.x0 = (float16)rp.x0;
+  r.row_term = (float16)rp.row_term;
+  return r;
 }
 
-// The same as fragment_code for 16 pixel centres at once (lanes are independent: every lane
-// rounds exactly as the scalar code does). Masks are -1 / 0 per lane.
+// Stored code and status of 16 fragments: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term,
+// every lane rounding on its own, as a scalar pipeline would. Masks are -1 / 0 per lane.
 typedef struct {
   uint16 code;
   int16 nonfinite, clipped;
 } frag16_t;
 
-static inline frag16_t fragment16(row_plane_t rp, __global const float* P, float16 px) {
+static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, float16 px) {
   frag16_t r;
 #if DEPTH_FROM == 2
   const float16 q = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
@@ -385,8 +419,16 @@ static inline int fights(uint code_a, uint code_b) {
     }                                                                                  \
   }
 
-// One kernel row of one (probe, frame). A piece of the row whose pixels all evaluate is checked
-// as a whole; the row stops after the first piece with a fight.
+#define MAX_PIECES (2 * MAX_SEG)
+
+// One kernel row of one (probe, frame). The row splits into pieces where both planes' covering
+// triangles stay the same; within a piece each plane's depth is one plane equation, monotone in
+// px (every rounding step of it is monotone), and so is its stored code. The ends of all pieces
+// are evaluated together, 16 pieces per vector: a piece whose end codes already exclude a fight
+// (LEQUAL: B's smaller end code above A's larger) is decided without touching its inside, and a
+// piece of one or two pixels is decided by its ends outright. Only the rest is evaluated pixel by
+// pixel, 16 at a time. Not for log depth, whose library log is not guaranteed monotone in the
+// last ulp. Pieces are then taken left to right and the row stops after the first that fights.
 // Global id: (probe * frames + frame) * kernel_h + row.
 __kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
                          __global const uint* restrict vflags, const uint kernel_w,
@@ -409,14 +451,76 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
   row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
   row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
-  uint flags = 0u, count = 0u;
+
+  /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
+  int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
+  uint verdict[MAX_PIECES];
+  int np = 0;
   FOR_EACH_PIECE({
+    px_start[np] = x;
+    px_end[np] = x_end;
+    p_ta[np] = ta;
+    p_tb[np] = tb;
+    ++np;
+  })
+  for (int g = 0; g < np; g += 16) {
+    float c0a[16], sla[16], x0a[16], rta[16], c0b[16], slb[16], x0b[16], rtb[16], e0[16], e1[16];
+    for (int k = 0; k < 16; ++k) {
+      const int i = min(g + k, np - 1);
+      const row_plane_t ra = row_plane(TA, max(p_ta[i], 0), py), rb = row_plane(TBp, max(p_tb[i], 0), py);
+      c0a[k] = ra.c0; sla[k] = ra.slope; x0a[k] = ra.x0; rta[k] = ra.row_term;
+      c0b[k] = rb.c0; slb[k] = rb.slope; x0b[k] = rb.x0; rtb[k] = rb.row_term;
+      e0[k] = origin_x + (float)px_start[i] + 0.5f;
+      e1[k] = origin_x + (float)(px_end[i] - 1) + 0.5f;
+    }
+    row_plane16_t ra, rb;
+    ra.c0 = vload16(0, c0a); ra.slope = vload16(0, sla); ra.x0 = vload16(0, x0a); ra.row_term = vload16(0, rta);
+    rb.c0 = vload16(0, c0b); rb.slope = vload16(0, slb); rb.x0 = vload16(0, x0b); rb.row_term = vload16(0, rtb);
+    const float16 p0 = vload16(0, e0), p1 = vload16(0, e1);
+    const frag16_t a0 = fragment16(ra, P, p0), a1 = fragment16(ra, P, p1);
+    const frag16_t b0 = fragment16(rb, P, p0), b1 = fragment16(rb, P, p1);
+    const int16 nf = a0.nonfinite | a1.nonfinite | b0.nonfinite | b1.nonfinite;
+    const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
+    const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
+#if COMPARE_GREATER
+    const int16 excluded = convert_int16(max(b0.code, b1.code) < min(a0.code, a1.code));
+#else
+    const int16 excluded = convert_int16(min(b0.code, b1.code) > max(a0.code, a1.code));
+#endif
+    int nfk[16], clk[16], fek[16], exk[16];
+    vstore16(nf, 0, nfk);
+    vstore16(cl, 0, clk);
+    vstore16(fight_ends, 0, fek);
+    vstore16(excluded, 0, exk);
+    for (int k = 0; k < 16 && g + k < np; ++k) {
+      const int i = g + k;
+      const int len = px_end[i] - px_start[i];
+      uint v = ~0u;
+      if (len <= 2) { /* the ends are the whole piece */
+        v = nfk[k] ? R_NONFINITE : clk[k] ? R_CLIPPED : fek[k] ? R_FIGHT : 0u;
+      }
+#if !(DEPTH_FROM == 2 && FRAG_DEPTH == 3)
+      else if (!nfk[k] && !clk[k] && exk[k]) {
+        v = 0u;
+      }
+#endif
+      verdict[i] = v;
+    }
+  }
+
+  uint flags = 0u, count = 0u;
+  for (int i = 0; i < np; ++i) {
+    const int x = px_start[i], x_end = px_end[i];
     count += (uint)(x_end - x);
-    if (ta < 0 || tb < 0) {
+    if (p_ta[i] < 0 || p_tb[i] < 0) {
       flags |= R_UNCOVERED;
-    } else {
-      const row_plane_t ra = row_plane(TA, ta, py), rb = row_plane(TBp, tb, py);
-      uint piece = 0u;
+      continue;
+    }
+    uint piece = verdict[i];
+    if (piece == ~0u) {
+      piece = 0u;
+      const row_plane16_t ra = broadcast16(row_plane(TA, p_ta[i], py));
+      const row_plane16_t rb = broadcast16(row_plane(TBp, p_tb[i], py));
       for (int i0 = x; i0 < x_end; i0 += 16) {
         const int16 idx = i0 + LANES;
         const int16 active = idx < x_end;
@@ -428,10 +532,10 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
         piece |= (any(nf) ? R_NONFINITE : 0u) | (any(cl) ? R_CLIPPED : 0u) |
                  (any(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
       }
-      flags |= piece;
-      if (piece & R_FIGHT) break;
     }
-  })
+    flags |= piece;
+    if (piece & R_FIGHT) break;
+  }
   result[id] = flags | (count << R_COUNT_SHIFT);
 }
 
@@ -452,7 +556,8 @@ __kernel void mts_codes(__global const float* restrict probes, __global const fl
   row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
   row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
   FOR_EACH_PIECE({
-    const row_plane_t ra = row_plane(TA, ta < 0 ? 0 : ta, py), rb = row_plane(TBp, tb < 0 ? 0 : tb, py);
+    const row_plane16_t ra = broadcast16(row_plane(TA, ta < 0 ? 0 : ta, py));
+    const row_plane16_t rb = broadcast16(row_plane(TBp, tb < 0 ? 0 : tb, py));
     for (int i0 = x; i0 < x_end; i0 += 16) {
       const int16 idx = i0 + LANES;
       const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
