@@ -82,3 +82,44 @@ TEST_CASE("the same run gives bit-identical rows", "[mts]") {
     }
   }
 }
+
+// The raster kernel decides most pieces of a row from their ends; its probe outcomes (fight,
+// clean, clipped, and the frame that decided) must be what the reference's per-pixel codes say.
+TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mts][reference]") {
+  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12"});
+  for (const auto& [t, format, range] : {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+                                         std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+                                         std::tuple{Technique::linear, "unorm16", DepthRange::gl},
+                                         std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one}}) {
+    const EvalPair pair{t, format, range};
+    MtsEvaluator ev(runtime(), scene, pair);
+    std::vector<Probe> probes;
+    for (double z : {1.005, 7.0, 3000.0, 2e6})
+      for (double f : {1e-9, 1e-7, 1e-5, 1e-3, 0.1, 1.0}) probes.push_back({z, z * f});
+    const auto results = ev.run(probes);
+    for (size_t k = 0; k < probes.size(); ++k) {
+      Outcome expect = Outcome::clean;
+      int frames = scene.frames;
+      bool any_clipped = false;
+      for (int frame = 0; frame < scene.frames && expect == Outcome::clean; ++frame) {
+        const FrameCodes r = reference_frame(scene, pair, probes[k], frame);
+        bool fight = false, nonfinite = false;
+        for (size_t i = 0; i < r.code_a.size(); ++i) {
+          const int sa = r.status_a[i], sb = r.status_b[i];
+          if (sa == 2 || sb == 2) nonfinite = true;
+          else if (sa == 1 || sb == 1) any_clipped = true;
+          else if (sa == 0 && sb == 0 &&
+                   (info(t).greater ? r.code_b[i] >= r.code_a[i] : r.code_b[i] <= r.code_a[i]))
+            fight = true;
+        }
+        if (nonfinite) expect = Outcome::non_finite;
+        else if (fight) expect = Outcome::fight;
+        if (expect != Outcome::clean) frames = frame + 1;
+      }
+      if (expect == Outcome::clean && any_clipped) expect = Outcome::clipped;
+      INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+      CHECK(to_string(results[k].outcome) == std::string(to_string(expect)));
+      CHECK(results[k].frames == frames);
+    }
+  }
+}
