@@ -1,16 +1,11 @@
-// Fragment pairs per second of the MTS kernel, per (technique, format): fixed batches of probes
-// so every configuration does comparable work, timed after a warm-up launch (program build
-// excluded). "far": s = z/8, clean, decided mostly from piece ends; "near": s = 16 vertex bounds,
-// close to the MTS of good set-ups, where pixels are evaluated one by one. Not a test.
+// Fragment pairs per second of the MTS kernel per (technique, format), in the two regimes of
+// host/mts_timing.h. Not a test: speed targets live here and in docs/performance.md.
 // Usage: mts_throughput [technique,...] [format,...] [kernel side]
 #include <fmt/format.h>
 
-#include <chrono>
-#include <cmath>
 #include <sstream>
 
-#include "host/frame_setup.h"
-#include "host/mts_evaluator.h"
+#include "host/mts_timing.h"
 #include "host/scene.h"
 
 using namespace depthprec;
@@ -31,26 +26,15 @@ int main(int argc, char** argv) {
   const std::string side = argc > 3 ? argv[3] : "200";
   const Scene scene = load_scene("", {"kernel=[" + side + "," + side + "]", "viewport=[" + side + "," + side + "]"});
   OpenClRuntime rt;
-  std::vector<Probe> far, near;
-  for (int i = 1; i <= 16; ++i) {
-    const double z = std::ldexp(1.0, i);
-    far.push_back({z, z / 8});
-    near.push_back({z, 16 * vertex_bound(z)});
-  }
-  fmt::print("{:<20} {:<9} {:<5} {:>14} {:>10} {:>14}\n", "technique", "format", "probes", "fragment pairs",
-             "seconds", "pairs/s");
+  fmt::print("{:<20} {:<9} {:<5} {:>14} {:>10} {:>14} {:>9}\n", "technique", "format", "probes",
+             "fragment pairs", "seconds", "pairs/s", "ns/pair");
   for (const auto& t : techniques)
-    for (const auto& f : formats) {
-      const EvalPair pair{parse_technique(t), f, DepthRange::zero_to_one};
-      MtsEvaluator ev(rt, scene, pair);
-      ev.run({far.front()});  // warm-up: builds the program
-      for (const auto& [name, probes] : {std::pair{"far", far}, std::pair{"near", near}}) {
-        const uint64_t before = ev.fragment_pairs();
-        const auto t0 = std::chrono::steady_clock::now();
-        ev.run(probes);
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const uint64_t pairs = ev.fragment_pairs() - before;
-        fmt::print("{:<20} {:<9} {:<5} {:>14} {:>10.3f} {:>14.3g}\n", t, f, name, pairs, secs, pairs / secs);
+    for (const auto& f : formats)
+      for (const TimingRegime regime : {TimingRegime::far, TimingRegime::near}) {
+        const EvalPair pair{parse_technique(t), f, DepthRange::zero_to_one};
+        const Throughput r = time_depth_path(rt, scene, pair, regime);
+        fmt::print("{:<20} {:<9} {:<5} {:>14} {:>10.3f} {:>14.3g} {:>9.2f}\n", t, f,
+                   regime == TimingRegime::far ? "far" : "near", r.fragment_pairs, r.wall_seconds,
+                   r.pairs_per_second(), r.ns_per_pair());
       }
-    }
 }

@@ -46,9 +46,9 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   codes_ = cl::Kernel(program, "mts_codes");
 }
 
-void MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                         int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& tris,
-                         cl::Buffer& vflags) {
+cl::Event MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                              int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& tris,
+                              cl::Buffer& vflags) {
   const size_t n = active.size();
   std::vector<float> consts(n * kProbeStride);
   std::vector<float> mats(n * frames * 2 * 16);
@@ -81,9 +81,19 @@ void MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vector<siz
   setup_.setArg(5, tris);
   setup_.setArg(6, vflags);
   setup_.setArg(7, static_cast<cl_uint>(planes));
-  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal));
+  cl::Event done;
+  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal),
+                                   nullptr, &done);
   ++launches_;
+  return done;
 }
+
+namespace {
+double device_seconds(const cl::Event& e) {
+  return 1e-9 * static_cast<double>(e.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                                    e.getProfilingInfo<CL_PROFILING_COMMAND_START>());
+}
+}  // namespace
 
 std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
@@ -100,7 +110,7 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     const int frames = batch_frames(done, scene_.frames);
     const auto t0 = std::chrono::steady_clock::now();
     cl::Buffer probe_buf, tris, vflags;
-    setup(probes, active, done, frames, probe_buf, tris, vflags);
+    const cl::Event setup_done = setup(probes, active, done, frames, probe_buf, tris, vflags);
     const size_t items = active.size() * frames * kh;
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
@@ -114,11 +124,15 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     raster_.setArg(7, static_cast<cl_uint>(frames));
     raster_.setArg(8, result);
     raster_.setArg(9, static_cast<cl_uint>(items));
-    rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal));
+    cl::Event raster_done;
+    rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal),
+                                     nullptr, &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     ++launches_;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    kernel_seconds_ += secs;
+    const double ksecs = device_seconds(setup_done) + device_seconds(raster_done);
+    wall_seconds_ += secs;
+    kernel_seconds_ += ksecs;
 
     uint64_t launch_pairs = 0;
     std::vector<uint64_t> probe_pairs(active.size(), 0);
@@ -147,10 +161,13 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
       r.fragment_pairs += probe_pairs[i];
       launch_pairs += probe_pairs[i];
     }
-    for (size_t i = 0; i < active.size(); ++i)
-      results[active[i]].seconds +=
-          launch_pairs ? secs * static_cast<double>(probe_pairs[i]) / static_cast<double>(launch_pairs)
-                       : secs / static_cast<double>(active.size());
+    for (size_t i = 0; i < active.size(); ++i) {
+      const double share = launch_pairs ? static_cast<double>(probe_pairs[i]) / static_cast<double>(launch_pairs)
+                                        : 1.0 / static_cast<double>(active.size());
+      results[active[i]].seconds += secs * share;
+      results[active[i]].kernel_seconds += ksecs * share;
+      results[active[i]].launches += 2;  // set-up and raster
+    }
     pairs_ += launch_pairs;
     done += frames;
   }

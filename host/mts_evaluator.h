@@ -27,7 +27,9 @@ struct ProbeResult {
   int frames = 0;               // frames up to and including the deciding one (all if clean)
   uint64_t fragment_pairs = 0;  // pairs the kernel evaluated for this probe
   bool any_clipped = false, any_non_finite = false, any_uncovered = false;
-  double seconds = 0;  // share of the launches' wall time, by fragment pairs
+  double seconds = 0;         // share of the launches' wall time, by fragment pairs
+  double kernel_seconds = 0;  // share of the launches' device time (profiling events), likewise
+  uint64_t launches = 0;      // kernel launches this probe took part in
 };
 
 // Stored codes and status (0 ok, 1 clipped, 2 non-finite, 3 uncovered) of both planes at every
@@ -48,11 +50,14 @@ class MtsEvaluator {
   const KernelVariant& variant() const { return variant_; }
   uint64_t fragment_pairs() const { return pairs_; }
   uint64_t launches() const { return launches_; }
-  double kernel_seconds() const { return kernel_seconds_; }
+  double kernel_seconds() const { return kernel_seconds_; }  // device time of all launches
+  double wall_seconds() const { return wall_seconds_; }      // host wall time of all launches
 
  private:
-  void setup(const std::vector<Probe>& probes, const std::vector<size_t>& active, int first_frame,
-             int frames, cl::Buffer& probe_buf, cl::Buffer& tris, cl::Buffer& vflags);
+  // Enqueues the set-up kernel; returns its event.
+  cl::Event setup(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                  int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& tris,
+                  cl::Buffer& vflags);
 
   OpenClRuntime& rt_;
   const Scene& scene_;
@@ -60,7 +65,7 @@ class MtsEvaluator {
   KernelVariant variant_;
   cl::Kernel setup_, raster_, codes_;
   uint64_t pairs_ = 0, launches_ = 0;
-  double kernel_seconds_ = 0;
+  double kernel_seconds_ = 0, wall_seconds_ = 0;
 };
 
 }  // namespace depthprec

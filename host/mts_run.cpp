@@ -23,9 +23,11 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     auto rows = search_pair(ev, scene, pair, scene.distances);
     run.info.fragment_pairs += ev.fragment_pairs();
     run.info.launches += ev.launches();
+    run.info.kernel_seconds += ev.kernel_seconds();
     if (log)
-      log(fmt::format("{}: {} distances, {} fragment pairs, {} launches, {:.2f} s", pair.label(),
-                      rows.size(), ev.fragment_pairs(), ev.launches(), ev.kernel_seconds()));
+      log(fmt::format("{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels)",
+                      pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(),
+                      ev.kernel_seconds()));
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   }
   run.info.wall_seconds =

@@ -94,6 +94,8 @@ std::vector<MtsRow> search_pair(MtsEvaluator& evaluator, const Scene& scene, con
         row.frames += static_cast<uint64_t>(r.frames);
         row.fragment_pairs += r.fragment_pairs;
         row.seconds += r.seconds;
+        row.kernel_seconds += r.kernel_seconds;
+        row.launches += r.launches;
         row.uncovered |= r.any_uncovered;
         row.clipped_probes += r.any_clipped ? 1 : 0;
         searches[active[k]].record(r.outcome);

@@ -55,7 +55,9 @@ struct MtsRow {
   int probes = 0;
   uint64_t frames = 0;
   uint64_t fragment_pairs = 0;
-  double seconds = 0;  // attributed wall time of the launches (by fragment pairs)
+  uint64_t launches = 0;      // kernel launches its probes took part in (shared with other rows)
+  double seconds = 0;         // attributed wall time of the launches (by fragment pairs)
+  double kernel_seconds = 0;  // attributed device time of the launches (profiling events)
   int clipped_probes = 0;  // probes in which some fragment left the clip volume
   // clipped: the row has no MTS because every separation that did not fight was clipped.
   bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,

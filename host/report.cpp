@@ -47,7 +47,10 @@ json header(const Scene& scene, const RunInfo& run) {
             {"fragment_pairs", run.fragment_pairs},
             {"kernel_launches", run.launches},
             {"separation_reported", "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)"}};
-  if (run.timing) h["wall_seconds"] = run.wall_seconds;
+  if (run.timing) {
+    h["wall_seconds"] = run.wall_seconds;
+    h["kernel_seconds"] = run.kernel_seconds;
+  }
   return h;
 }
 
@@ -65,8 +68,12 @@ json row_json(const MtsRow& r, bool timing) {
             {"clipped_probes", r.clipped_probes},
             {"frames", r.frames},
             {"fragment_pairs", r.fragment_pairs},
+            {"kernel_launches", r.launches},
             {"flags", r.flags()}};
-  if (timing) j["seconds"] = r.seconds;
+  if (timing) {
+    j["seconds"] = r.seconds;
+    j["kernel_seconds"] = r.kernel_seconds;
+  }
   return j;
 }
 
@@ -74,8 +81,8 @@ std::string footer(const RunInfo& run) {
   std::string s = fmt::format("fragment pairs evaluated: {}, kernel launches: {}, variants built: {}",
                               run.fragment_pairs, run.launches, run.variants.size());
   if (run.timing && run.wall_seconds > 0)
-    s += fmt::format(", wall time: {:.2f} s, {:.3g} fragment pairs/s", run.wall_seconds,
-                     static_cast<double>(run.fragment_pairs) / run.wall_seconds);
+    s += fmt::format(", wall time: {:.2f} s (kernels {:.2f} s), {:.3g} fragment pairs/s", run.wall_seconds,
+                     run.kernel_seconds, static_cast<double>(run.fragment_pairs) / run.wall_seconds);
   return s;
 }
 
@@ -93,8 +100,11 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   auto num = [full](double v) { return full ? exact(v) : human(v); };
   std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true},
                               {"z"}, {"mts"}, {"lo"}, {"hi"}, {"mts_seen"}, {"vertex_bound"},
-                              {"mts/vb"}, {"probes"}, {"frames"}, {"fragment_pairs"}};
-  if (run.timing) cols.push_back({"seconds"});
+                              {"mts/vb"}, {"probes"}, {"frames"}, {"fragment_pairs"}, {"launches"}};
+  if (run.timing) {
+    cols.push_back({"seconds"});
+    cols.push_back({"kernel_s"});
+  }
   cols.push_back({"flags", true});
   std::vector<std::vector<std::string>> cells;
   for (const auto& r : rows) {
@@ -102,8 +112,12 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
                                   to_string(r.pair.depth_range), num(r.z), num(r.mts), num(r.lo),
                                   num(r.hi), num(r.mts_seen), num(r.vertex_bound),
                                   num(r.mts / r.vertex_bound), std::to_string(r.probes),
-                                  std::to_string(r.frames), std::to_string(r.fragment_pairs)};
-    if (run.timing) c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
+                                  std::to_string(r.frames), std::to_string(r.fragment_pairs),
+                                  std::to_string(r.launches)};
+    if (run.timing) {
+      c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
+      c.push_back(full ? exact(r.kernel_seconds) : fmt::format("{:.3f}", r.kernel_seconds));
+    }
     c.push_back(r.flags());
     cells.push_back(c);
   }

@@ -18,6 +18,7 @@ struct RunInfo {
   uint64_t fragment_pairs = 0;
   uint64_t launches = 0;
   double wall_seconds = 0;
+  double kernel_seconds = 0;
   bool timing = true;  // false: leave every measured time out (--no-timing)
 };
 

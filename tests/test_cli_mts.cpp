@@ -88,3 +88,28 @@ TEST_CASE("scene and option errors exit 3 with the key named", "[cli][errors]") 
   CHECK(k.exit_code == 2);
   CHECK_THAT(k.output, Contains("expected WxH"));
 }
+
+TEST_CASE("tradeoff reports every ladder level against the reference with a Pareto front", "[cli][tradeoff]") {
+  const auto r = run_cli("tradeoff -t linear -f unorm24 --distances 4096 --no-timing --format-out json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  REQUIRE(j["levels"].size() == 14);
+  CHECK(j["levels"][0]["level"] == "reference");
+  CHECK(j["levels"][0]["max_rel_err"] == 0.0);
+  int pareto = 0;
+  for (const auto& l : j["levels"]) pareto += l["pareto"].get<bool>() ? 1 : 0;
+  CHECK(pareto >= 1);
+  // the cheapest level is on the front by construction: nothing does less work
+  CHECK(j["levels"][13]["pareto"] == true);
+  // coarser bisection can only widen the answer: 2^-4 is further off than 2^-10
+  CHECK(j["levels"][10]["max_rel_err"].get<double>() >= j["levels"][7]["max_rel_err"].get<double>());
+}
+
+TEST_CASE("cost lists depth-path cost, precision, LJ error and structural costs", "[cli][cost]") {
+  const auto r = run_cli("cost -t standard,linear,layered -f unorm24 --distances 64,4096 --kernel 40x40 --frames 10");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Contains("ns/pair"));
+  CHECK_THAT(r.output, Contains("no early depth test"));   // linear writes fragment depth
+  CHECK_THAT(r.output, Contains("3 passes"));              // layered, 3 layers
+  CHECK_THAT(r.output, Contains("projection matrix only")); // standard
+}

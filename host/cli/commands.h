@@ -18,5 +18,7 @@ void add_formats_command(CLI::App& app, GlobalOptions& global);
 void add_mts_commands(CLI::App& app, GlobalOptions& global, int argc, char** argv);
 // lj, select, lj-table, resolve.
 void add_lj_commands(CLI::App& app, GlobalOptions& global);
+void add_tradeoff_command(CLI::App& app, GlobalOptions& global);
+void add_cost_command(CLI::App& app, GlobalOptions& global);
 
 }  // namespace depthprec::cli

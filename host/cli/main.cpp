@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   cli::add_formats_command(app, global);
   cli::add_mts_commands(app, global, argc, argv);
   cli::add_lj_commands(app, global);
+  cli::add_tradeoff_command(app, global);
+  cli::add_cost_command(app, global);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

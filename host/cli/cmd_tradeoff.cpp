@@ -1,0 +1,156 @@
+// tradeoff: how the evaluator's own answer degrades as it spends less (kernel pixels, frames,
+// bisection precision), against its full-fidelity answer.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "host/cli/commands.h"
+#include "host/cli/scene_options.h"
+#include "host/mts_run.h"
+#include "host/text_table.h"
+#include "host/version.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct Level {
+  std::string name;
+  int kernel;
+  int frames;
+  int precision_log2;  // rel_precision = 2^-precision_log2
+};
+
+// The ladder of the issue: each budget alone, then combined; the first is the reference.
+std::vector<Level> ladder() {
+  return {{"reference", 200, 100, 12}, {"kernel 100", 100, 100, 12}, {"kernel 50", 50, 100, 12},
+          {"kernel 25", 25, 100, 12},  {"frames 50", 200, 50, 12},   {"frames 25", 200, 25, 12},
+          {"frames 10", 200, 10, 12},  {"precision 2^-10", 200, 100, 10},
+          {"precision 2^-8", 200, 100, 8}, {"precision 2^-6", 200, 100, 6},
+          {"precision 2^-4", 200, 100, 4}, {"100/50/2^-8", 100, 50, 8},
+          {"50/25/2^-6", 50, 25, 6},   {"25/10/2^-4", 25, 10, 4}};
+}
+
+struct LevelResult {
+  Level level;
+  double seconds = 0;
+  uint64_t pairs = 0;
+  double median_err = 0, max_err = 0;
+  int verdict_changes = 0;
+  std::vector<std::string> changed;  // "technique/format/range z" of each verdict change
+  bool pareto = false;
+};
+
+struct TradeoffOptions {
+  SceneOptions scene;
+  OutputOptions out;
+};
+
+void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
+  const Scene base = o.scene.load();
+  check_writable(o.out.output);
+  OpenClRuntime rt(g.device);
+  std::vector<LevelResult> results;
+  std::vector<MtsRow> reference;
+  for (const Level& lv : ladder()) {
+    Scene s = base;
+    s.kernel_w = s.kernel_h = s.viewport_w = s.viewport_h = lv.kernel;
+    s.frames = lv.frames;
+    s.rel_precision = std::ldexp(1.0, -lv.precision_log2);
+    const MtsRun run = run_scene(rt, s);
+    LevelResult r;
+    r.level = lv;
+    r.seconds = run.info.wall_seconds;
+    r.pairs = run.info.fragment_pairs;
+    if (reference.empty()) reference = run.rows;
+    std::vector<double> errs;
+    for (size_t i = 0; i < run.rows.size(); ++i) {
+      const MtsRow &a = run.rows[i], &ref = reference[i];
+      if (a.unresolvable != ref.unresolvable) {
+        ++r.verdict_changes;
+        r.changed.push_back(fmt::format("{} z={}", a.pair.label(), a.z));
+      } else if (!a.unresolvable) {
+        errs.push_back(std::abs(a.mts - ref.mts) / ref.mts);
+      }
+    }
+    std::sort(errs.begin(), errs.end());
+    if (!errs.empty()) {
+      r.median_err = errs.size() % 2 ? errs[errs.size() / 2]
+                                     : 0.5 * (errs[errs.size() / 2 - 1] + errs[errs.size() / 2]);
+      r.max_err = errs.back();
+    }
+    results.push_back(r);
+  }
+  // Pareto front by work (fragment pairs: deterministic, proportional to time) against accuracy
+  // (verdict changes first, then the largest relative error): keep the levels no other level
+  // beats on both.
+  for (auto& a : results) {
+    a.pareto = true;
+    for (const auto& b : results) {
+      const bool cheaper_or_same = b.pairs <= a.pairs;
+      const bool better_or_same = std::make_pair(b.verdict_changes, b.max_err) <= std::make_pair(a.verdict_changes, a.max_err);
+      const bool strictly = b.pairs < a.pairs || std::make_pair(b.verdict_changes, b.max_err) < std::make_pair(a.verdict_changes, a.max_err);
+      if (&a != &b && cheaper_or_same && better_or_same && strictly) a.pareto = false;
+    }
+  }
+  const bool timing = !o.out.no_timing;
+  std::string text;
+  if (o.out.format_out == "json") {
+    nlohmann::json j = {{"program", "depthprec"}, {"version", kVersion}, {"device", rt.description()},
+                        {"scene", base.json}, {"levels", nlohmann::json::array()}};
+    for (const auto& r : results) {
+      nlohmann::json l = {{"level", r.level.name}, {"kernel", r.level.kernel}, {"frames", r.level.frames},
+                          {"rel_precision", std::ldexp(1.0, -r.level.precision_log2)},
+                          {"fragment_pairs", r.pairs}, {"median_rel_err", r.median_err},
+                          {"max_rel_err", r.max_err}, {"verdict_changes", r.changed}, {"pareto", r.pareto}};
+      if (timing) l["seconds"] = r.seconds;
+      j["levels"].push_back(l);
+    }
+    text = j.dump(2) + "\n";
+  } else {
+    std::vector<Column> cols = {{"level", true}, {"kernel"}, {"frames"}, {"rel_precision"}, {"fragment_pairs"}};
+    if (timing) cols.push_back({"seconds"});
+    for (const char* c : {"median_rel_err", "max_rel_err", "verdict_changes"}) cols.push_back({c});
+    cols.push_back({"pareto", true});
+    Cells cells;
+    for (const auto& r : results) {
+      std::vector<std::string> row = {r.level.name, fmt::format("{}x{}", r.level.kernel, r.level.kernel),
+                                      std::to_string(r.level.frames), fmt::format("2^-{}", r.level.precision_log2),
+                                      std::to_string(r.pairs)};
+      if (timing) row.push_back(fmt::format("{:.2f}", r.seconds));
+      row.push_back(fmt::format("{:.3g}", r.median_err));
+      row.push_back(fmt::format("{:.3g}", r.max_err));
+      row.push_back(std::to_string(r.verdict_changes));
+      row.push_back(r.pareto ? "yes" : "");
+      cells.push_back(row);
+    }
+    text = fmt::format("Fidelity trade-off on scene {} ({} pairs x {} distances); errors relative to the "
+                       "reference level; Pareto front by fragment pairs vs (verdict changes, max error)\n\n",
+                       base.name, base.evaluate.size(), base.distances.size()) +
+           render_cells(cols, cells, o.out.format_out);
+  }
+  write_output(o.out.output, text);
+}
+
+}  // namespace
+
+void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {
+  auto o = std::make_shared<TradeoffOptions>();
+  auto* cmd = app.add_subcommand(
+      "tradeoff",
+      "How the MTS answer degrades as the evaluator spends less: kernel 25^2..200^2, frames\n"
+      "10..100, rel_precision 2^-4..2^-12, alone and combined, each against the reference level\n"
+      "(200^2, 100 frames, 2^-12): median and max relative MTS error, distances whose\n"
+      "resolvable/unresolvable verdict changed, work and time, and the Pareto front.\n"
+      "Fourteen full runs of the scene's pairs: choose few pairs and distances.\n"
+      "Examples:\n"
+      "  depthprec tradeoff -t reversed -f float32 --depth-range zero_to_one --distances 2,1024,1e6\n"
+      "  depthprec tradeoff -t standard,linear -f unorm24 --format-out json -o tradeoff.json");
+  o->scene.add_to(*cmd, true);
+  o->out.add_to(*cmd);
+  cmd->callback([o, &global]() { run_tradeoff(*o, global); });
+}
+
+}  // namespace depthprec::cli

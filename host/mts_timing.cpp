@@ -1,0 +1,27 @@
+#include "host/mts_timing.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace depthprec {
+
+Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime) {
+  std::vector<Probe> probes;
+  for (int i = 1; i <= 16; ++i) {
+    const double z = std::ldexp(1.0, i);
+    probes.push_back({z, regime == TimingRegime::far ? z / 8 : 16 * vertex_bound(z)});
+  }
+  MtsEvaluator ev(rt, scene, pair);
+  ev.run({probes.front()});  // warm-up: builds the program and PoCL's work-group function
+  const uint64_t pairs0 = ev.fragment_pairs();
+  const double kernel0 = ev.kernel_seconds();
+  const auto t0 = std::chrono::steady_clock::now();
+  ev.run(probes);
+  Throughput t;
+  t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.fragment_pairs = ev.fragment_pairs() - pairs0;
+  t.kernel_seconds = ev.kernel_seconds() - kernel0;
+  return t;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,25 @@
+// A fixed timing workload for the MTS kernel of one pair, so techniques and formats compare on
+// equal work: 16 distances z = 2..2^16, one probe each, timed after a warm-up launch (the program
+// build excluded). "far" probes (s = z/8) are clean and decided mostly from piece ends; "near"
+// probes (s = 16 vertex bounds) sit close to the MTS of good set-ups, where pixels are evaluated
+// one by one: the cost of the technique's depth path.
+#pragma once
+
+#include <cstdint>
+
+#include "host/mts_evaluator.h"
+
+namespace depthprec {
+
+enum class TimingRegime { far, near };
+
+struct Throughput {
+  uint64_t fragment_pairs = 0;
+  double wall_seconds = 0, kernel_seconds = 0;
+  double pairs_per_second() const { return wall_seconds > 0 ? fragment_pairs / wall_seconds : 0; }
+  double ns_per_pair() const { return fragment_pairs ? 1e9 * kernel_seconds / fragment_pairs : 0; }
+};
+
+Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime);
+
+}  // namespace depthprec
