@@ -26,6 +26,13 @@ cl::NDRange padded(size_t n) { return cl::NDRange((n + kLocal - 1) / kLocal * kL
 
 int triangles(const Scene& s) { return 2 * s.plane_subdivisions * s.plane_subdivisions; }
 
+// Floats per plane in the set-up buffer (kernels/mts.cl PLANE_STRIDE): triangle records, then
+// six arrays of the 3*NT edges padded to a multiple of 16.
+size_t plane_floats(const Scene& s) {
+  const size_t edges = (3 * triangles(s) + 15) / 16 * 16;
+  return static_cast<size_t>(triangles(s)) * kTriStride + 6 * edges;
+}
+
 }  // namespace
 
 const char* to_string(Outcome o) {
@@ -70,8 +77,7 @@ cl::Event MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vecto
   cl::Buffer mat_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                      sizeof(float) * mats.size(), mats.data());
   const size_t planes = n * frames * 2;
-  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
-                    sizeof(float) * planes * triangles(scene_) * kTriStride);
+  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats(scene_));
   vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
   setup_.setArg(0, probe_buf);
   setup_.setArg(1, mat_buf);

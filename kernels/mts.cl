@@ -36,6 +36,17 @@
 #define NV ((GRID + 1) * (GRID + 1))
 #define NT (2 * GRID * GRID)
 #define TRI_STRIDE 32
+/* After the triangle records, the plane's 3*NT edges as arrays (structure of arrays, padded to a
+ * multiple of 16) so a row can place all edge boundaries 16 at a time. */
+#define NE (3 * NT)
+#define NE_PAD ((NE + 15) / 16 * 16)
+#define E_AX 0
+#define E_AY 1
+#define E_DX 2
+#define E_DY 3
+#define E_DXDY 4
+#define E_BITS 5 /* uint: bit 0 negate, bit 1 owns */
+#define PLANE_STRIDE (NT * TRI_STRIDE + 6 * NE_PAD)
 #define PROBE_STRIDE 24
 #define MAT_STRIDE 16
 
@@ -136,7 +147,7 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     }
   }
   vflags[id] = nonfinite;
-  __global float* T = tris + id * (NT * TRI_STRIDE);
+  __global float* T = tris + id * PLANE_STRIDE;
   for (int t = 0; t < NT; ++t) {
     const int quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
     const int a = qj * (GRID + 1) + qi, b = a + 1, c = a + GRID + 2, d = a + GRID + 1;
@@ -181,6 +192,18 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     R[T_YMAX] = fmax(fmax(yw[i0], yw[i1]), yw[i2]);
     for (int e = 0; e < 3; ++e) R[T_DXDY + e] = R[T_EDGES + 4 * e + 2] / R[T_EDGES + 4 * e + 3];
     ((__global uint*)R)[T_BITS] = bits;
+  }
+  __global float* SA = T + NT * TRI_STRIDE;
+  for (int k = 0; k < NE_PAD; ++k) {
+    const int t = k < NE ? k / 3 : 0, e = k < NE ? k % 3 : 0;
+    __global const float* R = T + t * TRI_STRIDE;
+    const uint bits = ((__global const uint*)R)[T_BITS];
+    SA[E_AX * NE_PAD + k] = R[T_EDGES + 4 * e];
+    SA[E_AY * NE_PAD + k] = R[T_EDGES + 4 * e + 1];
+    SA[E_DX * NE_PAD + k] = R[T_EDGES + 4 * e + 2];
+    SA[E_DY * NE_PAD + k] = R[T_EDGES + 4 * e + 3];
+    SA[E_DXDY * NE_PAD + k] = R[T_DXDY + e];
+    ((__global uint*)SA)[E_BITS * NE_PAD + k] = ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
   }
 }
 
@@ -237,13 +260,68 @@ static inline void edge_range(__global const float* R, uint bits, int e, float p
 static inline int row_segments(__global const float* T, float py, float ox, int W, int* seg_x,
                                int* seg_t) {
   __global const uint* TB = (__global const uint*)T;
+  /* Every edge's passing pixels [elo, ehi), 16 edges at a time: an edge passing or failing at
+   * both ends of the row passes or fails all of it (the test is monotone); a crossing edge's
+   * boundary is taken where the test flips between the guessed pixel and the one before it.
+   * Lanes where that check fails (-2) are placed by the scalar walk below. */
+  __global const float* SA = T + NT * TRI_STRIDE;
+  int elo[NE_PAD], ehi[NE_PAD];
+  const float px_first = ox + 0.5f, px_last = ox + (float)(W - 1) + 0.5f;
+  for (int g = 0; g < NE_PAD; g += 16) {
+    const float16 ax = vload16(0, SA + E_AX * NE_PAD + g), ay = vload16(0, SA + E_AY * NE_PAD + g);
+    const float16 dx = vload16(0, SA + E_DX * NE_PAD + g), dy = vload16(0, SA + E_DY * NE_PAD + g);
+    const float16 dxdy = vload16(0, SA + E_DXDY * NE_PAD + g);
+    const uint16 eb = vload16(0, (__global const uint*)SA + E_BITS * NE_PAD + g);
+    const int16 negate = convert_int16((eb & (uint16)1u) != (uint16)0u);
+    const int16 owns = convert_int16((eb & (uint16)2u) != (uint16)0u);
+    const float16 c = dx * (py - ay);
+#define EDGE_PASS16(PX)                                                                      \
+  ({                                                                                         \
+    float16 E_ = c - dy * ((PX) - ax);                                                       \
+    E_ = negate ? -E_ : E_;                                                                  \
+    (E_ > 0.0f) || ((E_ == 0.0f) && owns);                                                   \
+  })
+    const int16 p0 = EDGE_PASS16((float16)px_first);
+    const int16 p1 = EDGE_PASS16((float16)px_last);
+    const float16 sdy = negate ? -dy : dy;
+    const float16 cross = ax + (py - ay) * dxdy - ox - 0.5f;
+    const int16 gi = clamp(convert_int16(ceil(clamp(cross, -1.0f, (float)W + 1.0f))), 1, max(W - 1, 1));
+    const float16 pxg = (ox + convert_float16(gi)) + 0.5f;
+    const int16 pg = EDGE_PASS16(pxg);
+    const int16 pgm = EDGE_PASS16(pxg - 1.0f);
+#undef EDGE_PASS16
+    const int16 all = (int16)W, none = (int16)0;
+    /* sdy < 0: suffix passes, lo = boundary; sdy > 0: prefix passes, hi = boundary */
+    const int16 flat = sdy == 0.0f;
+    const int16 up = sdy < 0.0f;
+    const int16 whole = p0 && p1;
+    const int16 empty = !p0 && !p1;
+    const int16 found_up = up && !p0 && p1 && pg && !pgm;
+    const int16 found_dn = !up && p0 && !p1 && !pg && pgm;
+    int16 lo16 = none, hi16 = all;
+    lo16 = found_up ? gi : lo16;
+    hi16 = found_dn ? gi : hi16;
+    hi16 = (flat ? !p0 : empty) ? none : hi16;
+    const int16 resolved = flat || whole || empty || found_up || found_dn;
+    lo16 = resolved ? lo16 : (int16)-2;
+    vstore16(lo16, 0, elo + g);
+    vstore16(hi16, 0, ehi + g);
+  }
   int lo[NT], hi[NT], tri[NT], n = 0;
   for (int t = 0; t < NT; ++t) {
     __global const float* R = T + t * TRI_STRIDE;
     const uint bits = TB[t * TRI_STRIDE + T_BITS];
     if (!(bits & 64u) || !(R[T_YMIN] <= py && py <= R[T_YMAX])) continue;
     int a = 0, b = W;
-    for (int e = 0; e < 3 && a < b; ++e) edge_range(R, bits, e, py, ox, W, &a, &b);
+    for (int e = 0; e < 3 && a < b; ++e) {
+      const int k = 3 * t + e;
+      if (elo[k] == -2) {
+        edge_range(R, bits, e, py, ox, W, &a, &b);
+      } else {
+        a = max(a, elo[k]);
+        b = min(b, ehi[k]);
+      }
+    }
     if (a < b) {
       lo[n] = a;
       hi[n] = b;
@@ -444,8 +522,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     result[id] = R_NONFINITE;
     return;
   }
-  __global const float* TA = tris + (2u * pf) * (NT * TRI_STRIDE);
-  __global const float* TBp = tris + (2u * pf + 1u) * (NT * TRI_STRIDE);
+  __global const float* TA = tris + (2u * pf) * PLANE_STRIDE;
+  __global const float* TBp = tris + (2u * pf + 1u) * PLANE_STRIDE;
   const int W = (int)kernel_w;
   const float py = origin_y + (float)row + 0.5f;
   int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
@@ -549,7 +627,7 @@ __kernel void mts_codes(__global const float* restrict probes, __global const fl
   if (row >= kernel_h) return;
   __global const float* P = probes;
   __global const float* TA = tris;
-  __global const float* TBp = tris + NT * TRI_STRIDE;
+  __global const float* TBp = tris + PLANE_STRIDE;
   const int W = (int)kernel_w;
   const float py = origin_y + (float)row + 0.5f;
   int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
