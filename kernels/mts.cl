@@ -267,7 +267,18 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   __global const float* SA = T + NT * TRI_STRIDE;
   int elo[NE_PAD], ehi[NE_PAD];
   const float px_first = ox + 0.5f, px_last = ox + (float)(W - 1) + 0.5f;
-  for (int g = 0; g < NE_PAD; g += 16) {
+  /* only the edges of triangles whose y-range holds the row: a run of indices (one or two rows
+   * of quads) */
+  int t_first = NT, t_last = -1;
+  for (int t = 0; t < NT; ++t) {
+    __global const float* R = T + t * TRI_STRIDE;
+    if ((TB[t * TRI_STRIDE + T_BITS] & 64u) && R[T_YMIN] <= py && py <= R[T_YMAX]) {
+      t_first = min(t_first, t);
+      t_last = t;
+    }
+  }
+  const int g_first = (3 * t_first) / 16 * 16, g_end = 3 * (t_last + 1);
+  for (int g = g_first; g < g_end; g += 16) {
     const float16 ax = vload16(0, SA + E_AX * NE_PAD + g), ay = vload16(0, SA + E_AY * NE_PAD + g);
     const float16 dx = vload16(0, SA + E_DX * NE_PAD + g), dy = vload16(0, SA + E_DY * NE_PAD + g);
     const float16 dxdy = vload16(0, SA + E_DXDY * NE_PAD + g);
@@ -308,7 +319,7 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
     vstore16(hi16, 0, ehi + g);
   }
   int lo[NT], hi[NT], tri[NT], n = 0;
-  for (int t = 0; t < NT; ++t) {
+  for (int t = t_first; t <= t_last; ++t) {
     __global const float* R = T + t * TRI_STRIDE;
     const uint bits = TB[t * TRI_STRIDE + T_BITS];
     if (!(bits & 64u) || !(R[T_YMIN] <= py && py <= R[T_YMAX])) continue;
