@@ -516,8 +516,10 @@ static inline int fights(uint code_a, uint code_b) {
 // are evaluated together, 16 pieces per vector: a piece whose end codes already exclude a fight
 // (LEQUAL: B's smaller end code above A's larger) is decided without touching its inside, and a
 // piece of one or two pixels is decided by its ends outright. Only the rest is evaluated pixel by
-// pixel, 16 at a time. Not for log depth, whose library log is not guaranteed monotone in the
-// last ulp. Pieces are then taken left to right and the row stops after the first that fights.
+// pixel, 16 at a time. Log depth is monotone only up to the library log's error (OpenCL 1.2
+// allows 3 ulp): its end codes must clear the bound by LOG_CODE_SLACK (host/kernel_variant.cpp),
+// the most codes that error can move a code either way at both ends of both planes.
+// Pieces are then taken left to right and the row stops after the first that fights.
 // Global id: (probe * frames + frame) * kernel_h + row.
 __kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
                          __global const uint* restrict vflags, const uint kernel_w,
@@ -571,10 +573,17 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     const int16 nf = a0.nonfinite | a1.nonfinite | b0.nonfinite | b1.nonfinite;
     const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
     const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
-#if COMPARE_GREATER
-    const int16 excluded = convert_int16(max(b0.code, b1.code) < min(a0.code, a1.code));
+#if DEPTH_FROM == 2 && FRAG_DEPTH == 3
+    const ulong16 slack = (ulong16)LOG_CODE_SLACK;
 #else
-    const int16 excluded = convert_int16(min(b0.code, b1.code) > max(a0.code, a1.code));
+    const ulong16 slack = (ulong16)0;
+#endif
+#if COMPARE_GREATER
+    const int16 excluded =
+        convert_int16(convert_ulong16(max(b0.code, b1.code)) + slack < convert_ulong16(min(a0.code, a1.code)));
+#else
+    const int16 excluded =
+        convert_int16(convert_ulong16(min(b0.code, b1.code)) > convert_ulong16(max(a0.code, a1.code)) + slack);
 #endif
     int nfk[16], clk[16], fek[16], exk[16];
     vstore16(nf, 0, nfk);
@@ -588,11 +597,9 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
       if (len <= 2) { /* the ends are the whole piece */
         v = nfk[k] ? R_NONFINITE : clk[k] ? R_CLIPPED : fek[k] ? R_FIGHT : 0u;
       }
-#if !(DEPTH_FROM == 2 && FRAG_DEPTH == 3)
       else if (!nfk[k] && !clk[k] && exk[k]) {
         v = 0u;
       }
-#endif
       verdict[i] = v;
     }
   }

@@ -90,7 +90,9 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
   for (const auto& [t, format, range] : {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
                                          std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
                                          std::tuple{Technique::linear, "unorm16", DepthRange::gl},
-                                         std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one}}) {
+                                         std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one},
+                                         std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+                                         std::tuple{Technique::log_fragment, "float32", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};
     MtsEvaluator ev(runtime(), scene, pair);
     std::vector<Probe> probes;
