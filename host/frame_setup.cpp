@@ -27,34 +27,12 @@ Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
   const T sy = T(1) / std::tan(half_fov);
   const T aspect = static_cast<T>(s.viewport_w) / static_cast<T>(s.viewport_h);
   const T sx = sy / aspect;
-  Technique t = pair.technique;
-  const bool gl = pair.depth_range == DepthRange::gl;
-  // The third row in the arithmetic of T, term by term as an application writes it.
-  T a, b;
-  switch (t) {
-    case Technique::infinite:
-      a = T(-1);
-      b = gl ? T(-2) * n : -n;
-      break;
-    case Technique::reversed:
-      a = gl ? (f + n) / (f - n) : n / (f - n);
-      b = gl ? T(2) * f * n / (f - n) : f * n / (f - n);
-      break;
-    case Technique::reversed_infinite:
-    case Technique::inverse_w:
-      a = gl ? T(1) : T(0);
-      b = gl ? T(2) * n : n;
-      break;
-    default:  // standard; and the geometry row of the techniques that compute depth elsewhere
-      a = gl ? -(f + n) / (f - n) : -f / (f - n);
-      b = gl ? T(-2) * f * n / (f - n) : -f * n / (f - n);
-      break;
-  }
+  const Row3<T> row = projection_row3<T>(pair.technique, pair.depth_range, n, f);
   Mat<T> P(T(0));
   P[0][0] = sx;
   P[1][1] = sy;
-  P[2][2] = a;
-  P[3][2] = b;
+  P[2][2] = row.a;
+  P[3][2] = row.b;
   P[2][3] = T(-1);
   return P;
 }

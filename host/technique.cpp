@@ -52,25 +52,6 @@ Technique parse_technique(const std::string& s) {
   throw InputError(fmt::format("unknown technique '{}': expected one of {}", s, technique_names()));
 }
 
-Row3 projection_row3(Technique t, DepthRange r, double n, double f) {
-  const bool gl = r == DepthRange::gl;
-  switch (t) {
-    case Technique::standard:
-      return gl ? Row3{-(f + n) / (f - n), -2 * f * n / (f - n)} : Row3{-f / (f - n), -f * n / (f - n)};
-    case Technique::infinite:
-      return gl ? Row3{-1, -2 * n} : Row3{-1, -n};
-    case Technique::reversed:
-      return gl ? Row3{(f + n) / (f - n), 2 * f * n / (f - n)} : Row3{n / (f - n), f * n / (f - n)};
-    case Technique::reversed_infinite:
-    case Technique::inverse_w:  // d = n/w: the same matrix as reversed_infinite
-      return gl ? Row3{1, 2 * n} : Row3{0, n};
-    default:
-      // Techniques whose depth is not the projection's: z_clip is rewritten (log_vertex) or
-      // unused (fragment depth), so the row is the standard one.
-      return projection_row3(Technique::standard, r, n, f);
-  }
-}
-
 double depth_of_distance(Technique t, double n, double f, const TechniqueParams& p, double w) {
   // The gl and zero_to_one window depths are the same function of w (only their binary32
   // evaluation differs), so one closed form per technique, each without cancellation.

@@ -47,13 +47,31 @@ const TechniqueInfo& info(Technique t);
 Technique parse_technique(const std::string& s);  // throws InputError listing the names
 std::string technique_names();                    // "standard, infinite, ..." for help texts
 
-// Third row of P as (P[2][2], P[2][3]) for projection techniques, in binary64.
-// far may be +inf for the infinite techniques (and gives NaN entries for standard/reversed, a
-// result the evaluator reports as non_finite).
+// Third row of P, (P[2][2], P[2][3]), computed term by term in the arithmetic of T as an
+// application writes it (T = float for matrix_precision float, double for double). The
+// techniques whose depth is not the projection's (log_vertex rewrites z_clip, the fragment-depth
+// ones ignore it) get the standard row for their geometry. far = +inf gives NaN entries for
+// standard and reversed: a result the evaluator reports as non_finite.
+template <class T>
 struct Row3 {
-  double a, b;
+  T a, b;
 };
-Row3 projection_row3(Technique t, DepthRange r, double near, double far);
+
+template <class T>
+Row3<T> projection_row3(Technique t, DepthRange r, T n, T f) {
+  const bool gl = r == DepthRange::gl;
+  switch (t) {
+    case Technique::infinite:
+      return {T(-1), gl ? T(-2) * n : -n};
+    case Technique::reversed:
+      return {gl ? (f + n) / (f - n) : n / (f - n), gl ? T(2) * f * n / (f - n) : f * n / (f - n)};
+    case Technique::reversed_infinite:
+    case Technique::inverse_w:  // d = n/w: the same matrix as reversed_infinite
+      return {gl ? T(1) : T(0), gl ? T(2) * n : n};
+    default:
+      return {gl ? -(f + n) / (f - n) : -f / (f - n), gl ? T(-2) * f * n / (f - n) : -f * n / (f - n)};
+  }
+}
 
 // Parameters of the techniques that have them.
 struct TechniqueParams {
