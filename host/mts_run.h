@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <set>
 
 #include "host/opencl_runtime.h"
 #include "host/report.h"
@@ -13,8 +14,25 @@ struct MtsRun {
   RunInfo info;
 };
 
-// log: where verbose lines go (variants built, pairs evaluated); null for silence.
+// What a batch run leaves out and where its rows go as they finish.
+struct RunControl {
+  std::set<std::string> done;  // row keys (row_key) finished by an earlier run: not recomputed
+  int shard_index = 0;         // this run computes the rows k with k % shard_count == shard_index,
+  int shard_count = 1;         // k = pair index * distances + distance index (scene order)
+  std::function<void(const MtsRow&)> on_row;  // each row as it finishes (journal)
+  std::function<bool()> stop;                 // interrupt request, checked between launches
+};
+
+// The kernel variants the scene needs, in pair order (labels): deterministic, whatever a run
+// actually had to build.
+std::vector<std::string> scene_variants(const Scene& scene);
+
+// log: where verbose lines go (variants built, pairs evaluated); null for silence. The rows
+// returned are the ones this run computed, in scene order.
 MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
-                 const std::function<void(const std::string&)>& log = {});
+                 const std::function<void(const std::string&)>& log = {}, const RunControl& control = {});
+
+// Rows in scene order (pairs as listed, distances as listed).
+void sort_rows(const Scene& scene, std::vector<MtsRow>& rows);
 
 }  // namespace depthprec

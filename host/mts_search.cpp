@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "host/errors.h"
+
 namespace depthprec {
 
 namespace {
@@ -68,7 +70,8 @@ std::string MtsRow::flags() const {
 
 std::vector<MtsRow> search_pair(MtsEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
                                 const std::vector<double>& distances,
-                                const std::function<void(const MtsRow&)>& on_row) {
+                                const std::function<void(const MtsRow&)>& on_row,
+                                const std::function<bool()>& stop) {
   std::vector<Bisection> searches;
   std::vector<MtsRow> rows(distances.size());
   for (size_t i = 0; i < distances.size(); ++i) {
@@ -79,6 +82,7 @@ std::vector<MtsRow> search_pair(MtsEvaluator& evaluator, const Scene& scene, con
   }
   std::vector<bool> reported(distances.size(), false);
   for (;;) {
+    if (stop && stop()) throw Error(ExitCode::interrupted, "interrupted");
     std::vector<size_t> active;
     std::vector<Probe> probes;
     for (size_t i = 0; i < searches.size(); ++i) {

@@ -67,9 +67,11 @@ struct MtsRow {
 
 // Searches every distance of one pair, all distances' probes batched into shared launches.
 // on_row is called as each distance finishes (in finishing order); the return is in the order
-// of `distances`.
+// of `distances`. When stop() turns true the search ends after the current launch round with an
+// Error(ExitCode::interrupted): rows already passed to on_row are the finished ones.
 std::vector<MtsRow> search_pair(MtsEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
                                 const std::vector<double>& distances,
-                                const std::function<void(const MtsRow&)>& on_row = {});
+                                const std::function<void(const MtsRow&)>& on_row = {},
+                                const std::function<bool()>& stop = {});
 
 }  // namespace depthprec

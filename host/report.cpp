@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/errors.h"
+#include "host/row_json.h"
 #include "host/text_table.h"
 #include "host/version.h"
 
@@ -31,58 +32,33 @@ std::string exact(double v) {
 
 namespace {
 
-json number_or_string(double v) {
-  if (std::isfinite(v)) return v;
-  return exact(v);
-}
-
 json header(const Scene& scene, const RunInfo& run) {
   json h = {{"program", "depthprec"},
             {"version", kVersion},
-            {"command", run.command},
             {"device", run.device},
             {"scene_source", scene.source},
             {"scene", scene.json},
             {"kernel_variants", run.variants},
             {"fragment_pairs", run.fragment_pairs},
-            {"kernel_launches", run.launches},
+            {"kind", run.kind},
             {"separation_reported", "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)"}};
-  if (run.timing) {
+  if (!run.shard.empty()) h["shard"] = run.shard;
+  if (run.timing) {  // measured, and specific to this process (a resumed run does less)
     h["wall_seconds"] = run.wall_seconds;
     h["kernel_seconds"] = run.kernel_seconds;
+    h["kernel_launches"] = run.launches;
   }
   return h;
 }
 
-json row_json(const MtsRow& r, bool timing) {
-  json j = {{"technique", info(r.pair.technique).name},
-            {"format", r.pair.format},
-            {"depth_range", to_string(r.pair.depth_range)},
-            {"z", r.z},
-            {"mts", number_or_string(r.mts)},
-            {"lo", r.lo},
-            {"hi", number_or_string(r.hi)},
-            {"mts_seen", number_or_string(r.mts_seen)},
-            {"vertex_bound", r.vertex_bound},
-            {"probes", r.probes},
-            {"clipped_probes", r.clipped_probes},
-            {"frames", r.frames},
-            {"fragment_pairs", r.fragment_pairs},
-            {"kernel_launches", r.launches},
-            {"flags", r.flags()}};
-  if (timing) {
-    j["seconds"] = r.seconds;
-    j["kernel_seconds"] = r.kernel_seconds;
-  }
-  return j;
-}
 
 std::string footer(const RunInfo& run) {
-  std::string s = fmt::format("fragment pairs evaluated: {}, kernel launches: {}, variants built: {}",
-                              run.fragment_pairs, run.launches, run.variants.size());
+  std::string s = fmt::format("fragment pairs evaluated: {}, kernel variants: {}", run.fragment_pairs,
+                              run.variants.size());
   if (run.timing && run.wall_seconds > 0)
-    s += fmt::format(", wall time: {:.2f} s (kernels {:.2f} s), {:.3g} fragment pairs/s", run.wall_seconds,
-                     run.kernel_seconds, static_cast<double>(run.fragment_pairs) / run.wall_seconds);
+    s += fmt::format(", kernel launches: {}, wall time: {:.2f} s (kernels {:.2f} s), {:.3g} fragment pairs/s",
+                     run.launches, run.wall_seconds, run.kernel_seconds,
+                     static_cast<double>(run.fragment_pairs) / run.wall_seconds);
   return s;
 }
 
@@ -93,7 +69,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   if (format == "json") {
     json j = header(scene, run);
     j["rows"] = json::array();
-    for (const auto& r : rows) j["rows"].push_back(row_json(r, run.timing));
+    for (const auto& r : rows) j["rows"].push_back(row_to_json(r, run.timing));
     return j.dump(2) + "\n";
   }
   const bool full = format == "csv";

@@ -12,7 +12,6 @@
 namespace depthprec {
 
 struct RunInfo {
-  std::string command;  // the command line, for the JSON header
   std::string device;
   std::vector<std::string> variants;  // kernel variants built, as labels
   uint64_t fragment_pairs = 0;
@@ -20,6 +19,8 @@ struct RunInfo {
   double wall_seconds = 0;
   double kernel_seconds = 0;
   bool timing = true;  // false: leave every measured time out (--no-timing)
+  std::string kind = "mts";  // "mts" (one line per row) or "table" (wide): what merge re-renders
+  std::string shard;         // "i/N" when this output is one shard of a batch
 };
 
 std::string human(double v);  // 4 significant digits, "inf", "0"

@@ -229,6 +229,11 @@ const std::string& default_scene_text() {
   return text;
 }
 
+namespace {
+Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
+                  const std::string& text);
+}  // namespace
+
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
   std::string source = std::string("embedded:") + kDefaultPath;
@@ -255,7 +260,22 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (!overrides.empty()) source += " (with --set overrides)";
   }
 
-  const Reader r(merged, path.empty() ? std::string("--set") : path, text);
+  return parse_scene(merged, source, path.empty() ? std::string("--set") : path, text);
+}
+
+Scene scene_from_json(const json& j, const std::string& source) {
+  json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
+  check_user_keys(j, source, "");
+  merged.merge_patch(j);
+  if (j.contains("evaluate")) merged["evaluate"] = j["evaluate"];
+  return parse_scene(merged, source, source, "");
+}
+
+namespace {
+
+Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
+                  const std::string& text) {
+  const Reader r(merged, where_name, text);
   Scene s;
   s.source = source;
   s.name = r.string("name");
@@ -337,5 +357,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   s.json = merged;
   return s;
 }
+
+}  // namespace
 
 }  // namespace depthprec

@@ -14,8 +14,8 @@ struct GlobalOptions {
 
 void add_devices_command(CLI::App& app, GlobalOptions& global);
 void add_formats_command(CLI::App& app, GlobalOptions& global);
-// mts and table; argc/argv are kept for the command line in JSON headers.
-void add_mts_commands(CLI::App& app, GlobalOptions& global, int argc, char** argv);
+// mts, table and merge.
+void add_mts_commands(CLI::App& app, GlobalOptions& global);
 // lj, select, lj-table, resolve.
 void add_lj_commands(CLI::App& app, GlobalOptions& global);
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global);

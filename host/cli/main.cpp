@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", global.verbose, "Say which kernel variants were built");
   cli::add_devices_command(app, global);
   cli::add_formats_command(app, global);
-  cli::add_mts_commands(app, global, argc, argv);
+  cli::add_mts_commands(app, global);
   cli::add_lj_commands(app, global);
   cli::add_tradeoff_command(app, global);
   cli::add_cost_command(app, global);

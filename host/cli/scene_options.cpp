@@ -83,11 +83,14 @@ Scene SceneOptions::load() const {
     for (const auto& r : depth_ranges) rs.push_back(parse_depth_range(r));
     if (rs.empty()) rs.push_back(scene.pipeline.depth_range);
     scene.evaluate.clear();
+    scene.json["evaluate"] = nlohmann::json::array();
     for (const auto& t : ts)
       for (const auto& f : fs)
         for (const auto r : rs) {
           StorageFormat::parse(f);
           scene.evaluate.push_back({parse_technique(t), f, r});
+          // the scene a header records is the one that ran
+          scene.json["evaluate"].push_back({{"technique", t}, {"format", f}, {"depth_range", to_string(r)}});
         }
   }
   return scene;
