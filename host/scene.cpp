@@ -60,6 +60,12 @@ json parse_text(const std::string& text, const std::string& source) {
     if (p != std::string::npos) msg = msg.substr(p);
     throw InputError(fmt::format("{}:{}: malformed JSON: {}", source,
                                  position_of(text, e.byte > 0 ? e.byte - 1 : 0), msg));
+  } catch (const json::exception& e) {
+    // e.g. a number too large for binary64 (found by the fuzzer): no position is known
+    std::string msg = e.what();
+    const auto p = msg.find("] ");
+    if (p != std::string::npos) msg = msg.substr(p + 2);
+    throw InputError(fmt::format("{}: malformed JSON: {}", source, msg));
   }
 }
 
@@ -235,15 +241,19 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
 }  // namespace
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  if (path.empty()) return load_scene_text("", "", overrides);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
+  std::stringstream buf;
+  buf << in.rdbuf();
+  return load_scene_text(buf.str(), path, overrides);
+}
+
+Scene load_scene_text(const std::string& text, const std::string& path,
+                      const std::vector<std::string>& overrides) {
   json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
   std::string source = std::string("embedded:") + kDefaultPath;
-  std::string text;
   if (!path.empty()) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
-    std::stringstream buf;
-    buf << in.rdbuf();
-    text = buf.str();
     source = path;
     const json user = parse_text(text, path);
     check_user_keys(user, path, text);

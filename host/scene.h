@@ -67,6 +67,10 @@ struct Scene {
 // "kernel=[50,50]", "near=0.1". Throws InputError naming the file, line:column and key.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 
+// The same from the text of a scene file (path names it in errors; "" for no file).
+Scene load_scene_text(const std::string& text, const std::string& path,
+                      const std::vector<std::string>& overrides = {});
+
 // A scene from a JSON object (as JSON outputs carry it in their header), over the defaults.
 Scene scene_from_json(const nlohmann::json& j, const std::string& source);
 

@@ -113,3 +113,19 @@ TEST_CASE("cost lists depth-path cost, precision, LJ error and structural costs"
   CHECK_THAT(r.output, Contains("3 passes"));              // layered, 3 layers
   CHECK_THAT(r.output, Contains("projection matrix only")); // standard
 }
+
+TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
+  const std::string json = "/tmp/depthprec_test_plot.json", png = "/tmp/depthprec_test_plot.png";
+  std::remove(png.c_str());
+  REQUIRE(run_cli("mts -t standard,linear -f unorm24 --format-out json -o " + json + " " + kSmall).exit_code == 0);
+  const auto r = run_cli("plot " + json + " -o " + png);
+  REQUIRE(r.exit_code == 0);
+  const std::string bytes = slurp(png);
+  REQUIRE(bytes.size() > 1000);
+  CHECK(bytes.substr(1, 3) == "PNG");
+  const auto bad = run_cli("plot " + json + " -o /tmp/x.gif");
+  CHECK(bad.exit_code == 3);
+  CHECK_THAT(bad.output, Contains(".png or .svg"));
+  const auto notjson = run_cli("plot /etc/hostname");
+  CHECK(notjson.exit_code == 3);
+}

@@ -71,3 +71,11 @@ TEST_CASE("scene errors name the file, position and key", "[scene][errors]") {
   CHECK_THROWS_WITH(load_scene("/nonexistent/scene.json"), Contains("cannot read scene file"));
   CHECK_THROWS_AS(load_scene("", {"distances=[1, -2]"}), InputError);
 }
+
+// Inputs the fuzzer (scripts/fuzz.sh) found to escape as something other than an InputError.
+TEST_CASE("fuzzer regressions end in input errors", "[scene][errors][fuzz]") {
+  // a number beyond binary64 made nlohmann::json throw out_of_range, not parse_error
+  const std::string overflow = "6666666666e6666666666666&6666666{\n  \"name\": \"g66666666666e6666666666666&666666666{\n";
+  CHECK_THROWS_AS(load_scene_text(overflow, "crash.json"), InputError);
+  CHECK_THROWS_WITH(load_scene_text("{\"near\": 1e999999}", "big.json"), Contains("malformed JSON") && Contains("big.json"));
+}

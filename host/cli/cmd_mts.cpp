@@ -14,6 +14,7 @@
 #include "host/errors.h"
 #include "host/interrupt.h"
 #include "host/mts_run.h"
+#include "host/progress.h"
 #include "host/row_json.h"
 
 namespace depthprec::cli {
@@ -87,14 +88,17 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
     throw Error(ExitCode::usage, "--resume needs --output FILE: the journal of finished rows lives beside it");
   }
   std::vector<MtsRow> finished = earlier;
-  if (!control.on_row) control.on_row = [&finished](const MtsRow& r) { finished.push_back(r); };
-  else {
-    auto write = control.on_row;
-    control.on_row = [write, &finished](const MtsRow& r) {
-      write(r);
-      finished.push_back(r);
-    };
-  }
+  size_t total = 0;
+  for (size_t k = 0; k < scene.evaluate.size() * scene.distances.size(); ++k)
+    if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) == control.shard_index) ++total;
+  Progress progress(wide ? "table" : "mts", total - std::min(total, earlier.size()),
+                    !global.quiet && stderr_is_terminal());
+  auto journal_write = control.on_row;
+  control.on_row = [journal_write, &finished, &progress](const MtsRow& r) {
+    if (journal_write) journal_write(r);
+    finished.push_back(r);
+    progress.advance();
+  };
   control.stop = interrupt_requested;
   install_interrupt_handlers();
 

@@ -10,6 +10,7 @@ namespace depthprec::cli {
 struct GlobalOptions {
   std::string device;  // --device, else $DEPTHPREC_DEVICE
   bool verbose = false;
+  bool quiet = false;  // no progress line
 };
 
 void add_devices_command(CLI::App& app, GlobalOptions& global);
@@ -20,5 +21,6 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global);
 void add_lj_commands(CLI::App& app, GlobalOptions& global);
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global);
 void add_cost_command(CLI::App& app, GlobalOptions& global);
+void add_plot_command(CLI::App& app);
 
 }  // namespace depthprec::cli

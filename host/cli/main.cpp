@@ -19,17 +19,20 @@ int main(int argc, char** argv) {
       kVersion)};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
+  app.fallthrough();  // --device, -v, -q work after the subcommand too
   cli::GlobalOptions global;
   app.add_option("--device", global.device,
                  "OpenCL device: P:D as `depthprec devices` lists, or part of its name "
                  "(default: $DEPTHPREC_DEVICE, else the PoCL CPU device)");
   app.add_flag("-v,--verbose", global.verbose, "Say which kernel variants were built");
+  app.add_flag("-q,--quiet", global.quiet, "No progress line on stderr (it appears only on a terminal)");
   cli::add_devices_command(app, global);
   cli::add_formats_command(app, global);
   cli::add_mts_commands(app, global);
   cli::add_lj_commands(app, global);
   cli::add_tradeoff_command(app, global);
   cli::add_cost_command(app, global);
+  cli::add_plot_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
