@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include "run_cli.h"
 
 using depthprec::test::run_cli;
@@ -49,4 +51,55 @@ TEST_CASE("an unknown device selector is a runtime error listing devices", "[cli
 TEST_CASE("an unknown option is a usage error", "[cli][errors]") {
   const auto r = run_cli("formats --bogus");
   CHECK(r.exit_code == 2);
+}
+
+// Every way of getting the input wrong: the message says what, where and what is allowed, and the
+// exit code is the documented one (docs/cli.md).
+TEST_CASE("bad input gets a specific message and the documented exit code", "[cli][errors]") {
+  {
+    std::ofstream("/tmp/depthprec_bad.json") << "{\n  \"near\": 1,\n  \"far\": [1,\n}\n";
+    std::ofstream("/tmp/depthprec_unknown.json") << "{\n  \"kernal\": [10, 10]\n}\n";
+  }
+  struct Case {
+    std::string args;
+    int code;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {"mts /tmp/depthprec_bad.json", 3, "depthprec_bad.json:4:1: malformed JSON"},
+      {"mts /tmp/depthprec_unknown.json", 3, "depthprec_unknown.json:2:3: unknown key 'kernal'"},
+      {"mts /nonexistent/scene.json", 3, "cannot read scene file '/nonexistent/scene.json'"},
+      {"mts -t zbuffer", 3, "unknown technique 'zbuffer': expected one of standard"},
+      {"mts -f unorm40", 3, "unorm takes 1 to 32 bits"},
+      {"mts -f e9m30", 3, "E = 1..8"},
+      {"mts --near 0", 3, "'near' must be > 0"},
+      {"mts --near -2", 3, "'near' must be > 0"},
+      {"mts --near nan", 3, "'near' must be a number"},
+      {"mts --far 0.5", 3, "'far' must be > near"},
+      {"mts --frames 0", 3, "'frames' must be 1..1000000"},
+      {"mts --frames -5", 3, "'frames' must be 1..1000000"},
+      {"mts --kernel 0x10", 3, "'kernel' sides must be 1..16384"},
+      {"mts --kernel 100000x100000", 3, "'kernel' sides must be 1..16384"},
+      {"mts --log-k 0", 3, "'log_k' must be > 0"},
+      {"mts --set rotation_step=[1,2]", 3, "'rotation_step' must be three numbers"},
+      {"mts --set nonsense=1", 3, "unknown key 'nonsense'"},
+      {"mts -o /nonexistent-dir/out.txt", 5, "cannot write output '/nonexistent-dir/out.txt'"},
+      {"lj --near 10 --far 5", 3, "--far must be finite and > near"},
+      {"lj --buffer q", 3, "unknown buffer type 'q'"},
+      {"resolve --code 1 --distance 2", 2, "exactly one of --code N, --distance w or --curve"},
+      {"resolve --technique layered --code 1", 3, "layered has one mapping per layer"},
+      {"select --bits 40", 3, "--bits must be 2..32"},
+      {"mts --bogus", 2, "--bogus"},
+  };
+  for (const auto& c : cases) {
+    std::string args = c.args;  // mts cases run small, where the case itself does not set it
+    if (args.rfind("mts", 0) == 0)
+      for (const char* opt : {"--distances 2", "--frames 2", "--kernel 8x8"})
+        if (args.find(std::string(opt).substr(0, std::string(opt).find(' '))) == std::string::npos)
+          args += std::string(" ") + opt;
+    const auto r = run_cli(args);
+    INFO(c.args << "\n" << r.output);
+    CHECK(r.exit_code == c.code);
+    CHECK_THAT(r.output, Contains(c.says));
+  }
 }
