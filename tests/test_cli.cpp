@@ -17,15 +17,6 @@ TEST_CASE("formats prints bits, range and spacing, and round-trips on the device
   CHECK_THAT(r.output, Contains("agrees"));
 }
 
-TEST_CASE("a bad format name is an input error naming what is allowed", "[cli][errors]") {
-  const auto r = run_cli("formats unorm33");
-  CHECK(r.exit_code == 3);
-  CHECK_THAT(r.output, Contains("unorm takes 1 to 32 bits"));
-  const auto r2 = run_cli("formats e9m60");
-  CHECK(r2.exit_code == 3);
-  CHECK_THAT(r2.output, Contains("E = 1..8"));
-}
-
 TEST_CASE("no OpenCL platform gives a one-line error naming the package", "[cli][errors]") {
   // The ICD loader reads vendor files from OCL_ICD_VENDORS: an empty directory means no platform.
   const auto r = run_cli("devices", "OCL_ICD_VENDORS=/nonexistent-depthprec-icd");
@@ -90,6 +81,9 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
       {"resolve --technique layered --code 1", 3, "layered has one mapping per layer"},
       {"select --bits 40", 3, "--bits must be 2..32"},
       {"mts --bogus", 2, "--bogus"},
+      {"mts --kernel 20", 2, "--kernel '20': expected WxH"},
+      {"formats unorm33", 3, "unorm takes 1 to 32 bits"},
+      {"formats e9m60", 3, "E = 1..8"},
   };
   for (const auto& c : cases) {
     std::string args = c.args;  // mts cases run small, where the case itself does not set it

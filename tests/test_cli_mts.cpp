@@ -77,18 +77,6 @@ TEST_CASE("verbose mode names the kernel variants built and only the ones needed
   CHECK_THAT(r.output, Contains("-DDF_BITS=24u"));
 }
 
-TEST_CASE("scene and option errors exit 3 with the key named", "[cli][errors]") {
-  const auto r = run_cli("mts -t zbuffer " + kSmall);
-  CHECK(r.exit_code == 3);
-  CHECK_THAT(r.output, Contains("unknown technique 'zbuffer'"));
-  const auto n = run_cli("mts --near -1 " + kSmall);
-  CHECK(n.exit_code == 3);
-  CHECK_THAT(n.output, Contains("'near' must be > 0"));
-  const auto k = run_cli("mts --kernel 20 --frames 6 --distances 2");
-  CHECK(k.exit_code == 2);
-  CHECK_THAT(k.output, Contains("expected WxH"));
-}
-
 TEST_CASE("tradeoff reports every ladder level against the reference with a Pareto front", "[cli][tradeoff]") {
   const auto r = run_cli("tradeoff -t linear -f unorm24 --distances 4096 --no-timing --format-out json");
   REQUIRE(r.exit_code == 0);
