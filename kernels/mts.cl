@@ -486,13 +486,6 @@ static inline int16 fights16(uint16 code_a, uint16 code_b) {
 
 #define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 
-static inline int fights(uint code_a, uint code_b) {
-#if COMPARE_GREATER
-  return code_b >= code_a;
-#else
-  return code_b <= code_a;
-#endif
-}
 
 // Walks the row in pieces where both planes' covering triangles stay the same.
 #define FOR_EACH_PIECE(...)                                                            \
