@@ -8,11 +8,10 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "host/cli/commands.h"
 #include "host/errors.h"
+#include "host/gnuplot.h"
 #include "host/row_json.h"
 
 namespace depthprec::cli {
@@ -25,26 +24,13 @@ struct PlotOptions {
   std::string title;
 };
 
-std::string gnuplot_quote(const std::string& s) {
-  std::string out;
-  for (char c : s) out += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-  return "\"" + out + "\"";
-}
-
 void run_plot(const PlotOptions& o) {
   std::ifstream in(o.input);
   if (!in) throw InputError(fmt::format("plot: cannot read '{}'", o.input));
   const auto j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("rows"))
     throw InputError(fmt::format("plot: '{}' is not a JSON output of mts, table or merge (--format-out json)", o.input));
-  std::string terminal;
-  const auto ends_with = [&o](const char* ext) {
-    const std::string e = ext;
-    return o.output.size() >= e.size() && o.output.compare(o.output.size() - e.size(), e.size(), e) == 0;
-  };
-  if (ends_with(".png")) terminal = "pngcairo size 1200,800 font \"sans,11\"";
-  else if (ends_with(".svg")) terminal = "svg size 1200,800 font \"sans,11\"";
-  else throw InputError(fmt::format("plot: output '{}' must end in .png or .svg", o.output));
+  const std::string terminal = gnuplot_terminal(o.output);
 
   std::map<std::string, std::vector<std::pair<double, double>>> series;  // label -> (z, mts)
   std::vector<std::string> order;
@@ -82,18 +68,7 @@ void run_plot(const PlotOptions& o) {
   for (size_t i = 0; i < order.size(); ++i)
     script += fmt::format("  $s{} using 1:2 with linespoints lw 1.5 pt {} title {} noenhanced{}\n", i, 1 + i % 12,
                           gnuplot_quote(order[i]), i + 1 < order.size() ? ", \\" : "");
-  char path[] = "/tmp/depthprec_plot_XXXXXX";
-  const int fd = mkstemp(path);
-  if (fd < 0) throw OutputError("plot: cannot create a temporary gnuplot script");
-  const bool ok = write(fd, script.data(), script.size()) == static_cast<ssize_t>(script.size());
-  close(fd);
-  if (!ok) throw OutputError("plot: cannot write the temporary gnuplot script");
-  const int status = std::system(fmt::format("gnuplot '{}' 2>&1", path).c_str());
-  std::remove(path);
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127)
-    throw RuntimeError("plot: gnuplot did not run: install gnuplot-nox (scripts/setup.sh does)");
-  if (WEXITSTATUS(status) != 0)
-    throw OutputError(fmt::format("plot: gnuplot failed writing '{}'", o.output));
+  run_gnuplot(script, o.output);
 }
 
 }  // namespace

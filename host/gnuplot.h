@@ -1,0 +1,16 @@
+// Runs a gnuplot script to write an image: the one place depthprec calls gnuplot.
+#pragma once
+
+#include <string>
+
+namespace depthprec {
+
+// "pngcairo ..." or "svg ..." for a path ending in .png / .svg; throws InputError otherwise.
+std::string gnuplot_terminal(const std::string& output);
+// A gnuplot string literal.
+std::string gnuplot_quote(const std::string& s);
+// Writes the script to a temporary file and runs gnuplot on it. Throws RuntimeError when gnuplot
+// is missing (naming the package), OutputError when it fails.
+void run_gnuplot(const std::string& script, const std::string& output);
+
+}  // namespace depthprec
