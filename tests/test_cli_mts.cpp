@@ -117,3 +117,16 @@ TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
   const auto notjson = run_cli("plot /etc/hostname");
   CHECK(notjson.exit_code == 3);
 }
+
+TEST_CASE("tradeoff, cost and lj-table plot through gnuplot with --plot", "[cli][plot]") {
+  const std::string a = "/tmp/depthprec_test_tradeoff.svg", b = "/tmp/depthprec_test_lj.png";
+  std::remove(a.c_str());
+  std::remove(b.c_str());
+  REQUIRE(run_cli("tradeoff -t linear -f unorm16 --distances 4096 --plot " + a).exit_code == 0);
+  CHECK_THAT(slurp(a), Contains("<svg") && Contains("Pareto front"));
+  REQUIRE(run_cli("lj-table --samples 2000 --plot " + b).exit_code == 0);
+  CHECK(slurp(b).substr(1, 3) == "PNG");
+  const auto no_time = run_cli("cost -t standard -f unorm24 --distances 64 --kernel 16x16 --frames 4 --no-timing --plot /tmp/x.png");
+  CHECK(no_time.exit_code == 2);
+  CHECK_THAT(no_time.output, Contains("--plot needs the timing pass"));
+}

@@ -8,6 +8,8 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
+#include "host/errors.h"
+#include "host/gnuplot.h"
 #include "host/lj_metric.h"
 #include "host/mts_run.h"
 #include "host/mts_timing.h"
@@ -21,7 +23,27 @@ namespace {
 struct CostOptions {
   SceneOptions scene;
   OutputOptions out;
+  std::string plot;
 };
+
+struct CostPoint {
+  std::string label;
+  double ns = 0, median = 0;
+};
+
+// Precision against cost: one labelled point per technique x format.
+void plot_cost(const std::vector<CostPoint>& points, const std::string& output) {
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output), gnuplot_quote(output));
+  script += "set logscale y\nset grid\nset key off\nset xlabel 'kernel cost [ns per fragment pair]'\n"
+            "set ylabel 'median MTS / vertex bound (lower is more precise)'\n"
+            "set title 'Precision against cost per technique and format' noenhanced\n"
+            "set offsets graph 0.05, graph 0.25, graph 0.1, graph 0.1\n$pts << EOD\n";
+  for (const auto& p : points)
+    if (std::isfinite(p.median) && p.median > 0)
+      script += fmt::format("{:.6g} {:.6g} {}\n", p.ns, p.median, gnuplot_quote(p.label));
+  script += "EOD\nplot $pts using 1:2 with points pt 7 ps 1.5, $pts using 1:2:3 with labels offset 1,0.5 left noenhanced\n";
+  run_gnuplot(script, output);
+}
 
 // What a real GPU pays for the technique beyond its arithmetic.
 std::string structural_cost(const Scene& s, Technique t) {
@@ -54,6 +76,7 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
   const bool timing = !o.out.no_timing;
   nlohmann::json rows = nlohmann::json::array();
   Cells cells;
+  std::vector<CostPoint> points;
   for (const EvalPair& pair : scene.evaluate) {
     std::vector<double> ratio;
     int unresolved = 0;
@@ -75,6 +98,7 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
     }
     const Throughput t = timing ? time_depth_path(rt, scene, pair, TimingRegime::near) : Throughput{};
     const std::string structural = structural_cost(scene, pair.technique);
+    points.push_back({pair.label(), t.ns_per_pair(), median});
     nlohmann::json j = {{"technique", info(pair.technique).name}, {"format", pair.format},
                         {"depth_range", to_string(pair.depth_range)}, {"median_mts_over_vertex_bound", median},
                         {"unresolvable_distances", unresolved}, {"structural_cost", structural}};
@@ -106,6 +130,10 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
            render_cells(cols, cells, o.out.format_out);
   }
   write_output(o.out.output, text);
+  if (!o.plot.empty()) {
+    if (!timing) throw Error(ExitCode::usage, "cost: --plot needs the timing pass (drop --no-timing)");
+    plot_cost(points, o.plot);
+  }
 }
 
 }  // namespace
@@ -124,6 +152,7 @@ void add_cost_command(CLI::App& app, GlobalOptions& global) {
       "  depthprec cost --format-out csv -o cost.csv");
   o->scene.add_to(*cmd, true);
   o->out.add_to(*cmd);
+  cmd->add_option("--plot", o->plot, "Also plot precision against cost (gnuplot), FILE.png or FILE.svg");
   cmd->callback([o, &global]() { run_cost(*o, global); });
 }
 

@@ -3,11 +3,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
 #include "host/errors.h"
+#include "host/gnuplot.h"
 #include "host/lj_metric.h"
 #include "host/lj_pipeline.h"
 #include "host/report.h"
@@ -25,6 +27,7 @@ struct LjOptions {
   long long samples = 1000000;
   int bits = 16;
   OutputOptions out;
+  std::string plot;
 
   LjConfig config() const {
     LjConfig c;
@@ -155,6 +158,7 @@ void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
   OpenClRuntime rt(g.device);
   const std::vector<double> ratios = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 1e4, 1e6};
   const bool md = o.out.format_out == "markdown";
+  std::map<std::pair<std::string, int>, std::vector<std::pair<double, double>>> curves;  // 16-bit, uniform
   std::string text = md ? "# Lapidous-Jiao average depth error: the paper's experiments\n\n" : "";
   text += fmt::format("ae per exponent width E (E = 0: integer unorm<bits>; E >= 1: LJ e<E>m<bits-E>), near 1, "
                       "N = {} samples. inf: a sample passes the Z buffer's pole. best E 0/1: the integer "
@@ -176,6 +180,8 @@ void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
           c.samples = o.samples;
           c.sampling = parse_lj_sampling(sampling);
           const auto sw = sweep(rt, c, bits);
+          if (bits == 16 && c.sampling == LjSampling::uniform)
+            for (const auto& x : sw) curves[{to_string(b), x.e}].push_back({r, x.ae});
           std::vector<std::string> row = {human(r)};
           size_t best = 0;
           for (size_t k = 0; k < sw.size(); ++k) {
@@ -221,6 +227,25 @@ void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
                       "\"24.4\" format\n\n", md ? "## " : "");
   text += render_cells(cols, cells, o.out.format_out);
   write_output(o.out.output, text);
+  if (o.plot.empty()) return;
+  // LJ error against f/d per format: one panel per buffer type, 16 bits, uniform sampling.
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(o.plot), gnuplot_quote(o.plot));
+  script += "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform sampling' noenhanced\n"
+            "set logscale xy\nset grid\nset key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
+  for (const char* buffer : {"z", "w", "inverse_w", "complementary_z"}) {
+    script += fmt::format("set title {} noenhanced\nplot ", gnuplot_quote(std::string(buffer) + " buffer"));
+    for (int e = 0; e <= 8; ++e) {
+      script += fmt::format("'-' using 1:2 with linespoints title {}{}", gnuplot_quote(e == 0 ? "unorm16" : fmt::format("e{}m{}", e, 16 - e)),
+                            e < 8 ? ", " : "\n");
+    }
+    for (int e = 0; e <= 8; ++e) {
+      for (const auto& [r, ae] : curves[{buffer, e}])
+        if (std::isfinite(ae)) script += fmt::format("{:.6g} {:.6g}\n", r, ae);
+      script += "e\n";
+    }
+  }
+  script += "unset multiplot\n";
+  run_gnuplot(script, o.plot);
 }
 
 struct ResolveOptions {
@@ -309,6 +334,7 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
       "  depthprec lj-table --format-out markdown -o docs/lapidous-jiao-tables.md");
   tcmd->add_option("--samples", tab->samples, "N samples per evaluation")->capture_default_str();
   tab->out.add_to(*tcmd);
+  tcmd->add_option("--plot", tab->plot, "Also plot ae against f/d per format, 16 bits (gnuplot), FILE.png or FILE.svg");
   tcmd->callback([tab, &global]() { run_lj_table(*tab, global); });
 
   auto res = std::make_shared<ResolveOptions>();

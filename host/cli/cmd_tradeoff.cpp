@@ -8,6 +8,7 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
+#include "host/gnuplot.h"
 #include "host/mts_run.h"
 #include "host/text_table.h"
 #include "host/version.h"
@@ -46,7 +47,32 @@ struct LevelResult {
 struct TradeoffOptions {
   SceneOptions scene;
   OutputOptions out;
+  std::string plot;
 };
+
+// Error against cost: one point per level, the Pareto front joined. Errors of 0 sit on a floor.
+void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const std::string& output) {
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output), gnuplot_quote(output));
+  script += fmt::format("set logscale xy\nset grid\nset key top right\nset xlabel '{}'\n",
+                        timing ? "run time [s]" : "fragment pairs evaluated");
+  script += "set ylabel 'max relative MTS error vs the reference (0 plotted at 1e-6)'\n"
+            "set title 'Fidelity trade-off' noenhanced\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";
+  script += "$levels << EOD\n";
+  for (const auto& r : results)
+    script += fmt::format("{:.6g} {:.6g} {}\n", timing ? r.seconds : static_cast<double>(r.pairs),
+                          std::max(r.max_err, 1e-6), gnuplot_quote(r.level.name));
+  script += "EOD\n$front << EOD\n";
+  std::vector<const LevelResult*> front;
+  for (const auto& r : results)
+    if (r.pareto) front.push_back(&r);
+  std::sort(front.begin(), front.end(), [](const LevelResult* a, const LevelResult* b) { return a->pairs < b->pairs; });
+  for (const auto* r : front)
+    script += fmt::format("{:.6g} {:.6g}\n", timing ? r->seconds : static_cast<double>(r->pairs), std::max(r->max_err, 1e-6));
+  script += "EOD\nplot $levels using 1:2 with points pt 7 ps 1.5 title 'level', "
+            "$levels using 1:2:3 with labels offset 1,0.6 left noenhanced notitle, "
+            "$front using 1:2 with lines lw 2 title 'Pareto front'\n";
+  run_gnuplot(script, output);
+}
 
 void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
   const Scene base = o.scene.load();
@@ -132,6 +158,7 @@ void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
            render_cells(cols, cells, o.out.format_out);
   }
   write_output(o.out.output, text);
+  if (!o.plot.empty()) plot_tradeoff(results, timing, o.plot);
 }
 
 }  // namespace
@@ -150,6 +177,7 @@ void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {
       "  depthprec tradeoff -t standard,linear -f unorm24 --format-out json -o tradeoff.json");
   o->scene.add_to(*cmd, true);
   o->out.add_to(*cmd);
+  cmd->add_option("--plot", o->plot, "Also plot error against cost (gnuplot), FILE.png or FILE.svg");
   cmd->callback([o, &global]() { run_tradeoff(*o, global); });
 }
 
