@@ -11,6 +11,11 @@ namespace depthprec {
 
 using Mat4f = std::array<float, 16>;  // row-major: m[r * 4 + c]
 
+// Row r of m times v in binary32, in the kernels' order: ((m0 x + m1 y) + m2 z) + m3 w.
+inline float mat_row_dot(const Mat4f& m, int r, const float v[4]) {
+  return ((m[r * 4] * v[0] + m[r * 4 + 1] * v[1]) + m[r * 4 + 2] * v[2]) + m[r * 4 + 3] * v[3];
+}
+
 // Per-probe constants, laid out as the kernel reads them (PROBE_STRIDE = 24 floats).
 struct ProbeConstants {
   Mat4f P{};

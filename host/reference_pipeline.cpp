@@ -31,9 +31,6 @@ struct Plane {
   bool non_finite = false;
 };
 
-float dot_row(const Mat4f& m, int r, const float v[4]) {
-  return ((m[r * 4] * v[0] + m[r * 4 + 1] * v[1]) + m[r * 4 + 2] * v[2]) + m[r * 4 + 3] * v[3];
-}
 
 Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, const Mat4f& M) {
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
@@ -49,11 +46,11 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float clip[4];
       if (s.pipeline.compose == Compose::premultiplied) {
-        for (int r = 0; r < 4; ++r) clip[r] = dot_row(M, r, obj);
+        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(M, r, obj);
       } else {
         float eye[4];
-        for (int r = 0; r < 4; ++r) eye[r] = dot_row(M, r, obj);
-        for (int r = 0; r < 4; ++r) clip[r] = dot_row(pc.P, r, eye);
+        for (int r = 0; r < 4; ++r) eye[r] = mat_row_dot(M, r, obj);
+        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye);
       }
       if (ti.from == DepthFrom::vertex_log) {
         const float t = std::log(pc.log_k * clip[3] + 1.0f);

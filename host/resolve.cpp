@@ -12,20 +12,8 @@ namespace {
 
 using quad = __float128;
 
-// The inverse mappings of technique.cpp's distance_of_depth, in binary128, for the ones a gap
-// between two codes can cancel in (log uses binary64 expm1: no binary128 libm here).
 quad distance_q(const ResolveSetup& s, double depth) {
-  const quad D = depth, n = s.near, f = s.far;
-  switch (s.technique) {
-    case Technique::standard: return n * f / (f * (1 - D) + n * D);
-    case Technique::infinite: return n / (1 - D);
-    case Technique::reversed: return n * f / (n + D * (f - n));
-    case Technique::reversed_infinite:
-    case Technique::inverse_w: return n / D;
-    case Technique::linear: return n + D * (f - n);
-    case Technique::w_buffer: return D * f;
-    default: return distance_of_depth(s.technique, s.near, s.far, s.params, depth);
-  }
+  return distance_of_depth<quad>(s.technique, s.near, s.far, s.params, depth);
 }
 
 }  // namespace

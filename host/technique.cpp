@@ -73,27 +73,7 @@ double depth_of_distance(Technique t, double n, double f, const TechniqueParams&
   return NAN;
 }
 
-double distance_of_depth(Technique t, double n, double f, const TechniqueParams& p, double D) {
-  switch (t) {
-    case Technique::standard:  // D = f(Ze - n)/((f - n)Ze); 1 - D is exact for D >= 0.5
-      return n * f / (f * (1.0 - D) + n * D);
-    case Technique::infinite:
-      return n / (1.0 - D);
-    case Technique::reversed:  // D = n(f - Ze)/((f - n)Ze)
-      return n * f / (n + D * (f - n));
-    case Technique::reversed_infinite:
-    case Technique::inverse_w:
-      return n / D;
-    case Technique::linear:
-      return n + D * (f - n);
-    case Technique::w_buffer:
-      return D * f;
-    case Technique::log_vertex:
-    case Technique::log_fragment:
-      return std::expm1(D * std::log1p(p.log_k * f)) / p.log_k;
-    case Technique::layered:
-      break;
-  }
+void throw_layered_has_no_single_mapping() {
   throw InputError(
       "layered has one mapping per layer: ask for its layer_mapping with the layer's near and far");
 }

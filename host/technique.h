@@ -3,6 +3,7 @@
 // P, and the exact mapping D(w) the metrics invert.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -86,9 +87,36 @@ struct TechniqueParams {
 double depth_of_distance(Technique t, double near, double far, const TechniqueParams& p, double w);
 
 // Eye distance of window depth D: the inverse of depth_of_distance, in forms that keep full
-// binary64 accuracy near D = 0 and D = 1 (no 1 - D·c with D·c close to 1). Throws InputError for
-// `layered`, which has one mapping per layer.
-double distance_of_depth(Technique t, double near, double far, const TechniqueParams& p, double D);
+// accuracy near D = 0 and D = 1 (no 1 - D·c with D·c close to 1), in the arithmetic of T (double,
+// or __float128 where a difference of two distances must keep its digits; the log techniques
+// evaluate in binary64, having no binary128 libm here). Throws InputError for `layered`, which has
+// one mapping per layer.
+[[noreturn]] void throw_layered_has_no_single_mapping();
+
+template <class T>
+T distance_of_depth(Technique t, T n, T f, const TechniqueParams& p, T D) {
+  switch (t) {
+    case Technique::standard:  // D = f(Ze - n)/((f - n)Ze); 1 - D is exact for D >= 0.5
+      return n * f / (f * (T(1) - D) + n * D);
+    case Technique::infinite:
+      return n / (T(1) - D);
+    case Technique::reversed:  // D = n(f - Ze)/((f - n)Ze)
+      return n * f / (n + D * (f - n));
+    case Technique::reversed_infinite:
+    case Technique::inverse_w:
+      return n / D;
+    case Technique::linear:
+      return n + D * (f - n);
+    case Technique::w_buffer:
+      return D * f;
+    case Technique::log_vertex:
+    case Technique::log_fragment:
+      return T(std::expm1(double(D) * std::log1p(p.log_k * double(f))) / p.log_k);
+    case Technique::layered:
+      break;
+  }
+  throw_layered_has_no_single_mapping();
+}
 
 // Layer i = 0..L-1 of `layered`: geometric bounds between near and far, each layer's far bound
 // pushed out by the overlap (the last ends at far). layer_of() is the layer holding distance z.
