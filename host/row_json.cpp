@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "host/errors.h"
+#include "host/json_number.h"
 
 namespace depthprec {
 
@@ -13,18 +14,11 @@ using nlohmann::json;
 
 namespace {
 
-json number(double v) {
-  if (std::isfinite(v)) return v;
-  return v > 0 ? "inf" : "-inf";
-}
+json number(double v) { return json_number(v); }
 
 double read_number(const json& j, const char* key) {
   if (!j.contains(key)) throw InputError(fmt::format("row is missing '{}'", key));
-  const json& v = j.at(key);
-  if (v.is_number()) return v.get<double>();
-  if (v == "inf") return INFINITY;
-  if (v == "-inf") return -INFINITY;
-  throw InputError(fmt::format("row field '{}' must be a number, not {}", key, v.dump()));
+  return number_from_json(j.at(key), std::string("row field ") + key);
 }
 
 }  // namespace

@@ -117,3 +117,39 @@ TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
   CHECK(merge.exit_code == 3);
   CHECK_THAT(merge.output, Contains("cannot read"));
 }
+
+// lj-table, tradeoff and cost are record batches (host/batch.h): the same guarantees.
+TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "[batch]") {
+  const std::vector<std::pair<std::string, std::string>> batches = {
+      {"lj-table", "lj-table --samples 20000 --no-timing --format-out json"},
+      {"cost", "cost -t standard,reversed,linear,log_fragment -f unorm24 --distances 2,1024,1048576 --kernel 60x60 "
+               "--frames 20 --no-timing --format-out json"},
+      {"tradeoff", "tradeoff -t reversed -f float32 --depth-range zero_to_one --distances 2,1024 --no-timing "
+                   "--format-out json"}};
+  for (const auto& [name, args] : batches) {
+    INFO(name);
+    const std::string base = "/tmp/depthprec_test_" + name;
+    const std::string full = base + "_full.json", cut = base + "_cut.json";
+    for (const auto& f : {full, cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
+    REQUIRE(run_cli(args + " -o " + full).exit_code == 0);
+    CHECK(run_and_interrupt(args + " -o " + cut, cut + ".rows.jsonl", SIGINT) == 130);
+    CHECK(lines_in(cut + ".rows.jsonl") >= 1);
+    CHECK_FALSE(std::ifstream(cut).good());
+    CHECK(run_cli(args + " -o " + cut).exit_code == 5);  // would lose the kept rows
+    REQUIRE(run_cli(args + " -o " + cut + " --resume").exit_code == 0);
+    CHECK(slurp(cut) == slurp(full));
+    CHECK_FALSE(std::ifstream(cut + ".rows.jsonl").good());
+    std::string parts;
+    for (int i = 2; i >= 1; --i) {  // merge takes the shards in any order
+      const std::string part = base + "_part" + std::to_string(i) + ".json";
+      REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " + part).exit_code == 0);
+      parts += " " + part;
+    }
+    const auto merged = run_cli("merge" + parts + " --no-timing --format-out json -o " + base + "_merged.json");
+    REQUIRE(merged.exit_code == 0);
+    CHECK(slurp(base + "_merged.json") == slurp(full));
+    const auto one = run_cli("merge " + base + "_part1.json");
+    CHECK(one.exit_code == 3);
+    CHECK_THAT(one.output, Contains("shard 2/2 is missing"));
+  }
+}

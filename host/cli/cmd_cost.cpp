@@ -8,7 +8,10 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
+#include "host/batch.h"
 #include "host/errors.h"
+#include "host/json_number.h"
+#include "host/progress.h"
 #include "host/gnuplot.h"
 #include "host/lj_metric.h"
 #include "host/mts_run.h"
@@ -24,6 +27,7 @@ struct CostOptions {
   SceneOptions scene;
   OutputOptions out;
   std::string plot;
+  BatchOptions batch;
 };
 
 struct CostPoint {
@@ -68,75 +72,95 @@ bool lj_buffer_of(Technique t, LjBuffer& b) {
   }
 }
 
+// One record per technique x format: its MTS run, LJ error and timing pass.
+nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool timing) {
+  Scene one = scene;
+  one.evaluate = {pair};
+  const MtsRun mts = run_scene(rt, one);
+  std::vector<double> ratio;
+  int unresolved = 0;
+  for (const auto& r : mts.rows) {
+    if (r.unresolvable) ++unresolved;
+    else ratio.push_back(r.mts / r.vertex_bound);
+  }
+  std::sort(ratio.begin(), ratio.end());
+  const double median = ratio.empty() ? INFINITY : ratio[ratio.size() / 2];
+  nlohmann::json j = {{"technique", info(pair.technique).name}, {"format", pair.format},
+                      {"depth_range", to_string(pair.depth_range)},
+                      {"median_mts_over_vertex_bound", json_number(median)},
+                      {"unresolvable_distances", unresolved}, {"structural_cost", structural_cost(scene, pair.technique)}};
+  LjBuffer b;
+  if (lj_buffer_of(pair.technique, b) && std::isfinite(scene.far)) {
+    LjConfig c;
+    c.buffer = b;
+    c.near = scene.near;
+    c.far = scene.far;
+    j["lj_ae"] = json_number(lj_average_error_device(rt, c, scene.storage_format(pair)).ae);
+  }
+  if (timing) j["ns_per_fragment_pair"] = time_depth_path(rt, scene, pair, TimingRegime::near).ns_per_pair();
+  return j;
+}
+
 void run_cost(const CostOptions& o, const GlobalOptions& g) {
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
+  if (!o.plot.empty() && o.out.no_timing)
+    throw Error(ExitCode::usage, "cost: --plot needs the timing pass (drop --no-timing)");
+  const Shard shard = Shard::parse(o.batch.shard);
+  RowJournal journal(o.out.output, o.batch.resume);
   OpenClRuntime rt(g.device);
-  const MtsRun mts = run_scene(rt, scene);
   const bool timing = !o.out.no_timing;
-  nlohmann::json rows = nlohmann::json::array();
-  Cells cells;
+  nlohmann::json header = batch_header("cost", rt.description(), o.batch.shard);
+  header["scene"] = scene.json;
+  header["scene_name"] = scene.name;
+  std::vector<BatchUnit> units;
+  for (const EvalPair& pair : scene.evaluate)
+    units.push_back({pair.label(), [&rt, &scene, pair, timing] { return cost_record(rt, scene, pair, timing); }});
+  const auto records = run_batch(units, journal, shard, "cost", !g.quiet && stderr_is_terminal(),
+                                 [&](const std::vector<nlohmann::json>& done) {
+                                   write_output("", render_cost_output(header, done, o.out));
+                                 });
+  write_output(o.out.output, render_cost_output(header, records, o.out));
+  journal.remove();
+  if (o.plot.empty()) return;
   std::vector<CostPoint> points;
-  for (const EvalPair& pair : scene.evaluate) {
-    std::vector<double> ratio;
-    int unresolved = 0;
-    for (const auto& r : mts.rows)
-      if (r.pair.label() == pair.label()) {
-        if (r.unresolvable) ++unresolved;
-        else ratio.push_back(r.mts / r.vertex_bound);
-      }
-    std::sort(ratio.begin(), ratio.end());
-    const double median = ratio.empty() ? INFINITY : ratio[ratio.size() / 2];
-    LjBuffer b;
-    double ae = NAN;
-    if (lj_buffer_of(pair.technique, b) && std::isfinite(scene.far)) {
-      LjConfig c;
-      c.buffer = b;
-      c.near = scene.near;
-      c.far = scene.far;
-      ae = lj_average_error_device(rt, c, scene.storage_format(pair)).ae;
-    }
-    const Throughput t = timing ? time_depth_path(rt, scene, pair, TimingRegime::near) : Throughput{};
-    const std::string structural = structural_cost(scene, pair.technique);
-    points.push_back({pair.label(), t.ns_per_pair(), median});
-    nlohmann::json j = {{"technique", info(pair.technique).name}, {"format", pair.format},
-                        {"depth_range", to_string(pair.depth_range)}, {"median_mts_over_vertex_bound", median},
-                        {"unresolvable_distances", unresolved}, {"structural_cost", structural}};
-    if (!std::isnan(ae)) j["lj_ae"] = ae;
-    if (timing) j["ns_per_fragment_pair"] = t.ns_per_pair();
-    rows.push_back(j);
-    std::vector<std::string> row = {info(pair.technique).name, pair.format, to_string(pair.depth_range)};
-    if (timing) row.push_back(fmt::format("{:.2f}", t.ns_per_pair()));
-    row.push_back(std::isinf(median) ? "inf" : fmt::format("{:.3g}", median));
-    row.push_back(std::to_string(unresolved));
-    row.push_back(std::isnan(ae) ? "-" : fmt::format("{:.3g}", ae));
-    row.push_back(structural);
-    cells.push_back(row);
-  }
-  std::string text;
-  if (o.out.format_out == "json") {
-    nlohmann::json j = {{"program", "depthprec"}, {"version", kVersion}, {"device", rt.description()},
-                        {"scene", scene.json}, {"rows", rows}};
-    text = j.dump(2) + "\n";
-  } else {
-    std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true}};
-    if (timing) cols.push_back({"ns/pair"});
-    for (const char* c : {"median mts/vb", "unresolvable", "lj ae"}) cols.push_back({c});
-    cols.push_back({"structural cost on a GPU", true});
-    text = fmt::format("Cost and precision per technique (scene {}): ns per fragment pair of the kernel's "
-                       "depth path (timing pass, near-MTS probes), median MTS over the vertex bound across "
-                       "the scene's distances, Lapidous-Jiao ae where the technique is one of its buffers\n\n",
-                       scene.name) +
-           render_cells(cols, cells, o.out.format_out);
-  }
-  write_output(o.out.output, text);
-  if (!o.plot.empty()) {
-    if (!timing) throw Error(ExitCode::usage, "cost: --plot needs the timing pass (drop --no-timing)");
-    plot_cost(points, o.plot);
-  }
+  for (const auto& r : records)
+    if (r.contains("ns_per_fragment_pair"))
+      points.push_back({fmt::format("{}/{}/{}", r["technique"].get<std::string>(), r["format"].get<std::string>(),
+                                    r["depth_range"].get<std::string>()),
+                        r["ns_per_fragment_pair"].get<double>(),
+                        number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound")});
+  plot_cost(points, o.plot);
 }
 
 }  // namespace
+
+std::string render_cost_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                               const OutputOptions& out) {
+  const bool timing = !out.no_timing;
+  if (out.format_out == "json") return records_json(header, records, timing);
+  Cells cells;
+  for (const auto& r : records) {
+    std::vector<std::string> row = {r["technique"].get<std::string>(), r["format"].get<std::string>(),
+                                    r["depth_range"].get<std::string>()};
+    if (timing) row.push_back(r.contains("ns_per_fragment_pair") ? fmt::format("{:.2f}", r["ns_per_fragment_pair"].get<double>()) : "-");
+    const double median = number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound");
+    row.push_back(std::isinf(median) ? "inf" : fmt::format("{:.3g}", median));
+    row.push_back(std::to_string(r["unresolvable_distances"].get<int>()));
+    row.push_back(r.contains("lj_ae") ? fmt::format("{:.3g}", number_from_json(r["lj_ae"], "lj_ae")) : "-");
+    row.push_back(r["structural_cost"].get<std::string>());
+    cells.push_back(row);
+  }
+  std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true}};
+  if (timing) cols.push_back({"ns/pair"});
+  for (const char* c : {"median mts/vb", "unresolvable", "lj ae"}) cols.push_back({c});
+  cols.push_back({"structural cost on a GPU", true});
+  return fmt::format("Cost and precision per technique (scene {}): ns per fragment pair of the kernel's "
+                     "depth path (timing pass, near-MTS probes), median MTS over the vertex bound across "
+                     "the scene's distances, Lapidous-Jiao ae where the technique is one of its buffers\n\n",
+                     header.value("scene_name", std::string("?"))) +
+         render_cells(cols, cells, out.format_out);
+}
 
 void add_cost_command(CLI::App& app, GlobalOptions& global) {
   auto o = std::make_shared<CostOptions>();
@@ -153,6 +177,7 @@ void add_cost_command(CLI::App& app, GlobalOptions& global) {
   o->scene.add_to(*cmd, true);
   o->out.add_to(*cmd);
   cmd->add_option("--plot", o->plot, "Also plot precision against cost (gnuplot), FILE.png or FILE.svg");
+  o->batch.add_to(*cmd, "techniques x formats (k in scene order)");
   cmd->callback([o, &global]() { run_cost(*o, global); });
 }
 

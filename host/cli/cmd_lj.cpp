@@ -8,6 +8,9 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
+#include "host/batch.h"
+#include "host/json_number.h"
+#include "host/progress.h"
 #include "host/errors.h"
 #include "host/gnuplot.h"
 #include "host/lj_metric.h"
@@ -28,6 +31,7 @@ struct LjOptions {
   int bits = 16;
   OutputOptions out;
   std::string plot;
+  BatchOptions batch;
 
   LjConfig config() const {
     LjConfig c;
@@ -153,99 +157,175 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
   write_output(o.out.output, text);
 }
 
-void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
-  check_writable(o.out.output);
-  OpenClRuntime rt(g.device);
-  const std::vector<double> ratios = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 1e4, 1e6};
-  const bool md = o.out.format_out == "markdown";
-  std::map<std::pair<std::string, int>, std::vector<std::pair<double, double>>> curves;  // 16-bit, uniform
+// lj-table's batch: one unit per table row, so an interrupted run keeps every finished row.
+const std::vector<double> kLjRatios = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 1e4, 1e6};
+const char* const kLjSamplings[] = {"uniform", "increasing"};
+const int kLjBits[] = {16, 24};
+const LjBuffer kLjBuffers[] = {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w, LjBuffer::complementary_z};
+
+// LJ99 fig. 11: 32-bit buffers.
+struct LjPick {
+  LjBuffer buffer;
+  const char* format;
+};
+const LjPick kLjPicks[] = {{LjBuffer::z, "float32"},         {LjBuffer::z, "unorm24"},
+                           {LjBuffer::z, "unorm32"},         {LjBuffer::w, "unorm32"},
+                           {LjBuffer::inverse_w, "float32"}, {LjBuffer::complementary_z, "float32"},
+                           {LjBuffer::complementary_z, "e4m24"}};
+
+LjConfig table_config(LjBuffer b, double ratio, long long samples, LjSampling sampling) {
+  LjConfig c;
+  c.buffer = b;
+  c.near = 1;
+  c.far = ratio;
+  c.samples = samples;
+  c.sampling = sampling;
+  return c;
+}
+
+std::string split_key(const char* sampling, int bits, LjBuffer b, double r) {
+  return fmt::format("{}/{}/{}/{:.17g}", sampling, bits, to_string(b), r);
+}
+std::string picks_key(double r) { return fmt::format("32bit/{:.17g}", r); }
+
+std::vector<BatchUnit> lj_table_units(OpenClRuntime& rt, long long samples) {
+  std::vector<BatchUnit> units;
+  auto aes = [](const std::vector<double>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (double x : v) a.push_back(json_number(x));
+    return nlohmann::json{{"ae", a}};
+  };
+  for (const char* sampling : kLjSamplings)
+    for (int bits : kLjBits)
+      for (const LjBuffer b : kLjBuffers)
+        for (double r : kLjRatios)
+          units.push_back({split_key(sampling, bits, b, r), [&rt, samples, sampling, bits, b, r, aes] {
+                             std::vector<double> v;
+                             for (const auto& x : sweep(rt, table_config(b, r, samples, parse_lj_sampling(sampling)), bits))
+                               v.push_back(x.ae);
+                             return aes(v);
+                           }});
+  for (double r : kLjRatios)
+    units.push_back({picks_key(r), [&rt, samples, r, aes] {
+                       std::vector<double> v;
+                       for (const auto& p : kLjPicks)
+                         v.push_back(lj_average_error_device(rt, table_config(p.buffer, r, samples, LjSampling::uniform),
+                                                             StorageFormat::parse(p.format))
+                                         .ae);
+                       return aes(v);
+                     }});
+  return units;
+}
+
+// The tables from whatever records there are (a shard or an interrupted run has some rows).
+std::string render_lj_table(const std::map<std::string, nlohmann::json>& records, long long samples,
+                            const std::string& format) {
+  auto ae_of = [&records](const std::string& key) {
+    std::vector<double> v;
+    for (const auto& x : records.at(key).at("ae")) v.push_back(number_from_json(x, key + " ae"));
+    return v;
+  };
+  const bool md = format == "markdown";
   std::string text = md ? "# Lapidous-Jiao average depth error: the paper's experiments\n\n" : "";
   text += fmt::format("ae per exponent width E (E = 0: integer unorm<bits>; E >= 1: LJ e<E>m<bits-E>), near 1, "
                       "N = {} samples. inf: a sample passes the Z buffer's pole. best E 0/1: the integer "
                       "format (LJ99 eq. 2 makes E = 0 and E = 1 the same; unorm's codes are 2^-bits relatively "
                       "wider apart).\n",
-                      o.samples);
-  for (const char* sampling : {"uniform", "increasing"}) {
-    for (int bits : {16, 24}) {
-      for (const LjBuffer b : {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w, LjBuffer::complementary_z}) {
+                      samples);
+  for (const char* sampling : kLjSamplings) {
+    for (int bits : kLjBits) {
+      for (const LjBuffer b : kLjBuffers) {
         std::vector<Column> cols = {{"f/d"}};
         for (int e = 0; e <= 8; ++e) cols.push_back({fmt::format("E={}", e)});
         cols.push_back({"best E"});
         Cells cells;
-        for (double r : ratios) {
-          LjConfig c;
-          c.buffer = b;
-          c.near = 1;
-          c.far = r;
-          c.samples = o.samples;
-          c.sampling = parse_lj_sampling(sampling);
-          const auto sw = sweep(rt, c, bits);
-          if (bits == 16 && c.sampling == LjSampling::uniform)
-            for (const auto& x : sw) curves[{to_string(b), x.e}].push_back({r, x.ae});
+        for (double r : kLjRatios) {
+          const std::string key = split_key(sampling, bits, b, r);
+          if (!records.count(key)) continue;
+          const auto ae = ae_of(key);
           std::vector<std::string> row = {human(r)};
           size_t best = 0;
-          for (size_t k = 0; k < sw.size(); ++k) {
-            row.push_back(human(sw[k].ae));
-            if (sw[k].ae < sw[best].ae) best = k;
+          for (size_t k = 0; k < ae.size(); ++k) {
+            row.push_back(human(ae[k]));
+            if (ae[k] < ae[best]) best = k;
           }
           // LJ99 eq. 2 makes E = 0 and E = 1 one integer format; unorm's 1/(2^b - 1) spacing
           // differs from e1's 2^-b by 2^-b relative, so call that a tie.
-          const bool integer_tie = sw[best].e <= 1 && std::abs(sw[0].ae - sw[1].ae) <= std::ldexp(2.0, -bits) * sw[1].ae;
-          row.push_back(std::isinf(sw[best].ae) ? "-" : integer_tie ? "0/1" : std::to_string(sw[best].e));
+          const bool integer_tie = best <= 1 && std::abs(ae[0] - ae[1]) <= std::ldexp(2.0, -bits) * ae[1];
+          row.push_back(std::isinf(ae[best]) ? "-" : integer_tie ? "0/1" : std::to_string(best));
           cells.push_back(row);
         }
+        if (cells.empty()) continue;
         text += fmt::format("\n{}{}-bit {} buffer, {} sampling\n\n", md ? "## " : "", bits, to_string(b), sampling);
-        text += render_cells(cols, cells, o.out.format_out);
+        text += render_cells(cols, cells, format);
       }
     }
   }
-  // LJ99 fig. 11: 32-bit buffers.
-  struct Pick {
-    LjBuffer buffer;
-    const char* format;
-  };
-  const std::vector<Pick> picks = {{LjBuffer::z, "float32"},           {LjBuffer::z, "unorm24"},
-                                   {LjBuffer::z, "unorm32"},           {LjBuffer::w, "unorm32"},
-                                   {LjBuffer::inverse_w, "float32"},   {LjBuffer::complementary_z, "float32"},
-                                   {LjBuffer::complementary_z, "e4m24"}};
   std::vector<Column> cols = {{"f/d"}};
-  for (const auto& p : picks) cols.push_back({fmt::format("{} {}", to_string(p.buffer), p.format)});
+  for (const auto& p : kLjPicks) cols.push_back({fmt::format("{} {}", to_string(p.buffer), p.format)});
   Cells cells;
-  for (double r : ratios) {
+  for (double r : kLjRatios) {
+    if (!records.count(picks_key(r))) continue;
     std::vector<std::string> row = {human(r)};
-    for (const auto& p : picks) {
-      LjConfig c;
-      c.buffer = p.buffer;
-      c.near = 1;
-      c.far = r;
-      c.samples = o.samples;
-      row.push_back(human(lj_average_error_device(rt, c, StorageFormat::parse(p.format)).ae));
-    }
+    for (double ae : ae_of(picks_key(r))) row.push_back(human(ae));
     cells.push_back(row);
   }
-  text += fmt::format("\n{}32-bit comparisons (LJ99 fig. 11), uniform sampling; e4m24 is the paper's 28-bit "
-                      "\"24.4\" format\n\n", md ? "## " : "");
-  text += render_cells(cols, cells, o.out.format_out);
-  write_output(o.out.output, text);
-  if (o.plot.empty()) return;
-  // LJ error against f/d per format: one panel per buffer type, 16 bits, uniform sampling.
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(o.plot), gnuplot_quote(o.plot));
+  if (!cells.empty()) {
+    text += fmt::format("\n{}32-bit comparisons (LJ99 fig. 11), uniform sampling; e4m24 is the paper's 28-bit "
+                        "\"24.4\" format\n\n", md ? "## " : "");
+    text += render_cells(cols, cells, format);
+  }
+  return text;
+}
+
+// LJ error against f/d per format: one panel per buffer type, 16 bits, uniform sampling.
+void plot_lj_table(const std::map<std::string, nlohmann::json>& records, const std::string& output) {
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output), gnuplot_quote(output));
   script += "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform sampling' noenhanced\n"
             "set logscale xy\nset grid\nset key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
-  for (const char* buffer : {"z", "w", "inverse_w", "complementary_z"}) {
-    script += fmt::format("set title {} noenhanced\nplot ", gnuplot_quote(std::string(buffer) + " buffer"));
+  for (const LjBuffer b : kLjBuffers) {
+    script += fmt::format("set title {} noenhanced\nplot ", gnuplot_quote(std::string(to_string(b)) + " buffer"));
+    for (int e = 0; e <= 8; ++e)
+      script += fmt::format("'-' using 1:2 with linespoints title {}{}",
+                            gnuplot_quote(e == 0 ? "unorm16" : fmt::format("e{}m{}", e, 16 - e)), e < 8 ? ", " : "\n");
     for (int e = 0; e <= 8; ++e) {
-      script += fmt::format("'-' using 1:2 with linespoints title {}{}", gnuplot_quote(e == 0 ? "unorm16" : fmt::format("e{}m{}", e, 16 - e)),
-                            e < 8 ? ", " : "\n");
-    }
-    for (int e = 0; e <= 8; ++e) {
-      for (const auto& [r, ae] : curves[{buffer, e}])
+      for (double r : kLjRatios) {
+        const auto it = records.find(split_key("uniform", 16, b, r));
+        if (it == records.end()) continue;
+        const double ae = number_from_json(it->second.at("ae").at(e), "ae");
         if (std::isfinite(ae)) script += fmt::format("{:.6g} {:.6g}\n", r, ae);
+      }
       script += "e\n";
     }
   }
   script += "unset multiplot\n";
-  run_gnuplot(script, o.plot);
+  run_gnuplot(script, output);
+}
+
+}  // namespace
+
+std::string render_lj_table_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                                   const OutputOptions& out) {
+  if (out.format_out == "json") return records_json(header, records, !out.no_timing);
+  return render_lj_table(by_key(records), header.at("samples").get<long long>(), out.format_out);
+}
+
+namespace {
+
+void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
+  check_writable(o.out.output);
+  const Shard shard = Shard::parse(o.batch.shard);
+  RowJournal journal(o.out.output, o.batch.resume);
+  OpenClRuntime rt(g.device);
+  nlohmann::json header = batch_header("lj-table", rt.description(), o.batch.shard);
+  header["samples"] = o.samples;
+  const auto records = run_batch(lj_table_units(rt, o.samples), journal, shard, "lj-table",
+                                 !g.quiet && stderr_is_terminal(), [&](const std::vector<nlohmann::json>& done) {
+                                   write_output("", render_lj_table_output(header, done, o.out));
+                                 });
+  write_output(o.out.output, render_lj_table_output(header, records, o.out));
+  journal.remove();
+  if (!o.plot.empty()) plot_lj_table(by_key(records), o.plot);
 }
 
 struct ResolveOptions {
@@ -335,6 +415,7 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
   tcmd->add_option("--samples", tab->samples, "N samples per evaluation")->capture_default_str();
   tab->out.add_to(*tcmd);
   tcmd->add_option("--plot", tab->plot, "Also plot ae against f/d per format, 16 bits (gnuplot), FILE.png or FILE.svg");
+  tab->batch.add_to(*tcmd, "table rows (k in output order)");
   tcmd->callback([tab, &global]() { run_lj_table(*tab, global); });
 
   auto res = std::make_shared<ResolveOptions>();

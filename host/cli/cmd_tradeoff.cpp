@@ -8,7 +8,12 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
+#include "host/batch.h"
+#include "host/errors.h"
 #include "host/gnuplot.h"
+#include "host/json_number.h"
+#include "host/progress.h"
+#include "host/row_json.h"
 #include "host/mts_run.h"
 #include "host/text_table.h"
 #include "host/version.h"
@@ -48,6 +53,7 @@ struct TradeoffOptions {
   SceneOptions scene;
   OutputOptions out;
   std::string plot;
+  BatchOptions batch;
 };
 
 // Error against cost: one point per level, the Pareto front joined. Errors of 0 sit on a floor.
@@ -74,31 +80,46 @@ void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const s
   run_gnuplot(script, output);
 }
 
-void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
-  const Scene base = o.scene.load();
-  check_writable(o.out.output);
-  OpenClRuntime rt(g.device);
+// One record per level: its work, time and every row's MTS (errors are derived when rendering,
+// against the reference level's record).
+nlohmann::json level_record(OpenClRuntime& rt, const Scene& base, const Level& lv) {
+  Scene s = base;
+  s.kernel_w = s.kernel_h = s.viewport_w = s.viewport_h = lv.kernel;
+  s.frames = lv.frames;
+  s.rel_precision = std::ldexp(1.0, -lv.precision_log2);
+  const MtsRun run = run_scene(rt, s);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& r : run.rows)
+    rows.push_back({{"row", row_key(r.pair, r.z)}, {"mts", json_number(r.mts)}, {"unresolvable", r.unresolvable}});
+  return {{"level", lv.name}, {"kernel", lv.kernel}, {"frames", lv.frames}, {"precision_log2", lv.precision_log2},
+          {"fragment_pairs", run.info.fragment_pairs}, {"seconds", run.info.wall_seconds}, {"rows", rows}};
+}
+
+// Errors against the reference record and the Pareto front; empty when the reference level is
+// not among the records (a shard without it).
+std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& records) {
+  const nlohmann::json* reference = nullptr;
+  for (const auto& r : records)
+    if (r.at("level") == ladder().front().name) reference = &r;
   std::vector<LevelResult> results;
-  std::vector<MtsRow> reference;
-  for (const Level& lv : ladder()) {
-    Scene s = base;
-    s.kernel_w = s.kernel_h = s.viewport_w = s.viewport_h = lv.kernel;
-    s.frames = lv.frames;
-    s.rel_precision = std::ldexp(1.0, -lv.precision_log2);
-    const MtsRun run = run_scene(rt, s);
+  if (!reference) return results;
+  const auto& ref_rows = reference->at("rows");
+  for (const auto& rec : records) {
     LevelResult r;
-    r.level = lv;
-    r.seconds = run.info.wall_seconds;
-    r.pairs = run.info.fragment_pairs;
-    if (reference.empty()) reference = run.rows;
+    r.level = {rec.at("level").get<std::string>(), rec.at("kernel").get<int>(), rec.at("frames").get<int>(),
+               rec.at("precision_log2").get<int>()};
+    r.seconds = rec.value("seconds", 0.0);
+    r.pairs = rec.at("fragment_pairs").get<uint64_t>();
     std::vector<double> errs;
-    for (size_t i = 0; i < run.rows.size(); ++i) {
-      const MtsRow &a = run.rows[i], &ref = reference[i];
-      if (a.unresolvable != ref.unresolvable) {
+    const auto& rows = rec.at("rows");
+    for (size_t i = 0; i < rows.size() && i < ref_rows.size(); ++i) {
+      const bool unres = rows[i].at("unresolvable").get<bool>(), ref_unres = ref_rows[i].at("unresolvable").get<bool>();
+      if (unres != ref_unres) {
         ++r.verdict_changes;
-        r.changed.push_back(fmt::format("{} z={}", a.pair.label(), a.z));
-      } else if (!a.unresolvable) {
-        errs.push_back(std::abs(a.mts - ref.mts) / ref.mts);
+        r.changed.push_back(rows[i].at("row").get<std::string>());
+      } else if (!unres) {
+        const double mts = number_from_json(rows[i].at("mts"), "mts"), ref = number_from_json(ref_rows[i].at("mts"), "mts");
+        errs.push_back(std::abs(mts - ref) / ref);
       }
     }
     std::sort(errs.begin(), errs.end());
@@ -121,47 +142,74 @@ void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
       if (&a != &b && cheaper_or_same && better_or_same && strictly) a.pareto = false;
     }
   }
-  const bool timing = !o.out.no_timing;
-  std::string text;
-  if (o.out.format_out == "json") {
-    nlohmann::json j = {{"program", "depthprec"}, {"version", kVersion}, {"device", rt.description()},
-                        {"scene", base.json}, {"levels", nlohmann::json::array()}};
-    for (const auto& r : results) {
-      nlohmann::json l = {{"level", r.level.name}, {"kernel", r.level.kernel}, {"frames", r.level.frames},
-                          {"rel_precision", std::ldexp(1.0, -r.level.precision_log2)},
-                          {"fragment_pairs", r.pairs}, {"median_rel_err", r.median_err},
-                          {"max_rel_err", r.max_err}, {"verdict_changes", r.changed}, {"pareto", r.pareto}};
-      if (timing) l["seconds"] = r.seconds;
-      j["levels"].push_back(l);
-    }
-    text = j.dump(2) + "\n";
-  } else {
-    std::vector<Column> cols = {{"level", true}, {"kernel"}, {"frames"}, {"rel_precision"}, {"fragment_pairs"}};
-    if (timing) cols.push_back({"seconds"});
-    for (const char* c : {"median_rel_err", "max_rel_err", "verdict_changes"}) cols.push_back({c});
-    cols.push_back({"pareto", true});
-    Cells cells;
-    for (const auto& r : results) {
-      std::vector<std::string> row = {r.level.name, fmt::format("{}x{}", r.level.kernel, r.level.kernel),
-                                      std::to_string(r.level.frames), fmt::format("2^-{}", r.level.precision_log2),
-                                      std::to_string(r.pairs)};
-      if (timing) row.push_back(fmt::format("{:.2f}", r.seconds));
-      row.push_back(fmt::format("{:.3g}", r.median_err));
-      row.push_back(fmt::format("{:.3g}", r.max_err));
-      row.push_back(std::to_string(r.verdict_changes));
-      row.push_back(r.pareto ? "yes" : "");
-      cells.push_back(row);
-    }
-    text = fmt::format("Fidelity trade-off on scene {} ({} pairs x {} distances); errors relative to the "
-                       "reference level; Pareto front by fragment pairs vs (verdict changes, max error)\n\n",
-                       base.name, base.evaluate.size(), base.distances.size()) +
-           render_cells(cols, cells, o.out.format_out);
-  }
-  write_output(o.out.output, text);
-  if (!o.plot.empty()) plot_tradeoff(results, timing, o.plot);
+  return results;
+}
+
+void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
+  const Scene base = o.scene.load();
+  check_writable(o.out.output);
+  const Shard shard = Shard::parse(o.batch.shard);
+  if (!shard.holds(0) && o.out.format_out != "json")
+    throw Error(ExitCode::usage, "tradeoff --shard: this shard does not run the reference level the errors are "
+                                 "relative to; write shards with --format-out json and render them with merge");
+  RowJournal journal(o.out.output, o.batch.resume);
+  OpenClRuntime rt(g.device);
+  nlohmann::json header = batch_header("tradeoff", rt.description(), o.batch.shard);
+  header["scene"] = base.json;
+  header["scene_name"] = base.name;
+  header["pairs"] = base.evaluate.size();
+  header["distances"] = base.distances.size();
+  std::vector<BatchUnit> units;
+  for (const Level& lv : ladder())
+    units.push_back({lv.name, [&rt, &base, lv] { return level_record(rt, base, lv); }});
+  const auto records = run_batch(units, journal, shard, "tradeoff", !g.quiet && stderr_is_terminal(),
+                                 [&](const std::vector<nlohmann::json>& done) {
+                                   write_output("", render_tradeoff_output(header, done, o.out));
+                                 });
+  write_output(o.out.output, render_tradeoff_output(header, records, o.out));
+  journal.remove();
+  if (!o.plot.empty()) plot_tradeoff(evaluate_levels(records), !o.out.no_timing, o.plot);
 }
 
 }  // namespace
+
+std::string render_tradeoff_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                                   const OutputOptions& out) {
+  const bool timing = !out.no_timing;
+  const std::vector<LevelResult> results = evaluate_levels(records);
+  if (out.format_out == "json") {
+    nlohmann::json levels = nlohmann::json::array();
+    for (const auto& r : results)
+      levels.push_back({{"level", r.level.name}, {"kernel", r.level.kernel}, {"frames", r.level.frames},
+                        {"rel_precision", std::ldexp(1.0, -r.level.precision_log2)}, {"fragment_pairs", r.pairs},
+                        {"seconds", r.seconds}, {"median_rel_err", r.median_err}, {"max_rel_err", r.max_err},
+                        {"verdict_changes", r.changed}, {"pareto", r.pareto}});
+    return records_json(header, records, timing, {{"levels", levels}});
+  }
+  std::vector<Column> cols = {{"level", true}, {"kernel"}, {"frames"}, {"rel_precision"}, {"fragment_pairs"}};
+  if (timing) cols.push_back({"seconds"});
+  for (const char* c : {"median_rel_err", "max_rel_err", "verdict_changes"}) cols.push_back({c});
+  cols.push_back({"pareto", true});
+  Cells cells;
+  for (const auto& r : results) {
+    std::vector<std::string> row = {r.level.name, fmt::format("{}x{}", r.level.kernel, r.level.kernel),
+                                    std::to_string(r.level.frames), fmt::format("2^-{}", r.level.precision_log2),
+                                    std::to_string(r.pairs)};
+    if (timing) row.push_back(fmt::format("{:.2f}", r.seconds));
+    row.push_back(fmt::format("{:.3g}", r.median_err));
+    row.push_back(fmt::format("{:.3g}", r.max_err));
+    row.push_back(std::to_string(r.verdict_changes));
+    row.push_back(r.pareto ? "yes" : "");
+    cells.push_back(row);
+  }
+  std::string changed;
+  for (const auto& r : results)
+    for (const auto& c : r.changed) changed += fmt::format("{}: verdict changed at {}\n", r.level.name, c);
+  return fmt::format("Fidelity trade-off on scene {} ({} pairs x {} distances); errors relative to the "
+                     "reference level; Pareto front by fragment pairs vs (verdict changes, max error)\n\n",
+                     header.value("scene_name", std::string("?")), header.value("pairs", 0), header.value("distances", 0)) +
+         render_cells(cols, cells, out.format_out) + (changed.empty() || out.format_out == "csv" ? "" : "\n" + changed);
+}
 
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {
   auto o = std::make_shared<TradeoffOptions>();
@@ -178,6 +226,7 @@ void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {
   o->scene.add_to(*cmd, true);
   o->out.add_to(*cmd);
   cmd->add_option("--plot", o->plot, "Also plot error against cost (gnuplot), FILE.png or FILE.svg");
+  o->batch.add_to(*cmd, "ladder levels (k in the order above)");
   cmd->callback([o, &global]() { run_tradeoff(*o, global); });
 }
 

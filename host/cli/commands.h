@@ -3,7 +3,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "host/cli/scene_options.h"
 
 namespace depthprec::cli {
 
@@ -15,12 +19,23 @@ struct GlobalOptions {
 
 void add_devices_command(CLI::App& app, GlobalOptions& global);
 void add_formats_command(CLI::App& app, GlobalOptions& global);
-// mts, table and merge.
+// mts and table.
 void add_mts_commands(CLI::App& app, GlobalOptions& global);
+void add_merge_command(CLI::App& app);
 // lj, select, lj-table, resolve.
 void add_lj_commands(CLI::App& app, GlobalOptions& global);
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global);
 void add_cost_command(CLI::App& app, GlobalOptions& global);
 void add_plot_command(CLI::App& app);
+
+// The record batches (lj-table, tradeoff, cost) render their output from a header (what their
+// JSON output carries besides the records) and the records, so `merge` renders joined shards
+// exactly as one run would.
+std::string render_lj_table_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                                   const OutputOptions& out);
+std::string render_tradeoff_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                                   const OutputOptions& out);
+std::string render_cost_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                               const OutputOptions& out);
 
 }  // namespace depthprec::cli

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   cli::add_devices_command(app, global);
   cli::add_formats_command(app, global);
   cli::add_mts_commands(app, global);
+  cli::add_merge_command(app);
   cli::add_lj_commands(app, global);
   cli::add_tradeoff_command(app, global);
   cli::add_cost_command(app, global);

@@ -104,4 +104,13 @@ void OutputOptions::add_to(CLI::App& cmd) {
                "Leave measured times out, so two runs' outputs compare byte for byte");
 }
 
+void BatchOptions::add_to(CLI::App& cmd, const std::string& units) {
+  cmd.add_flag("--resume", resume,
+               "Continue an interrupted run: rows in FILE.rows.jsonl (beside --output FILE) are kept, "
+               "the rest computed");
+  cmd.add_option("--shard", shard,
+                 "Compute part i of N (i/N): " + units +
+                     " k with k mod N = i - 1. Join the parts' JSON outputs with `depthprec merge`");
+}
+
 }  // namespace depthprec::cli

@@ -32,4 +32,11 @@ struct OutputOptions {
   void add_to(CLI::App& cmd);
 };
 
+// --resume and --shard of the batch commands. units: what the shards split, for --help.
+struct BatchOptions {
+  bool resume = false;
+  std::string shard;
+  void add_to(CLI::App& cmd, const std::string& units);
+};
+
 }  // namespace depthprec::cli

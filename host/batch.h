@@ -1,0 +1,68 @@
+// What every batch command shares so no finished result is lost: the journal of finished rows
+// beside the output (FILE.rows.jsonl, one JSON object per line, flushed), --resume from it,
+// --shard i/N, and a loop that runs the units of work a command lists, journaling each record
+// as it finishes and stopping cleanly on Ctrl-C / SIGTERM.
+#pragma once
+
+#include <functional>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace depthprec {
+
+// --shard i/N: this run holds the units k with k % count == index (k in the batch's order).
+struct Shard {
+  int index = 0, count = 1;
+  static Shard parse(const std::string& text);  // "" = the whole batch; throws a usage Error
+  bool holds(size_t k) const { return static_cast<int>(k % static_cast<size_t>(count)) == index; }
+};
+
+class RowJournal {
+ public:
+  // output "": no journal (then resume is a usage error). Without resume, an existing journal
+  // is refused (it holds an interrupted run's rows); with it, its complete lines are read.
+  RowJournal(const std::string& output, bool resume);
+  bool active() const { return out_ != nullptr; }
+  const std::string& path() const { return path_; }
+  const std::vector<nlohmann::json>& earlier() const { return earlier_; }
+  void append(const nlohmann::json& record);
+  void remove();  // once the final output is in place
+
+ private:
+  std::string path_;
+  std::vector<nlohmann::json> earlier_;
+  std::unique_ptr<std::ofstream> out_;
+};
+
+// The Error a stopped batch ends with: where the finished rows are and how to continue.
+[[noreturn]] void throw_interrupted(const RowJournal& journal, size_t finished);
+
+// One unit of a record batch: its key (unique in the batch, stable across runs) and the work
+// that makes its record.
+struct BatchUnit {
+  std::string key;
+  std::function<nlohmann::json()> compute;
+};
+
+// Runs the shard's units not already in the journal, journaling each record (with "key" set)
+// as it finishes; returns the shard's records in unit order, earlier ones included. On an
+// interrupt request it stops between units: with a journal it throws the interrupted Error;
+// without one it calls on_partial(finished records in unit order) first, so they are shown.
+std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJournal& journal,
+                                      const Shard& shard, const std::string& what, bool progress,
+                                      const std::function<void(const std::vector<nlohmann::json>&)>& on_partial);
+
+// The header of a record batch's JSON output: program, version, kind, device, and the shard.
+nlohmann::json batch_header(const std::string& kind, const std::string& device, const std::string& shard);
+// header + {"records": ...} + the derived fields (results computed from the records); without
+// timing the measured-time fields are left out, so two runs compare byte for byte.
+std::string records_json(const nlohmann::json& header, const std::vector<nlohmann::json>& records, bool timing,
+                         const nlohmann::json& derived = nlohmann::json::object());
+std::map<std::string, nlohmann::json> by_key(const std::vector<nlohmann::json>& records);
+
+}  // namespace depthprec

@@ -1,0 +1,146 @@
+// merge: joins the JSON outputs of a batch's shards (--shard i/N --format-out json) into the
+// output one whole run would have written.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "host/cli/commands.h"
+#include "host/cli/scene_options.h"
+#include "host/errors.h"
+#include "host/mts_run.h"
+#include "host/row_json.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct MergeOptions {
+  std::vector<std::string> files;
+  OutputOptions out;
+};
+
+void merge_rows(const MergeOptions& o) {
+  nlohmann::json scene_json;
+  std::string kind, device, source;
+  std::map<std::string, MtsRow> rows;
+  for (const auto& f : o.files) {
+    std::ifstream in(f);
+    if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
+    const auto j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("rows") || !j.contains("scene"))
+      throw InputError(fmt::format("merge: '{}' is not a JSON output of mts or table (--format-out json)", f));
+    if (scene_json.is_null()) {
+      scene_json = j["scene"];
+      kind = j.value("kind", "mts");
+      device = j.value("device", "");
+      source = j.value("scene_source", "merged shards");
+    } else if (j["scene"] != scene_json) {
+      throw InputError(fmt::format("merge: '{}' ran another scene than '{}'", f, o.files.front()));
+    }
+    for (const auto& r : j["rows"]) {
+      MtsRow row = row_from_json(r);
+      const std::string key = row_key(row.pair, row.z);
+      if (rows.count(key) && row_to_json(rows[key], false) != row_to_json(row, false))
+        throw InputError(fmt::format("merge: '{}' disagrees with an earlier file on {}", f, key));
+      rows[key] = row;
+    }
+  }
+  const Scene scene = scene_from_json(scene_json, source);
+  std::vector<MtsRow> all;
+  for (auto& [k, r] : rows) all.push_back(r);
+  sort_rows(scene, all);
+  RunInfo info;
+  info.device = device;
+  info.variants = scene_variants(scene);
+  info.timing = !o.out.no_timing;
+  info.kind = kind;
+  for (const auto& r : all) info.fragment_pairs += r.fragment_pairs;
+  const std::string text = kind == "table" ? render_table(scene, all, info, o.out.format_out)
+                                           : render_rows(scene, all, info, o.out.format_out);
+  write_output(o.out.output, text);
+}
+
+nlohmann::json read_json(const std::string& f) {
+  std::ifstream in(f);
+  if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
+  auto j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object())
+    throw InputError(fmt::format("merge: '{}' is not a JSON output of a batch command (--format-out json)", f));
+  return j;
+}
+
+// lj-table, tradeoff, cost: shard i/N holds the units k = i - 1, i - 1 + N, ... in order, so the
+// whole batch's records interleave the shards'.
+void merge_records(const MergeOptions& o, const std::string& kind) {
+  std::map<int, std::vector<nlohmann::json>> parts;  // shard index -> records
+  nlohmann::json header;
+  int count = 0;
+  for (const auto& f : o.files) {
+    nlohmann::json j = read_json(f);
+    if (j.value("kind", "") != kind || !j.contains("records"))
+      throw InputError(fmt::format("merge: '{}' is not a {} output (--format-out json)", f, kind));
+    int i = 1, n = 1;
+    char tail = 0;
+    const std::string shard = j.value("shard", "1/1");
+    if (std::sscanf(shard.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || i < 1 || i > n)
+      throw InputError(fmt::format("merge: '{}' has a bad shard '{}'", f, shard));
+    nlohmann::json h = j;
+    for (const char* k : {"records", "shard", "levels", "device"}) h.erase(k);
+    if (header.is_null()) {
+      header = h;
+      header["device"] = j.value("device", "");
+      count = n;
+    } else {
+      nlohmann::json mine = header;
+      mine.erase("device");
+      if (h != mine) throw InputError(fmt::format("merge: '{}' ran another batch than '{}'", f, o.files.front()));
+      if (n != count) throw InputError(fmt::format("merge: '{}' is shard {} but '{}' is of {} shards", f, shard, o.files.front(), count));
+    }
+    if (parts.count(i)) throw InputError(fmt::format("merge: shard {} given twice ('{}')", shard, f));
+    parts[i] = j["records"].get<std::vector<nlohmann::json>>();
+  }
+  for (int i = 1; i <= count; ++i)
+    if (!parts.count(i)) throw InputError(fmt::format("merge: shard {}/{} is missing", i, count));
+  std::vector<nlohmann::json> records;
+  for (size_t pos = 0;; ++pos) {
+    bool any = false;
+    for (int i = 1; i <= count; ++i)
+      if (pos < parts[i].size()) {
+        records.push_back(parts[i][pos]);
+        any = true;
+      }
+    if (!any) break;
+  }
+  std::string text;
+  if (kind == "lj-table") text = render_lj_table_output(header, records, o.out);
+  else if (kind == "tradeoff") text = render_tradeoff_output(header, records, o.out);
+  else text = render_cost_output(header, records, o.out);
+  write_output(o.out.output, text);
+}
+
+void run_merge(const MergeOptions& o) {
+  if (o.files.empty()) throw Error(ExitCode::usage, "merge: name the JSON outputs of the shards");
+  check_writable(o.out.output);
+  const std::string kind = read_json(o.files.front()).value("kind", "mts");
+  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost") merge_records(o, kind);
+  else merge_rows(o);
+}
+
+}  // namespace
+
+void add_merge_command(CLI::App& app) {
+  auto merge = std::make_shared<MergeOptions>();
+  auto* mcmd = app.add_subcommand(
+      "merge",
+      "Join the JSON outputs of the shards of a batch (`mts`, `table`, `lj-table`, `tradeoff`,\n"
+      "`cost` with --shard i/N --format-out json) into the output one whole run would write.\n"
+      "Example:\n"
+      "  depthprec merge part1.json part2.json part3.json part4.json --format-out markdown");
+  mcmd->add_option("files", merge->files, "JSON outputs of the shards")->required();
+  merge->out.add_to(*mcmd);
+  mcmd->callback([merge]() { run_merge(*merge); });
+}
+
+}  // namespace depthprec::cli
