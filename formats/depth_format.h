@@ -89,7 +89,7 @@ DF_FN df_u32 df_encode_unorm(df_u32 u, df_format f) {
 DF_FN df_u32 df_encode_float(df_u32 u, df_format f) {
   /* binary32 itself (float32): every finite non-negative input is its own code. A specialised
    * kernel folds this test away, leaving no work at all. */
-  if (f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127) return u;
+  if (f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush) return u;
   df_u32 ex = u >> 23;
   df_u32 m = ex ? ((u & 0x7fffffu) | 0x800000u) : (u & 0x7fffffu);
   if (m == 0u) return 0u;
@@ -150,11 +150,11 @@ DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf, df_u64)
 #if defined(DF_OPENCL)
 DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf16, ulong16)
 
-/* 16 depths at once: branch-free for unorm, the identity for float32, lane by lane through the
+/* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by lane through the
  * scalar encoder for the other float formats. */
 DF_FN uint16 df_encode16(float16 d, df_format f) {
   if (f.kind == DF_KIND_UNORM) return convert_uint16(df_encode_unorm_bf16(convert_ulong16(as_uint16(d)), f));
-  if (f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127) {
+  if (f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush) {
     const uint16 u = as_uint16(d);
     /* negative and NaN store 0; finite non-negative values are their own code */
     return ((u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u) ? (uint16)0
@@ -197,6 +197,46 @@ DF_FN double df_decode(df_u32 c, df_format f) {
   df_u64 frac = ((df_u64)c) & ((((df_u64)1) << f.man_bits) - 1u);
   if (e == 0u) return ldexp((double)frac, 1 - f.bias - f.man_bits);
   return ldexp((double)((((df_u64)1) << f.man_bits) + frac), (df_i32)e - f.bias - f.man_bits);
+}
+
+/* Storage code of a binary64 window depth, correctly rounded from the binary64 value (the
+ * storage-limited pipeline of MTS attribution: depth exact up to binary64, then stored). Same
+ * rules as df_encode; for a binary32 input the same code. d * max_code needs up to 85 bits for
+ * unorm, so its rounding error is recovered with an FMA and decides the rounding; floats split d
+ * into m * 2^k with m < 2^53 as df_encode_float does with m < 2^24. */
+DF_FN df_u32 df_encode_f64(double d, df_format f) {
+  if (!(d > 0.0)) return 0u; /* negative, zero and NaN */
+  if (d >= 1.0 && f.kind == DF_KIND_UNORM) return f.max_code;
+  if (f.kind == DF_KIND_UNORM) {
+    const double M = (double)f.max_code;
+    const double hi = d * M;
+    const double err = fma(d, M, -hi); /* d * M = hi + err exactly */
+    const double q = floor(hi);
+    const double frac = hi - q; /* exact: hi < 2^32 keeps >= 20 fraction bits */
+    df_u64 code = (df_u64)q;
+    if (f.rounding == DF_ROUND_NEAREST_EVEN) {
+      const double t = (frac - 0.5) + err; /* sign exact: |err| <= ulp(hi)/2 <= |frac - 0.5| unless 0 */
+      if (t > 0.0 || (t == 0.0 && (code & 1u))) code += 1u;
+    } else if (frac == 0.0 && err < 0.0) {
+      code -= 1u;
+    }
+    return code > (df_u64)f.max_code ? f.max_code : (df_u32)code;
+  }
+  if (d > df_decode(f.max_code, f) * 2.0) return f.max_code; /* far above the largest code, and +inf */
+  int e = 0;
+  const double fr = frexp(d, &e);
+  const df_u64 m = (df_u64)ldexp(fr, 53); /* d = m * 2^k exactly, 2^52 <= m < 2^53 */
+  const df_i32 k = e - 53;
+  const df_i32 p = e - 1;
+  const df_i32 min_p = 1 - f.bias;
+  const df_i32 qp = p > min_p ? p : min_p;
+  const df_i32 sh = k - (qp - f.man_bits); /* < 0: M <= 31 < 52 */
+  const df_u64 n = -sh >= 60 ? 0u : df_shift_round(m, (df_u32)(-sh), f.rounding);
+  const df_u64 field = (df_u64)(qp + f.bias - 1);
+  df_u64 code = (field << f.man_bits) + n;
+  if (code > (df_u64)f.max_code) code = f.max_code;
+  if (f.flush && code < (((df_u64)1) << f.man_bits)) code = 0u;
+  return (df_u32)code;
 }
 
 /* Spacing between the code at or below v and the next code above it (SPEC 6: the per-pixel

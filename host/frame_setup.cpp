@@ -129,6 +129,14 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
   return to_row_major(Mat<double>(P * M));
 }
 
+std::array<double, 16> model_matrix_f64(const Scene& s, double D, int frame) {
+  const Mat<double> M = model<double>(s, D, frame);
+  std::array<double, 16> out{};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r * 4 + c] = M[c][r];
+  return out;
+}
+
 double seen_separation(double z, double s) {
   return static_cast<double>(static_cast<float>(z + s)) - static_cast<double>(static_cast<float>(z));
 }

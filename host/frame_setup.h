@@ -34,6 +34,10 @@ std::array<double, 3> frame_angles(const Scene& scene, int frame);
 // frame k; with compose = premultiplied, P * MV instead.
 Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame);
 
+// The model matrix of a plane at distance D in frame k in binary64, never rounded: the exact
+// geometry of the storage-limited pipeline. Row-major.
+std::array<double, 16> model_matrix_f64(const Scene& scene, double D, int frame);
+
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);
 // The vertex-precision bound (SPEC 5.3): the distance from z to the midpoint between fl32(z) and

@@ -12,13 +12,6 @@ constexpr int kProbeStride = 24;
 constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8;
 constexpr int kCountShift = 8;
 
-// Frames per launch: most fighting probes fight in their first frames, so start small; a clean
-// probe needs every frame, so grow.
-int batch_frames(int done, int total) {
-  const int want = done == 0 ? 4 : done < 20 ? 16 : 64;
-  return std::min(want, total - done);
-}
-
 // Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
 // launch (a new size for every batch shape) recompiles again and again.
 constexpr size_t kLocal = 16;
@@ -34,6 +27,11 @@ size_t plane_floats(const Scene& s) {
 }
 
 }  // namespace
+
+int batch_frames(int done, int total) {
+  const int want = done == 0 ? 4 : done < 20 ? 16 : 64;
+  return std::min(want, total - done);
+}
 
 const char* to_string(Outcome o) {
   switch (o) {

@@ -40,11 +40,23 @@ struct FrameCodes {
   std::vector<uint8_t> status_a, status_b;
 };
 
-class MtsEvaluator {
+// Decides batches of probes: the emulated pipeline (MtsEvaluator) or the storage-limited one
+// (ExactEvaluator, host/mts_exact.h), so one search drives both.
+class ProbeEvaluator {
+ public:
+  virtual ~ProbeEvaluator() = default;
+  virtual std::vector<ProbeResult> run(const std::vector<Probe>& probes) = 0;
+};
+
+// Frames per launch: most fighting probes fight in their first frames, so start small; a clean
+// probe needs every frame, so grow.
+int batch_frames(int done, int total);
+
+class MtsEvaluator : public ProbeEvaluator {
  public:
   MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair);
 
-  std::vector<ProbeResult> run(const std::vector<Probe>& probes);
+  std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   FrameCodes codes(const Probe& probe, int frame);
 
   const KernelVariant& variant() const { return variant_; }

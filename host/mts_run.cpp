@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <set>
 
+#include "host/mts_exact.h"
 #include "host/row_json.h"
 
 namespace depthprec {
@@ -31,6 +33,40 @@ void sort_rows(const Scene& scene, std::vector<MtsRow>& rows) {
   });
 }
 
+namespace {
+
+// The attribution factors of a pair's rows: the storage-limited MTS from the binary64 pipeline
+// (kernels/mts_exact.cl) and the arithmetic-limited MTS from the same binary32 pipeline storing
+// in float32, which holds every binary32 depth exactly (a float32 pair is its own). The factor
+// searches skip the stiffness probes: they report a number, not a stability check.
+void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, std::vector<MtsRow>& rows,
+                    std::map<std::string, double>& arithmetic_cache, const std::function<bool()>& stop) {
+  Scene plain = scene;
+  plain.stiffness_probes = 0;
+  std::vector<double> zs;
+  for (const auto& r : rows) zs.push_back(r.z);
+  ExactEvaluator exact(rt, plain, pair);
+  const auto storage = search_pair(exact, plain, pair, zs, {}, stop);
+  EvalPair raw = pair;
+  raw.format = "float32";
+  const bool is_raw = pair.format == "float32";
+  if (is_raw)
+    for (const auto& r : rows) arithmetic_cache[row_key(raw, r.z)] = r.mts;
+  std::vector<double> missing;
+  for (double z : zs)
+    if (!arithmetic_cache.count(row_key(raw, z))) missing.push_back(z);
+  if (!missing.empty()) {
+    MtsEvaluator ev(rt, plain, raw);
+    for (const auto& r : search_pair(ev, plain, raw, missing, {}, stop)) arithmetic_cache[row_key(raw, r.z)] = r.mts;
+  }
+  for (size_t i = 0; i < rows.size(); ++i) {
+    rows[i].storage_mts = storage[i].beyond_far ? INFINITY : storage[i].mts;
+    rows[i].arithmetic_mts = arithmetic_cache[row_key(raw, rows[i].z)];
+  }
+}
+
+}  // namespace
+
 MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
                  const std::function<void(const std::string&)>& log, const RunControl& control) {
   MtsRun run;
@@ -38,6 +74,7 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
   run.info.variants = scene_variants(scene);
   const auto t0 = std::chrono::steady_clock::now();
   std::set<std::string> built;
+  std::map<std::string, double> arithmetic_cache;  // row key of a float32 pair -> its MTS
   const size_t nd = scene.distances.size();
   for (size_t p = 0; p < scene.evaluate.size(); ++p) {
     const EvalPair& pair = scene.evaluate[p];
@@ -53,7 +90,12 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     if (built.insert(ev.variant().label).second && log)
       log(fmt::format("kernel variant {}: {} {}", ev.variant().label, ev.variant().program,
                       ev.variant().options));
-    auto rows = search_pair(ev, scene, pair, todo, control.on_row, control.stop);
+    auto rows = search_pair(ev, scene, pair, todo, control.attribute ? nullptr : control.on_row, control.stop);
+    if (control.attribute) {
+      attribute_rows(rt, scene, pair, rows, arithmetic_cache, control.stop);
+      if (control.on_row)
+        for (const auto& r : rows) control.on_row(r);
+    }
     run.info.launches += ev.launches();
     run.info.kernel_seconds += ev.kernel_seconds();
     if (log)

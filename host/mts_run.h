@@ -21,6 +21,7 @@ struct RunControl {
   int shard_count = 1;         // k = pair index * distances + distance index (scene order)
   std::function<void(const MtsRow&)> on_row;  // each row as it finishes (journal)
   std::function<bool()> stop;                 // interrupt request, checked between launches
+  bool attribute = false;  // also the storage- and arithmetic-limited MTS of every row
 };
 
 // The kernel variants the scene needs, in pair order (labels): deterministic, whatever a run

@@ -1,8 +1,10 @@
 #include "host/mts_search.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "host/errors.h"
+#include "host/technique.h"
 
 namespace depthprec {
 
@@ -12,8 +14,8 @@ namespace {
 constexpr int kMaxProbes = 2200;
 }  // namespace
 
-Bisection::Bisection(double z, double rel_precision, double max_separation_factor)
-    : z_(z), rel_(rel_precision), limit_(max_separation_factor * z), next_(z) {}
+Bisection::Bisection(double z, double rel_precision, double max_separation_factor, double coincide_below)
+    : z_(z), rel_(rel_precision), limit_(max_separation_factor * z), coincide_(coincide_below), next_(z) {}
 
 void Bisection::record(Outcome o) {
   history_.emplace_back(next_, o);
@@ -47,7 +49,7 @@ void Bisection::record(Outcome o) {
 
 void Bisection::advance() {
   const double upper = resolved() ? hi_ : ceil_;
-  if ((upper - lo_) / upper <= rel_ || probes_ >= kMaxProbes) {
+  if ((upper - lo_) / upper <= rel_ || probes_ >= kMaxProbes || (!resolved() && upper < coincide_)) {
     done_ = true;
     return;
   }
@@ -65,52 +67,89 @@ std::string MtsRow::flags() const {
   add(unresolvable, "unresolvable");
   add(non_monotone, "non_monotone");
   add(uncovered, "uncovered");
+  add(beyond_far, "beyond_far_plane");
   return f;
 }
 
-std::vector<MtsRow> search_pair(MtsEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
+std::string MtsRow::dominant() const {
+  if (!attributed()) return "";
+  const double v = vertex_bound;
+  // unresolvable factors are +inf and dominate
+  if (storage_mts >= arithmetic_mts && storage_mts >= v) return "storage";
+  if (arithmetic_mts >= v) return "arithmetic";
+  return "vertex";
+}
+
+bool MtsRow::factor_above_mts(double rel_precision) const {
+  if (!attributed() || unresolvable) return false;
+  const double limit = mts * (1 + 2 * rel_precision);
+  return storage_mts > limit || arithmetic_mts > limit;
+}
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::resolved: return "resolved";
+    case Verdict::unresolvable: return "unresolvable";
+    case Verdict::non_finite: return "non_finite";
+    case Verdict::clipped: return "clipped";
+    case Verdict::below_vertex_bound: return "below vertex bound";
+    case Verdict::beyond_far_plane: return "beyond far plane";
+  }
+  return "?";
+}
+
+Verdict MtsRow::verdict() const {
+  if (beyond_far) return Verdict::beyond_far_plane;
+  if (!unresolvable) {
+    // B within the vertex bound coincides with A and must fight: a clean answer there is no
+    // measurement (e.g. planes that cover no kernel pixel), never a confident number.
+    return mts < vertex_bound ? Verdict::below_vertex_bound : Verdict::resolved;
+  }
+  if (non_finite) return Verdict::non_finite;
+  if (clipped) return Verdict::clipped;
+  return Verdict::unresolvable;
+}
+
+namespace {
+
+// Separations of the stiffness probes: n above hi, n below lo, at relative offsets r, 8r, 64r...
+// (r the bisection's precision; below lo at most halfway to 0).
+std::vector<double> stiffness_separations(double lo, double hi, double r, int n) {
+  std::vector<double> out;
+  double step = r;
+  for (int k = 0; k < n; ++k, step *= 8) {
+    out.push_back(hi * (1 + step));
+    if (lo > 0) out.push_back(lo * (1 - std::min(step, 0.5)));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
                                 const std::vector<double>& distances,
                                 const std::function<void(const MtsRow&)>& on_row,
                                 const std::function<bool()>& stop) {
   std::vector<Bisection> searches;
   std::vector<MtsRow> rows(distances.size());
+  // Per distance: 0 bisecting, 1 stiffness probes to run, 2 finished.
+  std::vector<int> phase(distances.size(), 0);
+  std::vector<std::vector<std::pair<double, Outcome>>> extra(distances.size());
   for (size_t i = 0; i < distances.size(); ++i) {
-    searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor);
     rows[i].pair = pair;
     rows[i].z = distances[i];
     rows[i].vertex_bound = vertex_bound(distances[i]);
+    searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor, rows[i].vertex_bound);
+    if (has_far_plane(pair.technique) && distances[i] > scene.far) {
+      rows[i].beyond_far = true;  // plane A itself is clipped: nothing to search
+      phase[i] = 2;
+    }
   }
-  std::vector<bool> reported(distances.size(), false);
-  for (;;) {
-    if (stop && stop()) throw Error(ExitCode::interrupted, "interrupted");
-    std::vector<size_t> active;
-    std::vector<Probe> probes;
-    for (size_t i = 0; i < searches.size(); ++i) {
-      if (searches[i].done()) continue;
-      active.push_back(i);
-      probes.push_back({distances[i], searches[i].next()});
-    }
-    if (!active.empty()) {
-      const auto results = evaluator.run(probes);
-      for (size_t k = 0; k < active.size(); ++k) {
-        MtsRow& row = rows[active[k]];
-        const ProbeResult& r = results[k];
-        row.frames += static_cast<uint64_t>(r.frames);
-        row.fragment_pairs += r.fragment_pairs;
-        row.seconds += r.seconds;
-        row.kernel_seconds += r.kernel_seconds;
-        row.launches += r.launches;
-        row.uncovered |= r.any_uncovered;
-        row.clipped_probes += r.any_clipped ? 1 : 0;
-        searches[active[k]].record(r.outcome);
-      }
-    }
-    for (size_t i = 0; i < searches.size(); ++i) {
-      if (!searches[i].done() || reported[i]) continue;
-      reported[i] = true;
-      const Bisection& b = searches[i];
-      MtsRow& row = rows[i];
-      row.probes = b.probes();
+  auto finish = [&](size_t i) {
+    const Bisection& b = searches[i];
+    MtsRow& row = rows[i];
+    if (!row.beyond_far) {
+      row.probes = b.probes() + static_cast<int>(extra[i].size());
       row.lo = b.lo();
       row.hi = b.hi();
       row.unresolvable = !b.resolved();
@@ -118,10 +157,64 @@ std::vector<MtsRow> search_pair(MtsEvaluator& evaluator, const Scene& scene, con
       row.mts_seen = b.resolved() ? seen_separation(row.z, b.hi()) : b.hi();
       row.non_finite = b.saw_non_finite();
       row.clipped = !b.resolved() && b.saw_clipped();
-      row.non_monotone = b.non_monotone();
-      if (on_row) on_row(row);
+      auto note = [&row](double s, Outcome o) {
+        if (o == Outcome::fight || o == Outcome::non_finite) row.fight_max = std::max(row.fight_max, s);
+        if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
+        if (o == Outcome::non_finite) row.non_finite = true;
+      };
+      for (const auto& [s, o] : b.history()) note(s, o);
+      for (const auto& [s, o] : extra[i]) note(s, o);
+      row.non_monotone = b.non_monotone() || row.fight_max > row.clean_min;
+    } else {
+      row.unresolvable = true;
+      row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
     }
-    if (active.empty()) break;
+    if (on_row) on_row(row);
+  };
+  for (size_t i = 0; i < distances.size(); ++i)
+    if (phase[i] == 2) finish(i);
+  for (;;) {
+    if (stop && stop()) throw Error(ExitCode::interrupted, "interrupted");
+    std::vector<std::pair<size_t, bool>> owner;  // (distance, is a stiffness probe)
+    std::vector<Probe> probes;
+    for (size_t i = 0; i < searches.size(); ++i) {
+      if (phase[i] == 0) {
+        owner.push_back({i, false});
+        probes.push_back({distances[i], searches[i].next()});
+      } else if (phase[i] == 1) {
+        for (double s : stiffness_separations(searches[i].lo(), searches[i].hi(), scene.rel_precision,
+                                               scene.stiffness_probes)) {
+          owner.push_back({i, true});
+          probes.push_back({distances[i], s});
+        }
+      }
+    }
+    if (probes.empty()) break;
+    const auto results = evaluator.run(probes);
+    for (size_t k = 0; k < probes.size(); ++k) {
+      const size_t i = owner[k].first;
+      MtsRow& row = rows[i];
+      const ProbeResult& r = results[k];
+      row.frames += static_cast<uint64_t>(r.frames);
+      row.fragment_pairs += r.fragment_pairs;
+      row.seconds += r.seconds;
+      row.kernel_seconds += r.kernel_seconds;
+      row.launches += r.launches;
+      row.uncovered |= r.any_uncovered;
+      row.clipped_probes += r.any_clipped ? 1 : 0;
+      if (owner[k].second) extra[i].emplace_back(probes[k].s, r.outcome);
+      else searches[i].record(r.outcome);
+    }
+    for (size_t i = 0; i < searches.size(); ++i) {
+      if (phase[i] == 1) {
+        phase[i] = 2;
+        finish(i);
+      } else if (phase[i] == 0 && searches[i].done()) {
+        const bool stiff = searches[i].resolved() && scene.stiffness_probes > 0;
+        phase[i] = stiff ? 1 : 2;
+        if (!stiff) finish(i);
+      }
+    }
   }
   return rows;
 }

@@ -5,9 +5,16 @@
 //
 // Clipped probes (a fragment of either plane left the clip volume) are never accepted as MTS:
 // before a clean separation is known they bound the search from above like a ceiling; once one
-// is known they count as not clean. Non-finite probes count as fighting and flag the row.
+// is known they count as not clean. Non-finite probes count as fighting and flag the row. A
+// ceiling below the vertex bound ends the search: below it plane B coincides with plane A, so
+// no separation there can be clean (the row's verdict is then `clipped`).
+//
+// After a resolved search, stiffness probes (scene.stiffness_probes per side) test a few
+// separations just above MTS and just below lo: fights(z, s) is not always monotone in s
+// (docs/stability.md), and a disagreeing probe sets non_monotone with the bracket it found.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -20,7 +27,8 @@ namespace depthprec {
 
 class Bisection {
  public:
-  Bisection(double z, double rel_precision, double max_separation_factor);
+  // coincide_below: separations below it put plane B on plane A (the vertex bound).
+  Bisection(double z, double rel_precision, double max_separation_factor, double coincide_below);
   bool done() const { return done_; }
   double next() const { return next_; }  // the separation to probe now
   void record(Outcome o);
@@ -36,7 +44,7 @@ class Bisection {
 
  private:
   void advance();
-  double z_, rel_, limit_;
+  double z_, rel_, limit_, coincide_;
   double lo_ = 0, hi_ = std::numeric_limits<double>::infinity(),
          ceil_ = std::numeric_limits<double>::infinity();
   double next_;
@@ -44,6 +52,10 @@ class Bisection {
   int probes_ = 0;
   std::vector<std::pair<double, Outcome>> history_;
 };
+
+// What a row finally says: a number (resolved) or why there is none.
+enum class Verdict { resolved, unresolvable, non_finite, clipped, below_vertex_bound, beyond_far_plane };
+const char* to_string(Verdict v);  // "resolved", ..., "below vertex bound", "beyond far plane"
 
 struct MtsRow {
   EvalPair pair;
@@ -62,14 +74,31 @@ struct MtsRow {
   // clipped: the row has no MTS because every separation that did not fight was clipped.
   bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,
        uncovered = false;
+  bool beyond_far = false;  // z past the far plane of a technique that has one: not searched
+  // Over every probe (search and stiffness): the largest separation that fought and the
+  // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
+  // upper MTS (every clean answer lies above it). 0 / +inf when there is none.
+  double fight_max = 0, clean_min = std::numeric_limits<double>::infinity();
+  // MTS attribution (table --attribute; NaN when not computed): the MTS of the storage-limited
+  // pipeline (exact up to binary64, then stored) and of the arithmetic-limited one (the binary32
+  // pipeline, no storage quantisation); the vertex bound is the third factor.
+  double storage_mts = std::numeric_limits<double>::quiet_NaN();
+  double arithmetic_mts = std::numeric_limits<double>::quiet_NaN();
+  bool attributed() const { return !std::isnan(storage_mts); }
+  // The largest factor: "storage", "arithmetic" or "vertex" ("" when not attributed).
+  std::string dominant() const;
+  // A factor larger than the MTS itself (by more than the bisection's precision twice over):
+  // the factors interact, and rounding errors can cancel (docs/stability.md).
+  bool factor_above_mts(double rel_precision) const;
   std::string flags() const;  // "non_finite,clipped" or "" when none
+  Verdict verdict() const;
 };
 
 // Searches every distance of one pair, all distances' probes batched into shared launches.
 // on_row is called as each distance finishes (in finishing order); the return is in the order
 // of `distances`. When stop() turns true the search ends after the current launch round with an
 // Error(ExitCode::interrupted): rows already passed to on_row are the finished ones.
-std::vector<MtsRow> search_pair(MtsEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
+std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
                                 const std::vector<double>& distances,
                                 const std::function<void(const MtsRow&)>& on_row = {},
                                 const std::function<bool()>& stop = {});

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -52,6 +53,19 @@ json header(const Scene& scene, const RunInfo& run) {
 }
 
 
+// A table cell: the MTS, or the verdict that replaces it (unresolvable stays "inf", Gilg's ∞).
+std::string table_cell(const MtsRow& r, bool full) {
+  switch (r.verdict()) {
+    case Verdict::resolved:
+    case Verdict::unresolvable: return full ? exact(r.mts) : human(r.mts);
+    case Verdict::non_finite: return "non-finite";
+    case Verdict::clipped: return "clipped";
+    case Verdict::below_vertex_bound: return "<vb";
+    case Verdict::beyond_far_plane: return "beyond far";
+  }
+  return "?";
+}
+
 std::string footer(const RunInfo& run) {
   std::string s = fmt::format("fragment pairs evaluated: {}, kernel variants: {}", run.fragment_pairs,
                               run.variants.size());
@@ -76,7 +90,13 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   auto num = [full](double v) { return full ? exact(v) : human(v); };
   std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true},
                               {"z"}, {"mts"}, {"lo"}, {"hi"}, {"mts_seen"}, {"vertex_bound"},
-                              {"mts/vb"}, {"probes"}, {"frames"}, {"fragment_pairs"}, {"launches"}};
+                              {"mts/vb"}, {"mts_upper"}, {"verdict", true}, {"probes"}, {"frames"},
+                              {"fragment_pairs"}, {"launches"}};
+  bool attributed = false;
+  for (const auto& r : rows) attributed |= r.attributed();
+  if (attributed)
+    for (const char* c : {"storage_mts", "arithmetic_mts"}) cols.push_back({c});
+  if (attributed) cols.push_back({"dominant", true});
   if (run.timing) {
     cols.push_back({"seconds"});
     cols.push_back({"kernel_s"});
@@ -87,9 +107,16 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
     std::vector<std::string> c = {info(r.pair.technique).name, r.pair.format,
                                   to_string(r.pair.depth_range), num(r.z), num(r.mts), num(r.lo),
                                   num(r.hi), num(r.mts_seen), num(r.vertex_bound),
-                                  num(r.mts / r.vertex_bound), std::to_string(r.probes),
+                                  num(r.mts / r.vertex_bound),
+                                  r.non_monotone && r.fight_max > r.mts ? num(r.fight_max) : "-",
+                                  to_string(r.verdict()), std::to_string(r.probes),
                                   std::to_string(r.frames), std::to_string(r.fragment_pairs),
                                   std::to_string(r.launches)};
+    if (attributed) {
+      c.push_back(num(r.storage_mts));
+      c.push_back(num(r.arithmetic_mts));
+      c.push_back(r.dominant() + (r.factor_above_mts(scene.rel_precision) ? " (factor > mts)" : ""));
+    }
     if (run.timing) {
       c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
       c.push_back(full ? exact(r.kernel_seconds) : fmt::format("{:.3f}", r.kernel_seconds));
@@ -130,7 +157,8 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         continue;
       }
       const MtsRow& r = *it->second;
-      std::string v = full ? exact(r.mts) : human(r.mts);
+      std::string v = table_cell(r, full);
+      if (r.attributed() && !full) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant()[0])));
       if (!full && (r.non_monotone || r.non_finite || r.clipped || r.uncovered)) {
         v += "*";
         any_mark = true;
@@ -144,14 +172,33 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   std::string out;
   if (md) {
     out += fmt::format("MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
-                       "rel. precision {}); inf = unresolvable\n\n",
+                       "rel. precision {}); inf = unresolvable, non-finite / clipped / beyond far / "
+                       "<vb (below the vertex bound) = the verdict where there is no MTS\n\n",
                        scene.name, human(scene.near), human(scene.far), scene.kernel_w,
                        scene.kernel_h, scene.frames, human(scene.rel_precision));
   }
   out += grid(cols, cells, md);
   if (any_mark) {
     out += md ? "\n" : "";
-    out += "* flagged (non_finite, clipped, non_monotone or uncovered); see --format-out json\n";
+    out += "* flagged (non_monotone, uncovered, or a probe was non-finite or clipped); see --format-out json\n";
+  }
+  bool attributed = false;
+  for (const auto& r : rows) attributed |= r.attributed();
+  if (attributed) {
+    out += md ? "\n" : "\n";
+    out += "S / A / V: the dominant factor -- storage (the MTS of the binary64 pipeline stored in the format), "
+           "arithmetic (the binary32 pipeline without storage quantisation) or vertex (the vertex bound). "
+           "The factors:\n\n";
+    std::vector<Column> acols = {{"pair", true}, {"z"}, {"mts"}, {"storage"}, {"arithmetic"}, {"vertex_bound"},
+                                 {"dominant", true}, {"note", true}};
+    std::vector<std::vector<std::string>> acells;
+    for (const auto& r : rows) {
+      if (!r.attributed()) continue;
+      acells.push_back({r.pair.label(), human(r.z), table_cell(r, false), human(r.storage_mts),
+                        human(r.arithmetic_mts), human(r.vertex_bound), r.dominant(),
+                        r.factor_above_mts(scene.rel_precision) ? "a factor exceeds the MTS" : ""});
+    }
+    out += grid(acols, acells, md);
   }
   out += (md ? "\n" : "") + footer(run) + "\n";
   return out;

@@ -40,7 +40,15 @@ json row_to_json(const MtsRow& r, bool timing) {
             {"frames", r.frames},
             {"fragment_pairs", r.fragment_pairs},
             {"kernel_launches", r.launches},
-            {"flags", r.flags()}};
+            {"fight_max", number(r.fight_max)},
+            {"clean_min", number(r.clean_min)},
+            {"flags", r.flags()},
+            {"verdict", to_string(r.verdict())}};
+  if (r.attributed()) {
+    j["storage_mts"] = number(r.storage_mts);
+    j["arithmetic_mts"] = number(r.arithmetic_mts);
+    j["dominant"] = r.dominant();
+  }
   if (timing) {
     j["seconds"] = r.seconds;
     j["kernel_seconds"] = r.kernel_seconds;
@@ -69,6 +77,7 @@ MtsRow row_from_json(const json& j) {
       else if (f == "unresolvable") r.unresolvable = true;
       else if (f == "non_monotone") r.non_monotone = true;
       else if (f == "uncovered") r.uncovered = true;
+      else if (f == "beyond_far_plane") r.beyond_far = true;
       else throw InputError(fmt::format("unknown row flag '{}'", f));
     }
   } catch (const json::exception& e) {
@@ -80,6 +89,12 @@ MtsRow row_from_json(const json& j) {
   r.hi = read_number(j, "hi");
   r.mts_seen = read_number(j, "mts_seen");
   r.vertex_bound = read_number(j, "vertex_bound");
+  r.fight_max = read_number(j, "fight_max");
+  if (j.contains("storage_mts")) {
+    r.storage_mts = read_number(j, "storage_mts");
+    r.arithmetic_mts = read_number(j, "arithmetic_mts");
+  }
+  r.clean_min = read_number(j, "clean_min");
   if (j.contains("seconds")) r.seconds = read_number(j, "seconds");
   if (j.contains("kernel_seconds")) r.kernel_seconds = read_number(j, "kernel_seconds");
   return r;

@@ -24,7 +24,7 @@ constexpr int kMaxKernelSide = 16384;
 const std::set<std::string> kTopKeys = {
     "name", "description", "near", "far", "kernel", "viewport", "fov_y_deg", "plane_margin",
     "plane_subdivisions", "frames", "delta_a", "rotation_range_deg", "rotation_step",
-    "rotation_offset", "distances", "rel_precision", "max_separation_factor", "pipeline",
+    "rotation_offset", "distances", "rel_precision", "max_separation_factor", "stiffness_probes", "pipeline",
     "log_k", "layers", "layer_mapping", "layer_overlap", "evaluate"};
 const std::set<std::string> kPipelineKeys = {"depth_range", "matrix_precision", "compose", "divide",
                                              "rounding", "denormals", "contraction"};
@@ -323,6 +323,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   if (s.rel_precision >= 1) r.fail("rel_precision", "must be below 1 (e.g. 0.0009765625 = 2^-10)");
   s.max_separation_factor = r.positive("max_separation_factor");
   if (s.max_separation_factor < 1) r.fail("max_separation_factor", "must be >= 1");
+  s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
 
   s.pipeline.depth_range = r.choice("pipeline.depth_range", parse_depth_range);
   s.pipeline.matrix_precision = r.choice("pipeline.matrix_precision", parse_matrix_precision);

@@ -51,6 +51,7 @@ struct Scene {
   std::vector<double> distances;
   double rel_precision = 0;
   double max_separation_factor = 0;
+  int stiffness_probes = 0;  // per side of each resolved MTS (docs/stability.md)
   Pipeline pipeline;
   TechniqueParams params;
   std::vector<EvalPair> evaluate;

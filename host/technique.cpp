@@ -40,6 +40,10 @@ const TechniqueInfo& info(Technique t) {
   throw Error(ExitCode::internal, "technique missing from the table");
 }
 
+bool has_far_plane(Technique t) {
+  return t != Technique::infinite && t != Technique::reversed_infinite && t != Technique::inverse_w;
+}
+
 std::string technique_names() {
   std::string s;
   for (const auto& i : technique_table()) s += (s.empty() ? "" : ", ") + std::string(i.name);

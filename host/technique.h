@@ -47,6 +47,9 @@ const std::vector<TechniqueInfo>& technique_table();
 const TechniqueInfo& info(Technique t);
 Technique parse_technique(const std::string& s);  // throws InputError listing the names
 std::string technique_names();                    // "standard, infinite, ..." for help texts
+// Whether the technique clips at the far plane (the fragment-depth ones clip with the standard
+// projection's volume); infinite, reversed_infinite and inverse_w have none.
+bool has_far_plane(Technique t);
 
 // Third row of P, (P[2][2], P[2][3]), computed term by term in the arithmetic of T as an
 // application writes it (T = float for matrix_precision float, double for double). The

@@ -11,7 +11,7 @@ using namespace depthprec;
 namespace {
 // Runs a bisection against a threshold: fights below t, clean at or above it (clipped above c).
 Bisection run(double z, double t, double c = INFINITY, double rel = std::ldexp(1.0, -10)) {
-  Bisection b(z, rel, std::ldexp(1.0, 20));
+  Bisection b(z, rel, std::ldexp(1.0, 20), vertex_bound(z));
   while (!b.done()) {
     const double s = b.next();
     b.record(s >= c ? Outcome::clipped : s < t ? Outcome::fight : Outcome::clean);
@@ -64,6 +64,19 @@ TEST_CASE("clipped separations are never accepted as MTS", "[search]") {
   const Bisection none = run(4.0, 20.0, 12.0);
   CHECK_FALSE(none.resolved());
   CHECK(none.saw_clipped());
+}
+
+TEST_CASE("a ceiling below the vertex bound ends the search in few probes", "[search]") {
+  // everything that does not fight is clipped: the ceiling halves down to where plane B would
+  // coincide with plane A, and stops there (not at binary64 underflow, ~1000 probes later)
+  for (double z : {2.0, 1e6, std::ldexp(1.0, 60)}) {
+    INFO("z = " << z);
+    const Bisection b = run(z, INFINITY, 0.0);
+    CHECK_FALSE(b.resolved());
+    CHECK(b.saw_clipped());
+    CHECK(b.probes() <= 30);
+    CHECK(b.history().back().first < 2 * vertex_bound(z));
+  }
 }
 
 TEST_CASE("the vertex bound is where fl32(z + s) leaves fl32(z)", "[search]") {

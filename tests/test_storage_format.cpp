@@ -141,3 +141,51 @@ TEST_CASE("defines describe the format for a kernel", "[formats]") {
   CHECK(StorageFormat::parse("e4m12", Rounding::truncate, Denormals::flush).defines() ==
         "-DDF_KIND=1 -DDF_E=4 -DDF_M=12 -DDF_IEEE=0u -DDF_ROUNDING=1u -DDF_FLUSH=1u");
 }
+
+TEST_CASE("binary64 encode: the binary32 codes for binary32 inputs, correctly rounded otherwise", "[formats]") {
+  std::mt19937_64 rng(20261121);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const char* name : {"unorm1", "unorm16", "unorm24", "unorm32", "float32", "float24", "float16", "e4m12",
+                           "e2m5", "e8m24"}) {
+    for (const Rounding r : {Rounding::nearest_even, Rounding::truncate}) {
+      for (const Denormals dn : {Denormals::keep, Denormals::flush}) {
+        const auto f = StorageFormat::parse(name, r, dn);
+        INFO(name << (r == Rounding::truncate ? " truncate" : " nearest") << (dn == Denormals::flush ? " flush" : ""));
+        int bad32 = 0, bad64 = 0;
+        for (int i = 0; i < 20000; ++i) {
+          // spread over the binades, down into binary32's subnormals
+          const double d = std::ldexp(unit(rng), -static_cast<int>(rng() % 140));
+          const float d32 = static_cast<float>(d);
+          if (f.encode64(static_cast<double>(d32)) != f.encode(d32)) ++bad32;
+          // d lies between the values of its code and the next code, and on the rounding's side
+          const uint32_t c = f.encode64(d);
+          const double lo = f.decode(c);
+          if (f.is_unorm()) {
+            // exact reference: round(d * max) in 128-bit integers, d = m * 2^-k
+            int e = 0;
+            const double fr = std::frexp(d, &e);
+            const auto m = static_cast<unsigned __int128>(std::ldexp(fr, 53));
+            const int shift = 53 - e;  // d = m / 2^shift
+            const unsigned __int128 p = m * f.max_code();
+            unsigned __int128 q = shift >= 127 ? 0 : p >> shift;
+            if (r == Rounding::nearest_even && shift < 127) {
+              const unsigned __int128 rem = p - (q << shift), half = static_cast<unsigned __int128>(1) << (shift - 1);
+              if (rem > half || (rem == half && (q & 1))) ++q;
+            }
+            if (c != static_cast<uint32_t>(q)) ++bad64;
+          } else if (c < f.max_code() && !(dn == Denormals::flush && c == 0)) {
+            const double hi = f.decode(c + 1);
+            const bool inside = lo <= d && d < hi;
+            const bool nearer = r == Rounding::truncate ||
+                                (d - lo < hi - d || (d - lo == hi - d && (c & 1u) == 0));
+            const bool carried = r == Rounding::nearest_even && c > 0 && f.decode(c - 1) < d && d < lo &&
+                                 lo - d <= d - f.decode(c - 1);
+            if (!((inside && nearer) || carried)) ++bad64;
+          }
+        }
+        CHECK(bad32 == 0);
+        CHECK(bad64 == 0);
+      }
+    }
+  }
+}

@@ -116,6 +116,7 @@ void merge_records(const MergeOptions& o, const std::string& kind) {
   std::string text;
   if (kind == "lj-table") text = render_lj_table_output(header, records, o.out);
   else if (kind == "tradeoff") text = render_tradeoff_output(header, records, o.out);
+  else if (kind == "pipelines") text = render_pipelines_output(header, records, o.out);
   else text = render_cost_output(header, records, o.out);
   write_output(o.out.output, text);
 }
@@ -124,7 +125,7 @@ void run_merge(const MergeOptions& o) {
   if (o.files.empty()) throw Error(ExitCode::usage, "merge: name the JSON outputs of the shards");
   check_writable(o.out.output);
   const std::string kind = read_json(o.files.front()).value("kind", "mts");
-  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost") merge_records(o, kind);
+  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines") merge_records(o, kind);
   else merge_rows(o);
 }
 

@@ -28,7 +28,15 @@ struct MtsOptions {
   SceneOptions scene;
   OutputOptions out;
   BatchOptions batch;
+  bool attribute = false;
 };
+
+void add_attribute_flag(CLI::App* cmd, MtsOptions& o) {
+  cmd->add_flag("--attribute", o.attribute,
+                "Attribute each MTS: also the storage-limited MTS (the pipeline exact up to binary64, "
+                "then stored), the arithmetic-limited MTS (binary32 pipeline, no storage quantisation), "
+                "next to the vertex bound, and the dominant factor (docs/stability.md). About 2-3x the work");
+}
 
 void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   const Scene scene = o.scene.load();
@@ -37,6 +45,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   const Shard shard = Shard::parse(o.batch.shard);
   control.shard_index = shard.index;
   control.shard_count = shard.count;
+  control.attribute = o.attribute;
   RowJournal journal(o.out.output, o.batch.resume);
   std::vector<MtsRow> earlier;
   for (const auto& j : journal.earlier()) {
@@ -112,6 +121,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   mts->scene.add_to(*cmd, true);
   mts->out.add_to(*cmd);
   mts->batch.add_to(*cmd, kMtsUnits);
+  add_attribute_flag(cmd, *mts);
   cmd->callback([mts, &global]() { run(*mts, global, false); });
 
   auto table = std::make_shared<MtsOptions>();
@@ -129,6 +139,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   table->scene.add_to(*tcmd, true);
   table->out.add_to(*tcmd);
   table->batch.add_to(*tcmd, kMtsUnits);
+  add_attribute_flag(tcmd, *table);
   tcmd->callback([table, &global]() { run(*table, global, true); });
 }
 

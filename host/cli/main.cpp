@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   cli::add_lj_commands(app, global);
   cli::add_tradeoff_command(app, global);
   cli::add_cost_command(app, global);
+  cli::add_pipelines_command(app, global);
   cli::add_plot_command(app);
   try {
     app.parse(argc, argv);

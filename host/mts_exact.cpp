@@ -1,0 +1,125 @@
+#include "host/mts_exact.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "host/kernel_variant.h"
+
+namespace depthprec {
+
+namespace {
+
+constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4;
+constexpr int kCountShift = 8;
+constexpr size_t kLocal = 16;
+constexpr double kPi = 3.14159265358979323846;
+
+int depth_map(Technique t) {
+  switch (t) {
+    case Technique::standard: return 0;
+    case Technique::infinite: return 1;
+    case Technique::reversed: return 2;
+    case Technique::reversed_infinite:
+    case Technique::inverse_w: return 3;
+    case Technique::log_vertex:
+    case Technique::log_fragment: return 4;
+    case Technique::linear: return 5;
+    default: return 6;  // w_buffer
+  }
+}
+
+}  // namespace
+
+ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair)
+    : rt_(rt), scene_(scene), pair_(pair) {
+  const Technique t = depth_path(scene, pair.technique);
+  const TechniqueInfo& ti = info(t);
+  const std::string options =
+      fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}", base_build_options(false), depth_map(t),
+                  ti.from == DepthFrom::fragment ? 1 : 0, ti.greater ? 1 : 0, scene.storage_format(pair).defines());
+  kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options), "mts_exact");
+}
+
+std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
+  std::vector<ProbeResult> results(probes.size());
+  std::vector<bool> decided(probes.size(), false);
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const double tan_half = std::tan(scene_.fov_y_deg * kPi / 360.0);
+  const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
+  int done = 0;
+  while (done < scene_.frames) {
+    std::vector<size_t> active;
+    for (size_t i = 0; i < probes.size(); ++i)
+      if (!decided[i]) active.push_back(i);
+    if (active.empty()) break;
+    const int frames = batch_frames(done, scene_.frames);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<double> planes(active.size() * frames * 2 * 16);
+    for (size_t i = 0; i < active.size(); ++i)
+      for (int f = 0; f < frames; ++f)
+        for (int p = 0; p < 2; ++p) {
+          const Probe& pr = probes[active[i]];
+          const auto M = model_matrix_f64(scene_, p == 0 ? pr.z : pr.z + pr.s, done + f);
+          double* dst = planes.data() + ((i * frames + f) * 2 + p) * 16;
+          for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 3; ++r) dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
+          // the mapping's near and far ride in the spare centre.w slots: plane A's layer for
+          // layered, so every probe of a launch keeps its own
+          const ProbeConstants pc = probe_constants(scene_, pair_, pr.z);
+          dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
+        }
+    cl::Buffer plane_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(double) * planes.size(),
+                         planes.data());
+    const size_t items = active.size() * frames * kh;
+    cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
+    kernel_.setArg(0, plane_buf);
+    kernel_.setArg(1, kw);
+    kernel_.setArg(2, kh);
+    kernel_.setArg(3, static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2));
+    kernel_.setArg(4, static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2));
+    kernel_.setArg(5, static_cast<double>(scene_.viewport_w));
+    kernel_.setArg(6, static_cast<double>(scene_.viewport_h));
+    kernel_.setArg(7, aspect * tan_half);
+    kernel_.setArg(8, tan_half);
+    kernel_.setArg(9, scene_.params.log_k);
+    kernel_.setArg(10, out);
+    kernel_.setArg(11, static_cast<cl_uint>(items));
+    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange((items + kLocal - 1) / kLocal * kLocal),
+                                     cl::NDRange(kLocal));
+    std::vector<uint32_t> rows(items);
+    rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (size_t i = 0; i < active.size(); ++i) {
+      ProbeResult& r = results[active[i]];
+      r.seconds += secs / static_cast<double>(active.size());
+      r.launches += 1;
+      for (int f = 0; f < frames; ++f) {
+        uint32_t flags = 0;
+        for (cl_uint y = 0; y < kh; ++y) {
+          const uint32_t v = rows[(i * frames + f) * kh + y];
+          flags |= v;
+          r.fragment_pairs += v >> kCountShift;
+        }
+        if (decided[active[i]]) continue;
+        r.frames = done + f + 1;
+        r.any_clipped |= (flags & kClipped) != 0;
+        if (flags & kNonFinite) {
+          r.any_non_finite = true;
+          r.outcome = Outcome::non_finite;
+          decided[active[i]] = true;
+        } else if (flags & kFight) {
+          r.outcome = Outcome::fight;
+          decided[active[i]] = true;
+        }
+      }
+    }
+    done += frames;
+  }
+  for (size_t i = 0; i < probes.size(); ++i)
+    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
+  return results;
+}
+
+}  // namespace depthprec
