@@ -144,12 +144,17 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
       ProbeResult& r = results[active[i]];
       for (int f = 0; f < frames; ++f) {
         uint32_t flags = 0;
+        uint64_t frame_pairs = 0;
         for (cl_uint y = 0; y < kh; ++y) {
           const uint32_t v = rows[(i * frames + f) * kh + y];
           flags |= v;
-          probe_pairs[i] += v >> kCountShift;
+          frame_pairs += v >> kCountShift;
         }
-        if (decided[active[i]]) continue;  // frames after the deciding one: work, not outcome
+        probe_pairs[i] += frame_pairs;
+        if (decided[active[i]]) {  // frames after the deciding one: work, not outcome
+          after_decision_ += frame_pairs;
+          continue;
+        }
         r.frames = done + f + 1;
         r.any_clipped |= (flags & kClipped) != 0;
         r.any_uncovered |= (flags & kUncovered) != 0;
@@ -175,8 +180,10 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     pairs_ += launch_pairs;
     done += frames;
   }
-  for (size_t i = 0; i < probes.size(); ++i)
+  for (size_t i = 0; i < probes.size(); ++i) {
     if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
+    by_outcome_[static_cast<size_t>(results[i].outcome)] += results[i].fragment_pairs;
+  }
   return results;
 }
 

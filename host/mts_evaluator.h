@@ -3,6 +3,7 @@
 // frames per launch so independent distances share the device.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -64,6 +65,10 @@ class MtsEvaluator : public ProbeEvaluator {
   uint64_t launches() const { return launches_; }
   double kernel_seconds() const { return kernel_seconds_; }  // device time of all launches
   double wall_seconds() const { return wall_seconds_; }      // host wall time of all launches
+  // Fragment pairs spent on probes by their outcome (index: Outcome), and on the frames of a
+  // launch batch after a probe's deciding frame: where the work goes (-v prints it).
+  const std::array<uint64_t, 4>& pairs_by_outcome() const { return by_outcome_; }
+  uint64_t pairs_after_decision() const { return after_decision_; }
 
  private:
   // Enqueues the set-up kernel; returns its event.
@@ -76,7 +81,8 @@ class MtsEvaluator : public ProbeEvaluator {
   EvalPair pair_;
   KernelVariant variant_;
   cl::Kernel setup_, raster_, codes_;
-  uint64_t pairs_ = 0, launches_ = 0;
+  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0;
+  std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
 };
 

@@ -98,10 +98,16 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     }
     run.info.launches += ev.launches();
     run.info.kernel_seconds += ev.kernel_seconds();
-    if (log)
-      log(fmt::format("{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels)",
+    if (log) {
+      const auto& w = ev.pairs_by_outcome();
+      const double all = std::max<double>(1.0, static_cast<double>(ev.fragment_pairs()));
+      log(fmt::format("{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
+                      "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
+                      "{:.0f} %), clipped or non-finite {:.0f} %",
                       pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(),
-                      ev.kernel_seconds()));
+                      ev.kernel_seconds(), 100 * w[0] / all, 100 * w[1] / all, 100 * ev.pairs_after_decision() / all,
+                      100 * (w[2] + w[3]) / all));
+    }
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   }
   for (const auto& r : run.rows) run.info.fragment_pairs += r.fragment_pairs;

@@ -17,7 +17,8 @@
 #define EXACT_UNCOVERED 8u
 #define EXACT_COUNT_SHIFT 8
 
-static double exact_depth(double w, double n, double f, double k) {
+/* The exact mapping D(w) of the technique, 8 lanes at a time. */
+static double8 exact_depth8(double8 w, double n, double f, double k) {
 #if DEPTH_MAP == 0
   return f * (w - n) / (w * (f - n));
 #elif DEPTH_MAP == 1
@@ -35,20 +36,67 @@ static double exact_depth(double w, double n, double f, double k) {
 #endif
 }
 
-/* A plane is four double4 columns of its binary64 model matrix: the scaled in-plane axes a and
- * b, the normal, and the centre. Returns its eye distance along ray dir (w = t, dir.z = -1);
- * covered tells whether the ray meets the plane's square. (centre.w carries near or far.) */
-static double plane_w(__global const double4* pl, double3 dir, int* covered) {
+/* Storage codes of 8 binary64 depths in [0, 1]: the shared df_encode_f64, with the common
+ * cases in vector form (unorm by the same FMA rounding; float32 keeping denormals is binary64 ->
+ * binary32 conversion, round to nearest even). */
+static uint8 encode8(double8 d, df_format fmt) {
+#if DF_KIND == 0
+  if (fmt.rounding == DF_ROUND_NEAREST_EVEN) {
+    const double M = (double)fmt.max_code;
+    const double8 hi = d * M;
+    const double8 err = fma(d, (double8)M, -hi);
+    const double8 q = floor(hi);
+    const double8 t = (hi - q - 0.5) + err;
+    ulong8 code = convert_ulong8(q);
+    const long8 up = (t > 0.0) | ((t == 0.0) & convert_long8((code & (ulong8)1) != (ulong8)0));
+    code += as_ulong8(up) & (ulong8)1;
+    code = select(code, (ulong8)fmt.max_code, (d >= 1.0) | (code > (ulong8)fmt.max_code));
+    return convert_uint8(select(code, (ulong8)0, !(d > 0.0)));
+  }
+#elif DF_E == 8 && DF_M == 23 && DF_IEEE == 1
+  if (fmt.rounding == DF_ROUND_NEAREST_EVEN && !fmt.flush)
+    return select(as_uint8(convert_float8_rte(d)), (uint8)0, convert_int8(!(d > 0.0)));
+#endif
+  double a[8];
+  uint c[8];
+  vstore8(d, 0, a);
+  for (int i = 0; i < 8; ++i) c[i] = df_encode_f64(a[i], fmt);
+  return vload8(0, c);
+}
+
+/* One plane's per-row terms: along the row, the ray meets the plane at t = num / (den0 + den1 x),
+ * and the in-plane coordinates are t (ua0 + ua1 x) - ca along the a axis, likewise b. */
+typedef struct {
+  double num, den0, den1, ua0, ua1, ca, ha, ub0, ub1, cb, hb;
+} exact_row_t;
+
+static exact_row_t exact_row(__global const double4* pl, double ndc_y, double sx, double sy) {
   const double3 a = pl[0].xyz, b = pl[1].xyz, nrm = pl[2].xyz, c = pl[3].xyz;
-  const double t = dot(nrm, c) / dot(nrm, dir);
-  const double3 q = t * dir - c;
-  const double u = dot(q, a) / dot(a, a), v = dot(q, b) / dot(b, b);
-  *covered = t > 0.0 && fabs(u) <= 0.5 && fabs(v) <= 0.5;
+  exact_row_t r;
+  r.num = dot(nrm, c);
+  r.den0 = ndc_y * sy * nrm.y - nrm.z;
+  r.den1 = sx * nrm.x;
+  r.ua0 = ndc_y * sy * a.y - a.z;
+  r.ua1 = sx * a.x;
+  r.ca = dot(c, a);
+  r.ha = 0.5 * dot(a, a);
+  r.ub0 = ndc_y * sy * b.y - b.z;
+  r.ub1 = sx * b.x;
+  r.cb = dot(c, b);
+  r.hb = 0.5 * dot(b, b);
+  return r;
+}
+
+/* w at 8 pixels of the row (ndc_x), and whether the plane's square covers them. */
+static double8 exact_w8(exact_row_t r, double8 ndc_x, long8* covered) {
+  const double8 t = r.num / (r.den0 + r.den1 * ndc_x);
+  const double8 u = t * (r.ua0 + r.ua1 * ndc_x) - r.ca, v = t * (r.ub0 + r.ub1 * ndc_x) - r.cb;
+  *covered = (t > 0.0) & (fabs(u) <= r.ha) & (fabs(v) <= r.hb);
   return t;
 }
 
-/* One work item per (probe, frame, kernel row): flags of the row's pixels and the number of
- * fragment pairs, as mts_raster reports them. */
+/* One work item per (probe, frame, kernel row), 8 pixels at a time: flags of the row's pixels
+ * and the number of fragment pairs, as mts_raster reports them. */
 __kernel void mts_exact(__global const double4* planes, const uint kw, const uint kh, const double ox,
                         const double oy, const double vw, const double vh, const double sx, const double sy,
                         const double k, __global uint* out, const uint items) {
@@ -60,41 +108,38 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   const double n = A[3].w, f = B[3].w; /* the mapping's near and far (plane A's layer) */
   const df_format fmt = DF_FORMAT_FROM_DEFINES();
   const double ndc_y = 2.0 * (oy + (double)y + 0.5) / vh - 1.0;
-  uint flags = 0, pairs = 0;
-  for (uint x = 0; x < kw; ++x) {
-    const double ndc_x = 2.0 * (ox + (double)x + 0.5) / vw - 1.0;
-    const double3 dir = (double3)(ndc_x * sx, ndc_y * sy, -1.0);
-    int cov_a = 0, cov_b = 0;
-    const double wa = plane_w(A, dir, &cov_a), wb = plane_w(B, dir, &cov_b);
-    if (!cov_a || !cov_b) {
-      flags |= EXACT_UNCOVERED;
-      continue;
-    }
-    double da = exact_depth(wa, n, f, k), db = exact_depth(wb, n, f, k);
-    if (!isfinite(da) || !isfinite(db)) {
-      flags |= EXACT_NON_FINITE;
-      continue;
-    }
+  const exact_row_t ra = exact_row(A, ndc_y, sx, sy), rb = exact_row(B, ndc_y, sx, sy);
+  long8 any_flag = (long8)0;
+  ulong pairs = 0;
+  uint flags = 0;
+  for (uint x0 = 0; x0 < kw; x0 += 8) {
+    const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
+    const long8 active = xs < (double)kw;
+    const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
+    long8 cov_a, cov_b;
+    const double8 wa = exact_w8(ra, ndc_x, &cov_a), wb = exact_w8(rb, ndc_x, &cov_b);
+    const long8 covered = active & cov_a & cov_b;
+    if (any(active & ~covered)) flags |= EXACT_UNCOVERED;
+    double8 da = exact_depth8(wa, n, f, k), db = exact_depth8(wb, n, f, k);
+    const long8 finite = isfinite(da) & isfinite(db);
+    if (any(covered & ~finite)) flags |= EXACT_NON_FINITE;
 #if CLIP_W
-    if (!(wa >= n && wa <= f && wb >= n && wb <= f)) {
-      flags |= EXACT_CLIPPED;
-      continue;
-    }
+    const long8 inside = (wa >= n) & (wa <= f) & (wb >= n) & (wb <= f);
     da = clamp(da, 0.0, 1.0);
     db = clamp(db, 0.0, 1.0);
 #else
-    if (!(da >= 0.0 && da <= 1.0 && db >= 0.0 && db <= 1.0)) {
-      flags |= EXACT_CLIPPED;
-      continue;
-    }
+    const long8 inside = (da >= 0.0) & (da <= 1.0) & (db >= 0.0) & (db <= 1.0);
 #endif
-    ++pairs;
-    const uint ca = df_encode_f64(da, fmt), cb = df_encode_f64(db, fmt);
+    if (any(covered & finite & ~inside)) flags |= EXACT_CLIPPED;
+    const long8 ok = covered & finite & inside;
+    pairs += (ulong)(-(long)(ok.s0 + ok.s1 + ok.s2 + ok.s3 + ok.s4 + ok.s5 + ok.s6 + ok.s7));
+    const uint8 ca = encode8(da, fmt), cb = encode8(db, fmt);
 #if COMPARE_GREATER
-    if (cb >= ca) flags |= EXACT_FIGHT;
+    const int8 fight = cb >= ca;
 #else
-    if (cb <= ca) flags |= EXACT_FIGHT;
+    const int8 fight = cb <= ca;
 #endif
+    if (any(convert_long8(fight) & ok)) flags |= EXACT_FIGHT;
   }
-  out[item] = flags | (min(pairs, 0xffffffu) << EXACT_COUNT_SHIFT);
+  out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << EXACT_COUNT_SHIFT);
 }
