@@ -8,6 +8,8 @@
 #include <map>
 #include <set>
 
+#include "host/frame_setup.h"
+#include "host/kernel_variant.h"
 #include "host/mts_exact.h"
 #include "host/row_json.h"
 
@@ -62,7 +64,25 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   for (size_t i = 0; i < rows.size(); ++i) {
     rows[i].storage_mts = storage[i].beyond_far ? INFINITY : storage[i].mts;
     rows[i].arithmetic_mts = arithmetic_cache[row_key(raw, rows[i].z)];
+    rows[i].set_dominant(scene.rel_precision);
   }
+}
+
+// What decides a row's computation, byte for byte: the kernel program and its build options, the
+// binary32 constants the set-up reads at this z (and the binary64 P a premultiplied binary64
+// compose rounds from), and with attribution the technique (its exact mapping). Two pairs with
+// the same key run the same instructions on the same data -- with binary32 matrices and
+// n = 1, f = 1e9, standard and infinite do, as do reversed and reversed_infinite -- so the later
+// one takes the earlier one's rows.
+std::string computation_key(const Scene& scene, const EvalPair& pair, double z, bool attribute) {
+  const KernelVariant v = mts_variant(scene, pair);
+  const ProbeConstants pc = probe_constants(scene, pair, z);
+  const auto packed = pc.packed();
+  std::string key = v.program + "|" + v.options + "|" + (attribute ? info(pair.technique).name : "") + "|";
+  key.append(reinterpret_cast<const char*>(packed.data()), sizeof(float) * packed.size());
+  key.append(reinterpret_cast<const char*>(pc.P_full.data()), sizeof(double) * pc.P_full.size());
+  key.append(reinterpret_cast<const char*>(&z), sizeof z);
+  return key;
 }
 
 }  // namespace
@@ -75,6 +95,7 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
   const auto t0 = std::chrono::steady_clock::now();
   std::set<std::string> built;
   std::map<std::string, double> arithmetic_cache;  // row key of a float32 pair -> its MTS
+  std::map<std::string, MtsRow> computed;          // computation_key -> the row it gave
   const size_t nd = scene.distances.size();
   for (size_t p = 0; p < scene.evaluate.size(); ++p) {
     const EvalPair& pair = scene.evaluate[p];
@@ -85,6 +106,28 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
       if (control.done.count(row_key(pair, scene.distances[d]))) continue;
       todo.push_back(scene.distances[d]);
     }
+    // rows an identical computation already gave: taken over, with no work of their own
+    std::vector<MtsRow> shared;
+    std::vector<double> fresh;
+    for (double z : todo) {
+      const auto it = computed.find(computation_key(scene, pair, z, control.attribute));
+      if (it == computed.end()) {
+        fresh.push_back(z);
+        continue;
+      }
+      MtsRow r = it->second;
+      r.pair = pair;
+      r.fragment_pairs = r.launches = 0;
+      r.seconds = r.kernel_seconds = 0;
+      r.shared = true;
+      shared.push_back(r);
+      if (control.on_row) control.on_row(r);
+    }
+    if (!shared.empty() && log)
+      log(fmt::format("{}: {} distances computed exactly as by an earlier pair, rows taken over", pair.label(),
+                      shared.size()));
+    run.rows.insert(run.rows.end(), shared.begin(), shared.end());
+    todo = fresh;
     if (todo.empty()) continue;
     MtsEvaluator ev(rt, scene, pair);
     if (built.insert(ev.variant().label).second && log)
@@ -108,8 +151,10 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
                       ev.kernel_seconds(), 100 * w[0] / all, 100 * w[1] / all, 100 * ev.pairs_after_decision() / all,
                       100 * (w[2] + w[3]) / all));
     }
+    for (const auto& r : rows) computed.emplace(computation_key(scene, pair, r.z, control.attribute), r);
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   }
+  sort_rows(scene, run.rows);
   for (const auto& r : run.rows) run.info.fragment_pairs += r.fragment_pairs;
   run.info.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

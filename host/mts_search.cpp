@@ -68,16 +68,15 @@ std::string MtsRow::flags() const {
   add(non_monotone, "non_monotone");
   add(uncovered, "uncovered");
   add(beyond_far, "beyond_far_plane");
+  add(shared, "shared");
   return f;
 }
 
-std::string MtsRow::dominant() const {
-  if (!attributed()) return "";
-  const double v = vertex_bound;
+void MtsRow::set_dominant(double rel_precision) {
+  const double v = vertex_bound * (1 + 2 * rel_precision);
   // unresolvable factors are +inf and dominate
-  if (storage_mts >= arithmetic_mts && storage_mts >= v) return "storage";
-  if (arithmetic_mts >= v) return "arithmetic";
-  return "vertex";
+  if (storage_mts <= v && arithmetic_mts <= v) dominant = "vertex";
+  else dominant = storage_mts >= arithmetic_mts ? "storage" : "arithmetic";
 }
 
 bool MtsRow::factor_above_mts(double rel_precision) const {

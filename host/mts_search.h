@@ -75,6 +75,7 @@ struct MtsRow {
   bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,
        uncovered = false;
   bool beyond_far = false;  // z past the far plane of a technique that has one: not searched
+  bool shared = false;      // computed exactly as an earlier pair's row (host/mts_run.cpp): no work of its own
   // Over every probe (search and stiffness): the largest separation that fought and the
   // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
   // upper MTS (every clean answer lies above it). 0 / +inf when there is none.
@@ -85,8 +86,12 @@ struct MtsRow {
   double storage_mts = std::numeric_limits<double>::quiet_NaN();
   double arithmetic_mts = std::numeric_limits<double>::quiet_NaN();
   bool attributed() const { return !std::isnan(storage_mts); }
-  // The largest factor: "storage", "arithmetic" or "vertex" ("" when not attributed).
-  std::string dominant() const;
+  // The largest factor: "storage", "arithmetic" or "vertex" ("" when not attributed). The
+  // binary32 pipeline holds the vertex rounding too, so its factor never falls below the vertex
+  // bound: "vertex" is named when neither other factor exceeds it by more than the bisection's
+  // resolution (set_dominant).
+  std::string dominant;
+  void set_dominant(double rel_precision);
   // A factor larger than the MTS itself (by more than the bisection's precision twice over):
   // the factors interact, and rounding errors can cancel (docs/stability.md).
   bool factor_above_mts(double rel_precision) const;

@@ -115,7 +115,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
     if (attributed) {
       c.push_back(num(r.storage_mts));
       c.push_back(num(r.arithmetic_mts));
-      c.push_back(r.dominant() + (r.factor_above_mts(scene.rel_precision) ? " (factor > mts)" : ""));
+      c.push_back(r.dominant + (r.factor_above_mts(scene.rel_precision) ? " (factor > mts)" : ""));
     }
     if (run.timing) {
       c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
@@ -158,7 +158,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
       }
       const MtsRow& r = *it->second;
       std::string v = table_cell(r, full);
-      if (r.attributed() && !full) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant()[0])));
+      if (r.attributed() && !full) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
       if (!full && (r.non_monotone || r.non_finite || r.clipped || r.uncovered)) {
         v += "*";
         any_mark = true;
@@ -195,7 +195,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
     for (const auto& r : rows) {
       if (!r.attributed()) continue;
       acells.push_back({r.pair.label(), human(r.z), table_cell(r, false), human(r.storage_mts),
-                        human(r.arithmetic_mts), human(r.vertex_bound), r.dominant(),
+                        human(r.arithmetic_mts), human(r.vertex_bound), r.dominant,
                         r.factor_above_mts(scene.rel_precision) ? "a factor exceeds the MTS" : ""});
     }
     out += grid(acols, acells, md);

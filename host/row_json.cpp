@@ -47,7 +47,7 @@ json row_to_json(const MtsRow& r, bool timing) {
   if (r.attributed()) {
     j["storage_mts"] = number(r.storage_mts);
     j["arithmetic_mts"] = number(r.arithmetic_mts);
-    j["dominant"] = r.dominant();
+    j["dominant"] = r.dominant;
   }
   if (timing) {
     j["seconds"] = r.seconds;
@@ -78,6 +78,7 @@ MtsRow row_from_json(const json& j) {
       else if (f == "non_monotone") r.non_monotone = true;
       else if (f == "uncovered") r.uncovered = true;
       else if (f == "beyond_far_plane") r.beyond_far = true;
+      else if (f == "shared") r.shared = true;
       else throw InputError(fmt::format("unknown row flag '{}'", f));
     }
   } catch (const json::exception& e) {
@@ -93,6 +94,7 @@ MtsRow row_from_json(const json& j) {
   if (j.contains("storage_mts")) {
     r.storage_mts = read_number(j, "storage_mts");
     r.arithmetic_mts = read_number(j, "arithmetic_mts");
+    r.dominant = j.value("dominant", "");
   }
   r.clean_min = read_number(j, "clean_min");
   if (j.contains("seconds")) r.seconds = read_number(j, "seconds");

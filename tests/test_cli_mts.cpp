@@ -130,3 +130,37 @@ TEST_CASE("tradeoff, cost and lj-table plot through gnuplot with --plot", "[cli]
   CHECK(no_time.exit_code == 2);
   CHECK_THAT(no_time.output, Contains("--plot needs the timing pass"));
 }
+
+TEST_CASE("pipelines compares matrix precision and composition per pair", "[cli][pipelines]") {
+  const auto r = run_cli("pipelines -t reversed_infinite,standard -f float32 --depth-range zero_to_one " + kSmall +
+                         "--no-timing --format-out csv");
+  REQUIRE(r.exit_code == 0);
+  std::istringstream lines(r.output);
+  std::string line, header;
+  std::vector<std::string> rows;
+  while (std::getline(lines, line))
+    if (line.rfind("pair,", 0) == 0) header = line;
+    else if (line.find("/float32/") != std::string::npos) rows.push_back(line);
+  CHECK_THAT(header, Contains("double/premultiplied max"));
+  REQUIRE(rows.size() == 2);
+  // reversed_infinite's third row of P is (0, 0, 0, n): the same in binary32 and binary64, and
+  // its premultiplied product rounds the same way at n = 1, so every ratio is 1
+  CHECK(rows[0] == "reversed_infinite/float32/zero_to_one,1,1,0,1,1,0,1,1,0");
+}
+
+TEST_CASE("table --attribute marks each cell with its dominant factor", "[cli][table]") {
+  const auto r = run_cli("table -t reversed -f unorm24,float32 --depth-range zero_to_one " + kSmall +
+                         "--no-timing --attribute");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Contains("S / A / V: the dominant factor"));
+  CHECK_THAT(r.output, Contains("storage"));  // reversed/unorm24 at 1024 is storage-limited
+  const auto j = run_cli("mts -t reversed -f unorm24 --depth-range zero_to_one " + kSmall +
+                         "--no-timing --attribute --format-out json");
+  REQUIRE(j.exit_code == 0);
+  const auto out = nlohmann::json::parse(j.output);
+  for (const auto& row : out["rows"]) {
+    CHECK(row.contains("storage_mts"));
+    CHECK(row.contains("arithmetic_mts"));
+    CHECK(row.contains("dominant"));
+  }
+}

@@ -73,7 +73,7 @@ TEST_CASE("attribution: storage limits reversed unorm24, arithmetic limits rever
     const double step = u24.z * u24.z / (s.near * 16777215.0);
     CHECK(u24.storage_mts >= 0.5 * step);
     CHECK(u24.storage_mts <= 1.1 * step);
-    CHECK(u24.dominant() == "storage");
+    CHECK(u24.dominant == "storage");
     // the exact mapping is the same in both depth ranges: whatever gl loses is arithmetic
     CHECK(u24_gl.storage_mts == u24.storage_mts);
     CHECK(f32_gl.storage_mts == f32.storage_mts);
@@ -82,7 +82,7 @@ TEST_CASE("attribution: storage limits reversed unorm24, arithmetic limits rever
     CHECK(f32_gl.arithmetic_mts == f32_gl.mts);
     // gl's 0.5 z + 0.5 in binary32 throws away what reversed float32 gains in [0,1]
     CHECK(f32_gl.arithmetic_mts > 10 * f32.arithmetic_mts);
-    CHECK(f32_gl.dominant() == "arithmetic");
+    CHECK(f32_gl.dominant == "arithmetic");
   }
 }
 
@@ -120,7 +120,7 @@ TEST_CASE("random valid scenes: rows keep their invariants", "[stability][proper
       if (c.attribute) {
         CHECK_FALSE(std::isnan(r.storage_mts));
         CHECK_FALSE(std::isnan(r.arithmetic_mts));
-        CHECK_FALSE(r.dominant().empty());
+        CHECK_FALSE(r.dominant.empty());
       }
     }
   }
