@@ -115,11 +115,11 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
         fresh.push_back(z);
         continue;
       }
+      // The row is the computation's, work included, so it reads the same whichever pair (or
+      // shard) ran it; only its measured time is this run's: none.
       MtsRow r = it->second;
       r.pair = pair;
-      r.fragment_pairs = r.launches = 0;
       r.seconds = r.kernel_seconds = 0;
-      r.shared = true;
       shared.push_back(r);
       if (control.on_row) control.on_row(r);
     }
@@ -140,6 +140,7 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
         for (const auto& r : rows) control.on_row(r);
     }
     run.info.launches += ev.launches();
+    run.info.evaluated_pairs += ev.fragment_pairs();
     run.info.kernel_seconds += ev.kernel_seconds();
     if (log) {
       const auto& w = ev.pairs_by_outcome();

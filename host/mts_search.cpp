@@ -68,7 +68,6 @@ std::string MtsRow::flags() const {
   add(non_monotone, "non_monotone");
   add(uncovered, "uncovered");
   add(beyond_far, "beyond_far_plane");
-  add(shared, "shared");
   return f;
 }
 

@@ -75,7 +75,6 @@ struct MtsRow {
   bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,
        uncovered = false;
   bool beyond_far = false;  // z past the far plane of a technique that has one: not searched
-  bool shared = false;      // computed exactly as an earlier pair's row (host/mts_run.cpp): no work of its own
   // Over every probe (search and stiffness): the largest separation that fought and the
   // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
   // upper MTS (every clean answer lies above it). 0 / +inf when there is none.

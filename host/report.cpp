@@ -70,9 +70,10 @@ std::string footer(const RunInfo& run) {
   std::string s = fmt::format("fragment pairs evaluated: {}, kernel variants: {}", run.fragment_pairs,
                               run.variants.size());
   if (run.timing && run.wall_seconds > 0)
-    s += fmt::format(", kernel launches: {}, wall time: {:.2f} s (kernels {:.2f} s), {:.3g} fragment pairs/s",
-                     run.launches, run.wall_seconds, run.kernel_seconds,
-                     static_cast<double>(run.fragment_pairs) / run.wall_seconds);
+    s += fmt::format(", kernel launches: {}, wall time: {:.2f} s (kernels {:.2f} s), {} evaluated by this run, "
+                     "{:.3g} fragment pairs/s",
+                     run.launches, run.wall_seconds, run.kernel_seconds, run.evaluated_pairs,
+                     static_cast<double>(run.evaluated_pairs) / run.wall_seconds);
   return s;
 }
 

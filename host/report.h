@@ -14,7 +14,9 @@ namespace depthprec {
 struct RunInfo {
   std::string device;
   std::vector<std::string> variants;  // kernel variants built, as labels
-  uint64_t fragment_pairs = 0;
+  uint64_t fragment_pairs = 0;  // the rows' work: what the measurement takes, however it was run
+  uint64_t evaluated_pairs = 0;  // what this process's kernels evaluated (rows taken over from an
+                                 // identical computation, or resumed, cost nothing): the rate's numerator
   uint64_t launches = 0;
   double wall_seconds = 0;
   double kernel_seconds = 0;

@@ -78,7 +78,6 @@ MtsRow row_from_json(const json& j) {
       else if (f == "non_monotone") r.non_monotone = true;
       else if (f == "uncovered") r.uncovered = true;
       else if (f == "beyond_far_plane") r.beyond_far = true;
-      else if (f == "shared") r.shared = true;
       else throw InputError(fmt::format("unknown row flag '{}'", f));
     }
   } catch (const json::exception& e) {
