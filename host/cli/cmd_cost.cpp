@@ -155,10 +155,10 @@ std::string render_cost_output(const nlohmann::json& header, const std::vector<n
   if (timing) cols.push_back({"ns/pair"});
   for (const char* c : {"median mts/vb", "unresolvable", "lj ae"}) cols.push_back({c});
   cols.push_back({"structural cost on a GPU", true});
-  return fmt::format("Cost and precision per technique (scene {}): ns per fragment pair of the kernel's "
-                     "depth path (timing pass, near-MTS probes), median MTS over the vertex bound across "
+  return fmt::format("Cost and precision per technique (scene {}): {}median MTS over the vertex bound across "
                      "the scene's distances, Lapidous-Jiao ae where the technique is one of its buffers\n\n",
-                     header.value("scene_name", std::string("?"))) +
+                     header.value("scene_name", std::string("?")),
+                     timing ? "ns per fragment pair of the kernel's depth path (timing pass, near-MTS probes), " : "") +
          render_cells(cols, cells, out.format_out);
 }
 
