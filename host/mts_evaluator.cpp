@@ -33,6 +33,47 @@ int batch_frames(int done, int total) {
   return std::min(want, total - done);
 }
 
+std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::vector<size_t>& active,
+                                  int first_frame, int frames, size_t kernel_h, std::vector<ProbeResult>& results,
+                                  std::vector<bool>& decided, uint64_t& after_decision) {
+  std::vector<uint64_t> probe_pairs(active.size(), 0);
+  for (size_t i = 0; i < active.size(); ++i) {
+    ProbeResult& r = results[active[i]];
+    for (int f = 0; f < frames; ++f) {
+      uint32_t flags = 0;
+      uint64_t frame_pairs = 0;
+      for (size_t y = 0; y < kernel_h; ++y) {
+        const uint32_t v = rows[(i * frames + f) * kernel_h + y];
+        flags |= v;
+        frame_pairs += v >> kCountShift;
+      }
+      probe_pairs[i] += frame_pairs;
+      if (decided[active[i]]) {  // frames after the deciding one: work, not outcome
+        after_decision += frame_pairs;
+        continue;
+      }
+      r.frames = first_frame + f + 1;
+      r.any_clipped |= (flags & kClipped) != 0;
+      r.any_uncovered |= (flags & kUncovered) != 0;
+      if (flags & kNonFinite) {
+        r.any_non_finite = true;
+        r.outcome = Outcome::non_finite;
+        decided[active[i]] = true;
+      } else if (flags & kFight) {
+        r.outcome = Outcome::fight;
+        decided[active[i]] = true;
+      }
+    }
+    r.fragment_pairs += probe_pairs[i];
+  }
+  return probe_pairs;
+}
+
+void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided) {
+  for (size_t i = 0; i < results.size(); ++i)
+    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
+}
+
 const char* to_string(Outcome o) {
   switch (o) {
     case Outcome::clean: return "clean";
@@ -138,38 +179,10 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     wall_seconds_ += secs;
     kernel_seconds_ += ksecs;
 
+    const std::vector<uint64_t> probe_pairs =
+        fold_launch(rows, active, done, frames, kh, results, decided, after_decision_);
     uint64_t launch_pairs = 0;
-    std::vector<uint64_t> probe_pairs(active.size(), 0);
-    for (size_t i = 0; i < active.size(); ++i) {
-      ProbeResult& r = results[active[i]];
-      for (int f = 0; f < frames; ++f) {
-        uint32_t flags = 0;
-        uint64_t frame_pairs = 0;
-        for (cl_uint y = 0; y < kh; ++y) {
-          const uint32_t v = rows[(i * frames + f) * kh + y];
-          flags |= v;
-          frame_pairs += v >> kCountShift;
-        }
-        probe_pairs[i] += frame_pairs;
-        if (decided[active[i]]) {  // frames after the deciding one: work, not outcome
-          after_decision_ += frame_pairs;
-          continue;
-        }
-        r.frames = done + f + 1;
-        r.any_clipped |= (flags & kClipped) != 0;
-        r.any_uncovered |= (flags & kUncovered) != 0;
-        if (flags & kNonFinite) {
-          r.any_non_finite = true;
-          r.outcome = Outcome::non_finite;
-          decided[active[i]] = true;
-        } else if (flags & kFight) {
-          r.outcome = Outcome::fight;
-          decided[active[i]] = true;
-        }
-      }
-      r.fragment_pairs += probe_pairs[i];
-      launch_pairs += probe_pairs[i];
-    }
+    for (const uint64_t n : probe_pairs) launch_pairs += n;
     for (size_t i = 0; i < active.size(); ++i) {
       const double share = launch_pairs ? static_cast<double>(probe_pairs[i]) / static_cast<double>(launch_pairs)
                                         : 1.0 / static_cast<double>(active.size());
@@ -180,10 +193,8 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     pairs_ += launch_pairs;
     done += frames;
   }
-  for (size_t i = 0; i < probes.size(); ++i) {
-    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
-    by_outcome_[static_cast<size_t>(results[i].outcome)] += results[i].fragment_pairs;
-  }
+  finish_outcomes(results, decided);
+  for (const auto& r : results) by_outcome_[static_cast<size_t>(r.outcome)] += r.fragment_pairs;
   return results;
 }
 

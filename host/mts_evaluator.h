@@ -53,6 +53,17 @@ class ProbeEvaluator {
 // probe needs every frame, so grow.
 int batch_frames(int done, int total);
 
+// One launch's row words (flags | fragment pairs << 8 per (active probe, frame, kernel row), the
+// layout kernels/mts.cl and kernels/mts_exact.cl share), folded frame by frame into the active
+// probes' results: a probe is decided at its first frame with a fight or a non-finite value.
+// Returns each active probe's fragment pairs (all frames); those of frames after a probe's
+// deciding one are also added to after_decision.
+std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::vector<size_t>& active,
+                                  int first_frame, int frames, size_t kernel_h, std::vector<ProbeResult>& results,
+                                  std::vector<bool>& decided, uint64_t& after_decision);
+// After the last frame: an undecided probe that saw clipping is clipped, not clean.
+void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided);
+
 class MtsEvaluator : public ProbeEvaluator {
  public:
   MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair);

@@ -11,8 +11,6 @@ namespace depthprec {
 
 namespace {
 
-constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4;
-constexpr int kCountShift = 8;
 constexpr size_t kLocal = 16;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -57,19 +55,20 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
     const int frames = batch_frames(done, scene_.frames);
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<double> planes(active.size() * frames * 2 * 16);
-    for (size_t i = 0; i < active.size(); ++i)
+    for (size_t i = 0; i < active.size(); ++i) {
+      const Probe& pr = probes[active[i]];
+      // the mapping's near and far ride in the spare centre.w slots: plane A's layer for
+      // layered, so every probe of a launch keeps its own
+      const ProbeConstants pc = probe_constants(scene_, pair_, pr.z);
       for (int f = 0; f < frames; ++f)
         for (int p = 0; p < 2; ++p) {
-          const Probe& pr = probes[active[i]];
           const auto M = model_matrix_f64(scene_, p == 0 ? pr.z : pr.z + pr.s, done + f);
           double* dst = planes.data() + ((i * frames + f) * 2 + p) * 16;
           for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 3; ++r) dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
-          // the mapping's near and far ride in the spare centre.w slots: plane A's layer for
-          // layered, so every probe of a launch keeps its own
-          const ProbeConstants pc = probe_constants(scene_, pair_, pr.z);
           dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
         }
+    }
     cl::Buffer plane_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(double) * planes.size(),
                          planes.data());
     const size_t items = active.size() * frames * kh;
@@ -91,34 +90,15 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
     std::vector<uint32_t> rows(items);
     rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    for (size_t i = 0; i < active.size(); ++i) {
-      ProbeResult& r = results[active[i]];
-      r.seconds += secs / static_cast<double>(active.size());
-      r.launches += 1;
-      for (int f = 0; f < frames; ++f) {
-        uint32_t flags = 0;
-        for (cl_uint y = 0; y < kh; ++y) {
-          const uint32_t v = rows[(i * frames + f) * kh + y];
-          flags |= v;
-          r.fragment_pairs += v >> kCountShift;
-        }
-        if (decided[active[i]]) continue;
-        r.frames = done + f + 1;
-        r.any_clipped |= (flags & kClipped) != 0;
-        if (flags & kNonFinite) {
-          r.any_non_finite = true;
-          r.outcome = Outcome::non_finite;
-          decided[active[i]] = true;
-        } else if (flags & kFight) {
-          r.outcome = Outcome::fight;
-          decided[active[i]] = true;
-        }
-      }
+    uint64_t after_decision = 0;  // work the -v breakdown counts for the emulated pipeline only
+    fold_launch(rows, active, done, frames, kh, results, decided, after_decision);
+    for (const size_t i : active) {
+      results[i].seconds += secs / static_cast<double>(active.size());
+      results[i].launches += 1;
     }
     done += frames;
   }
-  for (size_t i = 0; i < probes.size(); ++i)
-    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
+  finish_outcomes(results, decided);
   return results;
 }
 
