@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cli/commands.h"
+#include "host/batch.h"
 #include "host/cli/scene_options.h"
 #include "host/errors.h"
 #include "host/mts_run.h"
@@ -21,15 +22,23 @@ struct MergeOptions {
   OutputOptions out;
 };
 
-void merge_rows(const MergeOptions& o) {
+nlohmann::json read_json(const std::string& f) {
+  std::ifstream in(f);
+  if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
+  auto j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object())
+    throw InputError(fmt::format("merge: '{}' is not a JSON output of a batch command (--format-out json)", f));
+  return j;
+}
+
+void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) {
   nlohmann::json scene_json;
   std::string kind, device, source;
   std::map<std::string, MtsRow> rows;
-  for (const auto& f : o.files) {
-    std::ifstream in(f);
-    if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
-    const auto j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("rows") || !j.contains("scene"))
+  for (size_t k = 0; k < docs.size(); ++k) {
+    const std::string& f = o.files[k];
+    const nlohmann::json& j = docs[k];
+    if (!j.contains("rows") || !j.contains("scene"))
       throw InputError(fmt::format("merge: '{}' is not a JSON output of mts or table (--format-out json)", f));
     if (scene_json.is_null()) {
       scene_json = j["scene"];
@@ -62,30 +71,25 @@ void merge_rows(const MergeOptions& o) {
   write_output(o.out.output, text);
 }
 
-nlohmann::json read_json(const std::string& f) {
-  std::ifstream in(f);
-  if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
-  auto j = nlohmann::json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.is_object())
-    throw InputError(fmt::format("merge: '{}' is not a JSON output of a batch command (--format-out json)", f));
-  return j;
-}
-
-// lj-table, tradeoff, cost: shard i/N holds the units k = i - 1, i - 1 + N, ... in order, so the
+// lj-table, tradeoff, cost, pipelines: shard i/N holds the units k = i - 1, i - 1 + N, ... in order, so the
 // whole batch's records interleave the shards'.
-void merge_records(const MergeOptions& o, const std::string& kind) {
+void merge_records(const MergeOptions& o, const std::string& kind, const std::vector<nlohmann::json>& docs) {
   std::map<int, std::vector<nlohmann::json>> parts;  // shard index -> records
   nlohmann::json header;
   int count = 0;
-  for (const auto& f : o.files) {
-    nlohmann::json j = read_json(f);
+  for (size_t k = 0; k < docs.size(); ++k) {
+    const std::string& f = o.files[k];
+    const nlohmann::json& j = docs[k];
     if (j.value("kind", "") != kind || !j.contains("records"))
       throw InputError(fmt::format("merge: '{}' is not a {} output (--format-out json)", f, kind));
-    int i = 1, n = 1;
-    char tail = 0;
     const std::string shard = j.value("shard", "1/1");
-    if (std::sscanf(shard.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || i < 1 || i > n)
+    Shard part;
+    try {
+      part = Shard::parse(shard);
+    } catch (const Error&) {
       throw InputError(fmt::format("merge: '{}' has a bad shard '{}'", f, shard));
+    }
+    const int i = part.index + 1, n = part.count;
     nlohmann::json h = j;
     for (const char* k : {"records", "shard", "levels", "device"}) h.erase(k);
     if (header.is_null()) {
@@ -124,9 +128,11 @@ void merge_records(const MergeOptions& o, const std::string& kind) {
 void run_merge(const MergeOptions& o) {
   if (o.files.empty()) throw Error(ExitCode::usage, "merge: name the JSON outputs of the shards");
   check_writable(o.out.output);
-  const std::string kind = read_json(o.files.front()).value("kind", "mts");
-  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines") merge_records(o, kind);
-  else merge_rows(o);
+  std::vector<nlohmann::json> docs;
+  for (const auto& f : o.files) docs.push_back(read_json(f));
+  const std::string kind = docs.front().value("kind", "mts");
+  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines") merge_records(o, kind, docs);
+  else merge_rows(o, docs);
 }
 
 }  // namespace
@@ -136,7 +142,8 @@ void add_merge_command(CLI::App& app) {
   auto* mcmd = app.add_subcommand(
       "merge",
       "Join the JSON outputs of the shards of a batch (`mts`, `table`, `lj-table`, `tradeoff`,\n"
-      "`cost` with --shard i/N --format-out json) into the output one whole run would write.\n"
+      "`cost`, `pipelines` with --shard i/N --format-out json) into the output one whole run\n"
+      "would write.\n"
       "Example:\n"
       "  depthprec merge part1.json part2.json part3.json part4.json --format-out markdown");
   mcmd->add_option("files", merge->files, "JSON outputs of the shards")->required();
