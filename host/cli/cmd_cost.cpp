@@ -7,11 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/batch.h"
 #include "host/errors.h"
 #include "host/json_number.h"
-#include "host/progress.h"
 #include "host/gnuplot.h"
 #include "host/lj_metric.h"
 #include "host/mts_run.h"
@@ -106,22 +105,18 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
   check_writable(o.out.output);
   if (!o.plot.empty() && o.out.no_timing)
     throw Error(ExitCode::usage, "cost: --plot needs the timing pass (drop --no-timing)");
-  const Shard shard = Shard::parse(o.batch.shard);
-  RowJournal journal(o.out.output, o.batch.resume);
-  OpenClRuntime rt(g.device);
   const bool timing = !o.out.no_timing;
-  nlohmann::json header = batch_header("cost", rt.description(), o.batch.shard);
-  header["scene"] = scene.json;
-  header["scene_name"] = scene.name;
-  std::vector<BatchUnit> units;
-  for (const EvalPair& pair : scene.evaluate)
-    units.push_back({pair.label(), [&rt, &scene, pair, timing] { return cost_record(rt, scene, pair, timing); }});
-  const auto records = run_batch(units, journal, shard, "cost", !g.quiet && stderr_is_terminal(),
-                                 [&](const std::vector<nlohmann::json>& done) {
-                                   write_output("", render_cost_output(header, done, o.out));
-                                 });
-  write_output(o.out.output, render_cost_output(header, records, o.out));
-  journal.remove();
+  const auto records = run_record_batch(
+      "cost", o.out, o.batch, g,
+      [&scene, timing](OpenClRuntime& rt, nlohmann::json& header) {
+        header["scene"] = scene.json;
+        header["scene_name"] = scene.name;
+        std::vector<BatchUnit> units;
+        for (const EvalPair& pair : scene.evaluate)
+          units.push_back({pair.label(), [&rt, &scene, pair, timing] { return cost_record(rt, scene, pair, timing); }});
+        return units;
+      },
+      render_cost_output);
   if (o.plot.empty()) return;
   std::vector<CostPoint> points;
   for (const auto& r : records)

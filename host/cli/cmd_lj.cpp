@@ -7,10 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/batch.h"
 #include "host/json_number.h"
-#include "host/progress.h"
 #include "host/errors.h"
 #include "host/gnuplot.h"
 #include "host/lj_metric.h"
@@ -314,17 +313,13 @@ namespace {
 
 void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
   check_writable(o.out.output);
-  const Shard shard = Shard::parse(o.batch.shard);
-  RowJournal journal(o.out.output, o.batch.resume);
-  OpenClRuntime rt(g.device);
-  nlohmann::json header = batch_header("lj-table", rt.description(), o.batch.shard);
-  header["samples"] = o.samples;
-  const auto records = run_batch(lj_table_units(rt, o.samples), journal, shard, "lj-table",
-                                 !g.quiet && stderr_is_terminal(), [&](const std::vector<nlohmann::json>& done) {
-                                   write_output("", render_lj_table_output(header, done, o.out));
-                                 });
-  write_output(o.out.output, render_lj_table_output(header, records, o.out));
-  journal.remove();
+  const auto records = run_record_batch(
+      "lj-table", o.out, o.batch, g,
+      [&o](OpenClRuntime& rt, nlohmann::json& header) {
+        header["samples"] = o.samples;
+        return lj_table_units(rt, o.samples);
+      },
+      render_lj_table_output);
   if (!o.plot.empty()) plot_lj_table(by_key(records), o.plot);
 }
 

@@ -8,13 +8,12 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "host/batch.h"
 #include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/errors.h"
 #include "host/json_number.h"
 #include "host/mts_run.h"
-#include "host/progress.h"
 #include "host/report.h"
 #include "host/text_table.h"
 
@@ -103,21 +102,17 @@ namespace {
 void run_pipelines(const PipelinesOptions& o, const GlobalOptions& g) {
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
-  const Shard shard = Shard::parse(o.batch.shard);
-  RowJournal journal(o.out.output, o.batch.resume);
-  OpenClRuntime rt(g.device);
-  nlohmann::json header = batch_header("pipelines", rt.description(), o.batch.shard);
-  header["scene"] = scene.json;
-  header["scene_name"] = scene.name;
-  std::vector<BatchUnit> units;
-  for (const EvalPair& pair : scene.evaluate)
-    units.push_back({pair.label(), [&rt, &scene, pair] { return pair_record(rt, scene, pair); }});
-  const auto records = run_batch(units, journal, shard, "pipelines", !g.quiet && stderr_is_terminal(),
-                                 [&](const std::vector<nlohmann::json>& done) {
-                                   write_output("", render_pipelines_output(header, done, o.out));
-                                 });
-  write_output(o.out.output, render_pipelines_output(header, records, o.out));
-  journal.remove();
+  run_record_batch(
+      "pipelines", o.out, o.batch, g,
+      [&scene](OpenClRuntime& rt, nlohmann::json& header) {
+        header["scene"] = scene.json;
+        header["scene_name"] = scene.name;
+        std::vector<BatchUnit> units;
+        for (const EvalPair& pair : scene.evaluate)
+          units.push_back({pair.label(), [&rt, &scene, pair] { return pair_record(rt, scene, pair); }});
+        return units;
+      },
+      render_pipelines_output);
 }
 
 }  // namespace

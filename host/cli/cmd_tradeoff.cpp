@@ -7,12 +7,12 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/batch.h"
 #include "host/errors.h"
 #include "host/gnuplot.h"
 #include "host/json_number.h"
-#include "host/progress.h"
 #include "host/row_json.h"
 #include "host/mts_run.h"
 #include "host/text_table.h"
@@ -148,26 +148,22 @@ std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& reco
 void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
   const Scene base = o.scene.load();
   check_writable(o.out.output);
-  const Shard shard = Shard::parse(o.batch.shard);
-  if (!shard.holds(0) && o.out.format_out != "json")
+  if (!Shard::parse(o.batch.shard).holds(0) && o.out.format_out != "json")
     throw Error(ExitCode::usage, "tradeoff --shard: this shard does not run the reference level the errors are "
                                  "relative to; write shards with --format-out json and render them with merge");
-  RowJournal journal(o.out.output, o.batch.resume);
-  OpenClRuntime rt(g.device);
-  nlohmann::json header = batch_header("tradeoff", rt.description(), o.batch.shard);
-  header["scene"] = base.json;
-  header["scene_name"] = base.name;
-  header["pairs"] = base.evaluate.size();
-  header["distances"] = base.distances.size();
-  std::vector<BatchUnit> units;
-  for (const Level& lv : ladder())
-    units.push_back({lv.name, [&rt, &base, lv] { return level_record(rt, base, lv); }});
-  const auto records = run_batch(units, journal, shard, "tradeoff", !g.quiet && stderr_is_terminal(),
-                                 [&](const std::vector<nlohmann::json>& done) {
-                                   write_output("", render_tradeoff_output(header, done, o.out));
-                                 });
-  write_output(o.out.output, render_tradeoff_output(header, records, o.out));
-  journal.remove();
+  const auto records = run_record_batch(
+      "tradeoff", o.out, o.batch, g,
+      [&base](OpenClRuntime& rt, nlohmann::json& header) {
+        header["scene"] = base.json;
+        header["scene_name"] = base.name;
+        header["pairs"] = base.evaluate.size();
+        header["distances"] = base.distances.size();
+        std::vector<BatchUnit> units;
+        for (const Level& lv : ladder())
+          units.push_back({lv.name, [&rt, &base, lv] { return level_record(rt, base, lv); }});
+        return units;
+      },
+      render_tradeoff_output);
   if (!o.plot.empty()) plot_tradeoff(evaluate_levels(records), !o.out.no_timing, o.plot);
 }
 

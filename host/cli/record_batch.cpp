@@ -1,0 +1,26 @@
+#include "host/cli/record_batch.h"
+
+#include "host/progress.h"
+#include "host/report.h"
+
+namespace depthprec::cli {
+
+std::vector<nlohmann::json> run_record_batch(
+    const std::string& kind, const OutputOptions& out, const BatchOptions& batch, const GlobalOptions& global,
+    const std::function<std::vector<BatchUnit>(OpenClRuntime& rt, nlohmann::json& header)>& prepare,
+    const RecordRenderer& render) {
+  const Shard shard = Shard::parse(batch.shard);
+  RowJournal journal(out.output, batch.resume);
+  OpenClRuntime rt(global.device);
+  nlohmann::json header = batch_header(kind, rt.description(), batch.shard);
+  const std::vector<BatchUnit> units = prepare(rt, header);
+  const auto records = run_batch(units, journal, shard, kind, !global.quiet && stderr_is_terminal(),
+                                 [&](const std::vector<nlohmann::json>& done) {
+                                   write_output("", render(header, done, out));
+                                 });
+  write_output(out.output, render(header, records, out));
+  journal.remove();
+  return records;
+}
+
+}  // namespace depthprec::cli
