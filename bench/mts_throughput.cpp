@@ -26,15 +26,15 @@ int main(int argc, char** argv) {
   const std::string side = argc > 3 ? argv[3] : "200";
   const Scene scene = load_scene("", {"kernel=[" + side + "," + side + "]", "viewport=[" + side + "," + side + "]"});
   OpenClRuntime rt;
-  fmt::print("{:<20} {:<9} {:<5} {:>14} {:>10} {:>14} {:>9}\n", "technique", "format", "probes",
+  fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10} {:>14} {:>9}\n", "technique", "format", "probes",
              "fragment pairs", "seconds", "pairs/s", "ns/pair");
   for (const auto& t : techniques)
     for (const auto& f : formats)
-      for (const TimingRegime regime : {TimingRegime::far, TimingRegime::near}) {
+      for (const TimingRegime regime : {TimingRegime::far, TimingRegime::near, TimingRegime::at_mts}) {
         const EvalPair pair{parse_technique(t), f, DepthRange::zero_to_one};
         const Throughput r = time_depth_path(rt, scene, pair, regime);
-        fmt::print("{:<20} {:<9} {:<5} {:>14} {:>10.3f} {:>14.3g} {:>9.2f}\n", t, f,
-                   regime == TimingRegime::far ? "far" : "near", r.fragment_pairs, r.wall_seconds,
+        fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10.3f} {:>14.3g} {:>9.2f}\n", t, f,
+                   to_string(regime), r.fragment_pairs, r.wall_seconds,
                    r.pairs_per_second(), r.ns_per_pair());
       }
 }

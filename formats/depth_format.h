@@ -150,9 +150,32 @@ DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf, df_u64)
 #if defined(DF_OPENCL)
 DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf16, ulong16)
 
+#if defined(cl_khr_fp64)
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+/* unorm<b> for b <= 29 in binary64: d * (2^b - 1) is exact there (a 24-bit significand times a
+ * b-bit integer), so one product and one rounding to an integer give the code df_encode_unorm
+ * computes in 64-bit integers, in a few instructions per lane instead of a 64-bit multiply and
+ * variable shifts. The exhaustive format proof (kernels/encode.cl) compares the two. */
+DF_FN uint16 df_encode_unorm_f64_16(float16 d, df_format f) {
+  const uint16 u = as_uint16(d);
+  const int16 zero = (u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u;
+  const int16 big = !zero && d >= 1.0f; /* and +inf */
+  const float16 in = (zero || big) ? (float16)0.0f : d; /* no inf or NaN reaches the conversion */
+  const double16 p = convert_double16(in) * (double16)((double)f.max_code);
+  /* 0 <= p < 2^29: adding 2^52 rounds p to an integer, half to even, in the adder itself (the
+   * library rint is slow in software); the conversion truncates, which is floor here. */
+  const double16 r = f.rounding == DF_ROUND_NEAREST_EVEN ? (p + 0x1p52) - 0x1p52 : p;
+  const uint16 q = convert_uint16(r);
+  return big ? (uint16)f.max_code : (zero ? (uint16)0 : q);
+}
+#endif
+
 /* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by lane through the
  * scalar encoder for the other float formats. */
 DF_FN uint16 df_encode16(float16 d, df_format f) {
+#if defined(cl_khr_fp64)
+  if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16(d, f);
+#endif
   if (f.kind == DF_KIND_UNORM) return convert_uint16(df_encode_unorm_bf16(convert_ulong16(as_uint16(d)), f));
   if (f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush) {
     const uint16 u = as_uint16(d);

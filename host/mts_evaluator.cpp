@@ -11,6 +11,12 @@ constexpr int kTriStride = 32;
 constexpr int kProbeStride = 24;
 constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8;
 constexpr int kCountShift = 8;
+constexpr uint32_t kVertexNonFinite = 1;  // kernels/mts.cl V_NONFINITE
+
+// Kernel rows per band that mts_frame_bounds decides at once from code bounds: a band's depth
+// range grows with its height, so smaller bands are decided closer to the MTS but cost more
+// bounds work per row.
+constexpr cl_uint kBandRows = 32;
 
 // Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
 // launch (a new size for every batch shape) recompiles again and again.
@@ -84,11 +90,12 @@ const char* to_string(Outcome o) {
   return "?";
 }
 
-MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair)
-    : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)) {
+MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool code_bounds)
+    : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)), code_bounds_(code_bounds) {
   const cl::Program program = rt_.program(variant_.program, variant_.options);
   setup_ = cl::Kernel(program, "mts_setup");
   raster_ = cl::Kernel(program, "mts_raster");
+  bounds_ = cl::Kernel(program, "mts_frame_bounds");
   codes_ = cl::Kernel(program, "mts_codes");
 }
 
@@ -123,9 +130,13 @@ cl::Event MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vecto
   setup_.setArg(2, static_cast<cl_uint>(frames));
   setup_.setArg(3, 0.5f * static_cast<float>(scene_.viewport_w));
   setup_.setArg(4, 0.5f * static_cast<float>(scene_.viewport_h));
-  setup_.setArg(5, tris);
-  setup_.setArg(6, vflags);
-  setup_.setArg(7, static_cast<cl_uint>(planes));
+  setup_.setArg(5, origin_x());
+  setup_.setArg(6, origin_y());
+  setup_.setArg(7, static_cast<cl_uint>(scene_.kernel_w));
+  setup_.setArg(8, static_cast<cl_uint>(scene_.kernel_h));
+  setup_.setArg(9, tris);
+  setup_.setArg(10, vflags);
+  setup_.setArg(11, static_cast<cl_uint>(planes));
   cl::Event done;
   rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal),
                                    nullptr, &done);
@@ -144,8 +155,8 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
-  const float ox = static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2);
-  const float oy = static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2);
+  const float ox = origin_x(), oy = origin_y();
+  const cl_uint bands = (kh + kBandRows - 1) / kBandRows;
   int done = 0;
   while (done < scene_.frames) {
     std::vector<size_t> active;
@@ -157,6 +168,29 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     cl::Buffer probe_buf, tris, vflags;
     const cl::Event setup_done = setup(probes, active, done, frames, probe_buf, tris, vflags);
     const size_t items = active.size() * frames * kh;
+    const size_t band_items = active.size() * frames * bands;
+    cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items);
+    bounds_.setArg(0, probe_buf);
+    bounds_.setArg(1, tris);
+    bounds_.setArg(2, vflags);
+    bounds_.setArg(3, kw);
+    bounds_.setArg(4, kh);
+    bounds_.setArg(5, ox);
+    bounds_.setArg(6, oy);
+    bounds_.setArg(7, static_cast<cl_uint>(frames));
+    bounds_.setArg(8, bands);
+    bounds_.setArg(9, kBandRows);
+    bounds_.setArg(10, decided_bands);
+    bounds_.setArg(11, static_cast<cl_uint>(band_items));
+    cl::Event bounds_done;
+    if (code_bounds_) {
+      rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items), cl::NDRange(kLocal),
+                                       nullptr, &bounds_done);
+      ++launches_;
+    } else {
+      rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0, sizeof(uint32_t) * band_items, nullptr,
+                                    &bounds_done);
+    }
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
     raster_.setArg(0, probe_buf);
@@ -167,15 +201,25 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     raster_.setArg(5, ox);
     raster_.setArg(6, oy);
     raster_.setArg(7, static_cast<cl_uint>(frames));
-    raster_.setArg(8, result);
-    raster_.setArg(9, static_cast<cl_uint>(items));
+    raster_.setArg(8, decided_bands);
+    raster_.setArg(9, bands);
+    raster_.setArg(10, kBandRows);
+    raster_.setArg(11, result);
+    raster_.setArg(12, static_cast<cl_uint>(items));
     cl::Event raster_done;
     rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal),
                                      nullptr, &raster_done);
+    std::vector<uint32_t> band_decided(band_items);
+    rt_.queue().enqueueReadBuffer(decided_bands, CL_FALSE, 0, sizeof(uint32_t) * band_items, band_decided.data());
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
+    for (size_t b = 0; b < band_items; ++b)
+      if (band_decided[b]) {
+        const cl_uint first_row = static_cast<cl_uint>(b % bands) * kBandRows;
+        by_bounds_ += static_cast<uint64_t>(std::min(kBandRows, kh - first_row)) * kw;
+      }
     ++launches_;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double ksecs = device_seconds(setup_done) + device_seconds(raster_done);
+    const double ksecs = device_seconds(setup_done) + device_seconds(bounds_done) + device_seconds(raster_done);
     wall_seconds_ += secs;
     kernel_seconds_ += ksecs;
 
@@ -188,7 +232,7 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
                                         : 1.0 / static_cast<double>(active.size());
       results[active[i]].seconds += secs * share;
       results[active[i]].kernel_seconds += ksecs * share;
-      results[active[i]].launches += 2;  // set-up and raster
+      results[active[i]].launches += code_bounds_ ? 3 : 2;  // set-up, bounds and raster
     }
     pairs_ += launch_pairs;
     done += frames;
@@ -207,8 +251,8 @@ FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
   codes_.setArg(0, probe_buf);
   codes_.setArg(1, tris);
   codes_.setArg(2, kw);
-  codes_.setArg(3, static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2));
-  codes_.setArg(4, static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2));
+  codes_.setArg(3, origin_x());
+  codes_.setArg(4, origin_y());
   codes_.setArg(5, out);
   codes_.setArg(6, kh);
   rt_.queue().enqueueNDRangeKernel(codes_, cl::NullRange, padded(kh), cl::NDRange(kLocal));
@@ -222,8 +266,8 @@ FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
   for (size_t i = 0; i < pixels; ++i) {
     fc.code_a.push_back(raw[4 * i]);
     fc.code_b.push_back(raw[4 * i + 1]);
-    fc.status_a.push_back(vf[0] ? 2 : static_cast<uint8_t>(raw[4 * i + 2]));
-    fc.status_b.push_back(vf[1] ? 2 : static_cast<uint8_t>(raw[4 * i + 3]));
+    fc.status_a.push_back((vf[0] & kVertexNonFinite) ? 2 : static_cast<uint8_t>(raw[4 * i + 2]));
+    fc.status_b.push_back((vf[1] & kVertexNonFinite) ? 2 : static_cast<uint8_t>(raw[4 * i + 3]));
   }
   return fc;
 }

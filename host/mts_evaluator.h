@@ -66,7 +66,9 @@ void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>&
 
 class MtsEvaluator : public ProbeEvaluator {
  public:
-  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair);
+  // code_bounds: decide bands of rows clean from code bounds (mts_frame_bounds) before
+  // rasterising; off only to check that the bounds never change a result.
+  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool code_bounds = true);
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   FrameCodes codes(const Probe& probe, int frame);
@@ -80,6 +82,8 @@ class MtsEvaluator : public ProbeEvaluator {
   // launch batch after a probe's deciding frame: where the work goes (-v prints it).
   const std::array<uint64_t, 4>& pairs_by_outcome() const { return by_outcome_; }
   uint64_t pairs_after_decision() const { return after_decision_; }
+  // Fragment pairs in bands decided clean from code bounds, without rasterising.
+  uint64_t pairs_decided_by_bounds() const { return by_bounds_; }
 
  private:
   // Enqueues the set-up kernel; returns its event.
@@ -91,8 +95,13 @@ class MtsEvaluator : public ProbeEvaluator {
   const Scene& scene_;
   EvalPair pair_;
   KernelVariant variant_;
-  cl::Kernel setup_, raster_, codes_;
-  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0;
+  // The kernel's bottom-left corner in window coordinates (the kernel is centred in the viewport).
+  float origin_x() const { return static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2); }
+  float origin_y() const { return static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2); }
+
+  cl::Kernel setup_, bounds_, raster_, codes_;
+  bool code_bounds_ = true;
+  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0;
   std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
 };

@@ -3,13 +3,28 @@
 #include <chrono>
 #include <cmath>
 
+#include "host/mts_search.h"
+
 namespace depthprec {
+
+const char* to_string(TimingRegime r) {
+  return r == TimingRegime::far ? "far" : r == TimingRegime::near ? "near" : "at_mts";
+}
 
 Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime) {
   std::vector<Probe> probes;
   for (int i = 1; i <= 16; ++i) {
     const double z = std::ldexp(1.0, i);
     probes.push_back({z, regime == TimingRegime::far ? z / 8 : 16 * vertex_bound(z)});
+  }
+  if (regime == TimingRegime::at_mts) {
+    std::vector<double> zs;
+    for (const Probe& p : probes) zs.push_back(p.z);
+    probes.clear();
+    MtsEvaluator search(rt, scene, pair);
+    for (const MtsRow& row : search_pair(search, scene, pair, zs, nullptr, nullptr))
+      if (row.verdict() == Verdict::resolved) probes.push_back({row.z, row.mts * 1.02});
+    if (probes.empty()) return {};
   }
   MtsEvaluator ev(rt, scene, pair);
   ev.run({probes.front()});  // warm-up: builds the program and PoCL's work-group function

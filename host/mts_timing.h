@@ -2,7 +2,9 @@
 // equal work: 16 distances z = 2..2^16, one probe each, timed after a warm-up launch (the program
 // build excluded). "far" probes (s = z/8) are clean and decided mostly from piece ends; "near"
 // probes (s = 16 vertex bounds) sit close to the MTS of good set-ups, where pixels are evaluated
-// one by one: the cost of the technique's depth path.
+// one by one: the cost of the technique's depth path. "at_mts" probes sit just above each
+// distance's MTS (s = 1.02 x the MTS a search finds first, untimed): clean probes where most pixels
+// must be evaluated, the bulk of a search's work once bounds decide the probes far above the MTS.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +13,8 @@
 
 namespace depthprec {
 
-enum class TimingRegime { far, near };
+enum class TimingRegime { far, near, at_mts };
+const char* to_string(TimingRegime r);
 
 struct Throughput {
   uint64_t fragment_pairs = 0;

@@ -93,12 +93,61 @@ static inline float4 mat_vec(__global const float* m, float4 v) {
   return r;
 }
 
+// A certificate that the plane's rasterisation owns every kernel pixel centre (no pixel
+// uncovered), so a frame can be decided from code bounds without walking its rows
+// (mts_frame_bounds). In exact arithmetic the triangles tile the plane's outline; the binary32 edge
+// tests can disagree with that only within their rounding error of an edge line, where two
+// triangles share the edge and compute the same value with opposite signs (exactly one owns the
+// pixel), unless the pixel is also near another edge, i.e. near a vertex. So the certificate asks
+// for: the kernel's pixel area inside every boundary edge's half-plane (the intersection of those
+// half-planes lies inside the outline) with half a pixel to spare; no vertex within 1/8 pixel of a
+// pixel centre in both x and y; all coordinates below 8192 in magnitude (edge-test error below
+// 0.006 px) and no triangle angle below ~6 degrees (mts_setup), so a pixel centre 1/8 px from a
+// vertex is > 0.0125 px from that vertex's other edges. docs/performance.md has the argument.
+#define V_NONFINITE 1u
+#define V_COVERS 2u
+static inline int covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw, uint kh) {
+  const float x0 = ox, x1 = ox + (float)kw, y0 = oy, y1 = oy + (float)kh; /* pixel area */
+  for (int v = 0; v < NV; ++v) {
+    if (!(fabs(xw[v]) <= 8192.0f && fabs(yw[v]) <= 8192.0f)) return 0;
+    if (xw[v] < x0 - 1.0f || xw[v] > x1 + 1.0f || yw[v] < y0 - 1.0f || yw[v] > y1 + 1.0f) continue;
+    const float fx = xw[v] - ox - 0.5f, fy = yw[v] - oy - 0.5f;
+    if (fabs(fx - rint(fx)) < 0.125f && fabs(fy - rint(fy)) < 0.125f) return 0;
+  }
+  /* the reference point: the mean of the four corner vertices, inside the outline */
+  const int c[4] = {0, GRID, NV - 1, NV - 1 - GRID};
+  float rx = 0.0f, ry = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    rx += 0.25f * xw[c[k]];
+    ry += 0.25f * yw[c[k]];
+  }
+  for (int side = 0; side < 4; ++side) {
+    for (int k = 0; k < GRID; ++k) {
+      /* vertices along the side, in grid order: bottom row, right column, top row, left column */
+      const int va = side == 0 ? k : side == 1 ? k * (GRID + 1) + GRID : side == 2 ? GRID * (GRID + 1) + k : k * (GRID + 1);
+      const int vb = side == 0 ? k + 1 : side == 1 ? (k + 1) * (GRID + 1) + GRID : side == 2 ? GRID * (GRID + 1) + k + 1 : (k + 1) * (GRID + 1);
+      const int lo = min(va, vb), hi = max(va, vb);
+      const float ax = xw[lo], ay = yw[lo], dx = xw[hi] - xw[lo], dy = yw[hi] - yw[lo];
+      const float inner = dx * (ry - ay) - dy * (rx - ax);
+      const float margin = 0.5f * (fabs(dx) + fabs(dy)); /* half a pixel: |E| / length >= 0.5 */
+      for (int q = 0; q < 4; ++q) {
+        const float px = (q & 1) ? x1 : x0, py = (q & 2) ? y1 : y0;
+        float E = dx * (py - ay) - dy * (px - ax);
+        if (inner < 0.0f) E = -E;
+        if (!(E > margin)) return 0;
+      }
+    }
+  }
+  return 1;
+}
+
 // Vertex stage, divide, window transform and triangle set-up of one plane in one frame.
 // Global id: (probe * frames + frame) * 2 + plane.
 __kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
                         const uint frames, const float half_w, const float half_h,
-                        __global float* restrict tris, __global uint* restrict vflags,
-                        const uint count) {
+                        const float origin_x, const float origin_y, const uint kernel_w,
+                        const uint kernel_h, __global float* restrict tris,
+                        __global uint* restrict vflags, const uint count) {
   const uint id = get_global_id(0);
   if (id >= count) return;
   const uint probe = id / (frames * 2u);
@@ -146,8 +195,8 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
 #endif
     }
   }
-  vflags[id] = nonfinite;
   __global float* T = tris + id * PLANE_STRIDE;
+  uint shapely = 1u; /* every triangle non-degenerate, no angle below ~6 degrees */
   for (int t = 0; t < NT; ++t) {
     const int quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
     const int a = qj * (GRID + 1) + qi, b = a + 1, c = a + GRID + 2, d = a + GRID + 1;
@@ -178,6 +227,12 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     const float e1x = xw[i1] - xw[i0], e1y = yw[i1] - yw[i0];
     const float e2x = xw[i2] - xw[i0], e2y = yw[i2] - yw[i0];
     const float det = e1x * e2y - e2x * e1y;
+    {
+      const float e3x = xw[i2] - xw[i1], e3y = yw[i2] - yw[i1];
+      const float longest = fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
+      /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
+      if (!(fabs(det) >= 0.1f * longest)) shapely = 0u;
+    }
     const float e1d = dw[i1] - dw[i0], e2d = dw[i2] - dw[i0];
     const float e1q = qw[i1] - qw[i0], e2q = qw[i2] - qw[i0];
     R[T_X0] = xw[i0];
@@ -193,6 +248,10 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     for (int e = 0; e < 3; ++e) R[T_DXDY + e] = R[T_EDGES + 4 * e + 2] / R[T_EDGES + 4 * e + 3];
     ((__global uint*)R)[T_BITS] = bits;
   }
+  vflags[id] = nonfinite | (!nonfinite && shapely &&
+                             covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h)
+                                 ? V_COVERS
+                                 : 0u);
   __global float* SA = T + NT * TRI_STRIDE;
   for (int k = 0; k < NE_PAD; ++k) {
     const int t = k < NE ? k / 3 : 0, e = k < NE ? k % 3 : 0;
@@ -484,6 +543,13 @@ static inline int16 fights16(uint16 code_a, uint16 code_b) {
 #endif
 }
 
+// Codes a piece or band decided from bounds must clear: the library log's error (mts_variant).
+#if DEPTH_FROM == 2 && FRAG_DEPTH == 3
+#define LOG_SLACK_OR_0 LOG_CODE_SLACK
+#else
+#define LOG_SLACK_OR_0 0UL
+#endif
+
 #define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 
 
@@ -503,6 +569,104 @@ static inline int16 fights16(uint16 code_a, uint16 code_b) {
 
 #define MAX_PIECES (2 * MAX_SEG)
 
+// The smallest and largest stored code of one plane over the kernel pixels of rows [r0, r1) that
+// any of its triangles may own (each triangle's bounding box, one pixel wider, clipped to the
+// band), and whether any of them is clipped or non-finite. Depth is monotone in px along a row
+// and, through the row term, in py (every rounding step is monotone), so its extremes over a box
+// of pixel centres lie at the box's corners; the corners are evaluated with the very expressions
+// of the per-pixel loop, 16 at a time (4 triangles x 4 corners).
+typedef struct {
+  ulong lo, hi;
+  int bad;
+} code_bounds_t;
+
+static inline code_bounds_t plane_code_bounds(__global const float* T, __global const float* P, float ox,
+                                              float oy, int W, int r0, int r1) {
+  code_bounds_t b;
+  b.lo = 0xffffffffUL;
+  b.hi = 0UL;
+  b.bad = 0;
+  float c0[16], sl[16], x0[16], rt[16], px[16];
+  int n = 0;
+  for (int t = 0; t <= NT; ++t) {
+    if (t < NT) {
+      __global const float* R = T + t * TRI_STRIDE;
+      float xmin = INFINITY, xmax = -INFINITY;
+      for (int e = 0; e < 3; ++e) {
+        const float ax = R[T_EDGES + 4 * e], bx = ax + R[T_EDGES + 4 * e + 2];
+        xmin = fmin(xmin, fmin(ax, bx));
+        xmax = fmax(xmax, fmax(ax, bx));
+      }
+      /* pixel indices whose centre lies within the box widened by one pixel */
+      const int i0 = max((int)ceil(fmax(xmin - 1.0f - ox - 0.5f, -1.0f)), 0);
+      const int i1 = min((int)floor(fmin(xmax + 1.0f - ox - 0.5f, (float)W)), W - 1);
+      const int j0 = max((int)ceil(fmax(R[T_YMIN] - 1.0f - oy - 0.5f, -1.0f)), r0);
+      const int j1 = min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)r1)), r1 - 1);
+      if (i0 > i1 || j0 > j1) continue;
+      for (int q = 0; q < 4; ++q) {
+        const float py = oy + (float)((q & 2) ? j1 : j0) + 0.5f;
+        const row_plane_t rp = row_plane(T, t, py);
+        c0[n] = rp.c0;
+        sl[n] = rp.slope;
+        x0[n] = rp.x0;
+        rt[n] = rp.row_term;
+        px[n] = ox + (float)((q & 1) ? i1 : i0) + 0.5f;
+        ++n;
+      }
+    }
+    if (n == 16 || (t == NT && n > 0)) {
+      for (int k = n; k < 16; ++k) { /* pad with the first corner */
+        c0[k] = c0[0]; sl[k] = sl[0]; x0[k] = x0[0]; rt[k] = rt[0]; px[k] = px[0];
+      }
+      row_plane16_t rp;
+      rp.c0 = vload16(0, c0);
+      rp.slope = vload16(0, sl);
+      rp.x0 = vload16(0, x0);
+      rp.row_term = vload16(0, rt);
+      const frag16_t f = fragment16(rp, P, vload16(0, px));
+      const ulong16 code = convert_ulong16(f.code);
+      b.bad |= any(f.nonfinite | f.clipped);
+      b.lo = min(b.lo, min(min(min(code.s0, code.s1), min(code.s2, code.s3)), min(min(code.s4, code.s5), min(code.s6, code.s7))));
+      b.lo = min(b.lo, min(min(min(code.s8, code.s9), min(code.sa, code.sb)), min(min(code.sc, code.sd), min(code.se, code.sf))));
+      b.hi = max(b.hi, max(max(max(code.s0, code.s1), max(code.s2, code.s3)), max(max(code.s4, code.s5), max(code.s6, code.s7))));
+      b.hi = max(b.hi, max(max(max(code.s8, code.s9), max(code.sa, code.sb)), max(max(code.sc, code.sd), max(code.se, code.sf))));
+      n = 0;
+    }
+  }
+  return b;
+}
+
+// Decides bands of kernel rows of a (probe, frame) clean without rasterising them, when both
+// planes certainly own every pixel (V_COVERS) and their code bounds over the band exclude a fight:
+// LEQUAL: B's smallest code above A's largest (log depth: by LOG_CODE_SLACK more, as for pieces).
+// Most probes of a search's descent from s = z are decided here. A band that is not decided goes
+// through mts_raster row by row, so the answer never depends on this pass, only the work does.
+// Global id: (probe * frames + frame) * bands + band.
+__kernel void mts_frame_bounds(__global const float* restrict probes, __global const float* restrict tris,
+                               __global const uint* restrict vflags, const uint kernel_w,
+                               const uint kernel_h, const float origin_x, const float origin_y,
+                               const uint frames, const uint bands, const uint band_rows,
+                               __global uint* restrict decided, const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint pf = id / bands, band = id - pf * bands;
+  __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
+  decided[id] = 0u;
+  if (!(vflags[2u * pf] & vflags[2u * pf + 1u] & V_COVERS)) return;
+  const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
+  const code_bounds_t a = plane_code_bounds(tris + (2u * pf) * PLANE_STRIDE, P, origin_x, origin_y,
+                                            (int)kernel_w, r0, r1);
+  if (a.bad) return;
+  const code_bounds_t b = plane_code_bounds(tris + (2u * pf + 1u) * PLANE_STRIDE, P, origin_x, origin_y,
+                                            (int)kernel_w, r0, r1);
+  if (b.bad) return;
+#if COMPARE_GREATER
+  decided[id] = b.hi + LOG_SLACK_OR_0 < a.lo;
+#else
+  decided[id] = b.lo > a.hi + LOG_SLACK_OR_0;
+#endif
+}
+
 // One kernel row of one (probe, frame). The row splits into pieces where both planes' covering
 // triangles stay the same; within a piece each plane's depth is one plane equation, monotone in
 // px (every rounding step of it is monotone), and so is its stored code. The ends of all pieces
@@ -517,15 +681,21 @@ static inline int16 fights16(uint16 code_a, uint16 code_b) {
 __kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
                          __global const uint* restrict vflags, const uint kernel_w,
                          const uint kernel_h, const float origin_x, const float origin_y,
-                         const uint frames, __global uint* restrict result, const uint items) {
+                         const uint frames, __global const uint* restrict decided,
+                         const uint bands, const uint band_rows, __global uint* restrict result,
+                         const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / kernel_h; /* probe * frames + frame */
   const uint row = id - pf * kernel_h;
   const uint probe = pf / frames;
   __global const float* P = probes + probe * PROBE_STRIDE;
-  if (vflags[2u * pf] | vflags[2u * pf + 1u]) {
+  if ((vflags[2u * pf] | vflags[2u * pf + 1u]) & V_NONFINITE) {
     result[id] = R_NONFINITE;
+    return;
+  }
+  if (decided[pf * bands + row / band_rows]) { /* clean from code bounds: mts_frame_bounds */
+    result[id] = kernel_w << R_COUNT_SHIFT;
     return;
   }
   __global const float* TA = tris + (2u * pf) * PLANE_STRIDE;
@@ -539,6 +709,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
   int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
   uint verdict[MAX_PIECES];
+  int ends_ok[MAX_PIECES]; /* both planes finite and unclipped at both ends, so inside too */
   int np = 0;
   FOR_EACH_PIECE({
     px_start[np] = x;
@@ -566,11 +737,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     const int16 nf = a0.nonfinite | a1.nonfinite | b0.nonfinite | b1.nonfinite;
     const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
     const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
-#if DEPTH_FROM == 2 && FRAG_DEPTH == 3
-    const ulong16 slack = (ulong16)LOG_CODE_SLACK;
-#else
-    const ulong16 slack = (ulong16)0;
-#endif
+    const ulong16 slack = (ulong16)LOG_SLACK_OR_0;
 #if COMPARE_GREATER
     const int16 excluded =
         convert_int16(convert_ulong16(max(b0.code, b1.code)) + slack < convert_ulong16(min(a0.code, a1.code)));
@@ -594,6 +761,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
         v = 0u;
       }
       verdict[i] = v;
+      ends_ok[i] = !nfk[k] && !clk[k];
     }
   }
 
@@ -610,6 +778,15 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
       piece = 0u;
       const row_plane16_t ra = broadcast16(row_plane(TA, p_ta[i], py));
       const row_plane16_t rb = broadcast16(row_plane(TBp, p_tb[i], py));
+      if (ends_ok[i]) { /* only the codes matter: one reduction per piece */
+        int16 fight = (int16)0;
+        for (int i0 = x; i0 < x_end; i0 += 16) {
+          const int16 idx = i0 + LANES;
+          const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
+          fight |= (idx < x_end) & fights16(fragment16(ra, P, px).code, fragment16(rb, P, px).code);
+        }
+        piece = any(fight) ? R_FIGHT : 0u;
+      } else
       for (int i0 = x; i0 < x_end; i0 += 16) {
         const int16 idx = i0 + LANES;
         const int16 active = idx < x_end;

@@ -1,0 +1,55 @@
+// mts_frame_bounds decides bands of kernel rows clean from code bounds before any row is
+// rasterised. It may only save work: every probe result must be what the rows alone give.
+#include <catch2/catch.hpp>
+#include <string>
+#include <tuple>
+
+#include "mts_fixture.h"
+
+using namespace depthprec;
+using namespace depthprec::test;
+
+namespace {
+
+// Probes from s = z, where whole frames are decided from bounds, down past the MTS.
+std::vector<Probe> descent() {
+  std::vector<Probe> probes;
+  for (double z : {1.005, 30.0, 3000.0, 2e6})
+    for (double f = 1.0; f > 1e-7; f /= 8) probes.push_back({z, z * f});
+  return probes;
+}
+
+}  // namespace
+
+TEST_CASE("bands decided from code bounds change no probe result", "[mts][bounds]") {
+  // margin 0.9: the planes leave the kernel's border uncovered, so no band may be decided (a square
+  // viewport: the plane is sized to the vertical field of view)
+  for (const std::string margin : {"1.1", "0.9"}) {
+    const Scene scene =
+        load_scene("", {"kernel=[48,48]", "viewport=[48,48]", "frames=12", "plane_margin=" + margin});
+    for (const auto& [t, format, range] : {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+                                           std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+                                           std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+                                           std::tuple{Technique::linear, "unorm16", DepthRange::gl},
+                                           std::tuple{Technique::layered, "e4m12", DepthRange::gl}}) {
+      const EvalPair pair{t, format, range};
+      MtsEvaluator with(runtime(), scene, pair), without(runtime(), scene, pair, false);
+      const std::vector<Probe> probes = descent();
+      const auto a = with.run(probes), b = without.run(probes);
+      for (size_t k = 0; k < probes.size(); ++k) {
+        INFO(pair.label() << " margin " << margin << " z = " << probes[k].z << " s = " << probes[k].s);
+        CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
+        CHECK(a[k].frames == b[k].frames);
+        CHECK(a[k].fragment_pairs == b[k].fragment_pairs);
+        CHECK(a[k].any_clipped == b[k].any_clipped);
+        CHECK(a[k].any_non_finite == b[k].any_non_finite);
+        CHECK(a[k].any_uncovered == b[k].any_uncovered);
+        if (margin == "0.9") CHECK(a[k].any_uncovered);
+      }
+      INFO(pair.label() << " margin " << margin);
+      CHECK(without.pairs_decided_by_bounds() == 0);
+      if (margin == "1.1") CHECK(with.pairs_decided_by_bounds() > 0);
+      else CHECK(with.pairs_decided_by_bounds() == 0);
+    }
+  }
+}
