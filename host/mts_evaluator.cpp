@@ -26,10 +26,10 @@ cl::NDRange padded(size_t n) { return cl::NDRange((n + kLocal - 1) / kLocal * kL
 int triangles(const Scene& s) { return 2 * s.plane_subdivisions * s.plane_subdivisions; }
 
 // Floats per plane in the set-up buffer (kernels/mts.cl PLANE_STRIDE): triangle records, then
-// six arrays of the 3*NT edges padded to a multiple of 16.
+// six arrays of the 3*NT edges padded to a multiple of 16, then each quad row's y-range.
 size_t plane_floats(const Scene& s) {
   const size_t edges = (3 * triangles(s) + 15) / 16 * 16;
-  return static_cast<size_t>(triangles(s)) * kTriStride + 6 * edges;
+  return static_cast<size_t>(triangles(s)) * kTriStride + 6 * edges + 2 * s.plane_subdivisions;
 }
 
 }  // namespace

@@ -46,7 +46,10 @@
 #define E_DY 3
 #define E_DXDY 4
 #define E_BITS 5 /* uint: bit 0 negate, bit 1 owns */
-#define PLANE_STRIDE (NT * TRI_STRIDE + 6 * NE_PAD)
+/* Then each row of quads' y-range (GRID pairs ymin, ymax): the triangles a kernel row can meet
+ * are those of the quad rows whose range holds it, a run of indices. */
+#define Q_YRANGE (NT * TRI_STRIDE + 6 * NE_PAD)
+#define PLANE_STRIDE (Q_YRANGE + 2 * GRID)
 #define PROBE_STRIDE 24
 #define MAT_STRIDE 16
 
@@ -252,6 +255,15 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
                              covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h)
                                  ? V_COVERS
                                  : 0u);
+  for (int qj = 0; qj < GRID; ++qj) {
+    float lo = INFINITY, hi = -INFINITY;
+    for (int t = 2 * GRID * qj; t < 2 * GRID * (qj + 1); ++t) {
+      lo = fmin(lo, T[t * TRI_STRIDE + T_YMIN]);
+      hi = fmax(hi, T[t * TRI_STRIDE + T_YMAX]);
+    }
+    T[Q_YRANGE + 2 * qj] = lo;
+    T[Q_YRANGE + 2 * qj + 1] = hi;
+  }
   __global float* SA = T + NT * TRI_STRIDE;
   for (int k = 0; k < NE_PAD; ++k) {
     const int t = k < NE ? k / 3 : 0, e = k < NE ? k % 3 : 0;
@@ -326,14 +338,13 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   __global const float* SA = T + NT * TRI_STRIDE;
   int elo[NE_PAD], ehi[NE_PAD];
   const float px_first = ox + 0.5f, px_last = ox + (float)(W - 1) + 0.5f;
-  /* only the edges of triangles whose y-range holds the row: a run of indices (one or two rows
-   * of quads) */
+  /* only the edges of the quad rows whose y-range holds the row: a run of indices (one or two
+   * rows of quads); which of their triangles meet the row is decided below */
   int t_first = NT, t_last = -1;
-  for (int t = 0; t < NT; ++t) {
-    __global const float* R = T + t * TRI_STRIDE;
-    if ((TB[t * TRI_STRIDE + T_BITS] & 64u) && R[T_YMIN] <= py && py <= R[T_YMAX]) {
-      t_first = min(t_first, t);
-      t_last = t;
+  for (int qj = 0; qj < GRID; ++qj) {
+    if (T[Q_YRANGE + 2 * qj] <= py && py <= T[Q_YRANGE + 2 * qj + 1]) {
+      t_first = min(t_first, 2 * GRID * qj);
+      t_last = 2 * GRID * (qj + 1) - 1;
     }
   }
   const int g_first = (3 * t_first) / 16 * 16, g_end = 3 * (t_last + 1);
