@@ -9,7 +9,7 @@ namespace {
 
 constexpr int kTriStride = 32;
 constexpr int kProbeStride = 24;
-constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8;
+constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8, kBounds = 16;
 constexpr int kCountShift = 8;
 constexpr uint32_t kVertexNonFinite = 1;  // kernels/mts.cl V_NONFINITE
 
@@ -37,6 +37,13 @@ size_t plane_floats(const Scene& s) {
 int batch_frames(int done, int total) {
   const int want = done == 0 ? 4 : done < 20 ? 16 : 64;
   return std::min(want, total - done);
+}
+
+std::vector<size_t> undecided(const std::vector<bool>& decided) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < decided.size(); ++i)
+    if (!decided[i]) out.push_back(i);
+  return out;
 }
 
 std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::vector<size_t>& active,
@@ -159,9 +166,7 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
   const cl_uint bands = (kh + kBandRows - 1) / kBandRows;
   int done = 0;
   while (done < scene_.frames) {
-    std::vector<size_t> active;
-    for (size_t i = 0; i < probes.size(); ++i)
-      if (!decided[i]) active.push_back(i);
+    const std::vector<size_t> active = undecided(decided);
     if (active.empty()) break;
     const int frames = batch_frames(done, scene_.frames);
     const auto t0 = std::chrono::steady_clock::now();
@@ -170,20 +175,24 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     const size_t items = active.size() * frames * kh;
     const size_t band_items = active.size() * frames * bands;
     cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items);
-    bounds_.setArg(0, probe_buf);
-    bounds_.setArg(1, tris);
-    bounds_.setArg(2, vflags);
-    bounds_.setArg(3, kw);
-    bounds_.setArg(4, kh);
-    bounds_.setArg(5, ox);
-    bounds_.setArg(6, oy);
-    bounds_.setArg(7, static_cast<cl_uint>(frames));
-    bounds_.setArg(8, bands);
-    bounds_.setArg(9, kBandRows);
-    bounds_.setArg(10, decided_bands);
-    bounds_.setArg(11, static_cast<cl_uint>(band_items));
+    // the arguments mts_frame_bounds and mts_raster share, in the same order
+    auto set_frame_args = [&](cl::Kernel& k) {
+      k.setArg(0, probe_buf);
+      k.setArg(1, tris);
+      k.setArg(2, vflags);
+      k.setArg(3, kw);
+      k.setArg(4, kh);
+      k.setArg(5, ox);
+      k.setArg(6, oy);
+      k.setArg(7, static_cast<cl_uint>(frames));
+    };
     cl::Event bounds_done;
     if (code_bounds_) {
+      set_frame_args(bounds_);
+      bounds_.setArg(8, bands);
+      bounds_.setArg(9, kBandRows);
+      bounds_.setArg(10, decided_bands);
+      bounds_.setArg(11, static_cast<cl_uint>(band_items));
       rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items), cl::NDRange(kLocal),
                                        nullptr, &bounds_done);
       ++launches_;
@@ -193,14 +202,7 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     }
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    raster_.setArg(0, probe_buf);
-    raster_.setArg(1, tris);
-    raster_.setArg(2, vflags);
-    raster_.setArg(3, kw);
-    raster_.setArg(4, kh);
-    raster_.setArg(5, ox);
-    raster_.setArg(6, oy);
-    raster_.setArg(7, static_cast<cl_uint>(frames));
+    set_frame_args(raster_);
     raster_.setArg(8, decided_bands);
     raster_.setArg(9, bands);
     raster_.setArg(10, kBandRows);
@@ -209,14 +211,9 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     cl::Event raster_done;
     rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal),
                                      nullptr, &raster_done);
-    std::vector<uint32_t> band_decided(band_items);
-    rt_.queue().enqueueReadBuffer(decided_bands, CL_FALSE, 0, sizeof(uint32_t) * band_items, band_decided.data());
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
-    for (size_t b = 0; b < band_items; ++b)
-      if (band_decided[b]) {
-        const cl_uint first_row = static_cast<cl_uint>(b % bands) * kBandRows;
-        by_bounds_ += static_cast<uint64_t>(std::min(kBandRows, kh - first_row)) * kw;
-      }
+    for (const uint32_t v : rows)
+      if (v & kBounds) by_bounds_ += v >> kCountShift;
     ++launches_;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double ksecs = device_seconds(setup_done) + device_seconds(bounds_done) + device_seconds(raster_done);

@@ -53,6 +53,9 @@ class ProbeEvaluator {
 // probe needs every frame, so grow.
 int batch_frames(int done, int total);
 
+// Indices of the probes not decided yet: the ones the next launch renders.
+std::vector<size_t> undecided(const std::vector<bool>& decided);
+
 // One launch's row words (flags | fragment pairs << 8 per (active probe, frame, kernel row), the
 // layout kernels/mts.cl and kernels/mts_exact.cl share), folded frame by frame into the active
 // probes' results: a probe is decided at its first frame with a fight or a non-finite value.

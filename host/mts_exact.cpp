@@ -48,9 +48,7 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
   const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
   int done = 0;
   while (done < scene_.frames) {
-    std::vector<size_t> active;
-    for (size_t i = 0; i < probes.size(); ++i)
-      if (!decided[i]) active.push_back(i);
+    const std::vector<size_t> active = undecided(decided);
     if (active.empty()) break;
     const int frames = batch_frames(done, scene_.frames);
     const auto t0 = std::chrono::steady_clock::now();

@@ -17,16 +17,15 @@ Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair
     const double z = std::ldexp(1.0, i);
     probes.push_back({z, regime == TimingRegime::far ? z / 8 : 16 * vertex_bound(z)});
   }
-  if (regime == TimingRegime::at_mts) {
+  MtsEvaluator ev(rt, scene, pair);
+  if (regime == TimingRegime::at_mts) {  // the search runs before the counters are read: untimed
     std::vector<double> zs;
     for (const Probe& p : probes) zs.push_back(p.z);
     probes.clear();
-    MtsEvaluator search(rt, scene, pair);
-    for (const MtsRow& row : search_pair(search, scene, pair, zs, nullptr, nullptr))
+    for (const MtsRow& row : search_pair(ev, scene, pair, zs, nullptr, nullptr))
       if (row.verdict() == Verdict::resolved) probes.push_back({row.z, row.mts * 1.02});
     if (probes.empty()) return {};
   }
-  MtsEvaluator ev(rt, scene, pair);
   ev.run({probes.front()});  // warm-up: builds the program and PoCL's work-group function
   const uint64_t pairs0 = ev.fragment_pairs();
   const double kernel0 = ev.kernel_seconds();

@@ -80,6 +80,7 @@
 #define R_CLIPPED 2u
 #define R_NONFINITE 4u
 #define R_UNCOVERED 8u
+#define R_BOUNDS 16u /* the row's band was decided clean from code bounds, not rasterised */
 #define R_COUNT_SHIFT 8
 
 #define S_OK 0
@@ -635,12 +636,13 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
       rp.x0 = vload16(0, x0);
       rp.row_term = vload16(0, rt);
       const frag16_t f = fragment16(rp, P, vload16(0, px));
-      const ulong16 code = convert_ulong16(f.code);
       b.bad |= any(f.nonfinite | f.clipped);
-      b.lo = min(b.lo, min(min(min(code.s0, code.s1), min(code.s2, code.s3)), min(min(code.s4, code.s5), min(code.s6, code.s7))));
-      b.lo = min(b.lo, min(min(min(code.s8, code.s9), min(code.sa, code.sb)), min(min(code.sc, code.sd), min(code.se, code.sf))));
-      b.hi = max(b.hi, max(max(max(code.s0, code.s1), max(code.s2, code.s3)), max(max(code.s4, code.s5), max(code.s6, code.s7))));
-      b.hi = max(b.hi, max(max(max(code.s8, code.s9), max(code.sa, code.sb)), max(max(code.sc, code.sd), max(code.se, code.sf))));
+      /* halving reductions: 16 -> 8 -> 4 -> 2 -> 1 lanes */
+      const uint8 lo8 = min(f.code.lo, f.code.hi), hi8 = max(f.code.lo, f.code.hi);
+      const uint4 lo4 = min(lo8.lo, lo8.hi), hi4 = max(hi8.lo, hi8.hi);
+      const uint2 lo2 = min(lo4.lo, lo4.hi), hi2 = max(hi4.lo, hi4.hi);
+      b.lo = min(b.lo, (ulong)min(lo2.x, lo2.y));
+      b.hi = max(b.hi, (ulong)max(hi2.x, hi2.y));
       n = 0;
     }
   }
@@ -706,7 +708,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     return;
   }
   if (decided[pf * bands + row / band_rows]) { /* clean from code bounds: mts_frame_bounds */
-    result[id] = kernel_w << R_COUNT_SHIFT;
+    result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
     return;
   }
   __global const float* TA = tris + (2u * pf) * PLANE_STRIDE;
