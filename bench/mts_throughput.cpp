@@ -1,8 +1,10 @@
 // Fragment pairs per second of the MTS kernel per (technique, format), in the two regimes of
 // host/mts_timing.h. Not a test: speed targets live here and in docs/performance.md.
-// Usage: mts_throughput [technique,...] [format,...] [kernel side]
+// Usage: mts_throughput [technique,...] [format,...] [kernel side] [repeats: the fastest of n runs]
+//                       [regime,...: far, near, at_mts]
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "host/mts_timing.h"
@@ -24,6 +26,8 @@ int main(int argc, char** argv) {
   const auto techniques = split(argc > 1 ? argv[1] : "standard,reversed,log_fragment,linear");
   const auto formats = split(argc > 2 ? argv[2] : "unorm24,float32");
   const std::string side = argc > 3 ? argv[3] : "200";
+  const int repeats = argc > 4 ? std::stoi(argv[4]) : 1;
+  const auto regimes = split(argc > 5 ? argv[5] : "far,near,at_mts");
   const Scene scene = load_scene("", {"kernel=[" + side + "," + side + "]", "viewport=[" + side + "," + side + "]"});
   OpenClRuntime rt;
   fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10} {:>14} {:>9}\n", "technique", "format", "probes",
@@ -31,8 +35,9 @@ int main(int argc, char** argv) {
   for (const auto& t : techniques)
     for (const auto& f : formats)
       for (const TimingRegime regime : {TimingRegime::far, TimingRegime::near, TimingRegime::at_mts}) {
+        if (std::find(regimes.begin(), regimes.end(), to_string(regime)) == regimes.end()) continue;
         const EvalPair pair{parse_technique(t), f, DepthRange::zero_to_one};
-        const Throughput r = time_depth_path(rt, scene, pair, regime);
+        const Throughput r = time_depth_path(rt, scene, pair, regime, repeats);
         fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10.3f} {:>14.3g} {:>9.2f}\n", t, f,
                    to_string(regime), r.fragment_pairs, r.wall_seconds,
                    r.pairs_per_second(), r.ns_per_pair());

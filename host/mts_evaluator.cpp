@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
+
+#include "host/errors.h"
 
 namespace depthprec {
 
@@ -9,7 +12,7 @@ namespace {
 
 constexpr int kTriStride = 32;
 constexpr int kProbeStride = 24;
-constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8, kBounds = 16;
+constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8, kBounds = 16, kReused = 32;
 constexpr int kCountShift = 8;
 constexpr uint32_t kVertexNonFinite = 1;  // kernels/mts.cl V_NONFINITE
 
@@ -17,6 +20,15 @@ constexpr uint32_t kVertexNonFinite = 1;  // kernels/mts.cl V_NONFINITE
 // range grows with its height, so smaller bands are decided closer to the MTS but cost more
 // bounds work per row.
 constexpr cl_uint kBandRows = 32;
+
+// Words per kernel row of the plane-A cache (kernels/mts.cl ROW_WORDS: count, coverage margin,
+// MAXC + 1 segment starts, MAXC triangles).
+constexpr size_t kRowWords = 2 + 25 + 24;
+
+// The plane-A cache holds as many distances as fit in this (all frames of each), at most
+// kMaxSlots; a run with more distances goes through them in groups.
+constexpr size_t kPlaneACacheBytes = size_t{512} << 20;
+constexpr size_t kMaxSlots = 64;
 
 // Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
 // launch (a new size for every batch shape) recompiles again and again.
@@ -26,10 +38,13 @@ cl::NDRange padded(size_t n) { return cl::NDRange((n + kLocal - 1) / kLocal * kL
 int triangles(const Scene& s) { return 2 * s.plane_subdivisions * s.plane_subdivisions; }
 
 // Floats per plane in the set-up buffer (kernels/mts.cl PLANE_STRIDE): triangle records, then
-// six arrays of the 3*NT edges padded to a multiple of 16, then each quad row's y-range.
+// six arrays of the 3*NT edges padded to a multiple of 16, then each quad row's y-range, then the
+// vertices' window x and y padded to a multiple of 16.
 size_t plane_floats(const Scene& s) {
   const size_t edges = (3 * triangles(s) + 15) / 16 * 16;
-  return static_cast<size_t>(triangles(s)) * kTriStride + 6 * edges + 2 * s.plane_subdivisions;
+  const size_t vertices = static_cast<size_t>(s.plane_subdivisions + 1) * (s.plane_subdivisions + 1);
+  return static_cast<size_t>(triangles(s)) * kTriStride + 6 * edges + 2 * s.plane_subdivisions +
+         2 * ((vertices + 15) / 16 * 16);
 }
 
 }  // namespace
@@ -97,44 +112,39 @@ const char* to_string(Outcome o) {
   return "?";
 }
 
-MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool code_bounds)
-    : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)), code_bounds_(code_bounds) {
+MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts)
+    : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)), shortcuts_(shortcuts) {
   const cl::Program program = rt_.program(variant_.program, variant_.options);
   setup_ = cl::Kernel(program, "mts_setup");
+  a_rows_ = cl::Kernel(program, "mts_a_rows");
+  a_bands_ = cl::Kernel(program, "mts_a_bands");
   raster_ = cl::Kernel(program, "mts_raster");
   bounds_ = cl::Kernel(program, "mts_frame_bounds");
   codes_ = cl::Kernel(program, "mts_codes");
+  const size_t slot_bytes = a_slot_bytes();
+  a_.capacity = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(slot_bytes, 1), 1, kMaxSlots);
+  a_.z.assign(a_.capacity, std::numeric_limits<double>::quiet_NaN());
+  a_.last_use.assign(a_.capacity, 0);
 }
 
-cl::Event MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                              int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& tris,
-                              cl::Buffer& vflags) {
-  const size_t n = active.size();
-  std::vector<float> consts(n * kProbeStride);
-  std::vector<float> mats(n * frames * 2 * 16);
-  for (size_t i = 0; i < n; ++i) {
-    const Probe& p = probes[active[i]];
-    const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
-    const auto packed = pc.packed();
-    std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
-    for (int f = 0; f < frames; ++f) {
-      const Mat4f a = plane_matrix(scene_, pc, p.z, first_frame + f);
-      const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, first_frame + f);
-      float* dst = mats.data() + ((i * frames + f) * 2) * 16;
-      std::copy(a.begin(), a.end(), dst);
-      std::copy(b.begin(), b.end(), dst + 16);
-    }
-  }
-  probe_buf = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                         sizeof(float) * consts.size(), consts.data());
-  cl::Buffer mat_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                     sizeof(float) * mats.size(), mats.data());
-  const size_t planes = n * frames * 2;
-  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats(scene_));
-  vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
-  setup_.setArg(0, probe_buf);
+cl_uint MtsEvaluator::bands() const {
+  return (static_cast<cl_uint>(scene_.kernel_h) + kBandRows - 1) / kBandRows;
+}
+
+size_t MtsEvaluator::a_slot_bytes() const {
+  const size_t f = static_cast<size_t>(scene_.frames), kh = static_cast<size_t>(scene_.kernel_h);
+  return sizeof(float) * (kProbeStride + f * plane_floats(scene_)) +
+         sizeof(uint32_t) * f * (1 + kh * kRowWords + 3 * bands());
+}
+
+cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
+                              cl_uint first_plane, cl::Buffer& tris, cl::Buffer& vflags) {
+  const size_t planes = mats.size() / 16;
+  cl::Buffer mat_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * mats.size(),
+                     const_cast<float*>(mats.data()));
+  setup_.setArg(0, consts);
   setup_.setArg(1, mat_buf);
-  setup_.setArg(2, static_cast<cl_uint>(frames));
+  setup_.setArg(2, per_probe);
   setup_.setArg(3, 0.5f * static_cast<float>(scene_.viewport_w));
   setup_.setArg(4, 0.5f * static_cast<float>(scene_.viewport_h));
   setup_.setArg(5, origin_x());
@@ -143,10 +153,10 @@ cl::Event MtsEvaluator::setup(const std::vector<Probe>& probes, const std::vecto
   setup_.setArg(8, static_cast<cl_uint>(scene_.kernel_h));
   setup_.setArg(9, tris);
   setup_.setArg(10, vflags);
-  setup_.setArg(11, static_cast<cl_uint>(planes));
+  setup_.setArg(11, first_plane);
+  setup_.setArg(12, static_cast<cl_uint>(planes));
   cl::Event done;
-  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal),
-                                   nullptr, &done);
+  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal), nullptr, &done);
   ++launches_;
   return done;
 }
@@ -156,43 +166,183 @@ double device_seconds(const cl::Event& e) {
   return 1e-9 * static_cast<double>(e.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
                                     e.getProfilingInfo<CL_PROFILING_COMMAND_START>());
 }
+
+cl::Buffer buffer_of(const cl::Context& context, const std::vector<float>& v) {
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * v.size(),
+                    const_cast<float*>(v.data()));
+}
 }  // namespace
+
+std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                                                 double& kernel_seconds, std::vector<int>& launches) {
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const auto frames = static_cast<cl_uint>(scene_.frames);
+  if (a_.tris() == nullptr) {
+    const size_t n = a_.capacity;
+    a_.consts = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * kProbeStride * n);
+    a_.tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats(scene_));
+    a_.vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames);
+    a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * kh * kRowWords);
+    a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * bands() * 3);
+  }
+  ++a_.clock;
+  std::vector<cl_uint> slots(active.size());
+  launches.assign(active.size(), 0);
+  std::vector<bool> in_use(a_.capacity, false);
+  for (size_t i = 0; i < active.size(); ++i) {
+    const double z = probes[active[i]].z;
+    const auto it = std::find(a_.z.begin(), a_.z.end(), z);
+    if (it == a_.z.end()) continue;
+    slots[i] = static_cast<cl_uint>(it - a_.z.begin());
+    in_use[slots[i]] = true;
+    a_.last_use[slots[i]] = a_.clock;
+  }
+  for (size_t i = 0; i < active.size(); ++i) {
+    const double z = probes[active[i]].z;
+    const auto it = std::find(a_.z.begin(), a_.z.end(), z);
+    if (it != a_.z.end()) {
+      slots[i] = static_cast<cl_uint>(it - a_.z.begin());
+      continue;
+    }
+    // the least recently used slot no probe of this launch needs (run() keeps the distances of
+    // one launch within the capacity)
+    size_t slot = a_.capacity;
+    for (size_t k = 0; k < a_.capacity; ++k)
+      if (!in_use[k] && (slot == a_.capacity || a_.last_use[k] < a_.last_use[slot])) slot = k;
+    if (slot == a_.capacity) throw Error(ExitCode::internal, "plane-A cache: more distances in one launch than slots");
+    a_.z[slot] = z;
+    a_.last_use[slot] = a_.clock;
+    in_use[slot] = true;
+    slots[i] = static_cast<cl_uint>(slot);
+
+    const ProbeConstants pc = probe_constants(scene_, pair_, z);
+    const auto packed = pc.packed();
+    rt_.queue().enqueueWriteBuffer(a_.consts, CL_FALSE, sizeof(float) * kProbeStride * slot,
+                                   sizeof(float) * kProbeStride, packed.data());
+    std::vector<float> mats(static_cast<size_t>(frames) * 16);
+    for (cl_uint f = 0; f < frames; ++f) {
+      const Mat4f m = plane_matrix(scene_, pc, z, static_cast<int>(f));
+      std::copy(m.begin(), m.end(), mats.begin() + f * 16);
+    }
+    const auto first_plane = static_cast<cl_uint>(slot * frames);
+    const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
+    a_rows_.setArg(0, a_.tris);
+    a_rows_.setArg(1, a_.vflags);
+    a_rows_.setArg(2, first_plane);
+    a_rows_.setArg(3, kw);
+    a_rows_.setArg(4, kh);
+    a_rows_.setArg(5, origin_x());
+    a_rows_.setArg(6, origin_y());
+    a_rows_.setArg(7, a_.rows);
+    a_rows_.setArg(8, static_cast<cl_uint>(frames * kh));
+    cl::Event rows_done, bands_done;
+    rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh), cl::NDRange(kLocal), nullptr,
+                                     &rows_done);
+    a_bands_.setArg(0, a_.consts);
+    a_bands_.setArg(1, a_.tris);
+    a_bands_.setArg(2, a_.vflags);
+    a_bands_.setArg(3, first_plane);
+    a_bands_.setArg(4, frames);
+    a_bands_.setArg(5, kw);
+    a_bands_.setArg(6, kh);
+    a_bands_.setArg(7, origin_x());
+    a_bands_.setArg(8, origin_y());
+    a_bands_.setArg(9, bands());
+    a_bands_.setArg(10, kBandRows);
+    a_bands_.setArg(11, a_.bands);
+    a_bands_.setArg(12, static_cast<cl_uint>(frames * bands()));
+    rt_.queue().enqueueNDRangeKernel(a_bands_, cl::NullRange, padded(frames * bands()), cl::NDRange(kLocal),
+                                     nullptr, &bands_done);
+    bands_done.wait();
+    launches_ += 2;
+    launches[i] = 3;
+    kernel_seconds += device_seconds(set_up) + device_seconds(rows_done) + device_seconds(bands_done);
+  }
+  return slots;
+}
 
 std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
+  // Probes whose distances fit in the plane-A cache at once go through the frames together.
+  std::vector<double> zs;
+  std::vector<bool> pending(probes.size(), true);
+  for (size_t first = 0; first < probes.size(); ++first) {
+    if (!pending[first]) continue;
+    zs.clear();
+    std::vector<size_t> group;
+    for (size_t i = first; i < probes.size(); ++i) {
+      if (!pending[i]) continue;
+      const bool known = std::find(zs.begin(), zs.end(), probes[i].z) != zs.end();
+      if (!known && zs.size() == a_.capacity) continue;
+      if (!known) zs.push_back(probes[i].z);
+      group.push_back(i);
+      pending[i] = false;
+    }
+    run_group(probes, group, results, decided);
+  }
+  finish_outcomes(results, decided);
+  for (const auto& r : results) by_outcome_[static_cast<size_t>(r.outcome)] += r.fragment_pairs;
+  return results;
+}
+
+void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
+                             std::vector<ProbeResult>& results, std::vector<bool>& decided) {
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const float ox = origin_x(), oy = origin_y();
-  const cl_uint bands = (kh + kBandRows - 1) / kBandRows;
   int done = 0;
   while (done < scene_.frames) {
-    const std::vector<size_t> active = undecided(decided);
+    std::vector<size_t> active;
+    for (const size_t i : group)
+      if (!decided[i]) active.push_back(i);
     if (active.empty()) break;
     const int frames = batch_frames(done, scene_.frames);
     const auto t0 = std::chrono::steady_clock::now();
-    cl::Buffer probe_buf, tris, vflags;
-    const cl::Event setup_done = setup(probes, active, done, frames, probe_buf, tris, vflags);
-    const size_t items = active.size() * frames * kh;
-    const size_t band_items = active.size() * frames * bands;
+    double ksecs = 0;
+    std::vector<int> cache_launches;
+    const std::vector<cl_uint> slots = cache_plane_a(probes, active, ksecs, cache_launches);
+    // plane B of every (active probe, frame)
+    std::vector<float> consts(active.size() * kProbeStride);
+    std::vector<float> mats(active.size() * frames * 16);
+    for (size_t i = 0; i < active.size(); ++i) {
+      const Probe& p = probes[active[i]];
+      const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
+      const auto packed = pc.packed();
+      std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
+      for (int f = 0; f < frames; ++f) {
+        const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, done + f);
+        std::copy(b.begin(), b.end(), mats.begin() + (i * frames + f) * 16);
+      }
+    }
+    const cl::Buffer probe_buf = buffer_of(rt_.context(), consts);
+    const cl::Buffer slot_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_uint) * slots.size(),
+                              const_cast<cl_uint*>(slots.data()));
+    const size_t planes = active.size() * frames;
+    cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats(scene_));
+    cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
+    const cl::Event setup_done = setup(probe_buf, mats, static_cast<cl_uint>(frames), 0, tris, vflags);
+    const size_t items = planes * kh;
+    const size_t band_items = planes * bands();
     cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items);
-    // the arguments mts_frame_bounds and mts_raster share, in the same order
-    auto set_frame_args = [&](cl::Kernel& k) {
-      k.setArg(0, probe_buf);
-      k.setArg(1, tris);
-      k.setArg(2, vflags);
-      k.setArg(3, kw);
-      k.setArg(4, kh);
-      k.setArg(5, ox);
-      k.setArg(6, oy);
-      k.setArg(7, static_cast<cl_uint>(frames));
-    };
     cl::Event bounds_done;
-    if (code_bounds_) {
-      set_frame_args(bounds_);
-      bounds_.setArg(8, bands);
-      bounds_.setArg(9, kBandRows);
-      bounds_.setArg(10, decided_bands);
-      bounds_.setArg(11, static_cast<cl_uint>(band_items));
+    if (shortcuts_) {
+      bounds_.setArg(0, probe_buf);
+      bounds_.setArg(1, tris);
+      bounds_.setArg(2, vflags);
+      bounds_.setArg(3, a_.vflags);
+      bounds_.setArg(4, a_.bands);
+      bounds_.setArg(5, slot_buf);
+      bounds_.setArg(6, static_cast<cl_uint>(done));
+      bounds_.setArg(7, static_cast<cl_uint>(scene_.frames));
+      bounds_.setArg(8, kw);
+      bounds_.setArg(9, kh);
+      bounds_.setArg(10, ox);
+      bounds_.setArg(11, oy);
+      bounds_.setArg(12, static_cast<cl_uint>(frames));
+      bounds_.setArg(13, bands());
+      bounds_.setArg(14, kBandRows);
+      bounds_.setArg(15, decided_bands);
+      bounds_.setArg(16, static_cast<cl_uint>(band_items));
       rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items), cl::NDRange(kLocal),
                                        nullptr, &bounds_done);
       ++launches_;
@@ -202,21 +352,38 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     }
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    set_frame_args(raster_);
-    raster_.setArg(8, decided_bands);
-    raster_.setArg(9, bands);
-    raster_.setArg(10, kBandRows);
-    raster_.setArg(11, result);
-    raster_.setArg(12, static_cast<cl_uint>(items));
+    raster_.setArg(0, probe_buf);
+    raster_.setArg(1, tris);
+    raster_.setArg(2, vflags);
+    raster_.setArg(3, a_.tris);
+    raster_.setArg(4, a_.vflags);
+    raster_.setArg(5, a_.rows);
+    raster_.setArg(6, slot_buf);
+    raster_.setArg(7, static_cast<cl_uint>(done));
+    raster_.setArg(8, static_cast<cl_uint>(scene_.frames));
+    raster_.setArg(9, kw);
+    raster_.setArg(10, kh);
+    raster_.setArg(11, ox);
+    raster_.setArg(12, oy);
+    raster_.setArg(13, static_cast<cl_uint>(frames));
+    raster_.setArg(14, decided_bands);
+    raster_.setArg(15, bands());
+    raster_.setArg(16, kBandRows);
+    raster_.setArg(17, static_cast<cl_uint>(shortcuts_));
+    raster_.setArg(18, result);
+    raster_.setArg(19, static_cast<cl_uint>(items));
     cl::Event raster_done;
     rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal),
                                      nullptr, &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
-    for (const uint32_t v : rows)
+    for (const uint32_t v : rows) {
       if (v & kBounds) by_bounds_ += v >> kCountShift;
+      else if (v >> kCountShift) ++rows_rasterised_;
+      if (v & kReused) ++rows_reused_;
+    }
     ++launches_;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double ksecs = device_seconds(setup_done) + device_seconds(bounds_done) + device_seconds(raster_done);
+    ksecs += device_seconds(setup_done) + device_seconds(bounds_done) + device_seconds(raster_done);
     wall_seconds_ += secs;
     kernel_seconds_ += ksecs;
 
@@ -229,19 +396,26 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
                                         : 1.0 / static_cast<double>(active.size());
       results[active[i]].seconds += secs * share;
       results[active[i]].kernel_seconds += ksecs * share;
-      results[active[i]].launches += code_bounds_ ? 3 : 2;  // set-up, bounds and raster
+      // set-up, bounds and raster, and the plane-A cache's launches when this batch filled it
+      results[active[i]].launches += (shortcuts_ ? 3 : 2) + cache_launches[i];
     }
     pairs_ += launch_pairs;
     done += frames;
   }
-  finish_outcomes(results, decided);
-  for (const auto& r : results) by_outcome_[static_cast<size_t>(r.outcome)] += r.fragment_pairs;
-  return results;
 }
 
 FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
-  cl::Buffer probe_buf, tris, vflags;
-  setup({probe}, {0}, frame, 1, probe_buf, tris, vflags);
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const auto packed = pc.packed();
+  const cl::Buffer probe_buf = buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));
+  std::vector<float> mats;
+  for (const double d : {probe.z, probe.z + probe.s}) {
+    const Mat4f m = plane_matrix(scene_, pc, d, frame);
+    mats.insert(mats.end(), m.begin(), m.end());
+  }
+  cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * plane_floats(scene_));
+  cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * 2);
+  setup(probe_buf, mats, 2, 0, tris, vflags);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const size_t pixels = static_cast<size_t>(kw) * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * 4 * pixels);

@@ -69,9 +69,11 @@ void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>&
 
 class MtsEvaluator : public ProbeEvaluator {
  public:
-  // code_bounds: decide bands of rows clean from code bounds (mts_frame_bounds) before
-  // rasterising; off only to check that the bounds never change a result.
-  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool code_bounds = true);
+  // shortcuts: work the kernels save only where a certificate says the answer stays the same —
+  // bands of rows decided clean from code bounds (mts_frame_bounds) before rasterising, and plane
+  // B's coverage of a row taken from plane A's (segments_hold); off only to check that they
+  // never change a result.
+  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true);
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   FrameCodes codes(const Probe& probe, int frame);
@@ -87,12 +89,28 @@ class MtsEvaluator : public ProbeEvaluator {
   uint64_t pairs_after_decision() const { return after_decision_; }
   // Fragment pairs in bands decided clean from code bounds, without rasterising.
   uint64_t pairs_decided_by_bounds() const { return by_bounds_; }
+  // Rasterised kernel rows, and those of them whose plane-B coverage was plane A's.
+  uint64_t rows_rasterised() const { return rows_rasterised_; }
+  uint64_t rows_with_coverage_of_a() const { return rows_reused_; }
 
  private:
-  // Enqueues the set-up kernel; returns its event.
-  cl::Event setup(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                  int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& tris,
-                  cl::Buffer& vflags);
+  // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
+  // tris and vflags from first_plane on; plane k uses the probe constants (consts) of
+  // (first_plane + k) / per_probe. Returns its event.
+  cl::Event setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe, cl_uint first_plane,
+                  cl::Buffer& tris, cl::Buffer& vflags);
+  // Plane A depends on the distance and frame only, so it is set up, its rows' coverage found and
+  // its code bounds per band computed once per distance, for all frames, and kept for every later
+  // probe of the distance (kernels/mts.cl mts_a_rows, mts_a_bands). Returns each active probe's
+  // slot, filling the slots of distances not held yet; adds their device time, and sets each
+  // active probe's launches to those that filled its slot now (0 when it was held).
+  std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                                     double& kernel_seconds, std::vector<int>& launches);
+  // Renders the probes of group (distances that fit in the cache together) frame batch by frame batch.
+  void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
+                 std::vector<ProbeResult>& results, std::vector<bool>& decided);
+  size_t a_slot_bytes() const;
+  cl_uint bands() const;
 
   OpenClRuntime& rt_;
   const Scene& scene_;
@@ -102,9 +120,16 @@ class MtsEvaluator : public ProbeEvaluator {
   float origin_x() const { return static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2); }
   float origin_y() const { return static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2); }
 
-  cl::Kernel setup_, bounds_, raster_, codes_;
-  bool code_bounds_ = true;
-  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0;
+  cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_, codes_;
+  struct PlaneACache {
+    size_t capacity = 0;          // slots, each one distance with all its frames
+    std::vector<double> z;        // the distance in each slot (NaN: free)
+    std::vector<uint64_t> last_use;
+    uint64_t clock = 0;
+    cl::Buffer consts, tris, vflags, rows, bands;
+  } a_;
+  bool shortcuts_ = true;
+  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0, rows_rasterised_ = 0, rows_reused_ = 0;
   std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
 };

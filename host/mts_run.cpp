@@ -147,10 +147,13 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
       const double all = std::max<double>(1.0, static_cast<double>(ev.fragment_pairs()));
       log(fmt::format("{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
                       "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
-                      "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without rasterising {:.0f} %",
+                      "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without rasterising {:.0f} %; "
+                      "rasterised rows with plane B's coverage taken from A's {:.0f} %",
                       pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(),
                       ev.kernel_seconds(), 100 * w[0] / all, 100 * w[1] / all, 100 * ev.pairs_after_decision() / all,
-                      100 * (w[2] + w[3]) / all, 100 * ev.pairs_decided_by_bounds() / all));
+                      100 * (w[2] + w[3]) / all, 100 * ev.pairs_decided_by_bounds() / all,
+                      100.0 * static_cast<double>(ev.rows_with_coverage_of_a()) /
+                          std::max<double>(1.0, static_cast<double>(ev.rows_rasterised()))));
     }
     for (const auto& r : rows) computed.emplace(computation_key(scene, pair, r.z, control.attribute), r);
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());

@@ -1,5 +1,6 @@
 #include "host/mts_timing.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -11,7 +12,8 @@ const char* to_string(TimingRegime r) {
   return r == TimingRegime::far ? "far" : r == TimingRegime::near ? "near" : "at_mts";
 }
 
-Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime) {
+Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime,
+                           int repeats) {
   std::vector<Probe> probes;
   for (int i = 1; i <= 16; ++i) {
     const double z = std::ldexp(1.0, i);
@@ -27,15 +29,19 @@ Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair
     if (probes.empty()) return {};
   }
   ev.run({probes.front()});  // warm-up: builds the program and PoCL's work-group function
-  const uint64_t pairs0 = ev.fragment_pairs();
-  const double kernel0 = ev.kernel_seconds();
-  const auto t0 = std::chrono::steady_clock::now();
-  ev.run(probes);
-  Throughput t;
-  t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  t.fragment_pairs = ev.fragment_pairs() - pairs0;
-  t.kernel_seconds = ev.kernel_seconds() - kernel0;
-  return t;
+  Throughput best;
+  for (int k = 0; k < std::max(1, repeats); ++k) {
+    const uint64_t pairs0 = ev.fragment_pairs();
+    const double kernel0 = ev.kernel_seconds();
+    const auto t0 = std::chrono::steady_clock::now();
+    ev.run(probes);
+    Throughput t;
+    t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    t.fragment_pairs = ev.fragment_pairs() - pairs0;
+    t.kernel_seconds = ev.kernel_seconds() - kernel0;
+    if (k == 0 || t.kernel_seconds < best.kernel_seconds) best = t;
+  }
+  return best;
 }
 
 }  // namespace depthprec

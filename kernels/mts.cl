@@ -49,7 +49,12 @@
 /* Then each row of quads' y-range (GRID pairs ymin, ymax): the triangles a kernel row can meet
  * are those of the quad rows whose range holds it, a run of indices. */
 #define Q_YRANGE (NT * TRI_STRIDE + 6 * NE_PAD)
-#define PLANE_STRIDE (Q_YRANGE + 2 * GRID)
+/* Then the window x and y of every vertex (padded with zeros to a multiple of 16): how far plane
+ * B's vertices lie from plane A's (b_moved_from_a). */
+#define NV_PAD ((NV + 15) / 16 * 16)
+#define V_XW (Q_YRANGE + 2 * GRID)
+#define V_YW (V_XW + NV_PAD)
+#define PLANE_STRIDE (V_YW + NV_PAD)
 #define PROBE_STRIDE 24
 #define MAT_STRIDE 16
 
@@ -81,6 +86,7 @@
 #define R_NONFINITE 4u
 #define R_UNCOVERED 8u
 #define R_BOUNDS 16u /* the row's band was decided clean from code bounds, not rasterised */
+#define R_REUSED 32u /* plane B's coverage of the row was plane A's (coverage_margin) */
 #define R_COUNT_SHIFT 8
 
 #define S_OK 0
@@ -146,17 +152,18 @@ static inline int covers_kernel(const float* xw, const float* yw, float ox, floa
 }
 
 // Vertex stage, divide, window transform and triangle set-up of one plane in one frame.
-// Global id: (probe * frames + frame) * 2 + plane.
+// Global id: the plane's index in mats; it is written to tris and vflags at first_plane + id, and
+// its probe constants are those of (first_plane + id) / per_probe.
 __kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
-                        const uint frames, const float half_w, const float half_h,
+                        const uint per_probe, const float half_w, const float half_h,
                         const float origin_x, const float origin_y, const uint kernel_w,
                         const uint kernel_h, __global float* restrict tris,
-                        __global uint* restrict vflags, const uint count) {
-  const uint id = get_global_id(0);
-  if (id >= count) return;
-  const uint probe = id / (frames * 2u);
-  __global const float* P = probes + probe * PROBE_STRIDE;
-  __global const float* M = mats + id * MAT_STRIDE;
+                        __global uint* restrict vflags, const uint first_plane, const uint count) {
+  const uint k = get_global_id(0);
+  if (k >= count) return;
+  const uint id = first_plane + k;
+  __global const float* P = probes + (id / per_probe) * PROBE_STRIDE;
+  __global const float* M = mats + k * MAT_STRIDE;
   float xw[NV], yw[NV], dw[NV], qw[NV];
   uint nonfinite = 0u;
   for (int j = 0; j <= GRID; ++j) {
@@ -199,7 +206,7 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
 #endif
     }
   }
-  __global float* T = tris + id * PLANE_STRIDE;
+  __global float* T = tris + (size_t)id * PLANE_STRIDE;
   uint shapely = 1u; /* every triangle non-degenerate, no angle below ~6 degrees */
   for (int t = 0; t < NT; ++t) {
     const int quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
@@ -228,6 +235,7 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
       if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
     }
     if (valid) bits |= 64u;
+    else shapely = 0u;
     const float e1x = xw[i1] - xw[i0], e1y = yw[i1] - yw[i0];
     const float e2x = xw[i2] - xw[i0], e2y = yw[i2] - yw[i0];
     const float det = e1x * e2y - e2x * e1y;
@@ -264,6 +272,10 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     }
     T[Q_YRANGE + 2 * qj] = lo;
     T[Q_YRANGE + 2 * qj + 1] = hi;
+  }
+  for (int v = 0; v < NV_PAD; ++v) {
+    T[V_XW + v] = v < NV ? xw[v] : 0.0f;
+    T[V_YW + v] = v < NV ? yw[v] : 0.0f;
   }
   __global float* SA = T + NT * TRI_STRIDE;
   for (int k = 0; k < NE_PAD; ++k) {
@@ -480,6 +492,101 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   return ns;
 }
 
+// Plane A does not depend on the separation, so the host sets it up once per (distance, frame)
+// for every probe of the distance (host/mts_evaluator.cpp, the plane-A cache): its triangles, its
+// code bounds per band, and per kernel row its coverage segments and coverage margin.
+#define MAXC 24 /* segments a cached row holds; a row with more is computed where it is used */
+#define RW_N 0
+#define RW_MARGIN 1
+#define RW_X 2
+#define RW_T (RW_X + MAXC + 1)
+#define ROW_WORDS (RW_T + MAXC)
+
+// Plane B is plane A moved along the view direction and scaled with its distance, so both project
+// to the same window triangles in exact arithmetic; in binary32 B's vertices lie some delta
+// (~1e-4 px) from A's. Returns a margin: for any B whose vertices all lie within less than it of
+// A's (per coordinate), and which owns each kernel pixel through exactly one triangle (V_COVERS),
+// B's coverage of the row is A's segments. Proof: each segment's triangle passes its three edge
+// tests at the segment's first and last pixel in B too, so (each test being monotone along the
+// row) at every pixel of the segment, and the one triangle that passes a pixel owns it; and the
+// row stays inside each triangle's y-range, which row_segments also asks. The edge value
+// E = dx (py - ay) - dy (px - ax) of a pixel moves by at most d (|dx| + |dy| + 2|py - ay| +
+// 2|px - ax|) + 4 d^2 when the edge's vertices move by d, and each binary32 evaluation (fused or
+// not) lies within 4.1 eps (|dx (py - ay)| + |dy (px - ax)|) of its exact value, so a pass with
+// E above twice that rounding bound plus the movement survives; the margin is the d at which the
+// movement would take half of what is left over, with 1 % slack for the margin's own rounding.
+// 0 when A leaves a pixel uncovered or a test sits at its rounding bound.
+static inline float coverage_margin(__global const float* T, float py, float ox, int n, const int* seg_x,
+                                    const int* seg_t) {
+  __global const float* SA = T + NT * TRI_STRIDE;
+  __global const uint* SB = (__global const uint*)SA + E_BITS * NE_PAD;
+  const float eps = 0x1.0p-24f;
+  float margin = INFINITY;
+  for (int k = 0; k < n; ++k) {
+    const int t = seg_t[k];
+    if (t < 0) return 0.0f;
+    __global const float* R = T + t * TRI_STRIDE;
+    margin = fmin(margin, fmin(py - R[T_YMIN], R[T_YMAX] - py));
+    for (int e = 0; e < 3; ++e) {
+      const int j = 3 * t + e;
+      const float ax = SA[E_AX * NE_PAD + j], ay = SA[E_AY * NE_PAD + j];
+      const float dx = SA[E_DX * NE_PAD + j], dy = SA[E_DY * NE_PAD + j];
+      for (int end = 0; end < 2; ++end) {
+        const float px = ox + (float)(end ? seg_x[k + 1] - 1 : seg_x[k]) + 0.5f;
+        const float u = py - ay, v = px - ax;
+        float E = dx * u - dy * v;
+        if (SB[j] & 1u) E = -E;
+        const float r = E - 16.0f * eps * (fabs(dx * u) + fabs(dy * v));
+        if (!(r > 0.0f)) return 0.0f;
+        const float c = 1.01f * (fabs(dx) + fabs(dy) + 2.0f * fabs(u) + 2.0f * fabs(v));
+        margin = fmin(margin, fmin(r / (2.2f * c), 0.99f * sqrt(r / 8.4f)));
+      }
+    }
+  }
+  return 0.99f * margin;
+}
+
+// How far plane B's vertices lie from plane A's: the largest per-coordinate difference (rounded up).
+static inline float b_moved_from_a(__global const float* TA, __global const float* TB) {
+  float16 m = (float16)0.0f;
+  for (int v = 0; v < NV_PAD; v += 16) {
+    m = fmax(m, fabs(vload16(0, TB + V_XW + v) - vload16(0, TA + V_XW + v)));
+    m = fmax(m, fabs(vload16(0, TB + V_YW + v) - vload16(0, TA + V_YW + v)));
+  }
+  const float8 m8 = fmax(m.lo, m.hi);
+  const float4 m4 = fmax(m8.lo, m8.hi);
+  const float2 m2 = fmax(m4.lo, m4.hi);
+  return 1.0001f * fmax(m2.x, m2.y);
+}
+
+// Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane.
+__kernel void mts_a_rows(__global const float* restrict tris, __global const uint* restrict vflags,
+                         const uint first_plane, const uint kernel_w, const uint kernel_h,
+                         const float origin_x, const float origin_y, __global uint* restrict rows,
+                         const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint plane = first_plane + id / kernel_h, row = id % kernel_h;
+  __global const float* T = tris + plane * PLANE_STRIDE;
+  __global uint* out = rows + ((size_t)plane * kernel_h + row) * ROW_WORDS;
+  if (vflags[plane] & V_NONFINITE) {
+    out[RW_N] = 0u;
+    return;
+  }
+  const float py = origin_y + (float)row + 0.5f;
+  int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
+  const int n = row_segments(T, py, origin_x, (int)kernel_w, seg_x, seg_t);
+  if (n > MAXC) {
+    out[RW_N] = 0u;
+    return;
+  }
+  out[RW_N] = (uint)n;
+  for (int k = 0; k <= n; ++k) out[RW_X + k] = (uint)seg_x[k];
+  for (int k = 0; k < n; ++k) out[RW_T + k] = (uint)seg_t[k];
+  ((__global float*)out)[RW_MARGIN] =
+      (vflags[plane] & V_COVERS) ? coverage_margin(T, py, origin_x, n, seg_x, seg_t) : 0.0f;
+}
+
 // A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
 typedef struct {
   float c0, slope, x0, row_term;
@@ -649,6 +756,30 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
   return b;
 }
 
+// Code bounds of cached plane A per band: lo, hi, bad. Global id: plane * bands + band, planes
+// from first_plane; the probe constants of plane p are those of p / per_probe.
+__kernel void mts_a_bands(__global const float* restrict probes, __global const float* restrict tris,
+                          __global const uint* restrict vflags, const uint first_plane, const uint per_probe,
+                          const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
+                          const uint bands, const uint band_rows, __global uint* restrict out, const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint plane = first_plane + id / bands, band = id % bands;
+  __global uint* o = out + ((size_t)plane * bands + band) * 3u;
+  o[2] = 1u;
+  if (!(vflags[plane] & V_COVERS)) return;
+  const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
+  const code_bounds_t a = plane_code_bounds(tris + (size_t)plane * PLANE_STRIDE, probes + (plane / per_probe) * PROBE_STRIDE,
+                                            origin_x, origin_y, (int)kernel_w, r0, r1);
+  o[0] = (uint)a.lo;
+  o[1] = (uint)a.hi;
+  o[2] = (uint)a.bad;
+}
+
+// Where plane A of (probe, frame) sits in the plane-A cache: a_slots holds each probe's slot,
+// each slot holds all frames_total frames of its distance; the launch covers frames from first_frame.
+#define A_PLANE(pf) (a_slots[(pf) / frames] * frames_total + first_frame + (pf) % frames)
+
 // Decides bands of kernel rows of a (probe, frame) clean without rasterising them, when both
 // planes certainly own every pixel (V_COVERS) and their code bounds over the band exclude a fight:
 // LEQUAL: B's smallest code above A's largest (log depth: by LOG_CODE_SLACK more, as for pieces).
@@ -656,27 +787,28 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // through mts_raster row by row, so the answer never depends on this pass, only the work does.
 // Global id: (probe * frames + frame) * bands + band.
 __kernel void mts_frame_bounds(__global const float* restrict probes, __global const float* restrict tris,
-                               __global const uint* restrict vflags, const uint kernel_w,
+                               __global const uint* restrict vflags, __global const uint* restrict a_vflags,
+                               __global const uint* restrict a_bands, __global const uint* restrict a_slots,
+                               const uint first_frame, const uint frames_total, const uint kernel_w,
                                const uint kernel_h, const float origin_x, const float origin_y,
                                const uint frames, const uint bands, const uint band_rows,
                                __global uint* restrict decided, const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / bands, band = id - pf * bands;
+  const uint ap = A_PLANE(pf);
   __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
   decided[id] = 0u;
-  if (!(vflags[2u * pf] & vflags[2u * pf + 1u] & V_COVERS)) return;
+  __global const uint* a = a_bands + ((size_t)ap * bands + band) * 3u;
+  if (!(a_vflags[ap] & vflags[pf] & V_COVERS) || a[2]) return;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
-  const code_bounds_t a = plane_code_bounds(tris + (2u * pf) * PLANE_STRIDE, P, origin_x, origin_y,
-                                            (int)kernel_w, r0, r1);
-  if (a.bad) return;
-  const code_bounds_t b = plane_code_bounds(tris + (2u * pf + 1u) * PLANE_STRIDE, P, origin_x, origin_y,
+  const code_bounds_t b = plane_code_bounds(tris + (size_t)pf * PLANE_STRIDE, P, origin_x, origin_y,
                                             (int)kernel_w, r0, r1);
   if (b.bad) return;
 #if COMPARE_GREATER
-  decided[id] = b.hi + LOG_SLACK_OR_0 < a.lo;
+  decided[id] = b.hi + LOG_SLACK_OR_0 < (ulong)a[0];
 #else
-  decided[id] = b.lo > a.hi + LOG_SLACK_OR_0;
+  decided[id] = b.lo > (ulong)a[1] + LOG_SLACK_OR_0;
 #endif
 }
 
@@ -692,18 +824,21 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
 // Pieces are then taken left to right and the row stops after the first that fights.
 // Global id: (probe * frames + frame) * kernel_h + row.
 __kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
-                         __global const uint* restrict vflags, const uint kernel_w,
-                         const uint kernel_h, const float origin_x, const float origin_y,
-                         const uint frames, __global const uint* restrict decided,
-                         const uint bands, const uint band_rows, __global uint* restrict result,
-                         const uint items) {
+                         __global const uint* restrict vflags, __global const float* restrict a_tris,
+                         __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
+                         __global const uint* restrict a_slots, const uint first_frame,
+                         const uint frames_total, const uint kernel_w, const uint kernel_h,
+                         const float origin_x, const float origin_y, const uint frames,
+                         __global const uint* restrict decided, const uint bands, const uint band_rows,
+                         const uint shortcuts, __global uint* restrict result, const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / kernel_h; /* probe * frames + frame */
   const uint row = id - pf * kernel_h;
   const uint probe = pf / frames;
   __global const float* P = probes + probe * PROBE_STRIDE;
-  if ((vflags[2u * pf] | vflags[2u * pf + 1u]) & V_NONFINITE) {
+  const uint ap = A_PLANE(pf);
+  if ((a_vflags[ap] | vflags[pf]) & V_NONFINITE) {
     result[id] = R_NONFINITE;
     return;
   }
@@ -711,13 +846,37 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
     return;
   }
-  __global const float* TA = tris + (2u * pf) * PLANE_STRIDE;
-  __global const float* TBp = tris + (2u * pf + 1u) * PLANE_STRIDE;
+  __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
+  __global const float* TBp = tris + (size_t)pf * PLANE_STRIDE;
   const int W = (int)kernel_w;
   const float py = origin_y + (float)row + 0.5f;
   int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
-  row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
-  row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
+  __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
+  const int cached = rec[RW_N] > 0u;
+  int na = (int)rec[RW_N];
+  if (cached) {
+    for (int k = 0; k <= na; ++k) seg_xa[k] = (int)rec[RW_X + k];
+    for (int k = 0; k < na; ++k) seg_ta[k] = (int)rec[RW_T + k];
+  } else {
+    na = row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
+  }
+  /* B's coverage is A's when B is within A's coverage margin (coverage_margin) and the segments'
+   * triangles keep their orientation */
+  int b_is_a = shortcuts && cached && (a_vflags[ap] & vflags[pf] & V_COVERS) &&
+               b_moved_from_a(TA, TBp) < ((__global const float*)rec)[RW_MARGIN];
+  for (int k = 0; k < na && b_is_a; ++k) {
+    const uint t = (uint)seg_ta[k] * TRI_STRIDE + T_BITS;
+    b_is_a = (((__global const uint*)TA)[t] & 7u) == (((__global const uint*)TBp)[t] & 7u);
+  }
+  if (b_is_a) {
+    for (int k = 0; k < na; ++k) {
+      seg_xb[k] = seg_xa[k];
+      seg_tb[k] = seg_ta[k];
+    }
+    seg_xb[na] = seg_xa[na];
+  } else {
+    row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
+  }
 
   /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
   int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
@@ -815,7 +974,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     flags |= piece;
     if (piece & R_FIGHT) break;
   }
-  result[id] = flags | (count << R_COUNT_SHIFT);
+  result[id] = flags | (b_is_a ? R_REUSED : 0u) | (count << R_COUNT_SHIFT);
 }
 
 // Stored codes and fragment status of both planes at every kernel pixel of one (probe, frame),

@@ -1,5 +1,7 @@
-// mts_frame_bounds decides bands of kernel rows clean from code bounds before any row is
-// rasterised. It may only save work: every probe result must be what the rows alone give.
+// The evaluator's certified shortcuts: mts_frame_bounds decides bands of kernel rows clean from
+// code bounds before any row is rasterised, and a row takes plane B's coverage from plane A's
+// when B lies within A's coverage margin. They may only save work: every probe result must be
+// what the plain rows give.
 #include <catch2/catch.hpp>
 #include <string>
 #include <tuple>
@@ -21,7 +23,8 @@ std::vector<Probe> descent() {
 
 }  // namespace
 
-TEST_CASE("bands decided from code bounds change no probe result", "[mts][bounds]") {
+TEST_CASE("bands decided from code bounds and coverage taken from plane A change no probe result",
+          "[mts][bounds]") {
   // margin 0.9: the planes leave the kernel's border uncovered, so no band may be decided (a square
   // viewport: the plane is sized to the vertical field of view)
   for (const std::string margin : {"1.1", "0.9"}) {
@@ -48,8 +51,15 @@ TEST_CASE("bands decided from code bounds change no probe result", "[mts][bounds
       }
       INFO(pair.label() << " margin " << margin);
       CHECK(without.pairs_decided_by_bounds() == 0);
-      if (margin == "1.1") CHECK(with.pairs_decided_by_bounds() > 0);
-      else CHECK(with.pairs_decided_by_bounds() == 0);
+      CHECK(without.rows_with_coverage_of_a() == 0);
+      CHECK(with.rows_with_coverage_of_a() <= with.rows_rasterised());
+      if (margin == "1.1") {
+        CHECK(with.pairs_decided_by_bounds() > 0);
+        CHECK(with.rows_with_coverage_of_a() > 0);
+      } else {  // neither certificate holds when the planes leave pixels uncovered
+        CHECK(with.pairs_decided_by_bounds() == 0);
+        CHECK(with.rows_with_coverage_of_a() == 0);
+      }
     }
   }
 }
