@@ -32,13 +32,14 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   }
   KernelVariant v;
   v.program = "kernels/mts.cl";
+  v.cache_a_codes = depth_from == 2 && !p.contraction;
   v.options = fmt::format(
       "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DRANGE_GL={} -DCOMPARE_GREATER={} "
-      "-DDIVIDE_EXACT={} -DCOMPOSE_PREMULT={} -DCONTRACT={} -DLOG_CODE_SLACK={}UL {}",
+      "-DDIVIDE_EXACT={} -DCOMPOSE_PREMULT={} -DCONTRACT={} -DLOG_CODE_SLACK={}UL -DCACHE_A_CODES={} {}",
       base_build_options(p.denormals == Denormals::flush), scene.plane_subdivisions, depth_from,
       frag, pair.depth_range == DepthRange::gl ? 1 : 0, ti.greater ? 1 : 0,
       p.divide == Divide::exact ? 1 : 0, p.compose == Compose::premultiplied ? 1 : 0,
-      p.contraction ? 1 : 0, log_slack, f.defines());
+      p.contraction ? 1 : 0, log_slack, v.cache_a_codes ? 1 : 0, f.defines());
   const char* from = depth_from == 0 ? "projection" : depth_from == 1 ? "vertex_log" : "fragment";
   const char* fd = frag == 1 ? "linear" : frag == 2 ? "w_buffer" : frag == 3 ? "log" : "";
   v.label = fmt::format("{}{}{}/{}/{}/{}", from, frag ? ":" : "", fd, ti.greater ? "GEQUAL" : "LEQUAL",

@@ -27,7 +27,7 @@ constexpr size_t kRowWords = 2 + 25 + 24;
 
 // The plane-A cache holds as many distances as fit in this (all frames of each), at most
 // kMaxSlots; a run with more distances goes through them in groups.
-constexpr size_t kPlaneACacheBytes = size_t{512} << 20;
+constexpr size_t kPlaneACacheBytes = size_t{1} << 30;
 constexpr size_t kMaxSlots = 64;
 
 // Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
@@ -127,6 +127,10 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   a_.last_use.assign(a_.capacity, 0);
 }
 
+size_t MtsEvaluator::code_row_words() const {
+  return variant_.cache_a_codes ? static_cast<size_t>(scene_.kernel_w) + 16 : 0;
+}
+
 cl_uint MtsEvaluator::bands() const {
   return (static_cast<cl_uint>(scene_.kernel_h) + kBandRows - 1) / kBandRows;
 }
@@ -134,7 +138,7 @@ cl_uint MtsEvaluator::bands() const {
 size_t MtsEvaluator::a_slot_bytes() const {
   const size_t f = static_cast<size_t>(scene_.frames), kh = static_cast<size_t>(scene_.kernel_h);
   return sizeof(float) * (kProbeStride + f * plane_floats(scene_)) +
-         sizeof(uint32_t) * f * (1 + kh * kRowWords + 3 * bands());
+         sizeof(uint32_t) * f * (1 + kh * (kRowWords + code_row_words()) + 3 * bands());
 }
 
 cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
@@ -184,6 +188,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     a_.vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames);
     a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * kh * kRowWords);
     a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * bands() * 3);
+    a_.codes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
   }
   ++a_.clock;
   std::vector<cl_uint> slots(active.size());
@@ -226,15 +231,18 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     }
     const auto first_plane = static_cast<cl_uint>(slot * frames);
     const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
-    a_rows_.setArg(0, a_.tris);
-    a_rows_.setArg(1, a_.vflags);
-    a_rows_.setArg(2, first_plane);
-    a_rows_.setArg(3, kw);
-    a_rows_.setArg(4, kh);
-    a_rows_.setArg(5, origin_x());
-    a_rows_.setArg(6, origin_y());
-    a_rows_.setArg(7, a_.rows);
-    a_rows_.setArg(8, static_cast<cl_uint>(frames * kh));
+    a_rows_.setArg(0, a_.consts);
+    a_rows_.setArg(1, a_.tris);
+    a_rows_.setArg(2, a_.vflags);
+    a_rows_.setArg(3, first_plane);
+    a_rows_.setArg(4, frames);
+    a_rows_.setArg(5, kw);
+    a_rows_.setArg(6, kh);
+    a_rows_.setArg(7, origin_x());
+    a_rows_.setArg(8, origin_y());
+    a_rows_.setArg(9, a_.rows);
+    a_rows_.setArg(10, a_.codes);
+    a_rows_.setArg(11, static_cast<cl_uint>(frames * kh));
     cl::Event rows_done, bands_done;
     rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh), cl::NDRange(kLocal), nullptr,
                                      &rows_done);
@@ -360,18 +368,19 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     raster_.setArg(5, a_.rows);
     raster_.setArg(6, slot_buf);
     raster_.setArg(7, static_cast<cl_uint>(done));
-    raster_.setArg(8, static_cast<cl_uint>(scene_.frames));
-    raster_.setArg(9, kw);
-    raster_.setArg(10, kh);
-    raster_.setArg(11, ox);
-    raster_.setArg(12, oy);
-    raster_.setArg(13, static_cast<cl_uint>(frames));
-    raster_.setArg(14, decided_bands);
-    raster_.setArg(15, bands());
-    raster_.setArg(16, kBandRows);
-    raster_.setArg(17, static_cast<cl_uint>(shortcuts_));
-    raster_.setArg(18, result);
-    raster_.setArg(19, static_cast<cl_uint>(items));
+    raster_.setArg(8, a_.codes);
+    raster_.setArg(9, static_cast<cl_uint>(scene_.frames));
+    raster_.setArg(10, kw);
+    raster_.setArg(11, kh);
+    raster_.setArg(12, ox);
+    raster_.setArg(13, oy);
+    raster_.setArg(14, static_cast<cl_uint>(frames));
+    raster_.setArg(15, decided_bands);
+    raster_.setArg(16, bands());
+    raster_.setArg(17, kBandRows);
+    raster_.setArg(18, static_cast<cl_uint>(shortcuts_));
+    raster_.setArg(19, result);
+    raster_.setArg(20, static_cast<cl_uint>(items));
     cl::Event raster_done;
     rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal),
                                      nullptr, &raster_done);

@@ -99,9 +99,9 @@ class MtsEvaluator : public ProbeEvaluator {
   // (first_plane + k) / per_probe. Returns its event.
   cl::Event setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe, cl_uint first_plane,
                   cl::Buffer& tris, cl::Buffer& vflags);
-  // Plane A depends on the distance and frame only, so it is set up, its rows' coverage found and
-  // its code bounds per band computed once per distance, for all frames, and kept for every later
-  // probe of the distance (kernels/mts.cl mts_a_rows, mts_a_bands). Returns each active probe's
+  // Plane A depends on the distance and frame only, so it is set up, its rows' coverage and codes
+  // found and its code bounds per band computed once per distance, for all frames, and kept for
+  // every later probe of the distance (kernels/mts.cl mts_a_rows, mts_a_bands). Returns each active probe's
   // slot, filling the slots of distances not held yet; adds their device time, and sets each
   // active probe's launches to those that filled its slot now (0 when it was held).
   std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
@@ -110,6 +110,7 @@ class MtsEvaluator : public ProbeEvaluator {
   void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
                  std::vector<ProbeResult>& results, std::vector<bool>& decided);
   size_t a_slot_bytes() const;
+  size_t code_row_words() const;  // per kernel row of plane A's cached codes (0: not cached)
   cl_uint bands() const;
 
   OpenClRuntime& rt_;
@@ -126,7 +127,7 @@ class MtsEvaluator : public ProbeEvaluator {
     std::vector<double> z;        // the distance in each slot (NaN: free)
     std::vector<uint64_t> last_use;
     uint64_t clock = 0;
-    cl::Buffer consts, tris, vflags, rows, bands;
+    cl::Buffer consts, tris, vflags, rows, bands, codes;
   } a_;
   bool shortcuts_ = true;
   uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0, rows_rasterised_ = 0, rows_reused_ = 0;

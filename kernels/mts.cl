@@ -12,6 +12,7 @@
 //   DIVIDE_EXACT       1: z_clip / w_clip correctly rounded; 0: z_clip * fl(1 / w_clip)
 //   COMPOSE_PREMULT    1: the host uploads P*MV, one product per vertex; 0: P * (MV * v)
 //   CONTRACT           1: the compiler may fuse a*b+c; 0: every operation rounds on its own
+//   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
 //   DF_*               the storage format (formats/depth_format.h)
 //
 // Arithmetic forms (the host reference, host/reference_pipeline.cpp, uses the same ones):
@@ -501,6 +502,9 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
 #define RW_X 2
 #define RW_T (RW_X + MAXC + 1)
 #define ROW_WORDS (RW_T + MAXC)
+/* CACHE_A_CODES (host/kernel_variant.h): plane A's stored code at every pixel of a cached row, so
+ * the pixel loop evaluates plane B only; rows of kernel_w + 16 codes (a 16-lane store past a
+ * segment's end lands in the next segment or the padding). */
 
 // Plane B is plane A moved along the view direction and scaled with its distance, so both project
 // to the same window triangles in exact arithmetic; in binary32 B's vertices lie some delta
@@ -557,34 +561,6 @@ static inline float b_moved_from_a(__global const float* TA, __global const floa
   const float4 m4 = fmax(m8.lo, m8.hi);
   const float2 m2 = fmax(m4.lo, m4.hi);
   return 1.0001f * fmax(m2.x, m2.y);
-}
-
-// Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane.
-__kernel void mts_a_rows(__global const float* restrict tris, __global const uint* restrict vflags,
-                         const uint first_plane, const uint kernel_w, const uint kernel_h,
-                         const float origin_x, const float origin_y, __global uint* restrict rows,
-                         const uint items) {
-  const uint id = get_global_id(0);
-  if (id >= items) return;
-  const uint plane = first_plane + id / kernel_h, row = id % kernel_h;
-  __global const float* T = tris + plane * PLANE_STRIDE;
-  __global uint* out = rows + ((size_t)plane * kernel_h + row) * ROW_WORDS;
-  if (vflags[plane] & V_NONFINITE) {
-    out[RW_N] = 0u;
-    return;
-  }
-  const float py = origin_y + (float)row + 0.5f;
-  int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
-  const int n = row_segments(T, py, origin_x, (int)kernel_w, seg_x, seg_t);
-  if (n > MAXC) {
-    out[RW_N] = 0u;
-    return;
-  }
-  out[RW_N] = (uint)n;
-  for (int k = 0; k <= n; ++k) out[RW_X + k] = (uint)seg_x[k];
-  for (int k = 0; k < n; ++k) out[RW_T + k] = (uint)seg_t[k];
-  ((__global float*)out)[RW_MARGIN] =
-      (vflags[plane] & V_COVERS) ? coverage_margin(T, py, origin_x, n, seg_x, seg_t) : 0.0f;
 }
 
 // A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
@@ -687,6 +663,45 @@ static inline int16 fights16(uint16 code_a, uint16 code_b) {
   }
 
 #define MAX_PIECES (2 * MAX_SEG)
+
+// Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane.
+__kernel void mts_a_rows(__global const float* restrict probes, __global const float* restrict tris,
+                         __global const uint* restrict vflags, const uint first_plane, const uint per_probe,
+                         const uint kernel_w, const uint kernel_h, const float origin_x,
+                         const float origin_y, __global uint* restrict rows, __global uint* restrict codes,
+                         const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint plane = first_plane + id / kernel_h, row = id % kernel_h;
+  __global const float* T = tris + plane * PLANE_STRIDE;
+  __global uint* out = rows + ((size_t)plane * kernel_h + row) * ROW_WORDS;
+  if (vflags[plane] & V_NONFINITE) {
+    out[RW_N] = 0u;
+    return;
+  }
+  const float py = origin_y + (float)row + 0.5f;
+  int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
+  const int n = row_segments(T, py, origin_x, (int)kernel_w, seg_x, seg_t);
+  if (n > MAXC) {
+    out[RW_N] = 0u;
+    return;
+  }
+#if CACHE_A_CODES
+  __global const float* P = probes + (plane / per_probe) * PROBE_STRIDE;
+  __global uint* c = codes + ((size_t)plane * kernel_h + row) * (kernel_w + 16u);
+  for (int k = 0; k < n; ++k) {
+    if (seg_t[k] < 0) continue;
+    const row_plane16_t rp = broadcast16(row_plane(T, seg_t[k], py));
+    for (int i0 = seg_x[k]; i0 < seg_x[k + 1]; i0 += 16)
+      vstore16(fragment16(rp, P, (origin_x + convert_float16(i0 + LANES)) + 0.5f).code, 0, c + i0);
+  }
+#endif
+  out[RW_N] = (uint)n;
+  for (int k = 0; k <= n; ++k) out[RW_X + k] = (uint)seg_x[k];
+  for (int k = 0; k < n; ++k) out[RW_T + k] = (uint)seg_t[k];
+  ((__global float*)out)[RW_MARGIN] =
+      (vflags[plane] & V_COVERS) ? coverage_margin(T, py, origin_x, n, seg_x, seg_t) : 0.0f;
+}
 
 // The smallest and largest stored code of one plane over the kernel pixels of rows [r0, r1) that
 // any of its triangles may own (each triangle's bounding box, one pixel wider, clipped to the
@@ -827,8 +842,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
                          __global const uint* restrict vflags, __global const float* restrict a_tris,
                          __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
                          __global const uint* restrict a_slots, const uint first_frame,
-                         const uint frames_total, const uint kernel_w, const uint kernel_h,
-                         const float origin_x, const float origin_y, const uint frames,
+                         __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
+                         const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
                          __global const uint* restrict decided, const uint bands, const uint band_rows,
                          const uint shortcuts, __global uint* restrict result, const uint items) {
   const uint id = get_global_id(0);
@@ -952,6 +967,16 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
       const row_plane16_t rb = broadcast16(row_plane(TBp, p_tb[i], py));
       if (ends_ok[i]) { /* only the codes matter: one reduction per piece */
         int16 fight = (int16)0;
+#if CACHE_A_CODES
+        if (cached) {
+          __global const uint* ca = a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + 16u);
+          for (int i0 = x; i0 < x_end; i0 += 16) {
+            const int16 idx = i0 + LANES;
+            const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
+            fight |= (idx < x_end) & fights16(vload16(0, ca + i0), fragment16(rb, P, px).code);
+          }
+        } else
+#endif
         for (int i0 = x; i0 < x_end; i0 += 16) {
           const int16 idx = i0 + LANES;
           const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
