@@ -92,6 +92,8 @@ class MtsEvaluator : public ProbeEvaluator {
   // Rasterised kernel rows, and those of them whose plane-B coverage was plane A's.
   uint64_t rows_rasterised() const { return rows_rasterised_; }
   uint64_t rows_with_coverage_of_a() const { return rows_reused_; }
+  // Distances the plane-A cache holds at once (cache_plane_a).
+  size_t plane_a_slots() const { return a_.capacity; }
 
  private:
   // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
