@@ -269,6 +269,73 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
   return slots;
 }
 
+cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                                      const std::vector<cl_uint>& slots, int first_frame, int frames,
+                                      cl::Buffer& probe_buf, cl::Buffer& slot_buf, cl::Buffer& tris,
+                                      cl::Buffer& vflags) {
+  std::vector<float> consts(active.size() * kProbeStride);
+  std::vector<float> mats(active.size() * frames * 16);
+  for (size_t i = 0; i < active.size(); ++i) {
+    const Probe& p = probes[active[i]];
+    const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
+    const auto packed = pc.packed();
+    std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
+    for (int f = 0; f < frames; ++f) {
+      const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, first_frame + f);
+      std::copy(b.begin(), b.end(), mats.begin() + (i * frames + f) * 16);
+    }
+  }
+  probe_buf = buffer_of(rt_.context(), consts);
+  slot_buf = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_uint) * slots.size(),
+                        const_cast<cl_uint*>(slots.data()));
+  const size_t planes = active.size() * frames;
+  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats(scene_));
+  vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
+  return setup(probe_buf, mats, static_cast<cl_uint>(frames), 0, tris, vflags);
+}
+
+CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
+  if (probes.size() > a_.capacity) throw Error(ExitCode::internal, "coverage audit: more probes than cache slots");
+  std::vector<size_t> all(probes.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  double ksecs = 0;
+  std::vector<int> cache_launches;
+  const std::vector<cl_uint> slots = cache_plane_a(probes, all, ksecs, cache_launches);
+  const int frames = scene_.frames;
+  cl::Buffer probe_buf, slot_buf, tris, vflags;
+  setup_plane_b(probes, all, slots, 0, frames, probe_buf, slot_buf, tris, vflags);
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const size_t items = probes.size() * frames * kh;
+  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
+  cl::Kernel k(rt_.program(variant_.program, variant_.options), "mts_coverage_audit");
+  k.setArg(0, tris);
+  k.setArg(1, vflags);
+  k.setArg(2, a_.tris);
+  k.setArg(3, a_.vflags);
+  k.setArg(4, a_.rows);
+  k.setArg(5, slot_buf);
+  k.setArg(6, cl_uint{0});
+  k.setArg(7, static_cast<cl_uint>(frames));
+  k.setArg(8, kw);
+  k.setArg(9, kh);
+  k.setArg(10, origin_x());
+  k.setArg(11, origin_y());
+  k.setArg(12, static_cast<cl_uint>(frames));
+  k.setArg(13, out);
+  k.setArg(14, static_cast<cl_uint>(items));
+  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
+  std::vector<uint32_t> words(items);
+  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, words.data());
+  CoverageAudit a;
+  for (const uint32_t w : words) {
+    a.rows += (w >> 3) & 1;
+    a.b_differs += w & 1;
+    a.certified += (w >> 1) & 1;
+    a.certified_but_differs += (w >> 2) & 1;
+  }
+  return a;
+}
+
 std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
@@ -309,26 +376,9 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     double ksecs = 0;
     std::vector<int> cache_launches;
     const std::vector<cl_uint> slots = cache_plane_a(probes, active, ksecs, cache_launches);
-    // plane B of every (active probe, frame)
-    std::vector<float> consts(active.size() * kProbeStride);
-    std::vector<float> mats(active.size() * frames * 16);
-    for (size_t i = 0; i < active.size(); ++i) {
-      const Probe& p = probes[active[i]];
-      const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
-      const auto packed = pc.packed();
-      std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
-      for (int f = 0; f < frames; ++f) {
-        const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, done + f);
-        std::copy(b.begin(), b.end(), mats.begin() + (i * frames + f) * 16);
-      }
-    }
-    const cl::Buffer probe_buf = buffer_of(rt_.context(), consts);
-    const cl::Buffer slot_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_uint) * slots.size(),
-                              const_cast<cl_uint*>(slots.data()));
+    cl::Buffer probe_buf, slot_buf, tris, vflags;
+    const cl::Event setup_done = setup_plane_b(probes, active, slots, done, frames, probe_buf, slot_buf, tris, vflags);
     const size_t planes = active.size() * frames;
-    cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats(scene_));
-    cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
-    const cl::Event setup_done = setup(probe_buf, mats, static_cast<cl_uint>(frames), 0, tris, vflags);
     const size_t items = planes * kh;
     const size_t band_items = planes * bands();
     cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items);

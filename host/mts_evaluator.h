@@ -67,6 +67,14 @@ std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::
 // After the last frame: an undecided probe that saw clipping is clipped, not clean.
 void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided);
 
+// What mts_coverage_audit found over the cached kernel rows of a set of probes (every frame).
+struct CoverageAudit {
+  uint64_t rows = 0;                   // cached rows audited
+  uint64_t b_differs = 0;              // rows where plane B's own coverage differs from plane A's
+  uint64_t certified = 0;              // rows the shortcut would take B's coverage from A's
+  uint64_t certified_but_differs = 0;  // both: the shortcut would be wrong (must be 0)
+};
+
 class MtsEvaluator : public ProbeEvaluator {
  public:
   // shortcuts: work the kernels save only where a certificate says the answer stays the same —
@@ -77,6 +85,9 @@ class MtsEvaluator : public ProbeEvaluator {
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   FrameCodes codes(const Probe& probe, int frame);
+  // For the tests: checks the coverage shortcut of mts_raster against plane B's own coverage on
+  // every cached row of every frame of the probes (at most plane_a_slots() of them).
+  CoverageAudit audit_coverage(const std::vector<Probe>& probes);
 
   const KernelVariant& variant() const { return variant_; }
   uint64_t fragment_pairs() const { return pairs_; }
@@ -108,6 +119,11 @@ class MtsEvaluator : public ProbeEvaluator {
   // active probe's launches to those that filled its slot now (0 when it was held).
   std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
                                      double& kernel_seconds, std::vector<int>& launches);
+  // Sets up plane B of the active probes for frames [first_frame, first_frame + frames), with
+  // their constants and plane-A slots; returns the set-up kernel's event.
+  cl::Event setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                          const std::vector<cl_uint>& slots, int first_frame, int frames, cl::Buffer& probe_buf,
+                          cl::Buffer& slot_buf, cl::Buffer& tris, cl::Buffer& vflags);
   // Renders the probes of group (distances that fit in the cache together) frame batch by frame batch.
   void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
                  std::vector<ProbeResult>& results, std::vector<bool>& decided);

@@ -827,6 +827,18 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
 #endif
 }
 
+// Whether plane B's coverage of a cached row of plane A is A's: both planes certified (V_COVERS),
+// B within A's coverage margin (coverage_margin), and the segments' triangles keep their orientation.
+static inline int b_coverage_is_a(__global const float* TA, __global const float* TB, uint both_vflags,
+                                  __global const uint* rec, int n, const int* seg_t) {
+  int same = (both_vflags & V_COVERS) && b_moved_from_a(TA, TB) < ((__global const float*)rec)[RW_MARGIN];
+  for (int k = 0; k < n && same; ++k) {
+    const uint t = (uint)seg_t[k] * TRI_STRIDE + T_BITS;
+    same = (((__global const uint*)TA)[t] & 7u) == (((__global const uint*)TB)[t] & 7u);
+  }
+  return same;
+}
+
 // One kernel row of one (probe, frame). The row splits into pieces where both planes' covering
 // triangles stay the same; within a piece each plane's depth is one plane equation, monotone in
 // px (every rounding step of it is monotone), and so is its stored code. The ends of all pieces
@@ -875,14 +887,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   } else {
     na = row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
   }
-  /* B's coverage is A's when B is within A's coverage margin (coverage_margin) and the segments'
-   * triangles keep their orientation */
-  int b_is_a = shortcuts && cached && (a_vflags[ap] & vflags[pf] & V_COVERS) &&
-               b_moved_from_a(TA, TBp) < ((__global const float*)rec)[RW_MARGIN];
-  for (int k = 0; k < na && b_is_a; ++k) {
-    const uint t = (uint)seg_ta[k] * TRI_STRIDE + T_BITS;
-    b_is_a = (((__global const uint*)TA)[t] & 7u) == (((__global const uint*)TBp)[t] & 7u);
-  }
+  const int b_is_a = shortcuts && cached && b_coverage_is_a(TA, TBp, a_vflags[ap] & vflags[pf], rec, na, seg_ta);
   if (b_is_a) {
     for (int k = 0; k < na; ++k) {
       seg_xb[k] = seg_xa[k];
@@ -1000,6 +1005,36 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     if (piece & R_FIGHT) break;
   }
   result[id] = flags | (b_is_a ? R_REUSED : 0u) | (count << R_COUNT_SHIFT);
+}
+
+// Audit of the coverage shortcut, for the tests: per (probe, frame, row) of a launch laid out as
+// mts_raster's, bit 0: plane B's own coverage (row_segments) differs from plane A's cached one;
+// bit 1: b_coverage_is_a says they are the same; bit 2: both (the shortcut would be wrong);
+// bit 3: the row is cached.
+__kernel void mts_coverage_audit(__global const float* restrict tris, __global const uint* restrict vflags,
+                                 __global const float* restrict a_tris, __global const uint* restrict a_vflags,
+                                 __global const uint* restrict a_rows, __global const uint* restrict a_slots,
+                                 const uint first_frame, const uint frames_total, const uint kernel_w,
+                                 const uint kernel_h, const float origin_x, const float origin_y,
+                                 const uint frames, __global uint* restrict out, const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint pf = id / kernel_h, row = id - pf * kernel_h;
+  const uint ap = A_PLANE(pf);
+  __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
+  __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
+  __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
+  out[id] = 0u;
+  const int n = (int)rec[RW_N];
+  if (n == 0 || ((a_vflags[ap] | vflags[pf]) & V_NONFINITE)) return;
+  int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
+  const int nb = row_segments(TB, origin_y + (float)row + 0.5f, origin_x, (int)kernel_w, seg_x, seg_t);
+  int differs = nb != n;
+  for (int k = 0; k < n && !differs; ++k)
+    differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
+  for (int k = 0; k < n; ++k) seg_t[k] = (int)rec[RW_T + k];
+  const int same = b_coverage_is_a(TA, TB, a_vflags[ap] & vflags[pf], rec, n, seg_t);
+  out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 
 // Stored codes and fragment status of both planes at every kernel pixel of one (probe, frame),
