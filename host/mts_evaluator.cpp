@@ -25,8 +25,8 @@ constexpr cl_uint kBandRows = 32;
 // MAXC + 1 segment starts, MAXC triangles).
 constexpr size_t kRowWords = 2 + 25 + 24;
 
-// The plane-A cache holds as many distances as fit in this (all frames of each), at most
-// kMaxSlots; a run with more distances goes through them in groups.
+// The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
+// this (all frames of each) and at most kMaxSlots; a run with more goes through them in groups.
 constexpr size_t kPlaneACacheBytes = size_t{1} << 30;
 constexpr size_t kMaxSlots = 64;
 
@@ -121,10 +121,21 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   raster_ = cl::Kernel(program, "mts_raster");
   bounds_ = cl::Kernel(program, "mts_frame_bounds");
   codes_ = cl::Kernel(program, "mts_codes");
-  const size_t slot_bytes = a_slot_bytes();
-  a_.capacity = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(slot_bytes, 1), 1, kMaxSlots);
-  a_.z.assign(a_.capacity, std::numeric_limits<double>::quiet_NaN());
-  a_.last_use.assign(a_.capacity, 0);
+  max_slots_ = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
+}
+
+size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {
+  std::vector<double> zs;
+  for (const Probe& p : probes) zs.push_back(p.z);
+  std::sort(zs.begin(), zs.end());
+  const size_t distinct = static_cast<size_t>(std::unique(zs.begin(), zs.end()) - zs.begin());
+  const size_t want = std::min(max_slots_, distinct);
+  if (want <= a_.capacity) return distinct;
+  a_ = PlaneACache{};  // buffers are allocated at the next fill; what the old ones held is refilled
+  a_.capacity = want;
+  a_.z.assign(want, std::numeric_limits<double>::quiet_NaN());
+  a_.last_use.assign(want, 0);
+  return distinct;
 }
 
 size_t MtsEvaluator::code_row_words() const {
@@ -295,7 +306,8 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const st
 }
 
 CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
-  if (probes.size() > a_.capacity) throw Error(ExitCode::internal, "coverage audit: more probes than cache slots");
+  if (reserve_plane_a(probes) > a_.capacity)
+    throw Error(ExitCode::internal, "coverage audit: more distances than plane-A cache slots");
   std::vector<size_t> all(probes.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   double ksecs = 0;
@@ -339,6 +351,7 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
 std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
+  reserve_plane_a(probes);
   // Probes whose distances fit in the plane-A cache at once go through the frames together.
   std::vector<double> zs;
   std::vector<bool> pending(probes.size(), true);

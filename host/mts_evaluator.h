@@ -86,7 +86,7 @@ class MtsEvaluator : public ProbeEvaluator {
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   FrameCodes codes(const Probe& probe, int frame);
   // For the tests: checks the coverage shortcut of mts_raster against plane B's own coverage on
-  // every cached row of every frame of the probes (at most plane_a_slots() of them).
+  // every cached row of every frame of the probes (at most max_plane_a_slots() of them).
   CoverageAudit audit_coverage(const std::vector<Probe>& probes);
 
   const KernelVariant& variant() const { return variant_; }
@@ -103,8 +103,8 @@ class MtsEvaluator : public ProbeEvaluator {
   // Rasterised kernel rows, and those of them whose plane-B coverage was plane A's.
   uint64_t rows_rasterised() const { return rows_rasterised_; }
   uint64_t rows_with_coverage_of_a() const { return rows_reused_; }
-  // Distances the plane-A cache holds at once (cache_plane_a).
-  size_t plane_a_slots() const { return a_.capacity; }
+  // Distances the plane-A cache may hold at once (cache_plane_a): its memory budget's share.
+  size_t max_plane_a_slots() const { return max_slots_; }
 
  private:
   // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
@@ -128,6 +128,9 @@ class MtsEvaluator : public ProbeEvaluator {
   void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
                  std::vector<ProbeResult>& results, std::vector<bool>& decided);
   size_t a_slot_bytes() const;
+  // Grows the plane-A cache (emptying it) to hold the probes' distances, within max_slots_;
+  // returns how many distinct distances the probes have.
+  size_t reserve_plane_a(const std::vector<Probe>& probes);
   size_t code_row_words() const;  // per kernel row of plane A's cached codes (0: not cached)
   cl_uint bands() const;
 
@@ -140,6 +143,7 @@ class MtsEvaluator : public ProbeEvaluator {
   float origin_y() const { return static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2); }
 
   cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_, codes_;
+  size_t max_slots_ = 1;
   struct PlaneACache {
     size_t capacity = 0;          // slots, each one distance with all its frames
     std::vector<double> z;        // the distance in each slot (NaN: free)

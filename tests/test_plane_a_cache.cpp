@@ -32,7 +32,7 @@ TEST_CASE("more distances than plane-A cache slots, and evictions, change no pro
     MtsEvaluator ev(runtime(), scene, pair);
     // distinct distances, each probed far above and close to its vertex bound
     std::vector<Probe> probes;
-    const int distances = static_cast<int>(ev.plane_a_slots()) + 7;
+    const int distances = static_cast<int>(ev.max_plane_a_slots()) + 7;
     for (int i = 0; i < distances; ++i) {
       const double z = 1.5 * std::pow(1.13, i);
       probes.push_back({z, i % 2 ? z / 64 : 64 * vertex_bound(z)});
