@@ -10,7 +10,6 @@ namespace depthprec {
 
 namespace {
 
-constexpr int kTriStride = 32;
 constexpr int kProbeStride = 24;
 constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8, kBounds = 16, kReused = 32;
 constexpr int kCountShift = 8;
@@ -21,10 +20,6 @@ constexpr uint32_t kVertexNonFinite = 1;  // kernels/mts.cl V_NONFINITE
 // bounds work per row.
 constexpr cl_uint kBandRows = 32;
 
-// Words per kernel row of the plane-A cache (kernels/mts.cl ROW_WORDS: count, coverage margin,
-// MAXC + 1 segment starts, MAXC triangles).
-constexpr size_t kRowWords = 2 + 25 + 24;
-
 // The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
 // this (all frames of each) and at most kMaxSlots; a run with more goes through them in groups.
 constexpr size_t kPlaneACacheBytes = size_t{1} << 30;
@@ -34,18 +29,6 @@ constexpr size_t kMaxSlots = 64;
 // launch (a new size for every batch shape) recompiles again and again.
 constexpr size_t kLocal = 16;
 cl::NDRange padded(size_t n) { return cl::NDRange((n + kLocal - 1) / kLocal * kLocal); }
-
-int triangles(const Scene& s) { return 2 * s.plane_subdivisions * s.plane_subdivisions; }
-
-// Floats per plane in the set-up buffer (kernels/mts.cl PLANE_STRIDE): triangle records, then
-// six arrays of the 3*NT edges padded to a multiple of 16, then each quad row's y-range, then the
-// vertices' window x and y padded to a multiple of 16.
-size_t plane_floats(const Scene& s) {
-  const size_t edges = (3 * triangles(s) + 15) / 16 * 16;
-  const size_t vertices = static_cast<size_t>(s.plane_subdivisions + 1) * (s.plane_subdivisions + 1);
-  return static_cast<size_t>(triangles(s)) * kTriStride + 6 * edges + 2 * s.plane_subdivisions +
-         2 * ((vertices + 15) / 16 * 16);
-}
 
 }  // namespace
 
@@ -121,6 +104,16 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   raster_ = cl::Kernel(program, "mts_raster");
   bounds_ = cl::Kernel(program, "mts_frame_bounds");
   codes_ = cl::Kernel(program, "mts_codes");
+  // The buffer layout is the program's (kernels/mts.cl mts_layout), so host and kernels cannot
+  // disagree on it.
+  cl::Kernel layout(program, "mts_layout");
+  cl::Buffer sizes(rt_.context(), CL_MEM_WRITE_ONLY, 2 * sizeof(cl_uint));
+  layout.setArg(0, sizes);
+  rt_.queue().enqueueTask(layout);
+  cl_uint got[2] = {0, 0};
+  rt_.queue().enqueueReadBuffer(sizes, CL_TRUE, 0, sizeof got, got);
+  plane_floats_ = got[0];
+  row_words_ = got[1];
   max_slots_ = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
 }
 
@@ -148,8 +141,8 @@ cl_uint MtsEvaluator::bands() const {
 
 size_t MtsEvaluator::a_slot_bytes() const {
   const size_t f = static_cast<size_t>(scene_.frames), kh = static_cast<size_t>(scene_.kernel_h);
-  return sizeof(float) * (kProbeStride + f * plane_floats(scene_)) +
-         sizeof(uint32_t) * f * (1 + kh * (kRowWords + code_row_words()) + 3 * bands());
+  return sizeof(float) * (kProbeStride + f * plane_floats_) +
+         sizeof(uint32_t) * f * (1 + kh * (row_words_ + code_row_words()) + 3 * bands());
 }
 
 cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
@@ -195,9 +188,9 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
   if (a_.tris() == nullptr) {
     const size_t n = a_.capacity;
     a_.consts = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * kProbeStride * n);
-    a_.tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats(scene_));
+    a_.tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats_);
     a_.vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames);
-    a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * kh * kRowWords);
+    a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * kh * row_words_);
     a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * bands() * 3);
     a_.codes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
   }
@@ -300,7 +293,7 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const st
   slot_buf = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_uint) * slots.size(),
                         const_cast<cl_uint*>(slots.data()));
   const size_t planes = active.size() * frames;
-  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats(scene_));
+  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats_);
   vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
   return setup(probe_buf, mats, static_cast<cl_uint>(frames), 0, tris, vflags);
 }
@@ -485,7 +478,7 @@ FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
     const Mat4f m = plane_matrix(scene_, pc, d, frame);
     mats.insert(mats.end(), m.begin(), m.end());
   }
-  cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * plane_floats(scene_));
+  cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * plane_floats_);
   cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * 2);
   setup(probe_buf, mats, 2, 0, tris, vflags);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);

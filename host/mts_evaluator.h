@@ -143,6 +143,8 @@ class MtsEvaluator : public ProbeEvaluator {
   float origin_y() const { return static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2); }
 
   cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_, codes_;
+  size_t plane_floats_ = 0;  // floats per plane record (kernels/mts.cl PLANE_STRIDE)
+  size_t row_words_ = 0;     // words per cached row of plane A (ROW_WORDS)
   size_t max_slots_ = 1;
   struct PlaneACache {
     size_t capacity = 0;          // slots, each one distance with all its frames

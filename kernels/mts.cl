@@ -1037,6 +1037,12 @@ __kernel void mts_coverage_audit(__global const float* restrict tris, __global c
   out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 
+// The buffer layout the host allocates by: floats per plane record, words per cached row of plane A.
+__kernel void mts_layout(__global uint* restrict out) {
+  out[0] = PLANE_STRIDE;
+  out[1] = ROW_WORDS;
+}
+
 // Stored codes and fragment status of both planes at every kernel pixel of one (probe, frame),
 // for the comparison with the host reference. Global id: row; out holds 4 uints per pixel:
 // code A, code B, status A, status B.
