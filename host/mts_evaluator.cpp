@@ -226,8 +226,8 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
 
     const ProbeConstants pc = probe_constants(scene_, pair_, z);
     const auto packed = pc.packed();
-    rt_.queue().enqueueWriteBuffer(a_.consts, CL_FALSE, sizeof(float) * kProbeStride * slot,
-                                   sizeof(float) * kProbeStride, packed.data());
+    rt_.queue().enqueueWriteBuffer(a_.consts, CL_TRUE, sizeof(float) * kProbeStride * slot,
+                                   sizeof(float) * kProbeStride, packed.data());  // packed is local
     std::vector<float> mats(static_cast<size_t>(frames) * 16);
     for (cl_uint f = 0; f < frames; ++f) {
       const Mat4f m = plane_matrix(scene_, pc, z, static_cast<int>(f));
