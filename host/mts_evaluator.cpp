@@ -30,6 +30,12 @@ constexpr size_t kMaxSlots = 64;
 constexpr size_t kLocal = 16;
 cl::NDRange padded(size_t n) { return cl::NDRange((n + kLocal - 1) / kLocal * kLocal); }
 
+// A read-only device copy of a host array.
+template <class T>
+cl::Buffer buffer_of(const cl::Context& context, const std::vector<T>& v) {
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * v.size(), const_cast<T*>(v.data()));
+}
+
 }  // namespace
 
 int batch_frames(int done, int total) {
@@ -148,21 +154,11 @@ size_t MtsEvaluator::a_slot_bytes() const {
 cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
                               cl_uint first_plane, cl::Buffer& tris, cl::Buffer& vflags) {
   const size_t planes = mats.size() / 16;
-  cl::Buffer mat_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * mats.size(),
-                     const_cast<float*>(mats.data()));
-  setup_.setArg(0, consts);
-  setup_.setArg(1, mat_buf);
-  setup_.setArg(2, per_probe);
-  setup_.setArg(3, 0.5f * static_cast<float>(scene_.viewport_w));
-  setup_.setArg(4, 0.5f * static_cast<float>(scene_.viewport_h));
-  setup_.setArg(5, origin_x());
-  setup_.setArg(6, origin_y());
-  setup_.setArg(7, static_cast<cl_uint>(scene_.kernel_w));
-  setup_.setArg(8, static_cast<cl_uint>(scene_.kernel_h));
-  setup_.setArg(9, tris);
-  setup_.setArg(10, vflags);
-  setup_.setArg(11, first_plane);
-  setup_.setArg(12, static_cast<cl_uint>(planes));
+  const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
+  set_args(setup_, consts, mat_buf, per_probe, 0.5f * static_cast<float>(scene_.viewport_w),
+           0.5f * static_cast<float>(scene_.viewport_h), origin_x(), origin_y(),
+           static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), tris, vflags,
+           first_plane, static_cast<cl_uint>(planes));
   cl::Event done;
   rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal), nullptr, &done);
   ++launches_;
@@ -173,11 +169,6 @@ namespace {
 double device_seconds(const cl::Event& e) {
   return 1e-9 * static_cast<double>(e.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
                                     e.getProfilingInfo<CL_PROFILING_COMMAND_START>());
-}
-
-cl::Buffer buffer_of(const cl::Context& context, const std::vector<float>& v) {
-  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * v.size(),
-                    const_cast<float*>(v.data()));
 }
 }  // namespace
 
@@ -195,19 +186,21 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     a_.codes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
   }
   ++a_.clock;
-  std::vector<cl_uint> slots(active.size());
+  constexpr cl_uint kNotHeld = std::numeric_limits<cl_uint>::max();
+  std::vector<cl_uint> slots(active.size(), kNotHeld);
   launches.assign(active.size(), 0);
   std::vector<bool> in_use(a_.capacity, false);
-  for (size_t i = 0; i < active.size(); ++i) {
-    const double z = probes[active[i]].z;
-    const auto it = std::find(a_.z.begin(), a_.z.end(), z);
+  for (size_t i = 0; i < active.size(); ++i) {  // first the slots already held, so none is evicted
+    const auto it = std::find(a_.z.begin(), a_.z.end(), probes[active[i]].z);
     if (it == a_.z.end()) continue;
     slots[i] = static_cast<cl_uint>(it - a_.z.begin());
     in_use[slots[i]] = true;
     a_.last_use[slots[i]] = a_.clock;
   }
   for (size_t i = 0; i < active.size(); ++i) {
+    if (slots[i] != kNotHeld) continue;
     const double z = probes[active[i]].z;
+    // a distance filled earlier in this loop (several probes of one distance)
     const auto it = std::find(a_.z.begin(), a_.z.end(), z);
     if (it != a_.z.end()) {
       slots[i] = static_cast<cl_uint>(it - a_.z.begin());
@@ -235,34 +228,13 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     }
     const auto first_plane = static_cast<cl_uint>(slot * frames);
     const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
-    a_rows_.setArg(0, a_.consts);
-    a_rows_.setArg(1, a_.tris);
-    a_rows_.setArg(2, a_.vflags);
-    a_rows_.setArg(3, first_plane);
-    a_rows_.setArg(4, frames);
-    a_rows_.setArg(5, kw);
-    a_rows_.setArg(6, kh);
-    a_rows_.setArg(7, origin_x());
-    a_rows_.setArg(8, origin_y());
-    a_rows_.setArg(9, a_.rows);
-    a_rows_.setArg(10, a_.codes);
-    a_rows_.setArg(11, static_cast<cl_uint>(frames * kh));
+    set_args(a_rows_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(), origin_y(),
+             a_.rows, a_.codes, static_cast<cl_uint>(frames * kh));
     cl::Event rows_done, bands_done;
     rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh), cl::NDRange(kLocal), nullptr,
                                      &rows_done);
-    a_bands_.setArg(0, a_.consts);
-    a_bands_.setArg(1, a_.tris);
-    a_bands_.setArg(2, a_.vflags);
-    a_bands_.setArg(3, first_plane);
-    a_bands_.setArg(4, frames);
-    a_bands_.setArg(5, kw);
-    a_bands_.setArg(6, kh);
-    a_bands_.setArg(7, origin_x());
-    a_bands_.setArg(8, origin_y());
-    a_bands_.setArg(9, bands());
-    a_bands_.setArg(10, kBandRows);
-    a_bands_.setArg(11, a_.bands);
-    a_bands_.setArg(12, static_cast<cl_uint>(frames * bands()));
+    set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(), origin_y(),
+             bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
     rt_.queue().enqueueNDRangeKernel(a_bands_, cl::NullRange, padded(frames * bands()), cl::NDRange(kLocal),
                                      nullptr, &bands_done);
     bands_done.wait();
@@ -290,8 +262,7 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const st
     }
   }
   probe_buf = buffer_of(rt_.context(), consts);
-  slot_buf = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(cl_uint) * slots.size(),
-                        const_cast<cl_uint*>(slots.data()));
+  slot_buf = buffer_of(rt_.context(), slots);
   const size_t planes = active.size() * frames;
   tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats_);
   vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
@@ -313,21 +284,8 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
   const size_t items = probes.size() * frames * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
   cl::Kernel k(rt_.program(variant_.program, variant_.options), "mts_coverage_audit");
-  k.setArg(0, tris);
-  k.setArg(1, vflags);
-  k.setArg(2, a_.tris);
-  k.setArg(3, a_.vflags);
-  k.setArg(4, a_.rows);
-  k.setArg(5, slot_buf);
-  k.setArg(6, cl_uint{0});
-  k.setArg(7, static_cast<cl_uint>(frames));
-  k.setArg(8, kw);
-  k.setArg(9, kh);
-  k.setArg(10, origin_x());
-  k.setArg(11, origin_y());
-  k.setArg(12, static_cast<cl_uint>(frames));
-  k.setArg(13, out);
-  k.setArg(14, static_cast<cl_uint>(items));
+  set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0}, static_cast<cl_uint>(frames),
+           kw, kh, origin_x(), origin_y(), static_cast<cl_uint>(frames), out, static_cast<cl_uint>(items));
   rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
   std::vector<uint32_t> words(items);
   rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, words.data());
@@ -390,23 +348,9 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items);
     cl::Event bounds_done;
     if (shortcuts_) {
-      bounds_.setArg(0, probe_buf);
-      bounds_.setArg(1, tris);
-      bounds_.setArg(2, vflags);
-      bounds_.setArg(3, a_.vflags);
-      bounds_.setArg(4, a_.bands);
-      bounds_.setArg(5, slot_buf);
-      bounds_.setArg(6, static_cast<cl_uint>(done));
-      bounds_.setArg(7, static_cast<cl_uint>(scene_.frames));
-      bounds_.setArg(8, kw);
-      bounds_.setArg(9, kh);
-      bounds_.setArg(10, ox);
-      bounds_.setArg(11, oy);
-      bounds_.setArg(12, static_cast<cl_uint>(frames));
-      bounds_.setArg(13, bands());
-      bounds_.setArg(14, kBandRows);
-      bounds_.setArg(15, decided_bands);
-      bounds_.setArg(16, static_cast<cl_uint>(band_items));
+      set_args(bounds_, probe_buf, tris, vflags, a_.vflags, a_.bands, slot_buf, static_cast<cl_uint>(done),
+               static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy, static_cast<cl_uint>(frames), bands(),
+               kBandRows, decided_bands, static_cast<cl_uint>(band_items));
       rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items), cl::NDRange(kLocal),
                                        nullptr, &bounds_done);
       ++launches_;
@@ -416,27 +360,10 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     }
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    raster_.setArg(0, probe_buf);
-    raster_.setArg(1, tris);
-    raster_.setArg(2, vflags);
-    raster_.setArg(3, a_.tris);
-    raster_.setArg(4, a_.vflags);
-    raster_.setArg(5, a_.rows);
-    raster_.setArg(6, slot_buf);
-    raster_.setArg(7, static_cast<cl_uint>(done));
-    raster_.setArg(8, a_.codes);
-    raster_.setArg(9, static_cast<cl_uint>(scene_.frames));
-    raster_.setArg(10, kw);
-    raster_.setArg(11, kh);
-    raster_.setArg(12, ox);
-    raster_.setArg(13, oy);
-    raster_.setArg(14, static_cast<cl_uint>(frames));
-    raster_.setArg(15, decided_bands);
-    raster_.setArg(16, bands());
-    raster_.setArg(17, kBandRows);
-    raster_.setArg(18, static_cast<cl_uint>(shortcuts_));
-    raster_.setArg(19, result);
-    raster_.setArg(20, static_cast<cl_uint>(items));
+    set_args(raster_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf,
+             static_cast<cl_uint>(done), a_.codes, static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
+             static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
+             static_cast<cl_uint>(shortcuts_), result, static_cast<cl_uint>(items));
     cl::Event raster_done;
     rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal),
                                      nullptr, &raster_done);
@@ -484,13 +411,7 @@ FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const size_t pixels = static_cast<size_t>(kw) * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * 4 * pixels);
-  codes_.setArg(0, probe_buf);
-  codes_.setArg(1, tris);
-  codes_.setArg(2, kw);
-  codes_.setArg(3, origin_x());
-  codes_.setArg(4, origin_y());
-  codes_.setArg(5, out);
-  codes_.setArg(6, kh);
+  set_args(codes_, probe_buf, tris, kw, origin_x(), origin_y(), out, kh);
   rt_.queue().enqueueNDRangeKernel(codes_, cl::NullRange, padded(kh), cl::NDRange(kLocal));
   std::vector<uint32_t> raw(4 * pixels);
   rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * raw.size(), raw.data());

@@ -79,8 +79,8 @@ class MtsEvaluator : public ProbeEvaluator {
  public:
   // shortcuts: work the kernels save only where a certificate says the answer stays the same —
   // bands of rows decided clean from code bounds (mts_frame_bounds) before rasterising, and plane
-  // B's coverage of a row taken from plane A's (segments_hold); off only to check that they
-  // never change a result.
+  // B's coverage of a row taken from plane A's within A's coverage margin (b_coverage_is_a); off
+  // only to check that they never change a result.
   MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true);
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;

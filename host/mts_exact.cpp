@@ -71,18 +71,10 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
                          planes.data());
     const size_t items = active.size() * frames * kh;
     cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    kernel_.setArg(0, plane_buf);
-    kernel_.setArg(1, kw);
-    kernel_.setArg(2, kh);
-    kernel_.setArg(3, static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2));
-    kernel_.setArg(4, static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2));
-    kernel_.setArg(5, static_cast<double>(scene_.viewport_w));
-    kernel_.setArg(6, static_cast<double>(scene_.viewport_h));
-    kernel_.setArg(7, aspect * tan_half);
-    kernel_.setArg(8, tan_half);
-    kernel_.setArg(9, scene_.params.log_k);
-    kernel_.setArg(10, out);
-    kernel_.setArg(11, static_cast<cl_uint>(items));
+    set_args(kernel_, plane_buf, kw, kh, static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
+             static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
+             static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
+             aspect * tan_half, tan_half, scene_.params.log_k, out, static_cast<cl_uint>(items));
     rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange((items + kLocal - 1) / kLocal * kLocal),
                                      cl::NDRange(kLocal));
     std::vector<uint32_t> rows(items);

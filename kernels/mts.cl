@@ -673,7 +673,7 @@ __kernel void mts_a_rows(__global const float* restrict probes, __global const f
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint plane = first_plane + id / kernel_h, row = id % kernel_h;
-  __global const float* T = tris + plane * PLANE_STRIDE;
+  __global const float* T = tris + (size_t)plane * PLANE_STRIDE;
   __global uint* out = rows + ((size_t)plane * kernel_h + row) * ROW_WORDS;
   if (vflags[plane] & V_NONFINITE) {
     out[RW_N] = 0u;
