@@ -113,13 +113,14 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   // The buffer layout is the program's (kernels/mts.cl mts_layout), so host and kernels cannot
   // disagree on it.
   cl::Kernel layout(program, "mts_layout");
-  cl::Buffer sizes(rt_.context(), CL_MEM_WRITE_ONLY, 2 * sizeof(cl_uint));
+  cl::Buffer sizes(rt_.context(), CL_MEM_WRITE_ONLY, 3 * sizeof(cl_uint));
   layout.setArg(0, sizes);
   rt_.queue().enqueueTask(layout);
-  cl_uint got[2] = {0, 0};
+  cl_uint got[3] = {0, 0, 0};
   rt_.queue().enqueueReadBuffer(sizes, CL_TRUE, 0, sizeof got, got);
   plane_floats_ = got[0];
   row_words_ = got[1];
+  band_words_ = got[2];
   max_slots_ = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
 }
 
@@ -148,7 +149,7 @@ cl_uint MtsEvaluator::bands() const {
 size_t MtsEvaluator::a_slot_bytes() const {
   const size_t f = static_cast<size_t>(scene_.frames), kh = static_cast<size_t>(scene_.kernel_h);
   return sizeof(float) * (kProbeStride + f * plane_floats_) +
-         sizeof(uint32_t) * f * (1 + kh * (row_words_ + code_row_words()) + 3 * bands());
+         sizeof(uint32_t) * f * (1 + kh * (row_words_ + code_row_words()) + band_words_ * bands());
 }
 
 cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
@@ -182,7 +183,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     a_.tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats_);
     a_.vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames);
     a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * kh * row_words_);
-    a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * bands() * 3);
+    a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * bands() * band_words_);
     a_.codes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
   }
   ++a_.clock;
@@ -246,23 +247,27 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
 }
 
 cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                                      const std::vector<cl_uint>& slots, int first_frame, int frames,
-                                      cl::Buffer& probe_buf, cl::Buffer& slot_buf, cl::Buffer& tris,
-                                      cl::Buffer& vflags) {
+                                      const std::vector<cl_uint>& slots, const std::vector<int>& first_visited,
+                                      int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
+                                      cl::Buffer& tris, cl::Buffer& vflags) {
   std::vector<float> consts(active.size() * kProbeStride);
   std::vector<float> mats(active.size() * frames * 16);
+  std::vector<cl_uint> slot_and_start(2 * active.size());
   for (size_t i = 0; i < active.size(); ++i) {
     const Probe& p = probes[active[i]];
     const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
     const auto packed = pc.packed();
     std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
+    const int start = first_visited[active[i]];
     for (int f = 0; f < frames; ++f) {
-      const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, first_frame + f);
+      const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, (start + first_frame + f) % scene_.frames);
       std::copy(b.begin(), b.end(), mats.begin() + (i * frames + f) * 16);
     }
+    slot_and_start[2 * i] = slots[i];
+    slot_and_start[2 * i + 1] = static_cast<cl_uint>(start);
   }
   probe_buf = buffer_of(rt_.context(), consts);
-  slot_buf = buffer_of(rt_.context(), slots);
+  slot_buf = buffer_of(rt_.context(), slot_and_start);
   const size_t planes = active.size() * frames;
   tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats_);
   vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
@@ -279,7 +284,8 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
   const std::vector<cl_uint> slots = cache_plane_a(probes, all, ksecs, cache_launches);
   const int frames = scene_.frames;
   cl::Buffer probe_buf, slot_buf, tris, vflags;
-  setup_plane_b(probes, all, slots, 0, frames, probe_buf, slot_buf, tris, vflags);
+  setup_plane_b(probes, all, slots, std::vector<int>(probes.size(), 0), 0, frames, probe_buf, slot_buf, tris,
+                vflags);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const size_t items = probes.size() * frames * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
@@ -303,6 +309,11 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
   reserve_plane_a(probes);
+  std::vector<int> first_visited(probes.size(), 0);
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const auto it = last_fight_frame_.find(probes[i].z);
+    if (it != last_fight_frame_.end()) first_visited[i] = it->second;
+  }
   // Probes whose distances fit in the plane-A cache at once go through the frames together.
   std::vector<double> zs;
   std::vector<bool> pending(probes.size(), true);
@@ -318,7 +329,7 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
       group.push_back(i);
       pending[i] = false;
     }
-    run_group(probes, group, results, decided);
+    run_group(probes, group, first_visited, results, decided);
   }
   finish_outcomes(results, decided);
   for (const auto& r : results) by_outcome_[static_cast<size_t>(r.outcome)] += r.fragment_pairs;
@@ -326,7 +337,8 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
 }
 
 void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
-                             std::vector<ProbeResult>& results, std::vector<bool>& decided) {
+                             const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
+                             std::vector<bool>& decided) {
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const float ox = origin_x(), oy = origin_y();
   int done = 0;
@@ -341,14 +353,15 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     std::vector<int> cache_launches;
     const std::vector<cl_uint> slots = cache_plane_a(probes, active, ksecs, cache_launches);
     cl::Buffer probe_buf, slot_buf, tris, vflags;
-    const cl::Event setup_done = setup_plane_b(probes, active, slots, done, frames, probe_buf, slot_buf, tris, vflags);
+    const cl::Event setup_done =
+        setup_plane_b(probes, active, slots, first_visited, done, frames, probe_buf, slot_buf, tris, vflags);
     const size_t planes = active.size() * frames;
     const size_t items = planes * kh;
     const size_t band_items = planes * bands();
     cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items);
     cl::Event bounds_done;
     if (shortcuts_) {
-      set_args(bounds_, probe_buf, tris, vflags, a_.vflags, a_.bands, slot_buf, static_cast<cl_uint>(done),
+      set_args(bounds_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.bands, slot_buf, static_cast<cl_uint>(done),
                static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy, static_cast<cl_uint>(frames), bands(),
                kBandRows, decided_bands, static_cast<cl_uint>(band_items));
       rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items), cl::NDRange(kLocal),
@@ -381,6 +394,9 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
 
     const std::vector<uint64_t> probe_pairs =
         fold_launch(rows, active, done, frames, kh, results, decided, after_decision_);
+    for (const size_t i : active)
+      if (decided[i])  // a fight or a non-finite frame: the next probes of this distance start there
+        last_fight_frame_[probes[i].z] = (first_visited[i] + results[i].frames - 1) % scene_.frames;
     uint64_t launch_pairs = 0;
     for (const uint64_t n : probe_pairs) launch_pairs += n;
     for (size_t i = 0; i < active.size(); ++i) {

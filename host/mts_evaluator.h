@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,7 @@ const char* to_string(Outcome o);
 
 struct ProbeResult {
   Outcome outcome = Outcome::clean;
-  int frames = 0;               // frames up to and including the deciding one (all if clean)
+  int frames = 0;               // frames rendered up to and including the deciding one (all if clean)
   uint64_t fragment_pairs = 0;  // pairs the kernel evaluated for this probe
   bool any_clipped = false, any_non_finite = false, any_uncovered = false;
   double seconds = 0;         // share of the launches' wall time, by fragment pairs
@@ -119,14 +120,17 @@ class MtsEvaluator : public ProbeEvaluator {
   // active probe's launches to those that filled its slot now (0 when it was held).
   std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
                                      double& kernel_seconds, std::vector<int>& launches);
-  // Sets up plane B of the active probes for frames [first_frame, first_frame + frames), with
-  // their constants and plane-A slots; returns the set-up kernel's event.
+  // Sets up plane B of the active probes for their visits [first_frame, first_frame + frames) (a
+  // probe's visit k renders frame (first_visited + k) mod frames), with their constants, plane-A
+  // slots and first frames (slot_buf: slot, first frame per probe); returns the set-up kernel's event.
   cl::Event setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                          const std::vector<cl_uint>& slots, int first_frame, int frames, cl::Buffer& probe_buf,
-                          cl::Buffer& slot_buf, cl::Buffer& tris, cl::Buffer& vflags);
+                          const std::vector<cl_uint>& slots, const std::vector<int>& first_visited,
+                          int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
+                          cl::Buffer& tris, cl::Buffer& vflags);
   // Renders the probes of group (distances that fit in the cache together) frame batch by frame batch.
   void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
-                 std::vector<ProbeResult>& results, std::vector<bool>& decided);
+                 const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
+                 std::vector<bool>& decided);
   size_t a_slot_bytes() const;
   // Grows the plane-A cache (emptying it) to hold the probes' distances, within max_slots_;
   // returns how many distinct distances the probes have.
@@ -145,6 +149,7 @@ class MtsEvaluator : public ProbeEvaluator {
   cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_, codes_;
   size_t plane_floats_ = 0;  // floats per plane record (kernels/mts.cl PLANE_STRIDE)
   size_t row_words_ = 0;     // words per cached row of plane A (ROW_WORDS)
+  size_t band_words_ = 0;    // words per band of plane A (BAND_WORDS)
   size_t max_slots_ = 1;
   struct PlaneACache {
     size_t capacity = 0;          // slots, each one distance with all its frames
@@ -154,6 +159,13 @@ class MtsEvaluator : public ProbeEvaluator {
     cl::Buffer consts, tris, vflags, rows, bands, codes;
   } a_;
   bool shortcuts_ = true;
+  // Frame order: a probe visits the frames cyclically from the one that decided the last fighting
+  // probe of its distance (0 before there is one). Below the MTS a distance fights in few frames,
+  // mostly the same ones probe after probe, so a fighting probe is decided in its first launch
+  // instead of after most frames. Whether a probe fights does not depend on the order; which of
+  // its frames decides it, and so its frames count and a non_finite or clipped seen before the
+  // fight, does (docs/mts.md, frame order).
+  std::map<double, int> last_fight_frame_;
   uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0, rows_rasterised_ = 0, rows_reused_ = 0;
   std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
