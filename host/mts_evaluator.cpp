@@ -158,7 +158,7 @@ cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>
   const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
   set_args(setup_, consts, mat_buf, per_probe, 0.5f * static_cast<float>(scene_.viewport_w),
            0.5f * static_cast<float>(scene_.viewport_h), origin_x(), origin_y(),
-           static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), tris, vflags,
+           static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), kBandRows, tris, vflags,
            first_plane, static_cast<cl_uint>(planes));
   cl::Event done;
   rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal), nullptr, &done);

@@ -77,6 +77,7 @@
 #define T_YMIN 21
 #define T_YMAX 22
 #define T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
+#define T_BOX 28  /* int4: the kernel pixels the triangle may own (kernel_pixel_box) */
 
 // Probe constants offsets (after P[16])
 #define C_NEAR 16
@@ -119,15 +120,26 @@ static inline float4 mat_vec(__global const float* m, float4 v) {
 // pixel centre in both x and y; all coordinates below 8192 in magnitude (edge-test error below
 // 0.006 px) and no triangle angle below ~6 degrees (mts_setup), so a pixel centre 1/8 px from a
 // vertex is > 0.0125 px from that vertex's other edges. docs/performance.md has the argument.
+// A vertex near a pixel centre only spoils the certificate for the band of rows holding that
+// pixel, so such bands are named in the flags (bit V_BAND_SHIFT + band, bands of band_rows rows,
+// the first 24 bands; a vertex in a later one clears V_COVERS) and the rest stay certified.
 #define V_NONFINITE 1u
 #define V_COVERS 2u
-static inline int covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw, uint kh) {
+#define V_BAND_SHIFT 8
+#define V_MAX_BANDS 24u
+static inline uint covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw, uint kh,
+                                 uint band_rows) {
+  uint bad_bands = 0u;
   const float x0 = ox, x1 = ox + (float)kw, y0 = oy, y1 = oy + (float)kh; /* pixel area */
   for (int v = 0; v < NV; ++v) {
-    if (!(fabs(xw[v]) <= 8192.0f && fabs(yw[v]) <= 8192.0f)) return 0;
+    if (!(fabs(xw[v]) <= 8192.0f && fabs(yw[v]) <= 8192.0f)) return 0u;
     if (xw[v] < x0 - 1.0f || xw[v] > x1 + 1.0f || yw[v] < y0 - 1.0f || yw[v] > y1 + 1.0f) continue;
     const float fx = xw[v] - ox - 0.5f, fy = yw[v] - oy - 0.5f;
-    if (fabs(fx - rint(fx)) < 0.125f && fabs(fy - rint(fy)) < 0.125f) return 0;
+    if (fabs(fx - rint(fx)) < 0.125f && fabs(fy - rint(fy)) < 0.125f) {
+      const uint band = (uint)clamp((int)rint(fy), 0, (int)kh - 1) / band_rows;
+      if (band >= V_MAX_BANDS) return 0u;
+      bad_bands |= 1u << band;
+    }
   }
   /* the reference point: the mean of the four corner vertices, inside the outline */
   const int c[4] = {0, GRID, NV - 1, NV - 1 - GRID};
@@ -149,11 +161,33 @@ static inline int covers_kernel(const float* xw, const float* yw, float ox, floa
         const float px = (q & 1) ? x1 : x0, py = (q & 2) ? y1 : y0;
         float E = dx * (py - ay) - dy * (px - ax);
         if (inner < 0.0f) E = -E;
-        if (!(E > margin)) return 0;
+        if (!(E > margin)) return 0u;
       }
     }
   }
-  return 1;
+  return V_COVERS | (bad_bands << V_BAND_SHIFT);
+}
+
+// Every pixel of the band (or of the whole kernel) is owned by exactly one triangle.
+static inline int band_covered(uint vf, uint band) {
+  return (vf & V_COVERS) && (band >= V_MAX_BANDS || !((vf >> (V_BAND_SHIFT + band)) & 1u));
+}
+static inline int covers_all(uint vf) { return (vf & V_COVERS) && !(vf >> V_BAND_SHIFT); }
+
+// The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
+// within its bounding box widened by one pixel (an edge test can pass only within its rounding
+// error outside the exact triangle). Empty when i0 > i1 or j0 > j1.
+static inline int4 kernel_pixel_box(__global const float* R, float ox, float oy, int W, int H) {
+  float xmin = INFINITY, xmax = -INFINITY;
+  for (int e = 0; e < 3; ++e) {
+    const float ax = R[T_EDGES + 4 * e], bx = ax + R[T_EDGES + 4 * e + 2];
+    xmin = fmin(xmin, fmin(ax, bx));
+    xmax = fmax(xmax, fmax(ax, bx));
+  }
+  return (int4)(max((int)ceil(fmax(xmin - 1.0f - ox - 0.5f, -1.0f)), 0),
+                min((int)floor(fmin(xmax + 1.0f - ox - 0.5f, (float)W)), W - 1),
+                max((int)ceil(fmax(R[T_YMIN] - 1.0f - oy - 0.5f, -1.0f)), 0),
+                min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)H)), H - 1));
 }
 
 // Vertex stage, divide, window transform and triangle set-up of one plane in one frame.
@@ -162,7 +196,7 @@ static inline int covers_kernel(const float* xw, const float* yw, float ox, floa
 __kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
                         const uint per_probe, const float half_w, const float half_h,
                         const float origin_x, const float origin_y, const uint kernel_w,
-                        const uint kernel_h, __global float* restrict tris,
+                        const uint kernel_h, const uint band_rows, __global float* restrict tris,
                         __global uint* restrict vflags, const uint first_plane, const uint count) {
   const uint k = get_global_id(0);
   if (k >= count) return;
@@ -264,10 +298,10 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     R[T_YMAX] = fmax(fmax(yw[i0], yw[i1]), yw[i2]);
     for (int e = 0; e < 3; ++e) R[T_DXDY + e] = R[T_EDGES + 4 * e + 2] / R[T_EDGES + 4 * e + 3];
     ((__global uint*)R)[T_BITS] = bits;
+    vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0, (__global int*)R + T_BOX);
   }
-  vflags[id] = nonfinite | (!nonfinite && shapely &&
-                             covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h)
-                                 ? V_COVERS
+  vflags[id] = nonfinite | (!nonfinite && shapely
+                                 ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h, band_rows)
                                  : 0u);
   for (int qj = 0; qj < GRID; ++qj) {
     float lo = INFINITY, hi = -INFINITY;
@@ -704,7 +738,7 @@ __kernel void mts_a_rows(__global const float* restrict probes, __global const f
   for (int k = 0; k <= n; ++k) out[RW_X + k] = (uint)seg_x[k];
   for (int k = 0; k < n; ++k) out[RW_T + k] = (uint)seg_t[k];
   ((__global float*)out)[RW_MARGIN] =
-      (vflags[plane] & V_COVERS) ? coverage_margin(T, py, origin_x, n, seg_x, seg_t) : 0.0f;
+      covers_all(vflags[plane]) ? coverage_margin(T, py, origin_x, n, seg_x, seg_t) : 0.0f;
 }
 
 // The smallest and largest stored code of one plane over the kernel pixels of rows [r0, r1) that
@@ -718,20 +752,11 @@ typedef struct {
   int bad;
 } code_bounds_t;
 
-// The kernel pixels (column i0..i1, row j0..j1) of rows [r0, r1) that triangle R may own: those
-// whose centre lies within its bounding box widened by one pixel (an edge test can pass only
-// within its rounding error outside the exact triangle). Empty when i0 > i1 or j0 > j1.
-static inline int4 pixel_box(__global const float* R, float ox, float oy, int W, int r0, int r1) {
-  float xmin = INFINITY, xmax = -INFINITY;
-  for (int e = 0; e < 3; ++e) {
-    const float ax = R[T_EDGES + 4 * e], bx = ax + R[T_EDGES + 4 * e + 2];
-    xmin = fmin(xmin, fmin(ax, bx));
-    xmax = fmax(xmax, fmax(ax, bx));
-  }
-  return (int4)(max((int)ceil(fmax(xmin - 1.0f - ox - 0.5f, -1.0f)), 0),
-                min((int)floor(fmin(xmax + 1.0f - ox - 0.5f, (float)W)), W - 1),
-                max((int)ceil(fmax(R[T_YMIN] - 1.0f - oy - 0.5f, -1.0f)), r0),
-                min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)r1)), r1 - 1));
+// The kernel pixels (column i0..i1, row j0..j1) of rows [r0, r1) that triangle R may own
+// (kernel_pixel_box, stored by mts_setup). Empty when i0 > i1 or j0 > j1.
+static inline int4 pixel_box(__global const float* R, int r0, int r1) {
+  const int4 box = vload4(0, (__global const int*)R + T_BOX);
+  return (int4)(box.s0, box.s1, max(box.s2, r0), min(box.s3, r1 - 1));
 }
 
 static inline code_bounds_t plane_code_bounds(__global const float* T, __global const float* P, float ox,
@@ -744,7 +769,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
   int n = 0;
   for (int t = 0; t <= NT; ++t) {
     if (t < NT) {
-      const int4 box = pixel_box(T + t * TRI_STRIDE, ox, oy, W, r0, r1);
+      const int4 box = pixel_box(T + t * TRI_STRIDE, r0, r1);
       const int i0 = box.s0, i1 = box.s1, j0 = box.s2, j1 = box.s3;
       if (i0 > i1 || j0 > j1) continue;
       for (int q = 0; q < 4; ++q) {
@@ -851,7 +876,7 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
   for (int t = 0; t <= NT; ++t) {
     if (t < NT) {
       __global const float* R = T + t * TRI_STRIDE;
-      const int4 box = pixel_box(R, ox, oy, W, r0, r1);
+      const int4 box = pixel_box(R, r0, r1);
       if (box.s0 > box.s1 || box.s2 > box.s3) continue;
       for (int q = 0; q < 4; ++q) {
         f[n] = R[G_C0];
@@ -953,7 +978,7 @@ __kernel void mts_a_bands(__global const float* restrict probes, __global const 
   o[2] = 1u;
   ((__global float*)o)[BW_GAP_LO] = NAN;
   ((__global float*)o)[BW_GAP_HI] = NAN;
-  if (!(vflags[plane] & V_COVERS)) return;
+  if (!band_covered(vflags[plane], band)) return;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
   __global const float* T = tris + (size_t)plane * PLANE_STRIDE;
   const code_bounds_t a = plane_code_bounds(T, probes + (plane / per_probe) * PROBE_STRIDE, origin_x, origin_y,
@@ -977,7 +1002,7 @@ __kernel void mts_a_bands(__global const float* restrict probes, __global const 
    (a_slots[2u * ((pf) / frames) + 1u] + first_frame + (pf) % frames) % frames_total)
 
 // Decides bands of kernel rows of a (probe, frame) clean without rasterising them, when both
-// planes certainly own every pixel (V_COVERS) and their code bounds over the band exclude a fight:
+// planes certainly own every pixel of the band (band_covered) and their code bounds over it exclude a fight:
 // LEQUAL: B's smallest code above A's largest (log depth: by LOG_CODE_SLACK more, as for pieces),
 // or, where that fails, the gap certificate (gap_certified) for interpolated depth.
 // Most probes of a search's descent from s = z are decided here. A band that is not decided goes
@@ -998,7 +1023,7 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
   __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
   decided[id] = 0u;
   __global const uint* a = a_bands + ((size_t)ap * bands + band) * BAND_WORDS;
-  if (!(a_vflags[ap] & vflags[pf] & V_COVERS) || a[2]) return;
+  if (!band_covered(a_vflags[ap], band) || !band_covered(vflags[pf], band) || a[2]) return;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
   __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
   const code_bounds_t b = plane_code_bounds(TB, P, origin_x, origin_y, (int)kernel_w, r0, r1);
@@ -1028,9 +1053,9 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
 
 // Whether plane B's coverage of a cached row of plane A is A's: both planes certified (V_COVERS),
 // B within A's coverage margin (coverage_margin), and the segments' triangles keep their orientation.
-static inline int b_coverage_is_a(__global const float* TA, __global const float* TB, uint both_vflags,
-                                  __global const uint* rec, int n, const int* seg_t) {
-  int same = (both_vflags & V_COVERS) && b_moved_from_a(TA, TB) < ((__global const float*)rec)[RW_MARGIN];
+static inline int b_coverage_is_a(__global const float* TA, __global const float* TB, uint vflags_a,
+                                  uint vflags_b, __global const uint* rec, int n, const int* seg_t) {
+  int same = covers_all(vflags_a) && covers_all(vflags_b) && b_moved_from_a(TA, TB) < ((__global const float*)rec)[RW_MARGIN];
   for (int k = 0; k < n && same; ++k) {
     const uint t = (uint)seg_t[k] * TRI_STRIDE + T_BITS;
     same = (((__global const uint*)TA)[t] & 7u) == (((__global const uint*)TB)[t] & 7u);
@@ -1086,7 +1111,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   } else {
     na = row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
   }
-  const int b_is_a = shortcuts && cached && b_coverage_is_a(TA, TBp, a_vflags[ap] & vflags[pf], rec, na, seg_ta);
+  const int b_is_a = shortcuts && cached && b_coverage_is_a(TA, TBp, a_vflags[ap], vflags[pf], rec, na, seg_ta);
   if (b_is_a) {
     for (int k = 0; k < na; ++k) {
       seg_xb[k] = seg_xa[k];
@@ -1232,7 +1257,7 @@ __kernel void mts_coverage_audit(__global const float* restrict tris, __global c
   for (int k = 0; k < n && !differs; ++k)
     differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
   for (int k = 0; k < n; ++k) seg_t[k] = (int)rec[RW_T + k];
-  const int same = b_coverage_is_a(TA, TB, a_vflags[ap] & vflags[pf], rec, n, seg_t);
+  const int same = b_coverage_is_a(TA, TB, a_vflags[ap], vflags[pf], rec, n, seg_t);
   out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 
