@@ -852,6 +852,11 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 
 #if GAP_CERT
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
+// The reference plane's exact value R at (px, py), binary64 scalars or vectors alike.
+#define REF_PLANE_AT(ref, px, py)                                                     \
+  (((double)(ref)[G_C0] + (double)(ref)[G_DX] * ((px) - (double)(ref)[T_X0])) +        \
+   (double)(ref)[G_DY] * ((py) - (double)(ref)[T_Y0]))
+
 // L - R, and E, of 16 corners: triangle planes in lanes (c0, s, x0, t, y0 of each) against the
 // reference plane ref (same fields).
 static inline void plane_minus_ref16(const float* f, __global const float* ref, double16 px, double16 py,
@@ -859,9 +864,7 @@ static inline void plane_minus_ref16(const float* f, __global const float* ref, 
   const double16 sx = convert_double16(vload16(0, f + 16)) * (px - convert_double16(vload16(0, f + 32)));
   const double16 ty = convert_double16(vload16(0, f + 48)) * (py - convert_double16(vload16(0, f + 64)));
   const double16 c0 = convert_double16(vload16(0, f));
-  const double16 r = ((double)ref[G_C0] + (double)ref[G_DX] * (px - (double)ref[T_X0])) +
-                     (double)ref[G_DY] * (py - (double)ref[T_Y0]);
-  *l = ((c0 + sx) + ty) - r;
+  *l = ((c0 + sx) + ty) - REF_PLANE_AT(ref, px, py);
   *e = (4.01 * 0x1.0p-24) * ((fabs(c0) + fabs(sx)) + fabs(ty)) + 0x1.0p-140;
 }
 
@@ -950,8 +953,7 @@ static inline int frag_gap_clear(__global const float* P, __global const float* 
   for (int q = 0; q < 4; ++q) {
     const double px = (double)(ox + (float)((q & 1) ? W - 1 : 0) + 0.5f);
     const double py = (double)(oy + (float)((q & 2) ? r1 - 1 : r0) + 0.5f);
-    const double r = ((double)ref[G_C0] + (double)ref[G_DX] * (px - (double)ref[T_X0])) +
-                     (double)ref[G_DY] * (py - (double)ref[T_Y0]);
+    const double r = REF_PLANE_AT(ref, px, py);
     r_min = fmin(r_min, r);
     r_max = fmax(r_max, r);
   }
@@ -965,8 +967,8 @@ static inline int frag_gap_clear(__global const float* P, __global const float* 
 #endif
 
 // Per band of cached plane A: its code bounds lo, hi, bad, and the range of its gap certificate
-// (plane_gap_range against its own triangle 0; NaN where not computed). Global id: plane * bands + band, planes
-// from first_plane; the probe constants of plane p are those of p / per_probe.
+// (plane_gap_range against its own triangle 0; NaN where not computed). Global id:
+// plane * bands + band, planes from first_plane; the probe constants of plane p are those of p / per_probe.
 __kernel void mts_a_bands(__global const float* restrict probes, __global const float* restrict tris,
                           __global const uint* restrict vflags, const uint first_plane, const uint per_probe,
                           const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
@@ -1002,9 +1004,9 @@ __kernel void mts_a_bands(__global const float* restrict probes, __global const 
    (a_slots[2u * ((pf) / frames) + 1u] + first_frame + (pf) % frames) % frames_total)
 
 // Decides bands of kernel rows of a (probe, frame) clean without rasterising them, when both
-// planes certainly own every pixel of the band (band_covered) and their code bounds over it exclude a fight:
-// LEQUAL: B's smallest code above A's largest (log depth: by LOG_CODE_SLACK more, as for pieces),
-// or, where that fails, the gap certificate (gap_certified) for interpolated depth.
+// planes certainly own every pixel of the band (band_covered) and their code bounds over it
+// exclude a fight: LEQUAL: B's smallest code above A's largest (log depth: by LOG_CODE_SLACK more,
+// as for pieces), or, where that fails, the gap certificate (plane_gap_range, frag_gap_clear).
 // Most probes of a search's descent from s = z are decided here. A band that is not decided goes
 // through mts_raster row by row, so the answer never depends on this pass, only the work does.
 // Global id: (probe * frames + frame) * bands + band.
@@ -1051,8 +1053,9 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
   decided[id] = clean;
 }
 
-// Whether plane B's coverage of a cached row of plane A is A's: both planes certified (V_COVERS),
-// B within A's coverage margin (coverage_margin), and the segments' triangles keep their orientation.
+// Whether plane B's coverage of a cached row of plane A is A's: both planes certified over the
+// whole kernel (covers_all), B within A's coverage margin (coverage_margin), and the segments'
+// triangles keep their orientation.
 static inline int b_coverage_is_a(__global const float* TA, __global const float* TB, uint vflags_a,
                                   uint vflags_b, __global const uint* rec, int n, const int* seg_t) {
   int same = covers_all(vflags_a) && covers_all(vflags_b) && b_moved_from_a(TA, TB) < ((__global const float*)rec)[RW_MARGIN];
