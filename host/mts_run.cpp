@@ -3,10 +3,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
 #include <map>
+#include <mutex>
 #include <set>
+#include <thread>
 
 #include "host/frame_setup.h"
 #include "host/kernel_variant.h"
@@ -87,77 +92,178 @@ std::string computation_key(const Scene& scene, const EvalPair& pair, double z, 
 
 }  // namespace
 
+namespace {
+
+// One pair's share of a run: the distances it computes itself, and those an earlier pair of the
+// run computes exactly (same computation_key), whose rows it takes over once that pair is done.
+struct PairWork {
+  std::vector<double> fresh;
+  std::vector<std::pair<double, std::string>> shared;  // distance, computation key
+  std::set<size_t> owners;                              // the pairs the shared rows come from
+  bool logs_variant = false;                            // the first pair to build its variant
+};
+
+std::vector<PairWork> plan_pairs(const Scene& scene, const RunControl& control) {
+  std::vector<PairWork> work(scene.evaluate.size());
+  std::map<std::string, size_t> owner;  // computation_key -> the pair computing it
+  std::set<std::string> variants;
+  const size_t nd = scene.distances.size();
+  for (size_t p = 0; p < scene.evaluate.size(); ++p) {
+    const EvalPair& pair = scene.evaluate[p];
+    for (size_t d = 0; d < nd; ++d) {
+      const size_t k = p * nd + d;
+      const double z = scene.distances[d];
+      if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) != control.shard_index) continue;
+      if (control.done.count(row_key(pair, z))) continue;
+      const std::string key = computation_key(scene, pair, z, control.attribute);
+      const auto [it, first] = owner.emplace(key, p);
+      if (first) {
+        work[p].fresh.push_back(z);
+      } else {
+        work[p].shared.emplace_back(z, key);
+        work[p].owners.insert(it->second);
+      }
+    }
+    if (!work[p].fresh.empty()) work[p].logs_variant = variants.insert(mts_variant(scene, pair).label).second;
+  }
+  return work;
+}
+
+}  // namespace
+
 MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
                  const std::function<void(const std::string&)>& log, const RunControl& control) {
   MtsRun run;
   run.info.device = rt.description();
   run.info.variants = scene_variants(scene);
   const auto t0 = std::chrono::steady_clock::now();
-  std::set<std::string> built;
+  const size_t np = scene.evaluate.size();
+  const std::vector<PairWork> work = plan_pairs(scene, control);
+
+  // Shared between the jobs, under `m`: rows by computation key, the arithmetic-limited MTS of
+  // attribution, which pairs are finished, each pair's rows and log lines (printed in pair order,
+  // so verbose output does not depend on which job finished first), the first failure.
+  std::mutex m;
+  std::condition_variable pair_finished;
+  std::map<std::string, MtsRow> computed;
   std::map<std::string, double> arithmetic_cache;  // row key of a float32 pair -> its MTS
-  std::map<std::string, MtsRow> computed;          // computation_key -> the row it gave
-  const size_t nd = scene.distances.size();
-  for (size_t p = 0; p < scene.evaluate.size(); ++p) {
+  std::vector<char> finished(np, 0);
+  std::vector<std::vector<MtsRow>> pair_rows(np);
+  std::vector<std::vector<std::string>> pair_log(np);
+  size_t next_log = 0;
+  std::exception_ptr failure;
+  bool failed = false;
+  const auto stop = [&control, &m, &failed]() {
+    {
+      std::lock_guard<std::mutex> lock(m);
+      if (failed) return true;
+    }
+    return control.stop && control.stop();
+  };
+  const auto on_row = [&control, &m](const MtsRow& r) {
+    std::lock_guard<std::mutex> lock(m);
+    if (control.on_row) control.on_row(r);
+  };
+
+  // Search a pair's distances in one evaluator; rows go to on_row as they finish.
+  const auto compute = [&](size_t p, const std::vector<double>& zs) {
     const EvalPair& pair = scene.evaluate[p];
-    std::vector<double> todo;
-    for (size_t d = 0; d < nd; ++d) {
-      const size_t k = p * nd + d;
-      if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) != control.shard_index) continue;
-      if (control.done.count(row_key(pair, scene.distances[d]))) continue;
-      todo.push_back(scene.distances[d]);
-    }
-    // rows an identical computation already gave: taken over, with no work of their own
-    std::vector<MtsRow> shared;
-    std::vector<double> fresh;
-    for (double z : todo) {
-      const auto it = computed.find(computation_key(scene, pair, z, control.attribute));
-      if (it == computed.end()) {
-        fresh.push_back(z);
-        continue;
-      }
-      // The row is the computation's, work included, so it reads the same whichever pair (or
-      // shard) ran it; only its measured time is this run's: none.
-      MtsRow r = it->second;
-      r.pair = pair;
-      r.seconds = r.kernel_seconds = 0;
-      shared.push_back(r);
-      if (control.on_row) control.on_row(r);
-    }
-    if (!shared.empty() && log)
-      log(fmt::format("{}: {} distances computed exactly as by an earlier pair, rows taken over", pair.label(),
-                      shared.size()));
-    run.rows.insert(run.rows.end(), shared.begin(), shared.end());
-    todo = fresh;
-    if (todo.empty()) continue;
     MtsEvaluator ev(rt, scene, pair);
-    if (built.insert(ev.variant().label).second && log)
-      log(fmt::format("kernel variant {}: {} {}", ev.variant().label, ev.variant().program,
-                      ev.variant().options));
-    auto rows = search_pair(ev, scene, pair, todo, control.attribute ? nullptr : control.on_row, control.stop);
+    if (work[p].logs_variant)
+      pair_log[p].push_back(fmt::format("kernel variant {}: {} {}", ev.variant().label, ev.variant().program,
+                                        ev.variant().options));
+    auto rows = search_pair(ev, scene, pair, zs, control.attribute ? std::function<void(const MtsRow&)>() : on_row, stop);
     if (control.attribute) {
-      attribute_rows(rt, scene, pair, rows, arithmetic_cache, control.stop);
-      if (control.on_row)
-        for (const auto& r : rows) control.on_row(r);
+      // The arithmetic cache makes a row's attribution depend on which pairs ran before it:
+      // attribution runs one job (RunControl::jobs), so that order is the scene's.
+      attribute_rows(rt, scene, pair, rows, arithmetic_cache, stop);
+      for (const auto& r : rows) on_row(r);
     }
+    const auto& w = ev.pairs_by_outcome();
+    const double all = std::max<double>(1.0, static_cast<double>(ev.fragment_pairs()));
+    pair_log[p].push_back(fmt::format(
+        "{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
+        "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
+        "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without rasterising {:.0f} %; "
+        "rasterised rows with plane B's coverage taken from A's {:.0f} %",
+        pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(), ev.kernel_seconds(),
+        100 * w[0] / all, 100 * w[1] / all, 100 * ev.pairs_after_decision() / all, 100 * (w[2] + w[3]) / all,
+        100 * ev.pairs_decided_by_bounds() / all,
+        100.0 * static_cast<double>(ev.rows_with_coverage_of_a()) /
+            std::max<double>(1.0, static_cast<double>(ev.rows_rasterised()))));
+    std::lock_guard<std::mutex> lock(m);
     run.info.launches += ev.launches();
     run.info.evaluated_pairs += ev.fragment_pairs();
     run.info.kernel_seconds += ev.kernel_seconds();
-    if (log) {
-      const auto& w = ev.pairs_by_outcome();
-      const double all = std::max<double>(1.0, static_cast<double>(ev.fragment_pairs()));
-      log(fmt::format("{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
-                      "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
-                      "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without rasterising {:.0f} %; "
-                      "rasterised rows with plane B's coverage taken from A's {:.0f} %",
-                      pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(),
-                      ev.kernel_seconds(), 100 * w[0] / all, 100 * w[1] / all, 100 * ev.pairs_after_decision() / all,
-                      100 * (w[2] + w[3]) / all, 100 * ev.pairs_decided_by_bounds() / all,
-                      100.0 * static_cast<double>(ev.rows_with_coverage_of_a()) /
-                          std::max<double>(1.0, static_cast<double>(ev.rows_rasterised()))));
-    }
     for (const auto& r : rows) computed.emplace(computation_key(scene, pair, r.z, control.attribute), r);
-    run.rows.insert(run.rows.end(), rows.begin(), rows.end());
-  }
+    pair_rows[p].insert(pair_rows[p].end(), rows.begin(), rows.end());
+  };
+
+  const auto evaluate_pair = [&](size_t p) {
+    const EvalPair& pair = scene.evaluate[p];
+    if (!work[p].fresh.empty()) compute(p, work[p].fresh);
+    if (work[p].shared.empty()) return;
+    // Rows an identical computation gives: taken over once their pairs are done, with no work of
+    // their own. The row is the computation's, work included, so it reads the same whichever
+    // pair (or shard) ran it; only its measured time is this run's: none.
+    std::vector<MtsRow> taken;
+    std::vector<double> missing;  // an owner stopped before reaching them
+    {
+      std::unique_lock<std::mutex> lock(m);
+      pair_finished.wait(lock, [&]() {
+        for (size_t o : work[p].owners)
+          if (!finished[o]) return false;
+        return true;
+      });
+      for (const auto& [z, key] : work[p].shared) {
+        const auto it = computed.find(key);
+        if (it == computed.end()) {
+          missing.push_back(z);
+          continue;
+        }
+        MtsRow r = it->second;
+        r.pair = pair;
+        r.seconds = r.kernel_seconds = 0;
+        taken.push_back(r);
+      }
+      pair_rows[p].insert(pair_rows[p].begin(), taken.begin(), taken.end());
+      if (!taken.empty())
+        pair_log[p].insert(pair_log[p].begin(),
+                           fmt::format("{}: {} distances computed exactly as by an earlier pair, rows taken over",
+                                       pair.label(), taken.size()));
+    }
+    for (const auto& r : taken) on_row(r);
+    if (!missing.empty()) compute(p, missing);
+  };
+
+  std::atomic<size_t> next_pair{0};
+  const auto job = [&]() {
+    for (size_t p = next_pair++; p < np; p = next_pair++) {
+      try {
+        evaluate_pair(p);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(m);
+        if (!failure) failure = std::current_exception();
+        failed = true;
+      }
+      std::lock_guard<std::mutex> lock(m);
+      finished[p] = 1;
+      for (; next_log < np && finished[next_log]; ++next_log)
+        if (log)
+          for (const auto& line : pair_log[next_log]) log(line);
+      pair_finished.notify_all();
+    }
+  };
+  // Pairs are taken in scene order, so a pair waits only for earlier ones, each finished or in
+  // progress on another job: no cycle. The calling thread is one of the jobs.
+  const int jobs = control.attribute ? 1 : static_cast<int>(std::min<size_t>(std::max(1, control.jobs), np));
+  std::vector<std::thread> helpers;
+  for (int j = 1; j < jobs; ++j) helpers.emplace_back(job);
+  job();
+  for (auto& t : helpers) t.join();
+  if (failure) std::rethrow_exception(failure);
+
+  for (auto& rows : pair_rows) run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   sort_rows(scene, run.rows);
   for (const auto& r : run.rows) run.info.fragment_pairs += r.fragment_pairs;
   run.info.wall_seconds =

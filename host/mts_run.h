@@ -22,6 +22,12 @@ struct RunControl {
   std::function<void(const MtsRow&)> on_row;  // each row as it finishes (journal)
   std::function<bool()> stop;                 // interrupt request, checked between launches
   bool attribute = false;  // also the storage- and arithmetic-limited MTS of every row
+  // Pairs evaluated side by side, each by its own host thread and queue: the device's cores stay
+  // busy while one pair's launch drains or its host waits. Rows are the same for any number;
+  // measured times then include the other pairs' share of the device. Attribution runs one.
+  // 3 on this 2-core machine: the default table 30.5 s with 1, 28.7 with 2, 27.2 with 3, no
+  // better with 4 or 6 and 1.7x the memory (docs/performance.md, session 6).
+  int jobs = 3;
 };
 
 // The kernel variants the scene needs, in pair order (labels): deterministic, whatever a run

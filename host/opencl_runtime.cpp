@@ -137,8 +137,7 @@ OpenClRuntime::OpenClRuntime(const std::string& selector_arg) {
   device_ = chosen->device;
   try {
     context_ = cl::Context(device_);
-    // Profiling on: kernel time per launch is reported next to wall time.
-    queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
+    (void)queue();  // the constructing thread's queue: a device that cannot make one fails here
   } catch (const cl::Error& e) {
     throw RuntimeError(fmt::format("cannot open OpenCL device {}: {} ({})", description(), e.what(),
                                    e.err()));
@@ -149,6 +148,15 @@ std::string OpenClRuntime::description() const {
   return fmt::format("{} / {} ({})", info_.platform_name, info_.device_name, info_.opencl_c_version);
 }
 
+cl::CommandQueue& OpenClRuntime::queue() {
+  std::lock_guard<std::mutex> lock(queues_mutex_);
+  auto it = queues_.find(std::this_thread::get_id());
+  // Profiling on: kernel time per launch is reported next to wall time.
+  if (it == queues_.end())
+    it = queues_.emplace(std::this_thread::get_id(), cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE)).first;
+  return it->second;
+}
+
 std::string base_build_options(bool flush_denormals) {
   std::string o = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt";
   if (flush_denormals) o += " -cl-denorms-are-zero";
@@ -156,7 +164,7 @@ std::string base_build_options(bool flush_denormals) {
 }
 
 cl::Program OpenClRuntime::program(const std::string& path, const std::string& options) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<std::mutex> lock(programs_mutex_);
   const auto key = std::make_pair(path, options);
   const auto it = cache_.find(key);
   if (it != cache_.end()) return it->second;
@@ -176,13 +184,7 @@ cl::Program OpenClRuntime::program(const std::string& path, const std::string& o
                                    path, e.err(), description(), options, log));
   }
   cache_.emplace(key, program);
-  build_order_.push_back(key);
   return program;
-}
-
-std::vector<std::pair<std::string, std::string>> OpenClRuntime::built_programs() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return build_order_;
 }
 
 }  // namespace depthprec

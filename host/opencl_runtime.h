@@ -1,11 +1,12 @@
-// OpenCL platform and device selection, one context and in-order queue, and an in-process cache
-// of built programs keyed by (source, build options, device).
+// OpenCL platform and device selection, one context, an in-order queue per host thread, and an
+// in-process cache of built programs keyed by (source, build options, device).
 #pragma once
 
 #include <map>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -44,24 +45,25 @@ class OpenClRuntime {
   const DeviceInfo& info() const { return info_; }
   std::string description() const;
   cl::Context& context() { return context_; }
-  cl::CommandQueue& queue() { return queue_; }
+  // The calling thread's in-order queue (profiling on), made on first use: host threads driving
+  // separate evaluations (run_scene's jobs) each wait only for their own commands, and the device
+  // runs both threads' work-groups side by side.
+  cl::CommandQueue& queue();
   cl::Device& device() { return device_; }
 
   // The program built from an embedded source (path relative to the project root) with the
   // given options; built once per (path, options) and kept. Throws RuntimeError with the build
   // log and the options on failure.
   cl::Program program(const std::string& path, const std::string& options);
-  // The (path, options) pairs built so far, in build order: the variants this run compiled.
-  std::vector<std::pair<std::string, std::string>> built_programs() const;
 
  private:
   DeviceInfo info_;
   cl::Device device_;
   cl::Context context_;
-  cl::CommandQueue queue_;
-  mutable std::mutex mutex_;
+  std::mutex queues_mutex_;
+  std::map<std::thread::id, cl::CommandQueue> queues_;
+  std::mutex programs_mutex_;
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;
-  std::vector<std::pair<std::string, std::string>> build_order_;
 };
 
 // Options every depthprec program is built with: OpenCL C 1.2, IEEE division (the SPEC's GPU

@@ -181,3 +181,33 @@ TEST_CASE("rows taken over from an identical computation read the same in shards
   REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o /tmp/depthprec_test_taken_merged.json").exit_code == 0);
   CHECK(slurp("/tmp/depthprec_test_taken_merged.json") == slurp(whole));
 }
+
+// Pairs run side by side (--jobs) with their own queues; a pair whose rows an earlier pair
+// computes waits for it. Neither may change a byte of the rows, nor the order of the verbose
+// lines (printed in pair order, whichever job finishes first).
+TEST_CASE("any number of jobs gives the same bytes and the same verbose lines in pair order", "[batch]") {
+  const std::string args = "table -t standard,infinite,linear,reversed -f unorm24,float32 --distances 2,2048,65536 "
+                           "--kernel 60x60 --frames 20 --no-timing --format-out json";
+  std::string first_output, first_lines;
+  for (const int jobs : {1, 3, 8}) {
+    const std::string out = "/tmp/depthprec_test_jobs" + std::to_string(jobs) + ".json";
+    const auto r = run_cli("-v " + args + " --jobs " + std::to_string(jobs) + " -o " + out);
+    REQUIRE(r.exit_code == 0);
+    // each verbose line up to its first number: the pair or variant it names, in order
+    std::string lines;
+    std::istringstream in(r.output);
+    for (std::string line; std::getline(in, line);)
+      if (line.find(':') != std::string::npos) lines += line.substr(0, line.find_first_of("0123456789")) + "\n";
+    INFO("--jobs " << jobs);
+    // 6 variants built, 6 pairs computed, 2 (infinite) taken over from standard
+    CHECK(std::count(lines.begin(), lines.end(), '\n') == 6 + 6 + 2);
+    if (jobs == 1) {
+      first_output = slurp(out);
+      first_lines = lines;
+      CHECK_THAT(r.output, Contains("infinite/unorm24/gl: 3 distances computed exactly as by an earlier pair"));
+      continue;
+    }
+    CHECK(slurp(out) == first_output);
+    CHECK(lines == first_lines);
+  }
+}

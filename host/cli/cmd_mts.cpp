@@ -29,7 +29,18 @@ struct MtsOptions {
   OutputOptions out;
   BatchOptions batch;
   bool attribute = false;
+  int jobs = RunControl{}.jobs;
 };
+
+void add_jobs_option(CLI::App* cmd, MtsOptions& o) {
+  cmd->add_option("--jobs", o.jobs,
+                  "Pairs evaluated side by side, each by its own host thread and OpenCL queue, so the "
+                  "device's cores stay busy while one pair waits between launches. The rows are the same "
+                  "for any value; measured times include the other pairs' share of the device, so use 1 "
+                  "to time rows alone. --attribute always runs one")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+}
 
 void add_attribute_flag(CLI::App* cmd, MtsOptions& o) {
   cmd->add_flag("--attribute", o.attribute,
@@ -46,6 +57,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   control.shard_index = shard.index;
   control.shard_count = shard.count;
   control.attribute = o.attribute;
+  control.jobs = o.jobs;
   RowJournal journal(o.out.output, o.batch.resume);
   std::vector<MtsRow> earlier;
   for (const auto& j : journal.earlier()) {
@@ -122,6 +134,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   mts->out.add_to(*cmd);
   mts->batch.add_to(*cmd, kMtsUnits);
   add_attribute_flag(cmd, *mts);
+  add_jobs_option(cmd, *mts);
   cmd->callback([mts, &global]() { run(*mts, global, false); });
 
   auto table = std::make_shared<MtsOptions>();
@@ -140,6 +153,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   table->out.add_to(*tcmd);
   table->batch.add_to(*tcmd, kMtsUnits);
   add_attribute_flag(tcmd, *table);
+  add_jobs_option(tcmd, *table);
   tcmd->callback([table, &global]() { run(*table, global, true); });
 }
 
