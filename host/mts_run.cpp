@@ -13,6 +13,7 @@
 #include <set>
 #include <thread>
 
+#include "host/errors.h"
 #include "host/frame_setup.h"
 #include "host/kernel_variant.h"
 #include "host/mts_exact.h"
@@ -261,7 +262,14 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
   for (int j = 1; j < jobs; ++j) helpers.emplace_back(job);
   job();
   for (auto& t : helpers) t.join();
-  if (failure) std::rethrow_exception(failure);
+  if (failure) {
+    // A signal that stops the run can also break what another job is doing at that moment: a
+    // program build inside PoCL's compiler fails ("1 error generated") when SIGINT arrives during
+    // it. Once a stop is requested, any failure reads as the interruption it followed; --resume
+    // then rebuilds and would show a genuine error.
+    if (control.stop && control.stop()) throw Error(ExitCode::interrupted, "interrupted");
+    std::rethrow_exception(failure);
+  }
 
   for (auto& rows : pair_rows) run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   sort_rows(scene, run.rows);
