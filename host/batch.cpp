@@ -95,12 +95,21 @@ std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJo
     Progress bar(what, todo, progress);
     for (size_t k = 0; k < units.size(); ++k) {
       if (!shard.holds(k) || have.count(units[k].key)) continue;
-      if (interrupt_requested()) {
+      const auto stop_here = [&] {
         const auto done = in_order();
         if (!journal.active() && on_partial) on_partial(done);
         throw_interrupted(journal, done.size());
+      };
+      if (interrupt_requested()) stop_here();
+      nlohmann::json record;
+      try {
+        record = units[k].compute();
+      } catch (...) {
+        // A signal can also break what the unit was doing (a kernel build inside PoCL's compiler
+        // fails when SIGINT lands in it): once a stop is requested, the failure is the interruption.
+        if (!interrupt_requested()) throw;
+        stop_here();
       }
-      nlohmann::json record = units[k].compute();
       record["key"] = units[k].key;
       journal.append(record);
       have[units[k].key] = std::move(record);
