@@ -99,9 +99,9 @@ namespace {
 // run computes exactly (same computation_key), whose rows it takes over once that pair is done.
 struct PairWork {
   std::vector<double> fresh;
-  std::vector<std::pair<double, std::string>> shared;  // distance, computation key
-  std::set<size_t> owners;                              // the pairs the shared rows come from
-  bool logs_variant = false;                            // the first pair to build its variant
+  std::vector<std::string> shared;  // the computation keys of the rows taken over
+  std::set<size_t> owners;          // the pairs the shared rows come from
+  bool logs_variant = false;        // the first pair to build its variant
 };
 
 std::vector<PairWork> plan_pairs(const Scene& scene, const RunControl& control) {
@@ -121,7 +121,7 @@ std::vector<PairWork> plan_pairs(const Scene& scene, const RunControl& control) 
       if (first) {
         work[p].fresh.push_back(z);
       } else {
-        work[p].shared.emplace_back(z, key);
+        work[p].shared.push_back(key);
         work[p].owners.insert(it->second);
       }
     }
@@ -208,7 +208,6 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     // their own. The row is the computation's, work included, so it reads the same whichever
     // pair (or shard) ran it; only its measured time is this run's: none.
     std::vector<MtsRow> taken;
-    std::vector<double> missing;  // an owner stopped before reaching them
     {
       std::unique_lock<std::mutex> lock(m);
       pair_finished.wait(lock, [&]() {
@@ -216,13 +215,10 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
           if (!finished[o]) return false;
         return true;
       });
-      for (const auto& [z, key] : work[p].shared) {
-        const auto it = computed.find(key);
-        if (it == computed.end()) {
-          missing.push_back(z);
-          continue;
-        }
-        MtsRow r = it->second;
+      // An owner that did not finish its rows failed, and so has the run; otherwise every key is there.
+      if (failed) return;
+      for (const std::string& key : work[p].shared) {
+        MtsRow r = computed.at(key);
         r.pair = pair;
         r.seconds = r.kernel_seconds = 0;
         taken.push_back(r);
@@ -234,7 +230,6 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
                                        pair.label(), taken.size()));
     }
     for (const auto& r : taken) on_row(r);
-    if (!missing.empty()) compute(p, missing);
   };
 
   std::atomic<size_t> next_pair{0};
