@@ -152,20 +152,26 @@ DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf16, ulong16)
 
 #if defined(cl_khr_fp64)
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
-/* unorm<b> for b <= 29 in binary64: d * (2^b - 1) is exact there (a 24-bit significand times a
- * b-bit integer), so one product and one rounding to an integer give the code df_encode_unorm
- * computes in 64-bit integers, in a few instructions per lane instead of a 64-bit multiply and
- * variable shifts. The exhaustive format proof (kernels/encode.cl) compares the two. */
+/* unorm<b> for b <= 29 in binary64 of d in [-0, 1] (no NaN): d * (2^b - 1) is exact there (a
+ * 24-bit significand times a b-bit integer), so one product and one rounding to an integer give
+ * the code df_encode_unorm computes in 64-bit integers, in a few instructions per lane instead of
+ * a 64-bit multiply and variable shifts. 0 <= p < 2^29: adding 2^52 rounds p to an integer, half
+ * to even, in the adder itself (the library rint is slow in software), and leaves that integer in
+ * the low bits of the sum's significand, so no subtraction or conversion back is needed; -0
+ * gives 2^52, code 0. Truncation toward zero is the conversion itself. */
+DF_FN uint16 df_encode_unorm_f64_16_unit(float16 d, df_format f) {
+  const double16 p = convert_double16(d) * (double16)((double)f.max_code);
+  return f.rounding == DF_ROUND_NEAREST_EVEN ? convert_uint16(as_ulong16(p + 0x1p52)) : convert_uint16(p);
+}
+
+/* Any binary32: negative and NaN store 0, 1 and above (and +inf) the largest code. The
+ * exhaustive format proof (kernels/encode.cl) compares it with df_encode_unorm. */
 DF_FN uint16 df_encode_unorm_f64_16(float16 d, df_format f) {
   const uint16 u = as_uint16(d);
   const int16 zero = (u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u;
   const int16 big = !zero && d >= 1.0f; /* and +inf */
   const float16 in = (zero || big) ? (float16)0.0f : d; /* no inf or NaN reaches the conversion */
-  const double16 p = convert_double16(in) * (double16)((double)f.max_code);
-  /* 0 <= p < 2^29: adding 2^52 rounds p to an integer, half to even, in the adder itself (the
-   * library rint is slow in software); the conversion truncates, which is floor here. */
-  const double16 r = f.rounding == DF_ROUND_NEAREST_EVEN ? (p + 0x1p52) - 0x1p52 : p;
-  const uint16 q = convert_uint16(r);
+  const uint16 q = df_encode_unorm_f64_16_unit(in, f);
   return big ? (uint16)f.max_code : (zero ? (uint16)0 : q);
 }
 #endif
@@ -188,6 +194,18 @@ DF_FN uint16 df_encode16(float16 d, df_format f) {
   vstore16(d, 0, a);
   for (int k = 0; k < 16; ++k) c[k] = df_encode(a[k], f);
   return vload16(0, c);
+}
+
+/* df_encode16 for depths known to lie in [-0, 1] (a fragment whose depth is finite and unclipped,
+ * or clamped): the checks for negative, NaN and too large values fall away, which is a good part
+ * of the pixel loop. The exhaustive format proof compares it with df_encode on [0, 1] and -0. */
+DF_FN uint16 df_encode16_unit(float16 d, df_format f) {
+#if defined(cl_khr_fp64)
+  if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16_unit(d, f);
+#endif
+  if (f.kind == DF_KIND_FLOAT && f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush)
+    return as_uint16(d) & (uint16)0x7fffffffu; /* -0 stores 0 */
+  return df_encode16(d, f);
 }
 #endif
 

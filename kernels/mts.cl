@@ -95,6 +95,12 @@
 #define R_REUSED 32u /* plane B's coverage of the row was plane A's (coverage_margin) */
 #define R_COUNT_SHIFT 8
 
+// Per (probe, frame, band) verdict of mts_frame_bounds, read by mts_raster.
+#define ENDS_SPAN 16 /* D_INSIDE when the gap is below 1/ENDS_SPAN of A's code range over the band */
+#define D_RASTER 0u /* rasterise, deciding pieces from their end codes first */
+#define D_CLEAN 1u  /* clean from code bounds or the gap certificate: not rasterised */
+#define D_INSIDE 2u /* rasterise straight through the pixel loop: see mts_frame_bounds */
+
 #define S_OK 0
 #define S_CLIPPED 1
 #define S_NONFINITE 2
@@ -636,15 +642,15 @@ static inline row_plane16_t broadcast16(row_plane_t rp) {
   return r;
 }
 
-// Stored code and status of 16 fragments: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term,
-// every lane rounding on its own, as a scalar pipeline would. Masks are -1 / 0 per lane.
+// Depth and status of 16 fragments: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term, every
+// lane rounding on its own, as a scalar pipeline would. Masks are -1 / 0 per lane.
 typedef struct {
-  uint16 code;
+  float16 d;
   int16 nonfinite, clipped;
-} frag16_t;
+} depth16_t;
 
-static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, float16 px) {
-  frag16_t r;
+static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float16 px) {
+  depth16_t r;
 #if DEPTH_FROM == 2
   const float16 q = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
   const float16 w = 1.0f / q;
@@ -658,14 +664,43 @@ static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, flo
   float16 d = log(P[C_LOGK] * w + 1.0f) / P[C_LOGL];
 #endif
   r.nonfinite = nf_w || isnan(d);
-  d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
+  r.d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
 #else
-  const float16 d = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
-  r.nonfinite = !isfinite(d);
-  r.clipped = !((d >= 0.0f) && (d <= 1.0f));
+  r.d = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
+  r.nonfinite = !isfinite(r.d);
+  r.clipped = !((r.d >= 0.0f) && (r.d <= 1.0f));
 #endif
-  r.code = df_encode16(d, DF_FORMAT_FROM_DEFINES());
   return r;
+}
+
+// Stored code and status of 16 fragments.
+typedef struct {
+  uint16 code;
+  int16 nonfinite, clipped;
+} frag16_t;
+
+static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, float16 px) {
+  const depth16_t z = depth16(rp, P, px);
+  frag16_t r;
+  r.code = df_encode16(z.d, DF_FORMAT_FROM_DEFINES());
+  r.nonfinite = z.nonfinite;
+  r.clipped = z.clipped;
+  return r;
+}
+
+// The stored code of 16 fragments known to be finite and unclipped (inside a piece whose ends
+// are, or a band whose bounds say so): their depth lies in [-0, 1], the clamped one too, so the
+// encoder needs no checks for values outside it. The same codes fragment16 gives there.
+static inline uint16 inside_code16(row_plane16_t rp, __global const float* P, float16 px) {
+  return df_encode16_unit(depth16(rp, P, px).d, DF_FORMAT_FROM_DEFINES());
+}
+
+// any() of a 16-lane mask by halving ORs: PoCL expands any() into a test and branch per lane pair.
+static inline int any16(int16 m) {
+  const int8 m8 = m.lo | m.hi;
+  const int4 m4 = m8.lo | m8.hi;
+  const int2 m2 = m4.lo | m4.hi;
+  return (m2.x | m2.y) < 0;
 }
 
 static inline int16 fights16(uint16 code_a, uint16 code_b) {
@@ -1050,7 +1085,18 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
 #endif
   }
 #endif
-  decided[id] = clean;
+  /* Not clean, but both planes are finite and unclipped at every pixel of the band (their bounds
+   * are not bad), so every piece's end status is known, and a piece can be excluded from its end
+   * codes only where the gap between the planes exceeds the codes a piece spans. When B's lowest
+   * code sits less than 1/ENDS_SPAN of A's band range above A's lowest (LEQUAL; GEQUAL mirrored),
+   * as at every probe near the MTS, the end-code pass would decide nothing: mts_raster skips it.
+   * Both paths give the same row verdict, so this choice changes only the work. */
+#if COMPARE_GREATER
+  const long gap = (long)a[1] - (long)b.hi;
+#else
+  const long gap = (long)b.lo - (long)a[0];
+#endif
+  decided[id] = clean ? D_CLEAN : gap * ENDS_SPAN < (long)a[1] - (long)a[0] ? D_INSIDE : D_RASTER;
 }
 
 // Whether plane B's coverage of a cached row of plane A is A's: both planes certified over the
@@ -1096,7 +1142,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     result[id] = R_NONFINITE;
     return;
   }
-  if (decided[pf * bands + row / band_rows]) { /* clean from code bounds: mts_frame_bounds */
+  const uint band_verdict = decided[pf * bands + row / band_rows];
+  if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
     result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
     return;
   }
@@ -1137,6 +1184,12 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     p_tb[np] = tb;
     ++np;
   })
+  if (band_verdict == D_INSIDE)
+    for (int i = 0; i < np; ++i) {
+      verdict[i] = ~0u;
+      ends_ok[i] = 1;
+    }
+  else
   for (int g = 0; g < np; g += 16) {
     float c0a[16], sla[16], x0a[16], rta[16], c0b[16], slb[16], x0b[16], rtb[16], e0[16], e1[16];
     for (int k = 0; k < 16; ++k) {
@@ -1205,16 +1258,16 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
           for (int i0 = x; i0 < x_end; i0 += 16) {
             const int16 idx = i0 + LANES;
             const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
-            fight |= (idx < x_end) & fights16(vload16(0, ca + i0), fragment16(rb, P, px).code);
+            fight |= (idx < x_end) & fights16(vload16(0, ca + i0), inside_code16(rb, P, px));
           }
         } else
 #endif
         for (int i0 = x; i0 < x_end; i0 += 16) {
           const int16 idx = i0 + LANES;
           const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
-          fight |= (idx < x_end) & fights16(fragment16(ra, P, px).code, fragment16(rb, P, px).code);
+          fight |= (idx < x_end) & fights16(inside_code16(ra, P, px), inside_code16(rb, P, px));
         }
-        piece = any(fight) ? R_FIGHT : 0u;
+        piece = any16(fight) ? R_FIGHT : 0u;
       } else
       for (int i0 = x; i0 < x_end; i0 += 16) {
         const int16 idx = i0 + LANES;
@@ -1224,8 +1277,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
         const int16 nf = active & (fa.nonfinite | fb.nonfinite);
         const int16 cl = active & ~nf & (fa.clipped | fb.clipped);
         const int16 ok = active & ~(fa.nonfinite | fb.nonfinite | fa.clipped | fb.clipped);
-        piece |= (any(nf) ? R_NONFINITE : 0u) | (any(cl) ? R_CLIPPED : 0u) |
-                 (any(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
+        piece |= (any16(nf) ? R_NONFINITE : 0u) | (any16(cl) ? R_CLIPPED : 0u) |
+                 (any16(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
       }
     }
     flags |= piece;

@@ -51,7 +51,8 @@ TEST_CASE("device encoder handles values outside 0..1 like the host", "[formats]
   for (const char* name : {"unorm24", "unorm32", "float32", "float16", "e4m12"}) {
     const auto f = StorageFormat::parse(name);
     const auto dev = device_encode(runtime(), f, specials);
-    for (const uint32_t first : {0x7f7ffff8u, 0x7f800000u - 8u, 0xff7ffff8u, 0x3f7ffff8u, 0x7fc00000u - 4u}) {
+    for (const uint32_t first : {0x7f7ffff8u, 0x7f800000u - 8u, 0xff7ffff8u, 0x3f7ffff8u, 0x7fc00000u - 4u,
+                                 0x80000000u /* -0 and negative denormals */}) {
       std::vector<uint32_t> block;
       INFO(name << " block from " << first);
       CHECK(device_encode_range(runtime(), f, first, 16, block) == 0);
