@@ -64,6 +64,21 @@ DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_styl
   return f;
 }
 
+/* Where a format's codes follow binary32 order exactly: the bit pattern T of a binary32 such that
+ * for depths d, d' in [-0, 1] of which at least one is >= T, code(d) <= code(d') exactly when
+ * d <= d'. A depth test of two such fragments then needs no encoding, only a comparison of the
+ * depths. unorm24: from T on, d = k 2^-24 with 2^23 < k <= 2^24, and d (2^24 - 1) = k - k 2^-24
+ * lies less than half a unit above k - 1 (round to nearest even; T = 0.5 + 2^-23, since
+ * 0.5 + 2^-24 rounds down to code(0.5) = 2^23) or less than a unit (truncation; T = 0.5 + 2^-24,
+ * code(0.5) = 2^23 - 1): every code from T on is k - 1, above the codes of all smaller depths.
+ * Other formats: none (0xffffffff, no depth reaches it); binary32 storage is already a bit copy.
+ * tests/test_storage_format.cpp checks the property on every binary32 from T's predecessor to 1. */
+DF_FN df_u32 df_order_exact_from(df_format f) {
+  if (f.kind == DF_KIND_UNORM && f.bits == 24u)
+    return f.rounding == DF_ROUND_NEAREST_EVEN ? 0x3f000002u : 0x3f000001u;
+  return 0xffffffffu;
+}
+
 /* floor or round-half-even of p / 2^s for s in 1..63 */
 DF_FN df_u64 df_shift_round(df_u64 p, df_u32 s, df_u32 rounding) {
   df_u64 q = p >> s;

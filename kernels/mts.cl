@@ -96,10 +96,10 @@
 #define R_COUNT_SHIFT 8
 
 // Per (probe, frame, band) verdict of mts_frame_bounds, read by mts_raster.
-#define ENDS_SPAN 16 /* D_INSIDE when the gap is below 1/ENDS_SPAN of A's code range over the band */
 #define D_RASTER 0u /* rasterise, deciding pieces from their end codes first */
 #define D_CLEAN 1u  /* clean from code bounds or the gap certificate: not rasterised */
 #define D_INSIDE 2u /* rasterise straight through the pixel loop: see mts_frame_bounds */
+#define D_ORDERED 3u /* D_INSIDE, and every depth of plane A at or above df_order_exact_from */
 
 #define S_OK 0
 #define S_CLIPPED 1
@@ -711,6 +711,17 @@ static inline int16 fights16(uint16 code_a, uint16 code_b) {
 #endif
 }
 
+// fights16 from the depths themselves, for fragments of which at least one has a depth at or
+// above df_order_exact_from (in a D_ORDERED band every fragment of plane A has): there the codes
+// compare as the depths do, so neither needs encoding.
+static inline int16 ordered_fights16(float16 da, float16 db) {
+#if COMPARE_GREATER
+  return db >= da;
+#else
+  return db <= da;
+#endif
+}
+
 // Codes a piece or band decided from bounds must clear: the library log's error (mts_variant).
 #if DEPTH_FROM == 2 && FRAG_DEPTH == 3
 #define LOG_SLACK_OR_0 LOG_CODE_SLACK
@@ -1086,17 +1097,15 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
   }
 #endif
   /* Not clean, but both planes are finite and unclipped at every pixel of the band (their bounds
-   * are not bad), so every piece's end status is known, and a piece can be excluded from its end
-   * codes only where the gap between the planes exceeds the codes a piece spans. When B's lowest
-   * code sits less than 1/ENDS_SPAN of A's band range above A's lowest (LEQUAL; GEQUAL mirrored),
-   * as at every probe near the MTS, the end-code pass would decide nothing: mts_raster skips it.
-   * Both paths give the same row verdict, so this choice changes only the work. */
-#if COMPARE_GREATER
-  const long gap = (long)a[1] - (long)b.hi;
-#else
-  const long gap = (long)b.lo - (long)a[0];
-#endif
-  decided[id] = clean ? D_CLEAN : gap * ENDS_SPAN < (long)a[1] - (long)a[0] ? D_INSIDE : D_RASTER;
+   * are not bad), so the status of every piece's ends is known. What the end-code pass could still
+   * do is exclude a piece whose B codes all clear A's, which near the MTS, where rows are
+   * rasterised, rarely happens: mts_raster goes straight to the pixel loop. Both paths give the
+   * same row verdict and count; only the work differs. If A's lowest code is at or above code(T)
+   * (T = df_order_exact_from), every depth of A is at or above T, and the pixel loop can compare
+   * depths instead of codes. */
+  const uint from = df_order_exact_from(DF_FORMAT_FROM_DEFINES());
+  const int ordered = from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
+  decided[id] = clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE;
 }
 
 // Whether plane B's coverage of a cached row of plane A is A's: both planes certified over the
@@ -1184,7 +1193,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     p_tb[np] = tb;
     ++np;
   })
-  if (band_verdict == D_INSIDE)
+  const int ordered = band_verdict == D_ORDERED;
+  if (band_verdict == D_INSIDE || ordered)
     for (int i = 0; i < np; ++i) {
       verdict[i] = ~0u;
       ends_ok[i] = 1;
@@ -1262,6 +1272,13 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
           }
         } else
 #endif
+        if (ordered) { /* a loop of its own: a select inside one would compute both sides */
+          for (int i0 = x; i0 < x_end; i0 += 16) {
+            const int16 idx = i0 + LANES;
+            const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
+            fight |= (idx < x_end) & ordered_fights16(depth16(ra, P, px).d, depth16(rb, P, px).d);
+          }
+        } else
         for (int i0 = x; i0 < x_end; i0 += 16) {
           const int16 idx = i0 + LANES;
           const float16 px = (origin_x + convert_float16(idx)) + 0.5f;

@@ -189,3 +189,25 @@ TEST_CASE("binary64 encode: the binary32 codes for binary32 inputs, correctly ro
     }
   }
 }
+
+TEST_CASE("from df_order_exact_from on, codes follow binary32 order: a depth test needs no encoding", "[formats]") {
+  // Every binary32 from T's predecessor to 1: codes strictly increasing. With d >= T > d', that
+  // puts code(d') <= code(pred T) < code(T) <= code(d); with both >= T, order is kept exactly.
+  // One step lower (T's predecessor itself as T) must fail: T is the least such pattern.
+  int with_region = 0;
+  for (const char* name : {"unorm16", "unorm24", "unorm32", "float32", "float16", "e4m12"}) {
+    for (const Rounding r : {Rounding::nearest_even, Rounding::truncate}) {
+      const auto f = StorageFormat::parse(name, r);
+      const uint32_t from = df_order_exact_from(f.spec());
+      INFO(name << (r == Rounding::truncate ? " truncate" : " nearest") << " from " << from);
+      if (from > 0x3f800000u) continue;
+      ++with_region;
+      uint32_t bad = 0;
+      for (uint32_t u = from - 1; u < 0x3f800000u; ++u)
+        if (f.encode(from_bits(u + 1)) <= f.encode(from_bits(u))) ++bad;
+      CHECK(bad == 0);
+      CHECK(f.encode(from_bits(from - 1)) == f.encode(from_bits(from - 2)));
+    }
+  }
+  CHECK(with_region == 2);  // unorm24, both roundings
+}
