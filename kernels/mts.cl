@@ -1171,28 +1171,30 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     na = row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
   }
   const int b_is_a = shortcuts && cached && b_coverage_is_a(TA, TBp, a_vflags[ap], vflags[pf], rec, na, seg_ta);
-  if (b_is_a) {
-    for (int k = 0; k < na; ++k) {
-      seg_xb[k] = seg_xa[k];
-      seg_tb[k] = seg_ta[k];
-    }
-    seg_xb[na] = seg_xa[na];
-  } else {
-    row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
-  }
 
   /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
   int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
   uint verdict[MAX_PIECES];
   int ends_ok[MAX_PIECES]; /* both planes finite and unclipped at both ends, so inside too */
   int np = 0;
-  FOR_EACH_PIECE({
-    px_start[np] = x;
-    px_end[np] = x_end;
-    p_ta[np] = ta;
-    p_tb[np] = tb;
-    ++np;
-  })
+  if (b_is_a) { /* B's segments are A's: the pieces are A's segments, no merge needed */
+    for (int k = 0; k < na; ++k)
+      if (seg_xa[k + 1] > seg_xa[k]) {
+        px_start[np] = seg_xa[k];
+        px_end[np] = seg_xa[k + 1];
+        p_ta[np] = p_tb[np] = seg_ta[k];
+        ++np;
+      }
+  } else {
+    row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
+    FOR_EACH_PIECE({
+      px_start[np] = x;
+      px_end[np] = x_end;
+      p_ta[np] = ta;
+      p_tb[np] = tb;
+      ++np;
+    })
+  }
   const int ordered = band_verdict == D_ORDERED;
   if (band_verdict == D_INSIDE || ordered)
     for (int i = 0; i < np; ++i) {
