@@ -1130,29 +1130,23 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
                                                                   __global const float* P, float ox, int x,
                                                                   int x_end, int ordered,
                                                                   __global const uint* ca) {
-  int16 fight = (int16)0;
+  /* pixel centres step by exactly 16: ox is an integer and coordinates stay below 2^15
+   * (host/scene.cpp kMaxKernelSide), so (ox + idx) + 0.5f is exact for every idx */
+  int16 fight = (int16)0, idx = x + LANES;
+  float16 px = (ox + convert_float16(idx)) + 0.5f;
 #if CACHE_A_CODES
   if (ca) {
-    for (int i0 = x; i0 < x_end; i0 += 16) {
-      const int16 idx = i0 + LANES;
-      const float16 px = (ox + convert_float16(idx)) + 0.5f;
+    for (int i0 = x; i0 < x_end; i0 += 16, idx += 16, px += 16.0f)
       fight |= (idx < x_end) & fights16(vload16(0, ca + i0), inside_code16(rb, P, px));
-    }
     return fight;
   }
 #endif
   if (ordered) { /* a loop of its own: a select inside one would compute both sides */
-    for (int i0 = x; i0 < x_end; i0 += 16) {
-      const int16 idx = i0 + LANES;
-      const float16 px = (ox + convert_float16(idx)) + 0.5f;
+    for (int i0 = x; i0 < x_end; i0 += 16, idx += 16, px += 16.0f)
       fight |= (idx < x_end) & ordered_fights16(depth16(ra, P, px).d, depth16(rb, P, px).d);
-    }
   } else
-    for (int i0 = x; i0 < x_end; i0 += 16) {
-      const int16 idx = i0 + LANES;
-      const float16 px = (ox + convert_float16(idx)) + 0.5f;
+    for (int i0 = x; i0 < x_end; i0 += 16, idx += 16, px += 16.0f)
       fight |= (idx < x_end) & fights16(inside_code16(ra, P, px), inside_code16(rb, P, px));
-    }
   return fight;
 }
 
