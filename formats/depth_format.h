@@ -101,10 +101,15 @@ DF_FN df_u32 df_encode_unorm(df_u32 u, df_format f) {
   return (df_u32)q;
 }
 
+/* binary32 itself (float32 storage): a code is the depth's bit pattern. */
+DF_FN int df_is_binary32(df_format f) {
+  return f.kind == DF_KIND_FLOAT && f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush;
+}
+
 DF_FN df_u32 df_encode_float(df_u32 u, df_format f) {
   /* binary32 itself (float32): every finite non-negative input is its own code. A specialised
    * kernel folds this test away, leaving no work at all. */
-  if (f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush) return u;
+  if (df_is_binary32(f)) return u;
   df_u32 ex = u >> 23;
   df_u32 m = ex ? ((u & 0x7fffffu) | 0x800000u) : (u & 0x7fffffu);
   if (m == 0u) return 0u;
@@ -198,7 +203,7 @@ DF_FN uint16 df_encode16(float16 d, df_format f) {
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16(d, f);
 #endif
   if (f.kind == DF_KIND_UNORM) return convert_uint16(df_encode_unorm_bf16(convert_ulong16(as_uint16(d)), f));
-  if (f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush) {
+  if (df_is_binary32(f)) {
     const uint16 u = as_uint16(d);
     /* negative and NaN store 0; finite non-negative values are their own code */
     return ((u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u) ? (uint16)0
@@ -218,7 +223,7 @@ DF_FN uint16 df_encode16_unit(float16 d, df_format f) {
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16_unit(d, f);
 #endif
-  if (f.kind == DF_KIND_FLOAT && f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush)
+  if (df_is_binary32(f))
     return as_uint16(d) & (uint16)0x7fffffffu; /* -0 stores 0 */
   return df_encode16(d, f);
 }

@@ -91,15 +91,15 @@ std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJo
       if (shard.holds(k) && have.count(units[k].key)) out.push_back(have[units[k].key]);
     return out;
   };
+  const auto stop_here = [&] {
+    const auto done = in_order();
+    if (!journal.active() && on_partial) on_partial(done);
+    throw_interrupted(journal, done.size());
+  };
   {
     Progress bar(what, todo, progress);
     for (size_t k = 0; k < units.size(); ++k) {
       if (!shard.holds(k) || have.count(units[k].key)) continue;
-      const auto stop_here = [&] {
-        const auto done = in_order();
-        if (!journal.active() && on_partial) on_partial(done);
-        throw_interrupted(journal, done.size());
-      };
       if (interrupt_requested()) stop_here();
       nlohmann::json record;
       try {

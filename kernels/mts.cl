@@ -1069,7 +1069,7 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
   const uint pf = id / bands, band = id - pf * bands;
   const uint ap = A_PLANE(pf);
   __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
-  decided[id] = 0u;
+  decided[id] = D_RASTER;
   __global const uint* a = a_bands + ((size_t)ap * bands + band) * BAND_WORDS;
   if (!band_covered(a_vflags[ap], band) || !band_covered(vflags[pf], band) || a[2]) return;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
@@ -1227,12 +1227,30 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     })
   }
   const int ordered = band_verdict == D_ORDERED;
-  if (band_verdict == D_INSIDE || ordered)
+#if CACHE_A_CODES
+  __global const uint* ca = cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + 16u) : 0;
+#else
+  __global const uint* ca = 0;
+#endif
+  if (band_verdict == D_INSIDE || ordered) {
+    /* Every piece is covered and inside: one reduction for the whole row. Only a row that fights
+     * goes on to the loop below, which finds its first fighting piece (and so its count). */
+    int16 fight = (int16)0;
+    uint all = 0u;
     for (int i = 0; i < np; ++i) {
+      fight |= inside_piece16(broadcast16(row_plane(TA, p_ta[i], py)), broadcast16(row_plane(TBp, p_tb[i], py)),
+                              P, origin_x, px_start[i], px_end[i], ordered, ca);
+      all += (uint)(px_end[i] - px_start[i]);
+    }
+    if (!any16(fight)) {
+      result[id] = (b_is_a ? R_REUSED : 0u) | (all << R_COUNT_SHIFT);
+      return;
+    }
+    for (int i = 0; i < np; ++i) { /* a row that fights: its pieces one by one, below */
       verdict[i] = ~0u;
       ends_ok[i] = 1;
     }
-  else
+  } else
   for (int g = 0; g < np; g += 16) {
     float c0a[16], sla[16], x0a[16], rta[16], c0b[16], slb[16], x0b[16], rtb[16], e0[16], e1[16];
     for (int k = 0; k < 16; ++k) {
@@ -1280,26 +1298,6 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     }
   }
 
-#if CACHE_A_CODES
-  __global const uint* ca = cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + 16u) : 0;
-#else
-  __global const uint* ca = 0;
-#endif
-  if (band_verdict == D_INSIDE || ordered) {
-    /* Every piece is covered and inside: one reduction for the whole row. Only a row that fights
-     * goes on to the loop below, which finds its first fighting piece (and so its count). */
-    int16 fight = (int16)0;
-    uint all = 0u;
-    for (int i = 0; i < np; ++i) {
-      fight |= inside_piece16(broadcast16(row_plane(TA, p_ta[i], py)), broadcast16(row_plane(TBp, p_tb[i], py)),
-                              P, origin_x, px_start[i], px_end[i], ordered, ca);
-      all += (uint)(px_end[i] - px_start[i]);
-    }
-    if (!any16(fight)) {
-      result[id] = (b_is_a ? R_REUSED : 0u) | (all << R_COUNT_SHIFT);
-      return;
-    }
-  }
   uint flags = 0u, count = 0u;
   for (int i = 0; i < np; ++i) {
     const int x = px_start[i], x_end = px_end[i];
