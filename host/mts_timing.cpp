@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "host/mts_search.h"
 
@@ -33,8 +34,10 @@ Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair
   for (int k = 0; k < std::max(1, repeats); ++k) {
     const uint64_t pairs0 = ev.fragment_pairs();
     const double kernel0 = ev.kernel_seconds();
+    const auto r0=ev.rows_rasterised(), u0=ev.rows_with_coverage_of_a(), b0=ev.pairs_decided_by_bounds();
     const auto t0 = std::chrono::steady_clock::now();
     ev.run(probes);
+    if (k==0) fprintf(stderr, "rows %llu reused %llu pairs %llu bounds %llu\n", (unsigned long long)(ev.rows_rasterised()-r0), (unsigned long long)(ev.rows_with_coverage_of_a()-u0), (unsigned long long)(ev.fragment_pairs()-pairs0), (unsigned long long)(ev.pairs_decided_by_bounds()-b0));
     Throughput t;
     t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     t.fragment_pairs = ev.fragment_pairs() - pairs0;

@@ -178,7 +178,6 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
 static inline int band_covered(uint vf, uint band) {
   return (vf & V_COVERS) && (band >= V_MAX_BANDS || !((vf >> (V_BAND_SHIFT + band)) & 1u));
 }
-static inline int covers_all(uint vf) { return (vf & V_COVERS) && !(vf >> V_BAND_SHIFT); }
 
 // The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
 // within its bounding box widened by one pixel (an edge test can pass only within its rounding
@@ -783,8 +782,8 @@ __kernel void mts_a_rows(__global const float* restrict probes, __global const f
   out[RW_N] = (uint)n;
   for (int k = 0; k <= n; ++k) out[RW_X + k] = (uint)seg_x[k];
   for (int k = 0; k < n; ++k) out[RW_T + k] = (uint)seg_t[k];
-  ((__global float*)out)[RW_MARGIN] =
-      covers_all(vflags[plane]) ? coverage_margin(T, py, origin_x, n, seg_x, seg_t) : 0.0f;
+  /* A's own certification is not needed: only B's ownership enters the proof (coverage_margin) */
+  ((__global float*)out)[RW_MARGIN] = coverage_margin(T, py, origin_x, n, seg_x, seg_t);
 }
 
 // The smallest and largest stored code of one plane over the kernel pixels of rows [r0, r1) that
@@ -1108,12 +1107,13 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
   decided[id] = clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE;
 }
 
-// Whether plane B's coverage of a cached row of plane A is A's: both planes certified over the
-// whole kernel (covers_all), B within A's coverage margin (coverage_margin), and the segments'
-// triangles keep their orientation.
-static inline int b_coverage_is_a(__global const float* TA, __global const float* TB, uint vflags_a,
-                                  uint vflags_b, __global const uint* rec, int n, const int* seg_t) {
-  int same = covers_all(vflags_a) && covers_all(vflags_b) && b_moved_from_a(TA, TB) < ((__global const float*)rec)[RW_MARGIN];
+// Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
+// the row's band through exactly one triangle (band_covered; a frame with a vertex near a pixel
+// centre loses only that band, not the whole kernel), B within A's coverage margin
+// (coverage_margin), and the segments' triangles keep their orientation.
+static inline int b_coverage_is_a(__global const float* TA, __global const float* TB, uint vflags_b, uint band,
+                                  __global const uint* rec, int n, const int* seg_t) {
+  int same = band_covered(vflags_b, band) && b_moved_from_a(TA, TB) < ((__global const float*)rec)[RW_MARGIN];
   for (int k = 0; k < n && same; ++k) {
     const uint t = (uint)seg_t[k] * TRI_STRIDE + T_BITS;
     same = (((__global const uint*)TA)[t] & 7u) == (((__global const uint*)TB)[t] & 7u);
@@ -1201,7 +1201,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   } else {
     na = row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
   }
-  const int b_is_a = shortcuts && cached && b_coverage_is_a(TA, TBp, a_vflags[ap], vflags[pf], rec, na, seg_ta);
+  const int b_is_a = shortcuts && cached && b_coverage_is_a(TA, TBp, vflags[pf], row / band_rows, rec, na, seg_ta);
 
   /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
   int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
@@ -1341,7 +1341,8 @@ __kernel void mts_coverage_audit(__global const float* restrict tris, __global c
                                  __global const uint* restrict a_rows, __global const uint* restrict a_slots,
                                  const uint first_frame, const uint frames_total, const uint kernel_w,
                                  const uint kernel_h, const float origin_x, const float origin_y,
-                                 const uint frames, __global uint* restrict out, const uint items) {
+                                 const uint frames, const uint band_rows, __global uint* restrict out,
+                                 const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / kernel_h, row = id - pf * kernel_h;
@@ -1358,7 +1359,7 @@ __kernel void mts_coverage_audit(__global const float* restrict tris, __global c
   for (int k = 0; k < n && !differs; ++k)
     differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
   for (int k = 0; k < n; ++k) seg_t[k] = (int)rec[RW_T + k];
-  const int same = b_coverage_is_a(TA, TB, a_vflags[ap], vflags[pf], rec, n, seg_t);
+  const int same = b_coverage_is_a(TA, TB, vflags[pf], row / band_rows, rec, n, seg_t);
   out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 
