@@ -50,10 +50,11 @@
 /* Then each row of quads' y-range (GRID pairs ymin, ymax): the triangles a kernel row can meet
  * are those of the quad rows whose range holds it, a run of indices. */
 #define Q_YRANGE (NT * TRI_STRIDE + 6 * NE_PAD)
-/* Then the window x and y of every vertex (padded with zeros to a multiple of 16): how far plane
- * B's vertices lie from plane A's (b_moved_from_a). */
+/* Then, from a multiple of 16 floats on (so they load as aligned float16, and every plane record
+ * starts at one: PLANE_STRIDE), the window x and y of every vertex, padded with zeros to a
+ * multiple of 16: how far plane B's vertices lie from plane A's (b_moved_from_a). */
 #define NV_PAD ((NV + 15) / 16 * 16)
-#define V_XW (Q_YRANGE + 2 * GRID)
+#define V_XW ((Q_YRANGE + 2 * GRID + 15) / 16 * 16)
 #define V_YW (V_XW + NV_PAD)
 #define PLANE_STRIDE (V_YW + NV_PAD)
 #define PROBE_STRIDE 24
@@ -593,17 +594,18 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
   return 0.99f * margin;
 }
 
-// How far plane B's vertices lie from plane A's: the largest per-coordinate difference (rounded up).
+// How far plane B's vertices lie from plane A's: the largest per-coordinate difference (rounded
+// up). Both planes are finite (callers check V_NONFINITE first), so max needs no NaN handling,
+// which fmax would compile into compares and blends; the loads are aligned (V_XW).
 static inline float b_moved_from_a(__global const float* TA, __global const float* TB) {
+  __global const float16* a = (__global const float16*)(TA + V_XW);
+  __global const float16* b = (__global const float16*)(TB + V_XW);
   float16 m = (float16)0.0f;
-  for (int v = 0; v < NV_PAD; v += 16) {
-    m = fmax(m, fabs(vload16(0, TB + V_XW + v) - vload16(0, TA + V_XW + v)));
-    m = fmax(m, fabs(vload16(0, TB + V_YW + v) - vload16(0, TA + V_YW + v)));
-  }
-  const float8 m8 = fmax(m.lo, m.hi);
-  const float4 m4 = fmax(m8.lo, m8.hi);
-  const float2 m2 = fmax(m4.lo, m4.hi);
-  return 1.0001f * fmax(m2.x, m2.y);
+  for (int k = 0; k < 2 * NV_PAD / 16; ++k) m = max(m, fabs(b[k] - a[k]));
+  const float8 m8 = max(m.lo, m.hi);
+  const float4 m4 = max(m8.lo, m8.hi);
+  const float2 m2 = max(m4.lo, m4.hi);
+  return 1.0001f * max(m2.x, m2.y);
 }
 
 // A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
