@@ -30,16 +30,16 @@ int main(int argc, char** argv) {
   const auto regimes = split(argc > 5 ? argv[5] : "far,near,at_mts");
   const Scene scene = load_scene("", {"kernel=[" + side + "," + side + "]", "viewport=[" + side + "," + side + "]"});
   OpenClRuntime rt;
-  fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10} {:>14} {:>9}\n", "technique", "format", "probes",
-             "fragment pairs", "seconds", "pairs/s", "ns/pair");
+  fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10} {:>14} {:>9} {:>12} {:>12}\n", "technique", "format", "probes",
+             "fragment pairs", "seconds", "pairs/s", "ns/pair", "rows raster", "rows reused");
   for (const auto& t : techniques)
     for (const auto& f : formats)
       for (const TimingRegime regime : {TimingRegime::far, TimingRegime::near, TimingRegime::at_mts}) {
         if (std::find(regimes.begin(), regimes.end(), to_string(regime)) == regimes.end()) continue;
         const EvalPair pair{parse_technique(t), f, DepthRange::zero_to_one};
         const Throughput r = time_depth_path(rt, scene, pair, regime, repeats);
-        fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10.3f} {:>14.3g} {:>9.2f}\n", t, f,
-                   to_string(regime), r.fragment_pairs, r.wall_seconds,
-                   r.pairs_per_second(), r.ns_per_pair());
+        fmt::print("{:<20} {:<9} {:<6} {:>14} {:>10.3f} {:>14.3g} {:>9.2f} {:>12} {:>12}\n", t, f,
+                   to_string(regime), r.fragment_pairs, r.wall_seconds, r.pairs_per_second(),
+                   r.ns_per_pair(), r.rows_rasterised, r.rows_reused);
       }
 }

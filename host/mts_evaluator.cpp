@@ -113,14 +113,15 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   // The buffer layout is the program's (kernels/mts.cl mts_layout), so host and kernels cannot
   // disagree on it.
   cl::Kernel layout(program, "mts_layout");
-  cl::Buffer sizes(rt_.context(), CL_MEM_WRITE_ONLY, 3 * sizeof(cl_uint));
+  cl::Buffer sizes(rt_.context(), CL_MEM_WRITE_ONLY, 4 * sizeof(cl_uint));
   layout.setArg(0, sizes);
   rt_.queue().enqueueTask(layout);
-  cl_uint got[3] = {0, 0, 0};
+  cl_uint got[4] = {0, 0, 0, 0};
   rt_.queue().enqueueReadBuffer(sizes, CL_TRUE, 0, sizeof got, got);
   plane_floats_ = got[0];
   row_words_ = got[1];
   band_words_ = got[2];
+  decided_words_ = got[3];
   max_slots_ = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
 }
 
@@ -359,7 +360,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     const size_t planes = active.size() * frames;
     const size_t items = planes * kh;
     const size_t band_items = planes * bands();
-    cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items);
+    cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items * decided_words_);
     cl::Event bounds_done;
     if (shortcuts_) {
       set_args(bounds_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.bands, slot_buf, static_cast<cl_uint>(done),
@@ -369,7 +370,8 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
                                        nullptr, &bounds_done);
       ++launches_;
     } else {
-      rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0, sizeof(uint32_t) * band_items, nullptr,
+      rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0, sizeof(uint32_t) * band_items * decided_words_,
+                                    nullptr,
                                     &bounds_done);
     }
     std::vector<uint32_t> rows(items);

@@ -150,6 +150,7 @@ class MtsEvaluator : public ProbeEvaluator {
   size_t plane_floats_ = 0;  // floats per plane record (kernels/mts.cl PLANE_STRIDE)
   size_t row_words_ = 0;     // words per cached row of plane A (ROW_WORDS)
   size_t band_words_ = 0;    // words per band of plane A (BAND_WORDS)
+  size_t decided_words_ = 0; // words per band of mts_frame_bounds' verdicts (DECIDED_WORDS)
   size_t max_slots_ = 1;
   struct PlaneACache {
     size_t capacity = 0;          // slots, each one distance with all its frames

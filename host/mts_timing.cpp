@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include "host/mts_search.h"
 
@@ -34,14 +33,15 @@ Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair
   for (int k = 0; k < std::max(1, repeats); ++k) {
     const uint64_t pairs0 = ev.fragment_pairs();
     const double kernel0 = ev.kernel_seconds();
-    const auto r0=ev.rows_rasterised(), u0=ev.rows_with_coverage_of_a(), b0=ev.pairs_decided_by_bounds();
+    const uint64_t rows0 = ev.rows_rasterised(), reused0 = ev.rows_with_coverage_of_a();
     const auto t0 = std::chrono::steady_clock::now();
     ev.run(probes);
-    if (k==0) fprintf(stderr, "rows %llu reused %llu pairs %llu bounds %llu\n", (unsigned long long)(ev.rows_rasterised()-r0), (unsigned long long)(ev.rows_with_coverage_of_a()-u0), (unsigned long long)(ev.fragment_pairs()-pairs0), (unsigned long long)(ev.pairs_decided_by_bounds()-b0));
     Throughput t;
     t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     t.fragment_pairs = ev.fragment_pairs() - pairs0;
     t.kernel_seconds = ev.kernel_seconds() - kernel0;
+    t.rows_rasterised = ev.rows_rasterised() - rows0;
+    t.rows_reused = ev.rows_with_coverage_of_a() - reused0;
     if (k == 0 || t.kernel_seconds < best.kernel_seconds) best = t;
   }
   return best;

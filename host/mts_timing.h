@@ -19,6 +19,9 @@ const char* to_string(TimingRegime r);
 struct Throughput {
   uint64_t fragment_pairs = 0;
   double wall_seconds = 0, kernel_seconds = 0;
+  // Where the work went: kernel rows rasterised (the rest were decided from code bounds), and of
+  // them those whose plane-B coverage was plane A's (MtsEvaluator::rows_with_coverage_of_a).
+  uint64_t rows_rasterised = 0, rows_reused = 0;
   double pairs_per_second() const { return wall_seconds > 0 ? fragment_pairs / wall_seconds : 0; }
   double ns_per_pair() const { return fragment_pairs ? 1e9 * kernel_seconds / fragment_pairs : 0; }
 };

@@ -97,6 +97,13 @@
 #define R_COUNT_SHIFT 8
 
 // Per (probe, frame, band) verdict of mts_frame_bounds, read by mts_raster.
+/* mts_frame_bounds' words per band of a (probe, frame): the verdict (D_*) with bit DV_ORIENTED:
+ * every triangle of plane B has plane A's orientation; and how far B's vertices lie from A's
+ * (b_moved_from_a, a float). Both are per frame, found per band so mts_raster reads one place. */
+#define DW_VERDICT 0
+#define DW_MOVED 1
+#define DECIDED_WORDS 2
+#define DV_ORIENTED 4u
 #define D_RASTER 0u /* rasterise, deciding pieces from their end codes first */
 #define D_CLEAN 1u  /* clean from code bounds or the gap certificate: not rasterised */
 #define D_INSIDE 2u /* rasterise straight through the pixel loop: see mts_frame_bounds */
@@ -608,6 +615,24 @@ static inline float b_moved_from_a(__global const float* TA, __global const floa
   return 1.0001f * max(m2.x, m2.y);
 }
 
+// Whether every triangle of plane B has plane A's orientation (its edges negated alike).
+static inline int b_keeps_orientation(__global const float* TA, __global const float* TB) {
+  __global const uint* a = (__global const uint*)TA + T_BITS;
+  __global const uint* b = (__global const uint*)TB + T_BITS;
+  uint differ = 0u;
+  for (int t = 0; t < NT; ++t) differ |= (a[t * TRI_STRIDE] ^ b[t * TRI_STRIDE]) & 7u;
+  return differ == 0u;
+}
+
+// Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
+// the row's band through exactly one triangle (band_covered; a frame with a vertex near a pixel
+// centre loses only that band, not the whole kernel), B within A's coverage margin
+// (coverage_margin: moved is b_moved_from_a), and B's triangles keep A's orientation (oriented:
+// b_keeps_orientation). The last two are per frame: mts_frame_bounds finds them once.
+static inline int b_coverage_is_a(float moved, int oriented, uint vflags_b, uint band, __global const uint* rec) {
+  return oriented && band_covered(vflags_b, band) && moved < ((__global const float*)rec)[RW_MARGIN];
+}
+
 // A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
 typedef struct {
   float c0, slope, x0, row_term;
@@ -1070,11 +1095,16 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
   const uint pf = id / bands, band = id - pf * bands;
   const uint ap = A_PLANE(pf);
   __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
-  decided[id] = D_RASTER;
+  __global uint* out = decided + (size_t)id * DECIDED_WORDS;
+  __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
+  __global const float* ref = a_tris + (size_t)ap * PLANE_STRIDE;
+  const int finite = !((a_vflags[ap] | vflags[pf]) & V_NONFINITE);
+  const uint oriented = finite && b_keeps_orientation(ref, TB) ? DV_ORIENTED : 0u;
+  ((__global float*)out)[DW_MOVED] = finite ? b_moved_from_a(ref, TB) : INFINITY;
+  out[DW_VERDICT] = D_RASTER | oriented;
   __global const uint* a = a_bands + ((size_t)ap * bands + band) * BAND_WORDS;
   if (!band_covered(a_vflags[ap], band) || !band_covered(vflags[pf], band) || a[2]) return;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
-  __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
   const code_bounds_t b = plane_code_bounds(TB, P, origin_x, origin_y, (int)kernel_w, r0, r1);
   if (b.bad) return;
 #if COMPARE_GREATER
@@ -1084,7 +1114,6 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
 #endif
 #if GAP_CERT
   if (!clean) {
-    __global const float* ref = a_tris + (size_t)ap * PLANE_STRIDE;
     const double2 g = plane_gap_range(TB, ref, origin_x, origin_y, (int)kernel_w, r0, r1);
     __global const float* ga = (__global const float*)a;
 #if DEPTH_FROM == 2
@@ -1106,22 +1135,7 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
    * depths instead of codes. */
   const uint from = df_order_exact_from(DF_FORMAT_FROM_DEFINES());
   const int ordered = from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
-  decided[id] = clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE;
-}
-
-// Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
-// the row's band through exactly one triangle (band_covered; a frame with a vertex near a pixel
-// centre loses only that band, not the whole kernel), B within A's coverage margin
-// (coverage_margin), and the segments' triangles keep their orientation.
-static inline int b_coverage_is_a(__global const float* TA, __global const float* TB, uint vflags_b, uint band,
-                                  __global const uint* rec) {
-  const int n = (int)rec[RW_N];
-  int same = band_covered(vflags_b, band) && b_moved_from_a(TA, TB) < ((__global const float*)rec)[RW_MARGIN];
-  for (int k = 0; k < n && same; ++k) {
-    const uint t = rec[RW_T + k] * TRI_STRIDE + T_BITS;
-    same = (((__global const uint*)TA)[t] & 7u) == (((__global const uint*)TB)[t] & 7u);
-  }
-  return same;
+  out[DW_VERDICT] = (clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE) | oriented;
 }
 
 // The fight mask of a piece [x, x_end) whose fragments are all covered and inside (finite,
@@ -1195,7 +1209,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     result[id] = R_NONFINITE;
     return;
   }
-  const uint band_verdict = decided[pf * bands + row / band_rows];
+  __global const uint* dec = decided + (size_t)(pf * bands + row / band_rows) * DECIDED_WORDS;
+  const uint band_verdict = dec[DW_VERDICT] & 3u;
   if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
     result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
     return;
@@ -1206,7 +1221,9 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   const float py = origin_y + (float)row + 0.5f;
   __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
   const int cached = rec[RW_N] > 0u;
-  const int b_is_a = shortcuts && cached && b_coverage_is_a(TA, TBp, vflags[pf], row / band_rows, rec);
+  const int b_is_a = shortcuts && cached &&
+                     b_coverage_is_a(((__global const float*)dec)[DW_MOVED], dec[DW_VERDICT] & DV_ORIENTED,
+                                     vflags[pf], row / band_rows, rec);
   const int inside = band_verdict == D_INSIDE || band_verdict == D_ORDERED;
   const int ordered = band_verdict == D_ORDERED;
 #if CACHE_A_CODES
@@ -1389,16 +1406,18 @@ __kernel void mts_coverage_audit(__global const float* restrict tris, __global c
   int differs = nb != n;
   for (int k = 0; k < n && !differs; ++k)
     differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
-  const int same = b_coverage_is_a(TA, TB, vflags[pf], row / band_rows, rec);
+  const int same =
+      b_coverage_is_a(b_moved_from_a(TA, TB), b_keeps_orientation(TA, TB), vflags[pf], row / band_rows, rec);
   out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 
 // The buffer layout the host allocates by: floats per plane record, words per cached row of plane A,
-// words per band of plane A.
+// words per band of plane A, words per band of mts_frame_bounds' verdicts.
 __kernel void mts_layout(__global uint* restrict out) {
   out[0] = PLANE_STRIDE;
   out[1] = ROW_WORDS;
   out[2] = BAND_WORDS;
+  out[3] = DECIDED_WORDS;
 }
 
 // Stored codes and fragment status of both planes at every kernel pixel of one (probe, frame),
