@@ -379,10 +379,11 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     set_args(raster_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf,
              static_cast<cl_uint>(done), a_.codes, static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
              static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
-             static_cast<cl_uint>(shortcuts_), result, static_cast<cl_uint>(items));
+             static_cast<cl_uint>(shortcuts_), result);
     cl::Event raster_done;
-    rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange, padded(items), cl::NDRange(kLocal),
-                                     nullptr, &raster_done);
+    rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange,
+                                     cl::NDRange((kh + kLocal - 1) / kLocal * kLocal, frames, active.size()),
+                                     cl::NDRange(kLocal, 1, 1), nullptr, &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     for (const uint32_t v : rows) {
       if (v & kBounds) by_bounds_ += v >> kCountShift;

@@ -1068,12 +1068,17 @@ __kernel void mts_a_bands(__global const float* restrict probes, __global const 
 #endif
 }
 
-// Where plane A of (probe, frame) sits in the plane-A cache: a_slots holds per probe its slot and
+// Where plane A of (probe, visit) sits in the plane-A cache: a_slots holds per probe its slot and
 // the frame its visit starts at (host/mts_evaluator.h, frame order); each slot holds all
-// frames_total frames of its distance; the launch covers visits first_frame.. of each probe.
-#define A_PLANE(pf)                                                                             \
-  (a_slots[2u * ((pf) / frames)] * frames_total +                                              \
-   (a_slots[2u * ((pf) / frames) + 1u] + first_frame + (pf) % frames) % frames_total)
+// frames_total frames of its distance; the launch covers visits first_frame.. of each probe. The
+// start frame and first_frame + visit both lie below frames_total, so one subtraction wraps their
+// sum (no division: mts_raster runs this per kernel row).
+static inline uint a_plane(__global const uint* a_slots, uint probe, uint visit, uint first_frame,
+                           uint frames_total) {
+  const uint f = a_slots[2u * probe + 1u] + first_frame + visit;
+  return a_slots[2u * probe] * frames_total + (f >= frames_total ? f - frames_total : f);
+}
+#define A_PLANE(pf) a_plane(a_slots, (pf) / frames, (pf) % frames, first_frame, frames_total)
 
 // Decides bands of kernel rows of a (probe, frame) clean without rasterising them, when both
 // planes certainly own every pixel of the band (band_covered) and their code bounds over it
@@ -1189,7 +1194,7 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 // Pieces are then taken left to right and the row stops after the first that fights. In a band
 // mts_frame_bounds certified inside (D_INSIDE, D_ORDERED) there is no end pass, and the whole row
 // is evaluated first with one reduction; only a row that fights is then taken piece by piece.
-// Global id: (probe * frames + frame) * kernel_h + row.
+// Global id: (row, visit, probe); results at (probe * frames + visit) * kernel_h + row.
 __kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
                          __global const uint* restrict vflags, __global const float* restrict a_tris,
                          __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
@@ -1197,14 +1202,14 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
                          __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
                          const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
                          __global const uint* restrict decided, const uint bands, const uint band_rows,
-                         const uint shortcuts, __global uint* restrict result, const uint items) {
-  const uint id = get_global_id(0);
-  if (id >= items) return;
-  const uint pf = id / kernel_h; /* probe * frames + frame */
-  const uint row = id - pf * kernel_h;
-  const uint probe = pf / frames;
+                         const uint shortcuts, __global uint* restrict result) {
+  /* a 3-D range (row, visit, probe), so no work-item divides to find them */
+  const uint row = get_global_id(0), visit = get_global_id(1), probe = get_global_id(2);
+  if (row >= kernel_h) return;
+  const uint pf = probe * frames + visit;
+  const uint id = pf * kernel_h + row;
   __global const float* P = probes + probe * PROBE_STRIDE;
-  const uint ap = A_PLANE(pf);
+  const uint ap = a_plane(a_slots, probe, visit, first_frame, frames_total);
   if ((a_vflags[ap] | vflags[pf]) & V_NONFINITE) {
     result[id] = R_NONFINITE;
     return;
