@@ -1162,9 +1162,10 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
   {                                                                                            \
     if (x_end - x < 16) return ((x + LANES) < x_end) & FIGHT16(PX16(x), x);                    \
     int16 fight_ = (int16)0;                                                                   \
-    float16 px_ = PX16(x);                                                                     \
+    const float16 px0_ = PX16(x);                                                              \
+    float16 px_ = px0_;                                                                        \
     for (int i0_ = x; i0_ < x_end - 16; i0_ += 16, px_ += 16.0f) fight_ |= FIGHT16(px_, i0_); \
-    return fight_ | FIGHT16(PX16(x_end - 16), x_end - 16);                                     \
+    return fight_ | FIGHT16(px0_ + (float)(x_end - 16 - x), x_end - 16); /* exact, as above */ \
   }
 #define CACHED_FIGHTS16(PX, I0) fights16(vload16(0, ca + (I0)), inside_code16(rb, P, (PX)))
 #define ORDERED_FIGHTS16(PX, I0) ordered_fights16(depth16(ra, P, (PX)).d, depth16(rb, P, (PX)).d)
