@@ -292,8 +292,7 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
   cl::Kernel k(rt_.program(variant_.program, variant_.options), "mts_coverage_audit");
   set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0}, static_cast<cl_uint>(frames),
-           kw, kh, origin_x(), origin_y(), static_cast<cl_uint>(frames), kBandRows, out,
-           static_cast<cl_uint>(items));
+           kw, kh, origin_x(), origin_y(), static_cast<cl_uint>(frames), out, static_cast<cl_uint>(items));
   rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
   std::vector<uint32_t> words(items);
   rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, words.data());

@@ -56,7 +56,10 @@
 #define NV_PAD ((NV + 15) / 16 * 16)
 #define V_XW ((Q_YRANGE + 2 * GRID + 15) / 16 * 16)
 #define V_YW (V_XW + NV_PAD)
-#define PLANE_STRIDE (V_YW + NV_PAD)
+/* Then per vertex the kernel row of the pixel centre it lies near (int; -1: none, or padding):
+ * the rows covers_kernel's certificate does not hold for (row_covered). */
+#define V_BAD_ROW (V_YW + NV_PAD)
+#define PLANE_STRIDE (V_BAD_ROW + NV_PAD)
 #define PROBE_STRIDE 24
 /* Per band of cached plane A (mts_a_bands): code bounds lo, hi, bad, then the gap range */
 #define BW_GAP_LO 3
@@ -134,23 +137,26 @@ static inline float4 mat_vec(__global const float* m, float4 v) {
 // pixel centre in both x and y; all coordinates below 8192 in magnitude (edge-test error below
 // 0.006 px) and no triangle angle below ~6 degrees (mts_setup), so a pixel centre 1/8 px from a
 // vertex is > 0.0125 px from that vertex's other edges. docs/performance.md has the argument.
-// A vertex near a pixel centre only spoils the certificate for the band of rows holding that
-// pixel, so such bands are named in the flags (bit V_BAND_SHIFT + band, bands of band_rows rows,
-// the first 24 bands; a vertex in a later one clears V_COVERS) and the rest stay certified.
+// A vertex near a pixel centre only spoils the certificate for the one pixel near it, so such
+// bands are named in the flags (bit V_BAND_SHIFT + band, bands of band_rows rows, the first 24
+// bands; a vertex in a later one clears V_COVERS) and the rest stay certified; and the pixel's
+// row is written to bad_row[vertex] (-1 for a vertex near no pixel centre) for row_covered.
 #define V_NONFINITE 1u
 #define V_COVERS 2u
 #define V_BAND_SHIFT 8
 #define V_MAX_BANDS 24u
 static inline uint covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw, uint kh,
-                                 uint band_rows) {
+                                 uint band_rows, int* bad_row) {
   uint bad_bands = 0u;
   const float x0 = ox, x1 = ox + (float)kw, y0 = oy, y1 = oy + (float)kh; /* pixel area */
+  for (int v = 0; v < NV; ++v) bad_row[v] = -1;
   for (int v = 0; v < NV; ++v) {
     if (!(fabs(xw[v]) <= 8192.0f && fabs(yw[v]) <= 8192.0f)) return 0u;
     if (xw[v] < x0 - 1.0f || xw[v] > x1 + 1.0f || yw[v] < y0 - 1.0f || yw[v] > y1 + 1.0f) continue;
     const float fx = xw[v] - ox - 0.5f, fy = yw[v] - oy - 0.5f;
     if (fabs(fx - rint(fx)) < 0.125f && fabs(fy - rint(fy)) < 0.125f) {
-      const uint band = (uint)clamp((int)rint(fy), 0, (int)kh - 1) / band_rows;
+      bad_row[v] = clamp((int)rint(fy), 0, (int)kh - 1);
+      const uint band = (uint)bad_row[v] / band_rows;
       if (band >= V_MAX_BANDS) return 0u;
       bad_bands |= 1u << band;
     }
@@ -185,6 +191,18 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
 // Every pixel of the band (or of the whole kernel) is owned by exactly one triangle.
 static inline int band_covered(uint vf, uint band) {
   return (vf & V_COVERS) && (band >= V_MAX_BANDS || !((vf >> (V_BAND_SHIFT + band)) & 1u));
+}
+
+// Every pixel of kernel row `row` of plane T (flags vf) is owned by exactly one triangle: the
+// certificate of band_covered, down to the one row a vertex near a pixel centre spoils.
+static inline int row_covered(__global const float* T, uint vf, int row) {
+  __global const int16* bad = (__global const int16*)((__global const int*)T + V_BAD_ROW);
+  int16 hit = (int16)0;
+  for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
+  const int8 h8 = hit.lo | hit.hi;
+  const int4 h4 = h8.lo | h8.hi;
+  const int2 h2 = h4.lo | h4.hi;
+  return (vf & V_COVERS) && !(h2.x | h2.y);
 }
 
 // The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
@@ -313,9 +331,12 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     ((__global uint*)R)[T_BITS] = bits;
     vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0, (__global int*)R + T_BOX);
   }
-  vflags[id] = nonfinite | (!nonfinite && shapely
-                                 ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h, band_rows)
-                                 : 0u);
+  int bad_row[NV];
+  vflags[id] = nonfinite | (!nonfinite && shapely ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w,
+                                                                  kernel_h, band_rows, bad_row)
+                                                  : 0u);
+  for (int v = 0; v < NV_PAD; ++v)
+    ((__global int*)T)[V_BAD_ROW + v] = v < NV && !nonfinite && shapely ? bad_row[v] : -1;
   for (int qj = 0; qj < GRID; ++qj) {
     float lo = INFINITY, hi = -INFINITY;
     for (int t = 2 * GRID * qj; t < 2 * GRID * (qj + 1); ++t) {
@@ -625,12 +646,13 @@ static inline int b_keeps_orientation(__global const float* TA, __global const f
 }
 
 // Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
-// the row's band through exactly one triangle (band_covered; a frame with a vertex near a pixel
-// centre loses only that band, not the whole kernel), B within A's coverage margin
-// (coverage_margin: moved is b_moved_from_a), and B's triangles keep A's orientation (oriented:
-// b_keeps_orientation). The last two are per frame: mts_frame_bounds finds them once.
-static inline int b_coverage_is_a(float moved, int oriented, uint vflags_b, uint band, __global const uint* rec) {
-  return oriented && band_covered(vflags_b, band) && moved < ((__global const float*)rec)[RW_MARGIN];
+// the row through exactly one triangle (row_covered; a frame with a vertex near a pixel centre
+// loses only that pixel's row), B within A's coverage margin (coverage_margin: moved is
+// b_moved_from_a), and B's triangles keep A's orientation (oriented: b_keeps_orientation). The
+// last two are per frame: mts_frame_bounds finds them once.
+static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB, uint vflags_b, int row,
+                                  __global const uint* rec) {
+  return oriented && moved < ((__global const float*)rec)[RW_MARGIN] && row_covered(TB, vflags_b, row);
 }
 
 // A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
@@ -1229,7 +1251,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   const int cached = rec[RW_N] > 0u;
   const int b_is_a = shortcuts && cached &&
                      b_coverage_is_a(((__global const float*)dec)[DW_MOVED], dec[DW_VERDICT] & DV_ORIENTED,
-                                     vflags[pf], row / band_rows, rec);
+                                     TBp, vflags[pf], (int)row, rec);
   const int inside = band_verdict == D_INSIDE || band_verdict == D_ORDERED;
   const int ordered = band_verdict == D_ORDERED;
 #if CACHE_A_CODES
@@ -1395,8 +1417,7 @@ __kernel void mts_coverage_audit(__global const float* restrict tris, __global c
                                  __global const uint* restrict a_rows, __global const uint* restrict a_slots,
                                  const uint first_frame, const uint frames_total, const uint kernel_w,
                                  const uint kernel_h, const float origin_x, const float origin_y,
-                                 const uint frames, const uint band_rows, __global uint* restrict out,
-                                 const uint items) {
+                                 const uint frames, __global uint* restrict out, const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / kernel_h, row = id - pf * kernel_h;
@@ -1413,7 +1434,7 @@ __kernel void mts_coverage_audit(__global const float* restrict tris, __global c
   for (int k = 0; k < n && !differs; ++k)
     differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
   const int same =
-      b_coverage_is_a(b_moved_from_a(TA, TB), b_keeps_orientation(TA, TB), vflags[pf], row / band_rows, rec);
+      b_coverage_is_a(b_moved_from_a(TA, TB), b_keeps_orientation(TA, TB), TB, vflags[pf], (int)row, rec);
   out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 
