@@ -284,24 +284,31 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     const int i0 = a, i1 = (t & 1) ? c : b, i2 = (t & 1) ? d : c;
     const int vi[3] = {i0, i1, i2};
     __global float* R = T + t * TRI_STRIDE;
+    /* the edges stay in registers: written to the record and to the edge arrays (SA) from here,
+     * never read back */
+    float ex[3], ey[3], edx[3], edy[3];
     uint bits = 0u;
     for (int e = 0; e < 3; ++e) {
       const int va = vi[e], vb = vi[(e + 1) % 3];
       const int lo = min(va, vb), hi = max(va, vb);
-      R[T_EDGES + 4 * e + 0] = xw[lo];
-      R[T_EDGES + 4 * e + 1] = yw[lo];
-      R[T_EDGES + 4 * e + 2] = xw[hi] - xw[lo];
-      R[T_EDGES + 4 * e + 3] = yw[hi] - yw[lo];
+      ex[e] = xw[lo];
+      ey[e] = yw[lo];
+      edx[e] = xw[hi] - xw[lo];
+      edy[e] = yw[hi] - yw[lo];
+      R[T_EDGES + 4 * e + 0] = ex[e];
+      R[T_EDGES + 4 * e + 1] = ey[e];
+      R[T_EDGES + 4 * e + 2] = edx[e];
+      R[T_EDGES + 4 * e + 3] = edy[e];
       if (va > vb) bits |= 1u << e;
     }
     // orientation: edge 0 evaluated at vertex 2
-    float orient = R[2] * (yw[i2] - R[1]) - R[3] * (xw[i2] - R[0]);
+    float orient = edx[0] * (yw[i2] - ey[0]) - edy[0] * (xw[i2] - ex[0]);
     if (bits & 1u) orient = -orient;
     if (orient < 0.0f) bits ^= 7u;
     const int valid = orient != 0.0f && isfinite(orient);
     for (int e = 0; e < 3; ++e) {
       const float s = (bits >> e) & 1u ? -1.0f : 1.0f;
-      const float dx = s * R[T_EDGES + 4 * e + 2], dy = s * R[T_EDGES + 4 * e + 3];
+      const float dx = s * edx[e], dy = s * edy[e];
       if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
     }
     if (valid) bits |= 64u;
@@ -327,7 +334,18 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     R[T_DQDY] = (e2q * e1x - e1q * e2x) / det;
     R[T_YMIN] = fmin(fmin(yw[i0], yw[i1]), yw[i2]);
     R[T_YMAX] = fmax(fmax(yw[i0], yw[i1]), yw[i2]);
-    for (int e = 0; e < 3; ++e) R[T_DXDY + e] = R[T_EDGES + 4 * e + 2] / R[T_EDGES + 4 * e + 3];
+    __global float* SA = T + NT * TRI_STRIDE;
+    for (int e = 0; e < 3; ++e) {
+      const int k = 3 * t + e;
+      const float dxdy = edx[e] / edy[e];
+      R[T_DXDY + e] = dxdy;
+      SA[E_AX * NE_PAD + k] = ex[e];
+      SA[E_AY * NE_PAD + k] = ey[e];
+      SA[E_DX * NE_PAD + k] = edx[e];
+      SA[E_DY * NE_PAD + k] = edy[e];
+      SA[E_DXDY * NE_PAD + k] = dxdy;
+      ((__global uint*)SA)[E_BITS * NE_PAD + k] = ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
+    }
     ((__global uint*)R)[T_BITS] = bits;
     vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0, (__global int*)R + T_BOX);
   }
@@ -350,18 +368,10 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     T[V_XW + v] = v < NV ? xw[v] : 0.0f;
     T[V_YW + v] = v < NV ? yw[v] : 0.0f;
   }
-  __global float* SA = T + NT * TRI_STRIDE;
-  for (int k = 0; k < NE_PAD; ++k) {
-    const int t = k < NE ? k / 3 : 0, e = k < NE ? k % 3 : 0;
-    __global const float* R = T + t * TRI_STRIDE;
-    const uint bits = ((__global const uint*)R)[T_BITS];
-    SA[E_AX * NE_PAD + k] = R[T_EDGES + 4 * e];
-    SA[E_AY * NE_PAD + k] = R[T_EDGES + 4 * e + 1];
-    SA[E_DX * NE_PAD + k] = R[T_EDGES + 4 * e + 2];
-    SA[E_DY * NE_PAD + k] = R[T_EDGES + 4 * e + 3];
-    SA[E_DXDY * NE_PAD + k] = R[T_DXDY + e];
-    ((__global uint*)SA)[E_BITS * NE_PAD + k] = ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
-  }
+  /* the edge arrays' padding repeats triangle 0's edge 0 */
+  __global uint* SA = (__global uint*)T + NT * TRI_STRIDE;
+  for (int k = NE; k < NE_PAD; ++k)
+    for (int a = 0; a <= E_BITS; ++a) SA[a * NE_PAD + k] = SA[a * NE_PAD];
 }
 
 // Does the pixel centre px (row py) pass edge e of triangle R? The same float expression for every
