@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "host/mts_search.h"
+#include "host/reference_pipeline.h"
 
 namespace depthprec {
 
@@ -45,6 +46,18 @@ Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair
     if (k == 0 || t.kernel_seconds < best.kernel_seconds) best = t;
   }
   return best;
+}
+
+Throughput time_host_reference(const Scene& scene, const EvalPair& pair, int frames) {
+  const Probe probe{256.0, 16 * vertex_bound(256.0)};
+  Throughput t;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int f = 0; f < frames; ++f) {
+    const FrameCodes codes = reference_frame(scene, pair, probe, f % scene.frames);
+    t.fragment_pairs += codes.code_a.size();
+  }
+  t.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return t;
 }
 
 }  // namespace depthprec

@@ -31,4 +31,9 @@ struct Throughput {
 Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime,
                            int repeats = 1);
 
+// The scalar host reference (host/reference_pipeline.h) on the same pair: both planes' stored
+// codes at every kernel pixel of `frames` frames of one probe (z = 2^8, s = 16 vertex bounds),
+// one thread, no shortcuts; fragment_pairs and wall_seconds are set.
+Throughput time_host_reference(const Scene& scene, const EvalPair& pair, int frames);
+
 }  // namespace depthprec
