@@ -14,8 +14,13 @@ while [ "$i" -lt "$rounds" ]; do
   "$b" "$@" 2>/dev/null | awk 'NR > 1 { print "B", $1 "/" $2 "/" $3, $7 }' >> "$out"
   i=$((i + 1))
 done
+# median ns/pair of binary $1 (A or B) on row $2
+median() {
+  awk -v b="$1" -v k="$2" '$1 == b && $2 == k { print $3 }' "$out" | sort -g |
+    awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
+}
 for key in $(awk '{ print $2 }' "$out" | sort -u); do
-  ma=$(awk -v k="$key" '$1 == "A" && $2 == k { print $3 }' "$out" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }')
-  mb=$(awk -v k="$key" '$1 == "B" && $2 == k { print $3 }' "$out" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }')
+  ma=$(median A "$key")
+  mb=$(median B "$key")
   awk -v k="$key" -v a="$ma" -v b="$mb" 'BEGIN { printf "%-32s A %.3f  B %.3f  B/A %.3f\n", k, a, b, b / a }'
 done

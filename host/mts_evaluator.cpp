@@ -28,7 +28,8 @@ constexpr size_t kMaxSlots = 64;
 // Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
 // launch (a new size for every batch shape) recompiles again and again.
 constexpr size_t kLocal = 16;
-cl::NDRange padded(size_t n) { return cl::NDRange((n + kLocal - 1) / kLocal * kLocal); }
+size_t padded_size(size_t n) { return (n + kLocal - 1) / kLocal * kLocal; }
+cl::NDRange padded(size_t n) { return cl::NDRange(padded_size(n)); }
 
 // A read-only device copy of a host array.
 template <class T>
@@ -370,8 +371,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
       ++launches_;
     } else {
       rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0, sizeof(uint32_t) * band_items * decided_words_,
-                                    nullptr,
-                                    &bounds_done);
+                                    nullptr, &bounds_done);
     }
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
@@ -381,7 +381,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
              static_cast<cl_uint>(shortcuts_), result);
     cl::Event raster_done;
     rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange,
-                                     cl::NDRange((kh + kLocal - 1) / kLocal * kLocal, frames, active.size()),
+                                     cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
                                      cl::NDRange(kLocal, 1, 1), nullptr, &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     for (const uint32_t v : rows) {

@@ -99,13 +99,14 @@
 #define R_REUSED 32u /* plane B's coverage of the row was plane A's (coverage_margin) */
 #define R_COUNT_SHIFT 8
 
-// Per (probe, frame, band) verdict of mts_frame_bounds, read by mts_raster.
-/* mts_frame_bounds' words per band of a (probe, frame): the verdict (D_*) with bit DV_ORIENTED:
- * every triangle of plane B has plane A's orientation; and how far B's vertices lie from A's
- * (b_moved_from_a, a float). Both are per frame, found per band so mts_raster reads one place. */
+/* mts_frame_bounds' words per band of a (probe, frame), read by mts_raster: the verdict (D_*, the
+ * bits D_MASK) with bit DV_ORIENTED: every triangle of plane B has plane A's orientation; and how
+ * far B's vertices lie from A's (b_moved_from_a, a float). Both are per frame, found per band so
+ * mts_raster reads one place. */
 #define DW_VERDICT 0
 #define DW_MOVED 1
 #define DECIDED_WORDS 2
+#define D_MASK 3u
 #define DV_ORIENTED 4u
 #define D_RASTER 0u /* rasterise, deciding pieces from their end codes first */
 #define D_CLEAN 1u  /* clean from code bounds or the gap certificate: not rasterised */
@@ -188,6 +189,14 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
   return V_COVERS | (bad_bands << V_BAND_SHIFT);
 }
 
+// any() of a 16-lane mask by halving ORs: PoCL expands any() into a test and branch per lane pair.
+static inline int any16(int16 m) {
+  const int8 m8 = m.lo | m.hi;
+  const int4 m4 = m8.lo | m8.hi;
+  const int2 m2 = m4.lo | m4.hi;
+  return (m2.x | m2.y) < 0;
+}
+
 // Every pixel of the band (or of the whole kernel) is owned by exactly one triangle.
 static inline int band_covered(uint vf, uint band) {
   return (vf & V_COVERS) && (band >= V_MAX_BANDS || !((vf >> (V_BAND_SHIFT + band)) & 1u));
@@ -199,10 +208,7 @@ static inline int row_covered(__global const float* T, uint vf, int row) {
   __global const int16* bad = (__global const int16*)((__global const int*)T + V_BAD_ROW);
   int16 hit = (int16)0;
   for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
-  const int8 h8 = hit.lo | hit.hi;
-  const int4 h4 = h8.lo | h8.hi;
-  const int2 h2 = h4.lo | h4.hi;
-  return (vf & V_COVERS) && !(h2.x | h2.y);
+  return (vf & V_COVERS) && !any16(hit);
 }
 
 // The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
@@ -349,12 +355,11 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
     ((__global uint*)R)[T_BITS] = bits;
     vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0, (__global int*)R + T_BOX);
   }
+  const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
-  vflags[id] = nonfinite | (!nonfinite && shapely ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w,
-                                                                  kernel_h, band_rows, bad_row)
-                                                  : 0u);
-  for (int v = 0; v < NV_PAD; ++v)
-    ((__global int*)T)[V_BAD_ROW + v] = v < NV && !nonfinite && shapely ? bad_row[v] : -1;
+  vflags[id] = nonfinite |
+               (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h, band_rows, bad_row) : 0u);
+  for (int v = 0; v < NV_PAD; ++v) ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
   for (int qj = 0; qj < GRID; ++qj) {
     float lo = INFINITY, hi = -INFINITY;
     for (int t = 2 * GRID * qj; t < 2 * GRID * (qj + 1); ++t) {
@@ -751,14 +756,6 @@ static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, flo
 // encoder needs no checks for values outside it. The same codes fragment16 gives there.
 static inline uint16 inside_code16(row_plane16_t rp, __global const float* P, float16 px) {
   return df_encode16_unit(depth16(rp, P, px).d, DF_FORMAT_FROM_DEFINES());
-}
-
-// any() of a 16-lane mask by halving ORs: PoCL expands any() into a test and branch per lane pair.
-static inline int any16(int16 m) {
-  const int8 m8 = m.lo | m.hi;
-  const int4 m4 = m8.lo | m8.hi;
-  const int2 m2 = m4.lo | m4.hi;
-  return (m2.x | m2.y) < 0;
 }
 
 static inline int16 fights16(uint16 code_a, uint16 code_b) {
@@ -1248,7 +1245,7 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     return;
   }
   __global const uint* dec = decided + (size_t)(pf * bands + row / band_rows) * DECIDED_WORDS;
-  const uint band_verdict = dec[DW_VERDICT] & 3u;
+  const uint band_verdict = dec[DW_VERDICT] & D_MASK;
   if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
     result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
     return;
