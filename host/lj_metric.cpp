@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "host/did_you_mean.h"
 #include "host/errors.h"
 
 namespace depthprec {
@@ -22,8 +23,8 @@ const char* to_string(LjBuffer b) {
 LjBuffer parse_lj_buffer(const std::string& s) {
   for (const LjBuffer b : {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w, LjBuffer::complementary_z})
     if (s == to_string(b)) return b;
-  throw InputError(
-      fmt::format("unknown buffer type '{}': expected z, w, inverse_w or complementary_z", s));
+  throw InputError(fmt::format("unknown buffer type '{}'{}: expected z, w, inverse_w or complementary_z", s,
+                               buffer_suggestion(s)));
 }
 
 const char* to_string(LjSampling s) { return s == LjSampling::uniform ? "uniform" : "increasing"; }

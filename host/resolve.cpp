@@ -35,6 +35,12 @@ void validate(const ResolveSetup& s) {
                                  info(s.technique).name));
 }
 
+ResolveSetup mapping_at(Technique t, double near, double far, const TechniqueParams& p, double z) {
+  if (t != Technique::layered) return {t, near, far, p};
+  const Layer l = layer_bounds(layer_of(z, near, far, p), near, far, p);
+  return {p.layer_mapping, l.near, l.far, p};
+}
+
 double distance_gap(const ResolveSetup& s, double a, double b) {
   const quad d = distance_q(s, a) - distance_q(s, b);
   return static_cast<double>(d < 0 ? -d : d);
@@ -70,6 +76,13 @@ DistanceResolution resolve_distance(const ResolveSetup& s, const StorageFormat& 
   validate(s);
   if (!(w > 0) || !std::isfinite(w))
     throw InputError(fmt::format("--distance must be a finite eye distance > 0, not {}", w));
+  // Outside the clip volume there is no stored depth to resolve: the pipeline clips the fragment.
+  if (info(s.technique).clips_near && w < s.near)
+    throw InputError(fmt::format("--distance {} is nearer than the near plane {}: {} clips it (no depth is stored)",
+                                 w, s.near, info(s.technique).name));
+  if (has_far_plane(s.technique) && w > s.far)
+    throw InputError(fmt::format("--distance {} is beyond the far plane {}: {} clips it (no depth is stored)", w,
+                                 s.far, info(s.technique).name));
   DistanceResolution r;
   r.distance = w;
   r.depth = depth_of_distance(s.technique, s.near, s.far, s.params, w);
@@ -86,6 +99,11 @@ DistanceResolution resolve_distance(const ResolveSetup& s, const StorageFormat& 
   r.gap_above = c < f.max_code() ? distance_gap(s, v, f.decode(c + 1)) : 0.0;
   r.resolution = std::max(r.gap_below, r.gap_above);
   return r;
+}
+
+double code_interval_width(const ResolveSetup& s, const StorageFormat& f, double w) {
+  const CodeInterval ci = resolve_code(s, f, resolve_distance(s, f, w).code);
+  return ci.distance_hi - ci.distance_lo;
 }
 
 std::vector<DistanceResolution> resolution_curve(const ResolveSetup& s, const StorageFormat& f,

@@ -35,8 +35,18 @@ struct DistanceResolution {
 };
 
 void validate(const ResolveSetup& s);  // throws InputError
+
+// The mapping that stores distance z: the technique's own, or for layered the layer_mapping
+// with the near and far of the layer z is drawn in.
+ResolveSetup mapping_at(Technique t, double near, double far, const TechniqueParams& p, double z);
 CodeInterval resolve_code(const ResolveSetup& s, const StorageFormat& f, uint32_t code);
 DistanceResolution resolve_distance(const ResolveSetup& s, const StorageFormat& f, double w);
+// The eye-space width of the interval of distances whose exact depth stores the same code as w's:
+// two planes closer than this can share a code wherever they sit, and with LEQUAL/GEQUAL a
+// shared code is a fight, so a measurement that samples the whole interval cannot find a
+// smaller MTS.
+double code_interval_width(const ResolveSetup& s, const StorageFormat& f, double w);
+
 // `points` eye distances spaced geometrically from near to far (both included).
 std::vector<DistanceResolution> resolution_curve(const ResolveSetup& s, const StorageFormat& f,
                                                  int points);

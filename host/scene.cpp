@@ -2,10 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -92,10 +96,17 @@ void check_user_keys(const json& j, const std::string& source, const std::string
 // Reads typed values with errors that name the key and say what is allowed.
 class Reader {
  public:
-  Reader(const json& j, std::string source, std::string text)
-      : j_(j), source_(std::move(source)), text_(std::move(text)) {}
+  // origins: the command-line option that set a key (e.g. "--near 5", "--set near=5"); a key
+  // found there is blamed on it rather than on the scene file.
+  Reader(const json& j, std::string source, std::string text, const std::map<std::string, std::string>& origins)
+      : j_(j), source_(std::move(source)), text_(std::move(text)), origins_(origins) {}
 
   [[noreturn]] void fail(const std::string& key, const std::string& msg) const {
+    for (std::string k = key;; k = k.substr(0, k.rfind('.'))) {  // "pipeline.divide", then "pipeline"
+      const auto o = origins_.find(k);
+      if (o != origins_.end()) throw InputError(fmt::format("{}: '{}' {}", o->second, key, msg));
+      if (k.find('.') == std::string::npos) break;
+    }
     const std::string leaf = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
     throw InputError(fmt::format("{}: '{}' {}", where(source_, text_, leaf), key, msg));
   }
@@ -186,6 +197,7 @@ class Reader {
   const json& j_;
   std::string source_;
   std::string text_;
+  const std::map<std::string, std::string>& origins_;
 };
 
 MatrixPrecision parse_matrix_precision(const std::string& s) {
@@ -226,6 +238,28 @@ void apply_override(json& j, const std::string& assignment) {
 
 }  // namespace
 
+void check_pairs(const Scene& s) {
+  if (std::isfinite(s.far)) return;
+  for (const auto& p : s.evaluate)
+    if (has_far_plane(p.technique))
+      throw InputError(fmt::format("far = inf: {} needs a finite far plane (as do all of {}); only "
+                                   "infinite, reversed_infinite and inverse_w have none",
+                                   p.label(), finite_far_technique_names()));
+}
+
+void check_planes_cover_kernel(const Scene& s) {
+  // The square planes span plane_margin times the viewport's height in both directions (their
+  // side is plane_margin * 2 D tan(fov/2)), centred: a kernel wider than that has pixels no plane
+  // covers in any frame, and no probe could be accepted.
+  const double plane_px = s.plane_margin * s.viewport_h;
+  if (s.kernel_w > plane_px || s.kernel_h > plane_px)
+    throw InputError(fmt::format(
+        "kernel {}x{} is wider than the planes, which span plane_margin x viewport height = {} x {} = {:g} "
+        "pixels: no probe could be accepted; raise plane_margin to at least {:g} or narrow the kernel",
+        s.kernel_w, s.kernel_h, s.plane_margin, s.viewport_h, plane_px,
+        std::ceil(100.0 * std::max(s.kernel_w, s.kernel_h) / s.viewport_h * 1.05) / 100));
+}
+
 std::string EvalPair::label() const {
   return fmt::format("{}/{}/{}", info(technique).name, format, to_string(depth_range));
 }
@@ -237,20 +271,22 @@ const std::string& default_scene_text() {
 
 namespace {
 Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
-                  const std::string& text);
+                  const std::string& text, const std::map<std::string, std::string>& origins);
 }  // namespace
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  if (path.empty()) return load_scene_text("", "", overrides);
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides, bool check,
+                 const std::map<std::string, std::string>& origins) {
+  if (path.empty()) return load_scene_text("", "", overrides, check, origins);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
   std::stringstream buf;
   buf << in.rdbuf();
-  return load_scene_text(buf.str(), path, overrides);
+  return load_scene_text(buf.str(), path, overrides, check, origins);
 }
 
 Scene load_scene_text(const std::string& text, const std::string& path,
-                      const std::vector<std::string>& overrides) {
+                      const std::vector<std::string>& overrides, bool check,
+                      const std::map<std::string, std::string>& origins) {
   json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
   std::string source = std::string("embedded:") + kDefaultPath;
   if (!path.empty()) {
@@ -261,16 +297,22 @@ Scene load_scene_text(const std::string& text, const std::string& path,
     merged.merge_patch(user);
     if (user.contains("evaluate")) merged["evaluate"] = user["evaluate"];
   }
+  std::map<std::string, std::string> blame = origins;
   if (!overrides.empty()) {
     json patch = json::object();
-    for (const auto& o : overrides) apply_override(patch, o);
+    for (const auto& o : overrides) {
+      apply_override(patch, o);
+      blame.emplace(o.substr(0, o.find('=')), "--set " + o);
+    }
     check_user_keys(patch, "--set", "");
     merged.merge_patch(patch);
     if (patch.contains("evaluate")) merged["evaluate"] = patch["evaluate"];
     if (!overrides.empty()) source += " (with --set overrides)";
   }
 
-  return parse_scene(merged, source, path.empty() ? std::string("--set") : path, text);
+  Scene s = parse_scene(merged, source, path.empty() ? source : path, text, blame);
+  if (check) check_pairs(s);
+  return s;
 }
 
 Scene scene_from_json(const json& j, const std::string& source) {
@@ -278,14 +320,16 @@ Scene scene_from_json(const json& j, const std::string& source) {
   check_user_keys(j, source, "");
   merged.merge_patch(j);
   if (j.contains("evaluate")) merged["evaluate"] = j["evaluate"];
-  return parse_scene(merged, source, source, "");
+  Scene s = parse_scene(merged, source, source, "", {});
+  check_pairs(s);
+  return s;
 }
 
 namespace {
 
 Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
-                  const std::string& text) {
-  const Reader r(merged, where_name, text);
+                  const std::string& text, const std::map<std::string, std::string>& origins) {
+  const Reader r(merged, where_name, text, origins);
   Scene s;
   s.source = source;
   s.name = r.string("name");
@@ -317,7 +361,18 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   for (const auto& d : dist) {
     if (!d.is_number() || !(d.get<double>() > 0) || !std::isfinite(d.get<double>()))
       r.fail("distances", fmt::format("must hold finite eye distances > 0, not {}", d.dump()));
-    s.distances.push_back(d.get<double>());
+    const double z = d.get<double>();
+    // The planes are placed in binary32: at its largest value fl32(z) has no binary32 above it
+    // (the vertex bound is infinite), past it fl32(z) is infinite.
+    if (!(static_cast<float>(z) < std::numeric_limits<float>::max()))
+      r.fail("distances", fmt::format("{:g} is not below binary32's largest value {:g}: the pipeline cannot place "
+                                      "a plane there", z, static_cast<double>(std::numeric_limits<float>::max())));
+    // A row is keyed by its distance (journals, shards, shared computations): each distance once.
+    const auto same = std::find(s.distances.begin(), s.distances.end(), z);
+    if (same != s.distances.end())
+      r.fail("distances", fmt::format("lists {:g} twice (entries {} and {}); list each distance once", z,
+                                      same - s.distances.begin() + 1, s.distances.size() + 1));
+    s.distances.push_back(z);
   }
   s.rel_precision = r.positive("rel_precision");
   if (s.rel_precision >= 1) r.fail("rel_precision", "must be below 1 (e.g. 0.0009765625 = 2^-10)");
@@ -325,7 +380,16 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   if (s.max_separation_factor < 1) r.fail("max_separation_factor", "must be >= 1");
   s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
 
-  s.pipeline.depth_range = r.choice("pipeline.depth_range", parse_depth_range);
+  s.pipeline.depth_range = r.choice("pipeline.depth_range", [](const std::string& v) -> std::optional<DepthRange> {
+    if (v == "technique") return std::nullopt;
+    try {
+      return parse_depth_range(v);
+    } catch (const InputError&) {
+      throw InputError(fmt::format("unknown depth range '{}': expected gl, zero_to_one or technique "
+                                   "(each technique's own: zero_to_one for reversed, reversed_infinite and "
+                                   "inverse_w, gl otherwise)", v));
+    }
+  });
   s.pipeline.matrix_precision = r.choice("pipeline.matrix_precision", parse_matrix_precision);
   s.pipeline.compose = r.choice("pipeline.compose", parse_compose);
   s.pipeline.divide = r.choice("pipeline.divide", parse_divide);
@@ -357,7 +421,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
       StorageFormat::parse(p.format);
       p.depth_range = ev[i].contains("depth_range")
                           ? parse_depth_range(ev[i]["depth_range"].get<std::string>())
-                          : s.pipeline.depth_range;
+                          : s.range_for(p.technique);
     } catch (const InputError& e) {
       r.fail(base, e.what());
     } catch (const json::exception&) {

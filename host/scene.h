@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -19,7 +21,9 @@ enum class Compose { separate, premultiplied };
 enum class Divide { reciprocal, exact };
 
 struct Pipeline {
-  DepthRange depth_range = DepthRange::gl;
+  // The depth range of pairs that name none; none here ("technique" in a scene): each technique's
+  // own (TechniqueInfo::range: zero_to_one for the reversed mappings, gl otherwise).
+  std::optional<DepthRange> depth_range;
   MatrixPrecision matrix_precision = MatrixPrecision::single;
   Compose compose = Compose::separate;
   Divide divide = Divide::reciprocal;
@@ -58,6 +62,9 @@ struct Scene {
 
   nlohmann::json json;  // the merged, validated scene as JSON (for output headers)
 
+  // The depth range a pair of technique t gets when it names none.
+  DepthRange range_for(Technique t) const { return pipeline.depth_range.value_or(info(t).range); }
+
   StorageFormat storage_format(const EvalPair& p) const {
     return StorageFormat::parse(p.format, pipeline.rounding, pipeline.denormals);
   }
@@ -66,11 +73,25 @@ struct Scene {
 // path empty: the embedded default. overrides: "key=value" with a JSON value (bare words are
 // taken as strings), dotted keys for nested objects: "pipeline.depth_range=zero_to_one",
 // "kernel=[50,50]", "near=0.1". Throws InputError naming the file, line:column and key.
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+// check = false leaves check_pairs to a caller that replaces the pairs first. origins names the
+// option behind an override's key ("near" -> "--near 5"), so errors blame what the user typed;
+// an override it does not name is blamed on "--set key=value".
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {}, bool check = true,
+                 const std::map<std::string, std::string>& origins = {});
 
 // The same from the text of a scene file (path names it in errors; "" for no file).
 Scene load_scene_text(const std::string& text, const std::string& path,
-                      const std::vector<std::string>& overrides = {});
+                      const std::vector<std::string>& overrides = {}, bool check = true,
+                      const std::map<std::string, std::string>& origins = {});
+
+// Checks what the scene's pairs need of it (a finite far plane for the techniques that clip at
+// one); throws InputError naming the pair. load_scene calls it; so does whoever replaces the pairs.
+void check_pairs(const Scene& scene);
+
+// Refuses a kernel wider than the planes (every probe would see uncovered pixels and none could
+// be accepted). The commands call it up front; the library leaves such scenes to the search,
+// which never accepts a probe with an uncovered pixel (tests use them to check exactly that).
+void check_planes_cover_kernel(const Scene& scene);
 
 // A scene from a JSON object (as JSON outputs carry it in their header), over the defaults.
 Scene scene_from_json(const nlohmann::json& j, const std::string& source);

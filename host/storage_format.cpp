@@ -5,6 +5,7 @@
 #include <cmath>
 #include <regex>
 
+#include "host/did_you_mean.h"
 #include "host/errors.h"
 
 namespace depthprec {
@@ -70,7 +71,8 @@ StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, D
           "storage format '{}': {} bits in all; M = 0..31 and E + M <= 32", name, e + mm));
     f.spec_ = df_make_float(static_cast<df_i32>(e), static_cast<df_i32>(mm), 0, r, fl);
   } else {
-    throw InputError(fmt::format("unknown storage format '{}': expected {}", name, kAllowedFormats));
+    throw InputError(
+        fmt::format("unknown storage format '{}'{}: expected {}", name, format_suggestion(name), kAllowedFormats));
   }
   return f;
 }

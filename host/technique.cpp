@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "host/did_you_mean.h"
 #include "host/errors.h"
 
 namespace depthprec {
@@ -19,17 +20,19 @@ DepthRange parse_depth_range(const std::string& s) {
 const std::vector<TechniqueInfo>& technique_table() {
   using D = DepthFrom;
   using F = FragmentDepth;
+  const DepthRange gl = DepthRange::gl, zo = DepthRange::zero_to_one;
   static const std::vector<TechniqueInfo> table = {
-      {Technique::standard, "standard", D::projection, F::none, false, "Gilg eq. 1"},
-      {Technique::infinite, "infinite", D::projection, F::none, false, "Gilg eq. 2"},
-      {Technique::reversed, "reversed", D::projection, F::none, true, "Gilg eq. 3, LJ complementary Z"},
-      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, "Gilg eq. 4"},
-      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, "Gilg eq. 5-6"},
-      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, "Gilg sec. 2.5"},
-      {Technique::linear, "linear", D::fragment, F::linear, false, "Gilg sec. 2.6"},
-      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, "LJ eq. 4"},
-      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, "LJ eq. 5"},
-      {Technique::layered, "layered", D::projection, F::none, false, "Gilg sec. 2.7"},
+      // id                      name                 depth from      fragment     greater range clips_near
+      {Technique::standard, "standard", D::projection, F::none, false, gl, true},
+      {Technique::infinite, "infinite", D::projection, F::none, false, gl, true},
+      {Technique::reversed, "reversed", D::projection, F::none, true, zo, true},
+      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, zo, true},
+      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, gl, false},
+      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, gl, true},
+      {Technique::linear, "linear", D::fragment, F::linear, false, gl, true},
+      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, gl, true},
+      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, zo, true},
+      {Technique::layered, "layered", D::projection, F::none, false, gl, true},
   };
   return table;
 }
@@ -44,6 +47,13 @@ bool has_far_plane(Technique t) {
   return t != Technique::infinite && t != Technique::reversed_infinite && t != Technique::inverse_w;
 }
 
+std::string finite_far_technique_names() {
+  std::string s;
+  for (const auto& i : technique_table())
+    if (has_far_plane(i.id)) s += (s.empty() ? "" : ", ") + std::string(i.name);
+  return s;
+}
+
 std::string technique_names() {
   std::string s;
   for (const auto& i : technique_table()) s += (s.empty() ? "" : ", ") + std::string(i.name);
@@ -53,7 +63,10 @@ std::string technique_names() {
 Technique parse_technique(const std::string& s) {
   for (const auto& i : technique_table())
     if (s == i.name) return i.id;
-  throw InputError(fmt::format("unknown technique '{}': expected one of {}", s, technique_names()));
+  std::vector<std::string> names;
+  for (const auto& i : technique_table()) names.push_back(i.name);
+  throw InputError(
+      fmt::format("unknown technique '{}'{}: expected one of {}", s, technique_suggestion(s, names), technique_names()));
 }
 
 double depth_of_distance(Technique t, double n, double f, const TechniqueParams& p, double w) {

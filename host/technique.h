@@ -40,7 +40,13 @@ struct TechniqueInfo {
   DepthFrom from;
   FragmentDepth fragment;
   bool greater;  // reversed mapping: nearer is larger, compare GEQUAL
-  const char* seed;
+  // The depth range the technique is meant for, used when a scene or command names none:
+  // the reversed mappings need zero_to_one (in gl, 0.5*z_ndc + 0.5 adds 0.5 to a depth near 0
+  // and throws away the floating-point precision they exist for).
+  DepthRange range;
+  // Whether a plane nearer than the near plane is clipped. log_vertex rewrites z_clip so that
+  // every w in [0, far] maps into [0, 1]: it has no near clipping.
+  bool clips_near;
 };
 
 const std::vector<TechniqueInfo>& technique_table();
@@ -48,8 +54,10 @@ const TechniqueInfo& info(Technique t);
 Technique parse_technique(const std::string& s);  // throws InputError listing the names
 std::string technique_names();                    // "standard, infinite, ..." for help texts
 // Whether the technique clips at the far plane (the fragment-depth ones clip with the standard
-// projection's volume); infinite, reversed_infinite and inverse_w have none.
+// projection's volume) and so needs a finite far; infinite, reversed_infinite and inverse_w have none.
 bool has_far_plane(Technique t);
+// The techniques that need a finite far plane, for error messages: "standard, reversed, ...".
+std::string finite_far_technique_names();
 
 // Third row of P, (P[2][2], P[2][3]), computed term by term in the arithmetic of T as an
 // application writes it (T = float for matrix_precision float, double for double). The

@@ -44,7 +44,8 @@ TEST_CASE("a scene file overrides only what it names", "[scene]") {
 
 TEST_CASE("overrides take JSON values and dotted keys", "[scene]") {
   const Scene s = load_scene("", {"near=0.25", "kernel=[64,32]", "viewport=[64,32]",
-                                  "pipeline.depth_range=zero_to_one", "far=inf"});
+                                  "pipeline.depth_range=zero_to_one", "far=inf",
+                                  R"(evaluate=[{"technique": "infinite", "format": "float32"}])"});
   CHECK(s.near == 0.25);
   CHECK(s.kernel_w == 64);
   CHECK(s.kernel_h == 32);

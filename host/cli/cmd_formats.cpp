@@ -27,6 +27,11 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
   const Denormals denormals = parse_denormals(o.denormals);
   std::vector<StorageFormat> formats;
   for (const auto& n : o.names) formats.push_back(StorageFormat::parse(n, rounding, denormals));
+  // A depth buffer holds window depths in [0, 1] (the pipeline clamps or clips the rest), so a
+  // value outside is not a depth: refused rather than stored as the nearest end.
+  for (double v : o.values)
+    if (!(v >= 0.0 && v <= 1.0))
+      throw InputError(fmt::format("--value {}: depth values are in [0, 1]", v));
 
   fmt::print("storage formats (rounding {}, denormals {})\n", o.rounding, o.denormals);
   fmt::print("{:<9} {:>4} {:>14} {:>14} {:>14} {:>14}\n", "format", "bits", "smallest>0", "largest",

@@ -1,10 +1,14 @@
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "host/cl.h"
 #include "host/cli/commands.h"
+#include "host/did_you_mean.h"
 #include "host/errors.h"
 #include "host/version.h"
 
@@ -38,6 +42,20 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // A mistyped command would otherwise read "A subcommand is required": name it and the closest.
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+      names.push_back(sub->get_name());
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--device") ++i;
+      if (a.empty() || a[0] == '-') continue;
+      if (std::find(names.begin(), names.end(), a) != names.end()) break;
+      const std::string near = closest_name(a, names);
+      std::fprintf(stderr, "depthprec: unknown command '%s'%s; the commands are %s (depthprec --help)\n", a.c_str(),
+                   near.empty() ? "" : (" (did you mean " + near + "?)").c_str(), fmt::format("{}", fmt::join(names, ", ")).c_str());
+      return static_cast<int>(ExitCode::usage);
+    }
     const int rc = app.exit(e);
     return rc == 0 ? 0 : static_cast<int>(ExitCode::usage);
   } catch (const Error& e) {

@@ -1,8 +1,14 @@
 #include "host/cli/scene_options.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <map>
 #include <set>
+#include <sstream>
 
 #include "host/errors.h"
 
@@ -14,7 +20,8 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
                  "data/gilg2021.json (Gilg et al. 2021)");
   cmd.add_option("--set", sets,
                  "Override any scene field: --set near=0.1 --set pipeline.divide=exact "
-                 "--set kernel=[50,50]");
+                 "--set rotation_range_deg=2 (a kernel smaller than the viewport sees only the planes' centre: "
+                 "use --kernel, which sets both)");
   if (with_pairs) {
     cmd.add_option("-t,--technique", techniques, "Technique(s): " + technique_names())
         ->delimiter(',');
@@ -23,8 +30,8 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
         ->delimiter(',');
     cmd.add_option("--depth-range", depth_ranges, "gl and/or zero_to_one")->delimiter(',');
   }
-  cmd.add_option("--distances", distances, "Eye distances of plane A, e.g. 2,1024,1e6")
-      ->delimiter(',');
+  // Split here rather than by CLI11's delimiter, which drops empty entries ("1,,2").
+  cmd.add_option("--distances", distances, "Eye distances of plane A, each once, in any order, e.g. 2,1024,1e6");
   cmd.add_option("--near", near, "Near plane distance");
   cmd.add_option("--far", far, "Far plane distance (inf for none)");
   cmd.add_option("--kernel", kernel, "Measurement kernel WxH in pixels (viewport follows)");
@@ -39,38 +46,94 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--log-k", log_k, "k of the log techniques");
 }
 
+namespace {
+
+// A number as the user typed it: the whole text, finite (or "inf" where allowed); the error
+// names the option.
+std::string number_text(const std::string& option, const std::string& v, bool allow_inf = false) {
+  if (allow_inf && v == "inf") return "\"inf\"";
+  size_t used = 0;
+  double d = 0;
+  try {
+    d = std::stod(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (v.empty() || used != v.size() || !std::isfinite(d))
+    throw Error(ExitCode::usage, fmt::format("{} '{}': expected a finite number{}", option, v,
+                                             allow_inf ? " or inf" : ""));
+  return v;
+}
+
+std::string whole_number_text(const std::string& option, const std::string& v) {
+  const size_t sign = !v.empty() && v[0] == '-' ? 1 : 0;  // a negative count is a range error, named by the scene
+  const bool digits = v.size() > sign && v.find_first_not_of("0123456789", sign) == std::string::npos;
+  if (!digits) throw Error(ExitCode::usage, fmt::format("{} '{}': expected a whole number, e.g. 20", option, v));
+  return v;
+}
+
+}  // namespace
+
 Scene SceneOptions::load() const {
+  // Every named option is a --set in disguise; `origins` lets the scene's errors name the option
+  // the user typed, and a key set twice (--near 0.1 --set near=5) is refused rather than one
+  // silently winning.
   std::vector<std::string> all;
-  auto set_if = [&all](const std::string& key, const std::string& v) {
-    if (!v.empty()) all.push_back(key + "=" + v);
+  std::map<std::string, std::string> origins;
+  auto set_if = [&all, &origins](const std::string& option, const std::string& key, const std::string& user,
+                                 const std::string& json) {
+    if (user.empty()) return;
+    all.push_back(key + "=" + json);
+    origins[key] = option + " " + user;
   };
-  set_if("near", near);
-  set_if("far", far == "inf" ? "\"inf\"" : far);
+  set_if("--near", "near", near, near.empty() ? "" : number_text("--near", near));
+  set_if("--far", "far", far, far.empty() ? "" : number_text("--far", far, true));
   if (!kernel.empty()) {
     int w = 0, h = 0;
     char tail = 0;
     if (std::sscanf(kernel.c_str(), "%dx%d%c", &w, &h, &tail) != 2)
       throw Error(ExitCode::usage,
                   fmt::format("--kernel '{}': expected WxH in pixels, e.g. 200x200", kernel));
-    set_if("kernel", fmt::format("[{},{}]", w, h));
-    set_if("viewport", fmt::format("[{},{}]", w, h));
+    set_if("--kernel", "kernel", kernel, fmt::format("[{},{}]", w, h));
+    set_if("--kernel", "viewport", kernel, fmt::format("[{},{}]", w, h));
   }
-  set_if("frames", frames);
-  set_if("fov_y_deg", fov);
-  set_if("rel_precision", rel_precision);
-  set_if("pipeline.matrix_precision", matrix_precision);
-  set_if("pipeline.compose", compose);
-  set_if("pipeline.divide", divide);
-  set_if("pipeline.rounding", rounding);
-  set_if("pipeline.denormals", denormals);
-  set_if("log_k", log_k);
+  set_if("--frames", "frames", frames, frames.empty() ? "" : whole_number_text("--frames", frames));
+  set_if("--fov", "fov_y_deg", fov, fov.empty() ? "" : number_text("--fov", fov));
+  set_if("--rel-precision", "rel_precision", rel_precision,
+         rel_precision.empty() ? "" : number_text("--rel-precision", rel_precision));
+  set_if("--matrix-precision", "pipeline.matrix_precision", matrix_precision, matrix_precision);
+  set_if("--compose", "pipeline.compose", compose, compose);
+  set_if("--divide", "pipeline.divide", divide, divide);
+  set_if("--rounding", "pipeline.rounding", rounding, rounding);
+  set_if("--denormals", "pipeline.denormals", denormals, denormals);
+  set_if("--log-k", "log_k", log_k, log_k.empty() ? "" : number_text("--log-k", log_k));
   if (!distances.empty()) {
-    std::string list;
-    for (const auto& d : distances) list += (list.empty() ? "" : ",") + d;
-    set_if("distances", "[" + list + "]");
+    std::string list, typed;
+    std::vector<std::string> entries;
+    for (const auto& token : distances) {
+      std::stringstream ss(token);
+      std::string d;
+      while (std::getline(ss, d, ',')) entries.push_back(d);
+      if (token.empty() || token.back() == ',') entries.push_back("");
+    }
+    for (const auto& d : entries) {
+      if (d.empty())
+        throw Error(ExitCode::usage, fmt::format("--distances: an empty entry in '{}'; separate distances "
+                                                 "by single commas, e.g. 2,1024,1e6",
+                                                 fmt::join(distances, ",")));
+      list += (list.empty() ? "" : ",") + number_text("--distances", d);
+      typed += (typed.empty() ? "" : ",") + d;
+    }
+    set_if("--distances", "distances", typed, "[" + list + "]");
+  }
+  for (const auto& set : sets) {
+    const std::string key = set.substr(0, set.find('='));
+    for (const auto& [k, option] : origins)
+      if (k == key || k.rfind(key + ".", 0) == 0 || key.rfind(k + ".", 0) == 0)
+        throw Error(ExitCode::usage, fmt::format("{} and --set {} both set '{}': give it once", option, set, k));
   }
   all.insert(all.end(), sets.begin(), sets.end());
-  Scene scene = load_scene(scene_file, all);
+  Scene scene = load_scene(scene_file, all, false, origins);
   if (!techniques.empty() || !formats.empty() || !depth_ranges.empty()) {
     std::vector<std::string> ts = techniques, fs = formats;
     std::set<std::string> seen_t, seen_f;
@@ -81,27 +144,55 @@ Scene SceneOptions::load() const {
     }
     std::vector<DepthRange> rs;
     for (const auto& r : depth_ranges) rs.push_back(parse_depth_range(r));
-    if (rs.empty()) rs.push_back(scene.pipeline.depth_range);
     scene.evaluate.clear();
     scene.json["evaluate"] = nlohmann::json::array();
     for (const auto& t : ts)
-      for (const auto& f : fs)
-        for (const auto r : rs) {
-          StorageFormat::parse(f);
-          scene.evaluate.push_back({parse_technique(t), f, r});
+      for (const auto& f : fs) {
+        StorageFormat::parse(f);
+        const Technique tech = parse_technique(t);
+        // No --depth-range: each technique in the scene's range, or its own when the scene names none.
+        for (const auto r : rs.empty() ? std::vector<DepthRange>{scene.range_for(tech)} : rs) {
+          scene.evaluate.push_back({tech, f, r});
           // the scene a header records is the one that ran
           scene.json["evaluate"].push_back({{"technique", t}, {"format", f}, {"depth_range", to_string(r)}});
         }
+      }
   }
+  check_pairs(scene);
+  check_planes_cover_kernel(scene);
   return scene;
 }
 
+std::string format_of_extension(const std::string& path) {
+  const auto dot = path.rfind('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
+  std::string ext = path.substr(dot + 1);
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == "json") return "json";
+  if (ext == "csv") return "csv";
+  if (ext == "md" || ext == "markdown") return "markdown";
+  if (ext == "txt") return "text";
+  return "";
+}
+
 void OutputOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("--format-out", format_out, "text (default), csv, json or markdown")
-      ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));
+  CLI::Option* chosen = cmd.add_option("--format-out", format_out,
+                                       "text, csv, json or markdown (default: from the --output file's extension "
+                                       ".txt, .csv, .json or .md, else text)")
+                            ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));
   cmd.add_option("-o,--output", output, "Write to this file instead of standard output");
   cmd.add_flag("--no-timing", no_timing,
                "Leave measured times out, so two runs' outputs compare byte for byte");
+  // Runs once the command line is parsed, before the command: -o out.json writes JSON unless
+  // --format-out says otherwise, and then the mismatch is pointed out.
+  cmd.parse_complete_callback([this, chosen]() {
+    const std::string by_name = format_of_extension(output);
+    if (by_name.empty()) return;
+    if (chosen->count() == 0) format_out = by_name;
+    else if (format_out != by_name)
+      std::fprintf(stderr, "depthprec: note: --output %s gets --format-out %s, not the %s its name suggests\n",
+                   output.c_str(), format_out.c_str(), by_name.c_str());
+  });
 }
 
 void BatchOptions::add_to(CLI::App& cmd, const std::string& units) {

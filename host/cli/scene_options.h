@@ -25,6 +25,9 @@ struct SceneOptions {
   Scene load() const;
 };
 
+// The output format a file name asks for by its extension (.json, .csv, .md, .txt); "" for none.
+std::string format_of_extension(const std::string& path);
+
 struct OutputOptions {
   std::string format_out = "text";
   std::string output;  // file; "" = stdout
