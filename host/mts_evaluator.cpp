@@ -98,6 +98,7 @@ const char* to_string(Outcome o) {
     case Outcome::fight: return "fight";
     case Outcome::clipped: return "clipped";
     case Outcome::non_finite: return "non_finite";
+    case Outcome::uncovered: return "uncovered";
   }
   return "?";
 }

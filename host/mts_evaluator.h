@@ -21,7 +21,9 @@ struct Probe {
   double s;  // requested separation: plane B at fl32(z + s)
 };
 
-enum class Outcome { clean, fight, clipped, non_finite };
+// uncovered: no fight, but a kernel pixel that a plane does not cover (the search's reading of a
+// clean result with any_uncovered; the evaluator itself reports clean and the flag).
+enum class Outcome { clean, fight, clipped, non_finite, uncovered };
 const char* to_string(Outcome o);
 
 struct ProbeResult {

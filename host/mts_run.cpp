@@ -120,6 +120,9 @@ std::vector<PairWork> plan_pairs(const Scene& scene, const RunControl& control) 
       const auto [it, first] = owner.emplace(key, p);
       if (first) {
         work[p].fresh.push_back(z);
+      } else if (it->second == p) {
+        // A pair cannot wait for itself; scenes list each distance once (load_scene refuses repeats).
+        throw Error(ExitCode::internal, fmt::format("{} computes z = {} twice", pair.label(), z));
       } else {
         work[p].shared.push_back(key);
         work[p].owners.insert(it->second);
@@ -210,11 +213,16 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     std::vector<MtsRow> taken;
     {
       std::unique_lock<std::mutex> lock(m);
-      pair_finished.wait(lock, [&]() {
+      const auto owners_done = [&]() {
         for (size_t o : work[p].owners)
           if (!finished[o]) return false;
         return true;
-      });
+      };
+      // The owners stop between launches when interrupted and then finish (failed); the wait
+      // still looks at the interrupt itself, so no path waits without honouring it.
+      while (!pair_finished.wait_for(lock, std::chrono::milliseconds(100), owners_done)) {
+        if (control.stop && control.stop()) throw Error(ExitCode::interrupted, "interrupted");
+      }
       // An owner that did not finish its rows failed, and so has the run; otherwise every key is there.
       if (failed) return;
       for (const std::string& key : work[p].shared) {

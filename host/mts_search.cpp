@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "host/errors.h"
+#include "host/resolve.h"
 #include "host/technique.h"
 
 namespace depthprec {
@@ -23,8 +24,9 @@ void Bisection::record(Outcome o) {
   const double s = next_;
   if (o == Outcome::non_finite) non_finite_ = true;
   if (o == Outcome::clipped) clipped_ = true;
-  const bool fights = o == Outcome::fight || o == Outcome::non_finite ||
-                      (o == Outcome::clipped && resolved());
+  if (o == Outcome::uncovered) uncovered_ = true;
+  const bool not_accepted = o == Outcome::clipped || o == Outcome::uncovered;
+  const bool fights = o == Outcome::fight || o == Outcome::non_finite || (not_accepted && resolved());
   if (doubling_) {
     if (fights) {
       lo_ = s;
@@ -34,7 +36,7 @@ void Bisection::record(Outcome o) {
     }
     doubling_ = false;
     if (o == Outcome::clean) hi_ = s;
-    else ceil_ = s;  // clipped: too far
+    else ceil_ = s;  // clipped or uncovered: too far
   } else if (fights) {
     if (s > hi_) non_monotone_ = true;
     lo_ = s;
@@ -68,6 +70,8 @@ std::string MtsRow::flags() const {
   add(non_monotone, "non_monotone");
   add(uncovered, "uncovered");
   add(beyond_far, "beyond_far_plane");
+  add(before_near, "nearer_than_near_plane");
+  add(below_one_code, "below_one_code");
   return f;
 }
 
@@ -90,14 +94,17 @@ const char* to_string(Verdict v) {
     case Verdict::unresolvable: return "unresolvable";
     case Verdict::non_finite: return "non_finite";
     case Verdict::clipped: return "clipped";
+    case Verdict::uncovered: return "uncovered";
     case Verdict::below_vertex_bound: return "below vertex bound";
     case Verdict::beyond_far_plane: return "beyond far plane";
+    case Verdict::nearer_than_near_plane: return "nearer than near plane";
   }
   return "?";
 }
 
 Verdict MtsRow::verdict() const {
   if (beyond_far) return Verdict::beyond_far_plane;
+  if (before_near) return Verdict::nearer_than_near_plane;
   if (!unresolvable) {
     // B within the vertex bound coincides with A and must fight: a clean answer there is no
     // measurement (e.g. planes that cover no kernel pixel), never a confident number.
@@ -105,6 +112,7 @@ Verdict MtsRow::verdict() const {
   }
   if (non_finite) return Verdict::non_finite;
   if (clipped) return Verdict::clipped;
+  if (uncovered) return Verdict::uncovered;
   return Verdict::unresolvable;
 }
 
@@ -141,12 +149,15 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
     if (has_far_plane(pair.technique) && distances[i] > scene.far) {
       rows[i].beyond_far = true;  // plane A itself is clipped: nothing to search
       phase[i] = 2;
+    } else if (info(pair.technique).clips_near && distances[i] < scene.near) {
+      rows[i].before_near = true;  // likewise
+      phase[i] = 2;
     }
   }
   auto finish = [&](size_t i) {
     const Bisection& b = searches[i];
     MtsRow& row = rows[i];
-    if (!row.beyond_far) {
+    if (!row.beyond_far && !row.before_near) {
       row.probes = b.probes() + static_cast<int>(extra[i].size());
       row.lo = b.lo();
       row.hi = b.hi();
@@ -155,6 +166,12 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       row.mts_seen = b.resolved() ? seen_separation(row.z, b.hi()) : b.hi();
       row.non_finite = b.saw_non_finite();
       row.clipped = !b.resolved() && b.saw_clipped();
+      if (b.resolved()) {
+        const double width = code_interval_width(
+            mapping_at(pair.technique, scene.near, scene.far, scene.params, row.z), scene.storage_format(pair), row.z);
+        row.below_one_code = row.mts_seen < width * (1 - 2 * scene.rel_precision);
+        if (row.below_one_code) row.code_width = width;
+      }
       auto note = [&row](double s, Outcome o) {
         if (o == Outcome::fight || o == Outcome::non_finite) row.fight_max = std::max(row.fight_max, s);
         if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
@@ -189,6 +206,13 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
     }
     if (probes.empty()) break;
     const auto results = evaluator.run(probes);
+    // A launch renders every probe in it: a row whose probes (stiffness probes, several at once)
+    // shared this round's launches took part in as many as its busiest probe, not their sum, so
+    // a row never counts more launches than the run made.
+    std::vector<uint64_t> round_launches(rows.size(), 0);
+    for (size_t k = 0; k < probes.size(); ++k)
+      round_launches[owner[k].first] = std::max(round_launches[owner[k].first], results[k].launches);
+    for (size_t i = 0; i < rows.size(); ++i) rows[i].launches += round_launches[i];
     for (size_t k = 0; k < probes.size(); ++k) {
       const size_t i = owner[k].first;
       MtsRow& row = rows[i];
@@ -197,11 +221,12 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       row.fragment_pairs += r.fragment_pairs;
       row.seconds += r.seconds;
       row.kernel_seconds += r.kernel_seconds;
-      row.launches += r.launches;
       row.uncovered |= r.any_uncovered;
       row.clipped_probes += r.any_clipped ? 1 : 0;
-      if (owner[k].second) extra[i].emplace_back(probes[k].s, r.outcome);
-      else searches[i].record(r.outcome);
+      // Nothing was compared at an uncovered pixel: such a probe is never clean.
+      const Outcome o = r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
+      if (owner[k].second) extra[i].emplace_back(probes[k].s, o);
+      else searches[i].record(o);
     }
     for (size_t i = 0; i < searches.size(); ++i) {
       if (phase[i] == 1) {

@@ -3,7 +3,8 @@
 // midpoint until (hi - lo) / hi <= rel_precision. Exactly this probe sequence, so results compare
 // with any other implementation of the measurement.
 //
-// Clipped probes (a fragment of either plane left the clip volume) are never accepted as MTS:
+// Clipped probes (a fragment of either plane left the clip volume) and uncovered ones (a kernel
+// pixel that a plane does not cover, so nothing was compared there) are never accepted as MTS:
 // before a clean separation is known they bound the search from above like a ceiling; once one
 // is known they count as not clean. Non-finite probes count as fighting and flag the row. A
 // ceiling below the vertex bound ends the search: below it plane B coincides with plane A, so
@@ -37,6 +38,7 @@ class Bisection {
   double hi() const { return hi_; }  // +inf while no clean separation is known
   bool resolved() const { return hi_ < std::numeric_limits<double>::infinity(); }
   bool saw_clipped() const { return clipped_; }
+  bool saw_uncovered() const { return uncovered_; }
   bool saw_non_finite() const { return non_finite_; }
   bool non_monotone() const { return non_monotone_; }
   int probes() const { return probes_; }
@@ -48,13 +50,23 @@ class Bisection {
   double lo_ = 0, hi_ = std::numeric_limits<double>::infinity(),
          ceil_ = std::numeric_limits<double>::infinity();
   double next_;
-  bool doubling_ = true, done_ = false, clipped_ = false, non_finite_ = false, non_monotone_ = false;
+  bool doubling_ = true, done_ = false, clipped_ = false, uncovered_ = false, non_finite_ = false,
+       non_monotone_ = false;
   int probes_ = 0;
   std::vector<std::pair<double, Outcome>> history_;
 };
 
 // What a row finally says: a number (resolved) or why there is none.
-enum class Verdict { resolved, unresolvable, non_finite, clipped, below_vertex_bound, beyond_far_plane };
+enum class Verdict {
+  resolved,
+  unresolvable,
+  non_finite,
+  clipped,
+  uncovered,
+  below_vertex_bound,
+  beyond_far_plane,
+  nearer_than_near_plane,
+};
 const char* to_string(Verdict v);  // "resolved", ..., "below vertex bound", "beyond far plane"
 
 struct MtsRow {
@@ -67,7 +79,10 @@ struct MtsRow {
   int probes = 0;
   uint64_t frames = 0;
   uint64_t fragment_pairs = 0;
-  uint64_t launches = 0;      // kernel launches its probes took part in (shared with other rows)
+  // Kernel launches its probes took part in. Launches render the probes of every distance of a
+  // pair at once, so rows share them: a row never counts more than the run made, and the rows of
+  // a run add up to more than its total (the footer's "kernel launches").
+  uint64_t launches = 0;
   double seconds = 0;         // attributed wall time of the launches (by fragment pairs)
   double kernel_seconds = 0;  // attributed device time of the launches (profiling events)
   int clipped_probes = 0;  // probes in which some fragment left the clip volume
@@ -75,6 +90,13 @@ struct MtsRow {
   bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,
        uncovered = false;
   bool beyond_far = false;  // z past the far plane of a technique that has one: not searched
+  bool before_near = false;  // z nearer than the near plane of a technique that clips there: not searched
+  // A resolved MTS (as seen, mts_seen) below the width of the code interval holding z (less the
+  // bisection's precision twice over): the planes' depths in the kernel did not span one code,
+  // so where z falls between two codes decided the answer, and a z nearby can need up to
+  // code_width (docs/mts.md, "Below one code").
+  bool below_one_code = false;
+  double code_width = 0;  // that width, when below_one_code
   // Over every probe (search and stiffness): the largest separation that fought and the
   // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
   // upper MTS (every clean answer lies above it). 0 / +inf when there is none.

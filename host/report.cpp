@@ -60,8 +60,10 @@ std::string table_cell(const MtsRow& r, bool full) {
     case Verdict::unresolvable: return full ? exact(r.mts) : human(r.mts);
     case Verdict::non_finite: return "non-finite";
     case Verdict::clipped: return "clipped";
+    case Verdict::uncovered: return "uncovered";
     case Verdict::below_vertex_bound: return "<vb";
     case Verdict::beyond_far_plane: return "beyond far";
+    case Verdict::nearer_than_near_plane: return "before near";
   }
   return "?";
 }
@@ -148,7 +150,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   std::vector<Column> cols = {{"z"}, {"vertex_bound"}};
   for (const auto& l : labels) cols.push_back({l});
   std::vector<std::vector<std::string>> cells;
-  bool any_mark = false;
+  bool any_mark = false, any_below_code = false;
   for (double z : zs) {
     std::vector<std::string> c = {full ? exact(z) : human(z), full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
     for (const auto& l : labels) {
@@ -160,6 +162,10 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
       const MtsRow& r = *it->second;
       std::string v = table_cell(r, full);
       if (r.attributed() && !full) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
+      if (!full && r.below_one_code) {
+        v += "~";
+        any_below_code = true;
+      }
       if (!full && (r.non_monotone || r.non_finite || r.clipped || r.uncovered)) {
         v += "*";
         any_mark = true;
@@ -173,8 +179,8 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   std::string out;
   if (md) {
     out += fmt::format("MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
-                       "rel. precision {}); inf = unresolvable, non-finite / clipped / beyond far / "
-                       "<vb (below the vertex bound) = the verdict where there is no MTS\n\n",
+                       "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
+                       "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
                        scene.name, human(scene.near), human(scene.far), scene.kernel_w,
                        scene.kernel_h, scene.frames, human(scene.rel_precision));
   }
@@ -182,6 +188,12 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   if (any_mark) {
     out += md ? "\n" : "";
     out += "* flagged (non_monotone, uncovered, or a probe was non-finite or clipped); see --format-out json\n";
+  }
+  if (any_below_code) {
+    out += md ? "\n" : "";
+    out += "~ below one storage code at its z (flag below_one_code): the planes' depths in the kernel did not "
+           "span a code, so where z falls between codes decided it; a z nearby can need up to one code "
+           "(code_width in --format-out json)\n";
   }
   bool attributed = false;
   for (const auto& r : rows) attributed |= r.attributed();

@@ -44,6 +44,7 @@ json row_to_json(const MtsRow& r, bool timing) {
             {"clean_min", number(r.clean_min)},
             {"flags", r.flags()},
             {"verdict", to_string(r.verdict())}};
+  if (r.below_one_code) j["code_width"] = number(r.code_width);
   if (r.attributed()) {
     j["storage_mts"] = number(r.storage_mts);
     j["arithmetic_mts"] = number(r.arithmetic_mts);
@@ -78,6 +79,8 @@ MtsRow row_from_json(const json& j) {
       else if (f == "non_monotone") r.non_monotone = true;
       else if (f == "uncovered") r.uncovered = true;
       else if (f == "beyond_far_plane") r.beyond_far = true;
+      else if (f == "nearer_than_near_plane") r.before_near = true;
+      else if (f == "below_one_code") r.below_one_code = true;
       else throw InputError(fmt::format("unknown row flag '{}'", f));
     }
   } catch (const json::exception& e) {
@@ -96,6 +99,7 @@ MtsRow row_from_json(const json& j) {
     r.dominant = j.value("dominant", "");
   }
   r.clean_min = read_number(j, "clean_min");
+  if (r.below_one_code) r.code_width = read_number(j, "code_width");
   if (j.contains("seconds")) r.seconds = read_number(j, "seconds");
   if (j.contains("kernel_seconds")) r.kernel_seconds = read_number(j, "kernel_seconds");
   return r;

@@ -93,6 +93,20 @@ TEST_CASE("an interrupted table keeps its finished rows and resumes to identical
   }
 }
 
+// infinite's rows are standard's computations (n = 1, f = 1e9): with two jobs its pair waits for
+// standard's. An interrupt then ends the run at once, the waiting pair included.
+TEST_CASE("an interrupt stops a run whose pairs are waiting for each other", "[batch]") {
+  const std::string cut = "/tmp/depthprec_test_wait.json";
+  for (const auto& f : {cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
+  const auto t0 = std::chrono::steady_clock::now();
+  const int code = run_and_interrupt("table -t standard,infinite -f unorm24 --distances 2,64,2048,65536,2097152 "
+                                     "--kernel 160x160 --frames 60 --jobs 2 --no-timing --format-out json -o " + cut,
+                                     cut + ".rows.jsonl", SIGINT);
+  CHECK(code == 130);
+  CHECK(lines_in(cut + ".rows.jsonl") >= 1);
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 30);
+}
+
 TEST_CASE("shards merge to the bytes of the whole batch", "[batch]") {
   const std::string full = "/tmp/depthprec_test_whole.json";
   REQUIRE(run_cli(kBatch + " -o " + full).exit_code == 0);

@@ -7,6 +7,7 @@
 #include "host/frame_setup.h"
 #include "host/reference_pipeline.h"
 #include "mts_fixture.h"
+#include "reference_outcome.h"
 
 using namespace depthprec;
 using namespace depthprec::test;
@@ -100,28 +101,10 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
       for (double f : {1e-9, 1e-7, 1e-5, 1e-3, 0.1, 1.0}) probes.push_back({z, z * f});
     const auto results = ev.run(probes);
     for (size_t k = 0; k < probes.size(); ++k) {
-      Outcome expect = Outcome::clean;
-      int frames = scene.frames;
-      bool any_clipped = false;
-      for (int frame = 0; frame < scene.frames && expect == Outcome::clean; ++frame) {
-        const FrameCodes r = reference_frame(scene, pair, probes[k], frame);
-        bool fight = false, nonfinite = false;
-        for (size_t i = 0; i < r.code_a.size(); ++i) {
-          const int sa = r.status_a[i], sb = r.status_b[i];
-          if (sa == 2 || sb == 2) nonfinite = true;
-          else if (sa == 1 || sb == 1) any_clipped = true;
-          else if (sa == 0 && sb == 0 &&
-                   (info(t).greater ? r.code_b[i] >= r.code_a[i] : r.code_b[i] <= r.code_a[i]))
-            fight = true;
-        }
-        if (nonfinite) expect = Outcome::non_finite;
-        else if (fight) expect = Outcome::fight;
-        if (expect != Outcome::clean) frames = frame + 1;
-      }
-      if (expect == Outcome::clean && any_clipped) expect = Outcome::clipped;
+      const ReferenceOutcome expect = reference_outcome(scene, pair, probes[k]);
       INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
-      CHECK(to_string(results[k].outcome) == std::string(to_string(expect)));
-      CHECK(results[k].frames == frames);
+      CHECK(to_string(results[k].outcome) == std::string(to_string(expect.outcome)));
+      CHECK(results[k].frames == expect.frames);
     }
   }
 }
