@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "host/errors.h"
+#include "host/report.h"
 
 namespace depthprec {
 
@@ -18,6 +19,12 @@ std::string gnuplot_terminal(const std::string& output) {
   if (ends_with(".png")) return "pngcairo size 1200,800 font \"sans,11\"";
   if (ends_with(".svg")) return "svg size 1200,800 font \"sans,11\"";
   throw InputError(fmt::format("plot: output '{}' must end in .png or .svg", output));
+}
+
+void check_plot_output(const std::string& path) {
+  if (path.empty()) return;
+  gnuplot_terminal(path);
+  check_writable(path);
 }
 
 std::string gnuplot_quote(const std::string& s) {

@@ -13,4 +13,8 @@ std::string gnuplot_quote(const std::string& s);
 // is missing (naming the package), OutputError when it fails.
 void run_gnuplot(const std::string& script, const std::string& output);
 
+// Checks up front, before a batch runs, that a plot can be written there: a .png or .svg name in
+// a writable place ("" is no plot). Throws InputError / OutputError.
+void check_plot_output(const std::string& path);
+
 }  // namespace depthprec

@@ -103,6 +103,7 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
 void run_cost(const CostOptions& o, const GlobalOptions& g) {
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
+  check_plot_output(o.plot);
   if (!o.plot.empty() && o.out.no_timing)
     throw Error(ExitCode::usage, "cost: --plot needs the timing pass (drop --no-timing)");
   const bool timing = !o.out.no_timing;

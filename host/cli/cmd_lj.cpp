@@ -313,6 +313,7 @@ namespace {
 
 void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
   check_writable(o.out.output);
+  check_plot_output(o.plot);
   const auto records = run_record_batch(
       "lj-table", o.out, o.batch, g,
       [&o](OpenClRuntime& rt, nlohmann::json& header) {

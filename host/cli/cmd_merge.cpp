@@ -31,7 +31,37 @@ nlohmann::json read_json(const std::string& f) {
   return j;
 }
 
+// Each file's shard ("i/N" in its header; none: the whole batch, 1/1), checked to be the N parts
+// of one batch, each once: a missing or repeated part would merge into a table with rows
+// silently absent. Returns the shard index (1-based) of each file.
+std::vector<int> check_shards(const MergeOptions& o, const std::vector<nlohmann::json>& docs) {
+  std::vector<int> index(docs.size());
+  std::map<int, std::string> seen;  // shard index -> file
+  int count = 0;
+  for (size_t k = 0; k < docs.size(); ++k) {
+    const std::string& f = o.files[k];
+    const std::string shard = docs[k].value("shard", "1/1");
+    Shard part;
+    try {
+      part = Shard::parse(shard);
+    } catch (const Error&) {
+      throw InputError(fmt::format("merge: '{}' has a bad shard '{}'", f, shard));
+    }
+    if (k == 0) count = part.count;
+    else if (part.count != count)
+      throw InputError(fmt::format("merge: '{}' is shard {} but '{}' is one of {} shards", f, shard, o.files.front(), count));
+    index[k] = part.index + 1;
+    const auto [it, fresh] = seen.emplace(index[k], f);
+    if (!fresh) throw InputError(fmt::format("merge: shard {} given twice ('{}' and '{}')", shard, it->second, f));
+  }
+  for (int i = 1; i <= count; ++i)
+    if (!seen.count(i))
+      throw InputError(fmt::format("merge: shard {}/{} is missing (given {} of {})", i, count, seen.size(), count));
+  return index;
+}
+
 void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) {
+  check_shards(o, docs);
   nlohmann::json scene_json;
   std::string kind, device, source;
   std::map<std::string, MtsRow> rows;
@@ -76,37 +106,27 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
 void merge_records(const MergeOptions& o, const std::string& kind, const std::vector<nlohmann::json>& docs) {
   std::map<int, std::vector<nlohmann::json>> parts;  // shard index -> records
   nlohmann::json header;
-  int count = 0;
   for (size_t k = 0; k < docs.size(); ++k) {
-    const std::string& f = o.files[k];
     const nlohmann::json& j = docs[k];
     if (j.value("kind", "") != kind || !j.contains("records"))
-      throw InputError(fmt::format("merge: '{}' is not a {} output (--format-out json)", f, kind));
-    const std::string shard = j.value("shard", "1/1");
-    Shard part;
-    try {
-      part = Shard::parse(shard);
-    } catch (const Error&) {
-      throw InputError(fmt::format("merge: '{}' has a bad shard '{}'", f, shard));
-    }
-    const int i = part.index + 1, n = part.count;
+      throw InputError(fmt::format("merge: '{}' is not a {} output (--format-out json)", o.files[k], kind));
+  }
+  const std::vector<int> index = check_shards(o, docs);
+  const int count = static_cast<int>(docs.size());
+  for (size_t k = 0; k < docs.size(); ++k) {
+    const nlohmann::json& j = docs[k];
     nlohmann::json h = j;
-    for (const char* k : {"records", "shard", "levels", "device"}) h.erase(k);
+    for (const char* key : {"records", "shard", "levels", "device"}) h.erase(key);
     if (header.is_null()) {
       header = h;
       header["device"] = j.value("device", "");
-      count = n;
     } else {
       nlohmann::json mine = header;
       mine.erase("device");
-      if (h != mine) throw InputError(fmt::format("merge: '{}' ran another batch than '{}'", f, o.files.front()));
-      if (n != count) throw InputError(fmt::format("merge: '{}' is shard {} but '{}' is of {} shards", f, shard, o.files.front(), count));
+      if (h != mine) throw InputError(fmt::format("merge: '{}' ran another batch than '{}'", o.files[k], o.files.front()));
     }
-    if (parts.count(i)) throw InputError(fmt::format("merge: shard {} given twice ('{}')", shard, f));
-    parts[i] = j["records"].get<std::vector<nlohmann::json>>();
+    parts[index[k]] = j["records"].get<std::vector<nlohmann::json>>();
   }
-  for (int i = 1; i <= count; ++i)
-    if (!parts.count(i)) throw InputError(fmt::format("merge: shard {}/{} is missing", i, count));
   std::vector<nlohmann::json> records;
   for (size_t pos = 0;; ++pos) {
     bool any = false;

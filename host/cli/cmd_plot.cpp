@@ -30,6 +30,7 @@ void run_plot(const PlotOptions& o) {
   const auto j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("rows"))
     throw InputError(fmt::format("plot: '{}' is not a JSON output of mts, table or merge (--format-out json)", o.input));
+  check_plot_output(o.output);
   const std::string terminal = gnuplot_terminal(o.output);
 
   std::map<std::string, std::vector<std::pair<double, double>>> series;  // label -> (z, mts)

@@ -148,6 +148,7 @@ std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& reco
 void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
   const Scene base = o.scene.load();
   check_writable(o.out.output);
+  check_plot_output(o.plot);
   if (!Shard::parse(o.batch.shard).holds(0) && o.out.format_out != "json")
     throw Error(ExitCode::usage, "tradeoff --shard: this shard does not run the reference level the errors are "
                                  "relative to; write shards with --format-out json and render them with merge");

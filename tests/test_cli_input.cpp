@@ -1,0 +1,157 @@
+// What a user types, read strictly: each mistake gets a message that names the option and what
+// is allowed, and the documented exit code (2 usage, 3 bad input, 5 output); engineers' names
+// for formats, buffers and commands get a "did you mean".
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "run_cli.h"
+
+using depthprec::test::run_cli;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+
+namespace {
+
+const std::string kSmall = "mts -t reversed -f float32 --kernel 24x24 --frames 4 --no-timing";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("repeated distances are refused at once, not waited on", "[cli][errors]") {
+  for (const char* list : {"100,100", "100,1e2", "100,200,100"}) {
+    INFO(list);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = run_cli(kSmall + " --distances " + list);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    CHECK(r.exit_code == 3);
+    CHECK_THAT(r.output, Contains("--distances " + std::string(list)) && Contains("twice"));
+    CHECK(seconds < 20);
+  }
+  CHECK(run_cli("table -t standard -f unorm24 --kernel 24x24 --frames 4 --distances 8,8").exit_code == 3);
+  CHECK(run_cli("cost -t standard -f unorm24 --kernel 24x24 --frames 4 --distances 8,8").exit_code == 3);
+}
+
+TEST_CASE("a technique named without a depth range runs in its own, and the row says which", "[cli][mts]") {
+  const auto r = run_cli(kSmall + " --distances 500 --format-out csv");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Contains("reversed,float32,zero_to_one,500,"));
+  const auto gl = run_cli(kSmall + " --distances 500 --format-out csv --depth-range gl");
+  CHECK_THAT(gl.output, Contains("reversed,float32,gl,500,"));
+}
+
+TEST_CASE("set-ups without a measurement are refused or get a verdict up front", "[cli][errors]") {
+  const auto far_inf = run_cli("mts -t standard -f float32 --far inf --distances 10");
+  CHECK(far_inf.exit_code == 3);
+  CHECK_THAT(far_inf.output, Contains("far = inf: standard/float32/gl needs a finite far plane"));
+  CHECK(run_cli("mts -t infinite -f float32 --far inf --distances 10 --kernel 16x16 --frames 2").exit_code == 0);
+  const auto huge = run_cli(kSmall + " --distances 1e300");
+  CHECK(huge.exit_code == 3);
+  CHECK_THAT(huge.output, StartsWith("depthprec: --distances 1e300:"));
+  const auto near = run_cli(kSmall + " --near 10 --distances 5,20 --format-out json");
+  REQUIRE(near.exit_code == 0);
+  const auto rows = nlohmann::json::parse(near.output)["rows"];
+  CHECK(rows[0]["verdict"] == "nearer than near plane");
+  CHECK(rows[0]["probes"] == 0);
+  CHECK(rows[1]["verdict"] == "resolved");
+  for (const char* d : {"20000", "0.01"}) {
+    const auto res = run_cli(std::string("resolve -t standard -f unorm24 --near 0.1 --far 1e4 --distance ") + d);
+    INFO(d);
+    CHECK(res.exit_code == 3);
+    CHECK_THAT(res.output, Contains("standard clips it"));
+  }
+}
+
+TEST_CASE("options are read strictly and blamed by name", "[cli][errors]") {
+  const auto empty = run_cli(kSmall + " --distances 1,,2");
+  CHECK(empty.exit_code == 2);
+  CHECK_THAT(empty.output, Contains("--distances: an empty entry in '1,,2'"));
+  const auto frames = run_cli("mts --frames 0");
+  CHECK(frames.exit_code == 3);
+  CHECK_THAT(frames.output, StartsWith("depthprec: --frames 0: 'frames' must be 1..1000000"));
+  CHECK(run_cli("mts --frames 1.5").exit_code == 2);
+  const auto twice = run_cli("mts --near 0.1 --set near=5");
+  CHECK(twice.exit_code == 2);
+  CHECK_THAT(twice.output, Contains("--near 0.1 and --set near=5 both set 'near'"));
+  const auto set = run_cli("mts --set frames=0");
+  CHECK_THAT(set.output, StartsWith("depthprec: --set frames=0: 'frames'"));
+  const auto value = run_cli("formats unorm24 --value 1.5");
+  CHECK(value.exit_code == 3);
+  CHECK_THAT(value.output, Contains("--value 1.5: depth values are in [0, 1]"));
+}
+
+TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
+  for (const auto& [typed, meant] : {std::pair{"d24", "unorm24"}, {"D24", "unorm24"}, {"UNORM24", "unorm24"},
+                                     {"D32F", "float32"}, {"d16", "unorm16"}}) {
+    const auto r = run_cli(std::string("formats ") + typed);
+    INFO(typed);
+    CHECK(r.exit_code == 3);
+    CHECK_THAT(r.output, Contains(std::string("(did you mean ") + meant + "?)"));
+  }
+  CHECK_THAT(run_cli("lj --buffer reversed").output, Contains("(did you mean complementary_z?)"));
+  CHECK_THAT(run_cli("mts -t standrd").output, Contains("(did you mean standard?)"));
+  const auto cmd = run_cli("mst");
+  CHECK(cmd.exit_code == 2);
+  CHECK_THAT(cmd.output, Contains("unknown command 'mst' (did you mean mts?)"));
+}
+
+TEST_CASE("the output file's extension chooses the format", "[cli]") {
+  const std::string json = "/tmp/depthprec_test_ext.json", csv = "/tmp/depthprec_test_ext.csv";
+  REQUIRE(run_cli(kSmall + " --distances 64 -o " + json).exit_code == 0);
+  CHECK(nlohmann::json::parse(slurp(json))["rows"].size() == 1);
+  REQUIRE(run_cli(kSmall + " --distances 64 -o " + csv).exit_code == 0);
+  CHECK_THAT(slurp(csv), StartsWith("technique,format,depth_range,z,"));
+  const auto forced = run_cli(kSmall + " --distances 64 --format-out text -o " + json);
+  CHECK_THAT(forced.output, Contains("gets --format-out text, not the json its name suggests"));
+  CHECK_THAT(slurp(json), StartsWith("technique  format"));
+}
+
+TEST_CASE("merge refuses a missing or repeated shard, naming it", "[cli][batch][errors]") {
+  const std::string args = kSmall + " --distances 2,64,2048 --format-out json";
+  for (int i = 1; i <= 2; ++i)
+    REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o /tmp/depthprec_test_sh" + std::to_string(i) + ".json")
+                .exit_code == 0);
+  const auto missing = run_cli("merge /tmp/depthprec_test_sh1.json --format-out json");
+  CHECK(missing.exit_code == 3);
+  CHECK_THAT(missing.output, Contains("shard 2/2 is missing"));
+  const auto twice = run_cli("merge /tmp/depthprec_test_sh1.json /tmp/depthprec_test_sh1.json");
+  CHECK(twice.exit_code == 3);
+  CHECK_THAT(twice.output, Contains("shard 1/2 given twice"));
+  CHECK(run_cli("merge /tmp/depthprec_test_sh1.json /tmp/depthprec_test_sh2.json").exit_code == 0);
+}
+
+TEST_CASE("an unwritable plot is refused before the batch runs", "[cli][plot][errors]") {
+  for (const char* cmd : {"cost -t standard -f unorm24 --distances 2 --kernel 16x16 --frames 2",
+                          "tradeoff -t reversed -f float32 --distances 2", "lj-table --samples 1000"}) {
+    INFO(cmd);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = run_cli(std::string(cmd) + " --plot /nonexistent/dir/p.png");
+    CHECK(r.exit_code == 5);
+    CHECK_THAT(r.output, Contains("cannot write output '/nonexistent/dir/p.png'"));
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 5);
+    CHECK(run_cli(std::string(cmd) + " --plot /tmp/p.pdf").exit_code == 3);
+  }
+}
+
+TEST_CASE("a row never counts more launches than its run made", "[cli][mts]") {
+  const auto r = run_cli("mts -t reversed -f float32 --distances 2,1024,1048576 --kernel 40x40 --frames 20 "
+                         "--format-out json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  uint64_t sum = 0;
+  for (const auto& row : j["rows"]) {
+    CHECK(row["kernel_launches"].get<uint64_t>() <= j["kernel_launches"].get<uint64_t>());
+    sum += row["kernel_launches"].get<uint64_t>();
+  }
+  CHECK(sum > j["kernel_launches"].get<uint64_t>());  // rows share launches
+}
