@@ -15,6 +15,7 @@
 #include "run_cli.h"
 
 using depthprec::test::run_cli;
+using depthprec::test::slurp;
 using Catch::Matchers::Contains;
 
 namespace {
@@ -23,12 +24,6 @@ const std::string kBatch =
     "table -t standard,linear,reversed -f unorm24 --distances 2,64,2048,65536,2097152,67108864 "
     "--kernel 120x120 --frames 40 --no-timing --format-out json";
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 size_t lines_in(const std::string& path) {
   const std::string s = slurp(path);

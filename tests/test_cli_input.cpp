@@ -12,6 +12,7 @@
 #include "run_cli.h"
 
 using depthprec::test::run_cli;
+using depthprec::test::slurp;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 
@@ -19,12 +20,6 @@ namespace {
 
 const std::string kSmall = "mts -t reversed -f float32 --kernel 24x24 --frames 4 --no-timing";
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 }  // namespace
 
@@ -32,7 +27,8 @@ TEST_CASE("repeated distances are refused at once, not waited on", "[cli][errors
   for (const char* list : {"100,100", "100,1e2", "100,200,100"}) {
     INFO(list);
     const auto t0 = std::chrono::steady_clock::now();
-    const auto r = run_cli(kSmall + " --distances " + list);
+    // Under a time limit: before they were refused, repeats waited forever (exit 124 here).
+    const auto r = run_cli(kSmall + " --distances " + list, "timeout -s KILL 20");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     CHECK(r.exit_code == 3);
     CHECK_THAT(r.output, Contains("--distances " + std::string(list)) && Contains("twice"));

@@ -6,16 +6,11 @@
 #include "run_cli.h"
 
 using depthprec::test::run_cli;
+using depthprec::test::slurp;
 using Catch::Matchers::Contains;
 
 namespace {
 const std::string kSmall = "--kernel 24x24 --frames 6 --distances 2,1024 ";
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 }  // namespace
 
 TEST_CASE("mts prints one row per pair and distance with the SPEC 5.4 fields", "[cli][mts]") {
