@@ -1,4 +1,4 @@
-/* Storage formats of a depth buffer (SPEC section 4), shared verbatim by the OpenCL kernels and
+/* Storage formats of a depth buffer (docs/spec.md 4), shared verbatim by the OpenCL kernels and
  * the C++ host: what the GPU stores is computed by exactly this code on both sides.
  *
  *   unorm<b>   code = round(d * (2^b - 1)), b = 1..32
@@ -300,7 +300,7 @@ DF_FN df_u32 df_encode_f64(double d, df_format f) {
   return (df_u32)code;
 }
 
-/* Spacing between the code at or below v and the next code above it (SPEC 6: the per-pixel
+/* Spacing between the code at or below v and the next code above it (docs/spec.md 6: the per-pixel
  * error dDp), exact: 1/(2^b - 1) correctly rounded for unorm, a power of two for floats (the
  * quantum of v's binade, or of the subnormal range); at or above the largest code, the spacing
  * below it. */

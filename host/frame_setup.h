@@ -1,6 +1,6 @@
 // What the host hands the GPU for one probe (z, s) of one pair: the projection and technique
 // constants, and per frame the model-view (or P*MV) matrix of each plane, built as an
-// application would (SPEC 2.1, 5.1): in binary32, or in binary64 rounded once at the end.
+// application would (docs/spec.md 2.1, 5.1): in binary32, or in binary64 rounded once at the end.
 #pragma once
 
 #include <array>
@@ -40,7 +40,7 @@ std::array<double, 16> model_matrix_f64(const Scene& scene, double D, int frame)
 
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);
-// The vertex-precision bound (SPEC 5.3): the distance from z to the midpoint between fl32(z) and
+// The vertex-precision bound (docs/spec.md 5.3): the distance from z to the midpoint between fl32(z) and
 // the next binary32 above; for a smaller s, fl32(z + s) == fl32(z) and the planes coincide. For a
 // z that is a binary32 this is half its spacing.
 double vertex_bound(double z);

@@ -1,4 +1,4 @@
-// The Lapidous-Jiao average depth error (LJ99 eqs. 6-7, SPEC 6) on the host and on the OpenCL
+// The Lapidous-Jiao average depth error (LJ99 eqs. 6-7, docs/spec.md 6) on the host and on the OpenCL
 // device. The per-sample formulas are kernels/lj_formulas.h, shared by both; this file parses the
 // user's words, validates, and sums.
 #pragma once

@@ -1,5 +1,5 @@
 // Runs kernels/mts.cl for batches of probes (z, s) of one pair: each probe is rendered frame by
-// frame until its first fight (SPEC 5.2: "frames stop at the first fight"), many probes and
+// frame until its first fight (docs/spec.md 5.2: a probe stops at its first fighting frame), many probes and
 // frames per launch so independent distances share the device.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The MTS search of SPEC 5.2, driven by the host: per distance, start at s = z, double while it
+// The MTS search of docs/spec.md 5.2, driven by the host: per distance, start at s = z, double while it
 // fights (giving up past max_separation_factor * z), treat s = 0 as fighting, then bisect at the
 // midpoint until (hi - lo) / hi <= rel_precision. Exactly this probe sequence, so results compare
 // with any other implementation of the measurement.

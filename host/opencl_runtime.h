@@ -66,7 +66,7 @@ class OpenClRuntime {
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;
 };
 
-// Options every depthprec program is built with: OpenCL C 1.2, IEEE division (the SPEC's GPU
+// Options every depthprec program is built with: OpenCL C 1.2, IEEE division (docs/spec.md's GPU
 // divides correctly rounded), denormals kept unless flush is asked for.
 std::string base_build_options(bool flush_denormals);
 

@@ -1,4 +1,4 @@
-// Renders MTS results: the long form (one line per pair and distance, every field of SPEC 5.4)
+// Renders MTS results: the long form (one line per pair and distance, every field of docs/spec.md 5.4)
 // and the batch precision table (one row per distance, one column per pair), as aligned text,
 // CSV, JSON (with a header object) or Markdown.
 #pragma once

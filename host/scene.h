@@ -1,4 +1,4 @@
-// A scene: every parameter of the MTS measurement (SPEC 5.1), the pipeline options (SPEC 2) and
+// A scene: every parameter of the MTS measurement (docs/spec.md 5.1), the pipeline options (docs/spec.md 2) and
 // the (technique, format[, depth_range]) pairs to evaluate. data/gilg2021.json, embedded in the
 // binary, is the one source of the defaults: a scene file or a --set override only says what
 // differs from it.

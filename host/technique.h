@@ -1,4 +1,4 @@
-// The technique table (SPEC section 3), the one place that says how each technique turns eye
+// The technique table (docs/spec.md 3), the one place that says how each technique turns eye
 // distance w into window depth d: where depth is computed, the compare function, the third row of
 // P, and the exact mapping D(w) the metrics invert.
 #pragma once

@@ -1,4 +1,4 @@
-/* The Lapidous-Jiao per-sample quantities (LJ99 eqs. 3-7, SPEC 6), one source for the host
+/* The Lapidous-Jiao per-sample quantities (LJ99 eqs. 3-7, docs/spec.md 6), one source for the host
  * (host/lj_metric.cpp) and the OpenCL kernel (kernels/lj.cl). Binary64 throughout.
  *
  * Stable forms: eq. 7 as written, |Ze(D + delta) - Ze(D)|, subtracts two nearly equal distances

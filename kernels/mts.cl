@@ -1,4 +1,4 @@
-// The emulated pipeline of SPEC section 2 for Gilg et al.'s MTS measurement: two planes (plane A
+// The emulated pipeline of docs/spec.md 2 for Gilg et al.'s MTS measurement: two planes (plane A
 // in front, plane B behind), each a GRID x GRID grid of quads, rasterised at the pixel centres of
 // the measurement kernel only, depth stored in one storage format and tested.
 //

@@ -18,7 +18,7 @@ struct ReferenceFormat {
   bool ieee = false;  // all-ones exponent reserved
 };
 
-// The formats the exhaustive proof covers, described from SPEC section 4 directly.
+// The formats the exhaustive proof covers, described from docs/spec.md 4 directly.
 ReferenceFormat reference_format(const std::string& name);
 
 uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool flush);

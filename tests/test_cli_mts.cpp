@@ -13,7 +13,7 @@ namespace {
 const std::string kSmall = "--kernel 24x24 --frames 6 --distances 2,1024 ";
 }  // namespace
 
-TEST_CASE("mts prints one row per pair and distance with the SPEC 5.4 fields", "[cli][mts]") {
+TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec.md 5.4", "[cli][mts]") {
   const auto r = run_cli("mts -t standard,reversed -f unorm24 " + kSmall);
   REQUIRE(r.exit_code == 0);
   for (const char* col : {"mts", "lo", "hi", "mts_seen", "vertex_bound", "frames", "fragment_pairs", "seconds", "flags"})

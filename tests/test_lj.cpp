@@ -1,5 +1,5 @@
 // Lapidous-Jiao metric: stability against a binary128 evaluation of eq. 7 as written, the
-// paper's findings as they come out of this implementation, and the SPEC 7 reference figures.
+// paper's findings as they come out of this implementation, and the docs/spec.md 7 reference figures.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -30,7 +30,7 @@ int binade(quad x) {
   return p;
 }
 
-// Eq. 7 literally, in binary128: dZe = |Ze(D + delta) - Ze(D)| with the SPEC 6 readings.
+// Eq. 7 literally, in binary128: dZe = |Ze(D + delta) - Ze(D)| with the docs/spec.md 6 readings.
 double reference_ae(const LjConfig& c, const StorageFormat& f) {
   const quad d = c.near, fa = c.far;
   quad num = 0, den = 0;
@@ -138,7 +138,7 @@ TEST_CASE("the device kernel agrees with the host and the Z pole gives inf not N
   CHECK(std::isinf(pole_dev.ae));
 }
 
-// LJ99 eq. 2 makes E = 0 and E = 1 the same integer format (uniform codes 2^-b apart); SPEC's
+// LJ99 eq. 2 makes E = 0 and E = 1 the same integer format (uniform codes 2^-b apart); docs/spec.md's
 // unorm<b> spaces its codes 1/(2^b - 1), a hair wider, so e1m<b-1> edges it out by 2^-b relative.
 // "Integer storage is best" therefore reads: the best E is 0 or 1, unorm within 2^(1-b) of it.
 TEST_CASE("LJ99: integer storage is best for Z and W at 16 and 24 bits", "[lj][paper]") {

@@ -1,4 +1,4 @@
-// The paper's checks (Gilg et al. 2021, SPEC 7) on the default scene, as issue "MTS evaluator"
+// The paper's checks (Gilg et al. 2021, docs/spec.md 7) on the default scene, as issue "MTS evaluator"
 // states them. Each asserts a measured value that a wrong pipeline would get wrong.
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The bisection itself (SPEC 5.2), driven by synthetic outcomes: its probe sequence, bracket and
+// The bisection itself (docs/spec.md 5.2), driven by synthetic outcomes: its probe sequence, bracket and
 // verdicts, independent of any device.
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -18,7 +18,7 @@ float from_bits(uint32_t u) {
 }
 }  // namespace
 
-TEST_CASE("format names parse to the SPEC's parameters", "[formats]") {
+TEST_CASE("format names parse to the parameters of docs/spec.md 4", "[formats]") {
   const auto u24 = StorageFormat::parse("unorm24");
   CHECK(u24.bits() == 24);
   CHECK(u24.max_code() == 16777215u);

@@ -60,7 +60,7 @@ std::string structural_cost(const Scene& s, Technique t) {
   return "projection matrix only";
 }
 
-// The LJ buffer a technique is, where there is one (SPEC 6), else none.
+// The LJ buffer a technique is, where there is one (docs/spec.md 6), else none.
 bool lj_buffer_of(Technique t, LjBuffer& b) {
   switch (t) {
     case Technique::standard: b = LjBuffer::z; return true;

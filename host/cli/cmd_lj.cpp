@@ -377,7 +377,7 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
   auto lj = std::make_shared<LjOptions>();
   auto* cmd = app.add_subcommand(
       "lj",
-      "Lapidous-Jiao average depth error (LJ99 eqs. 6-7, SPEC 6) of a buffer type and storage\n"
+      "Lapidous-Jiao average depth error (LJ99 eqs. 6-7, docs/spec.md 6) of a buffer type and storage\n"
       "format: analytic in binary64 on the host and on the device, and measured on the emulated\n"
       "binary32 pipeline. ae is the average eye-distance error normalised by (f - d).\n"
       "Examples:\n"

@@ -121,7 +121,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   auto mts = std::make_shared<MtsOptions>();
   auto* cmd = app.add_subcommand(
       "mts",
-      "Minimum triangle separation (Gilg et al. 2021, SPEC 5): per technique, storage format,\n"
+      "Minimum triangle separation (Gilg et al. 2021, docs/spec.md 5): per technique, storage format,\n"
       "depth range and distance z, the smallest separation s of two planes at z and fl32(z+s)\n"
       "for which the farther plane never wins the depth test, found by the host's bisection\n"
       "over an emulated binary32 pipeline. One line per (pair, distance) with the bracket,\n"
