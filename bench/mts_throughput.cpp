@@ -1,5 +1,5 @@
 // Fragment pairs per second of the MTS kernel per (technique, format), in the regimes of
-// host/mts_timing.h, and beside them the scalar host reference's (one thread, every pixel). Not
+// host/mts/mts_timing.h, and beside them the scalar host reference's (one thread, every pixel). Not
 // a test: speed targets live here and in docs/performance.md; bench/side_by_side.sh adds the
 // default table's wall time.
 // Usage: mts_throughput [technique,...] [format,...] [kernel side] [repeats: the fastest of n runs]
@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <sstream>
 
-#include "host/mts_timing.h"
-#include "host/scene.h"
+#include "host/mts/mts_timing.h"
+#include "host/model/scene.h"
 
 using namespace depthprec;
 

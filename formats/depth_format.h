@@ -233,7 +233,7 @@ DF_FN uint16 df_encode16_unit(float16 d, df_format f) {
 DF_FN df_u32 df_code_above(df_u32 c, df_format f) { return c < f.max_code ? c + 1u : c; }
 DF_FN df_u32 df_code_below(df_u32 c) { return c > 0u ? c - 1u : c; }
 
-/* A kernel specialised with -D defines (see host/storage_format.cpp) gets its format as a
+/* A kernel specialised with -D defines (see host/model/storage_format.cpp) gets its format as a
  * compile-time constant, so every branch on the kind folds away. */
 #if defined(DF_KIND) && defined(DF_ROUNDING) && defined(DF_FLUSH)
 #if DF_KIND == 0

@@ -1,5 +1,5 @@
 // Encodes a contiguous run of binary32 bit patterns with one storage format, fixed at build time
-// by -D defines (host/storage_format.cpp). Used by the exhaustive format proof and by
+// by -D defines (host/model/storage_format.cpp). Used by the exhaustive format proof and by
 // `depthprec formats --on-device`. Each work-item takes 16 inputs through the scalar encoder
 // (the codes written) and through the 16-lane encoders the MTS kernel uses (df_encode16, and
 // df_encode16_unit for inputs in its domain [-0, 1]); `vector_differs` counts the lanes where

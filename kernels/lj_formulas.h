@@ -1,5 +1,5 @@
 /* The Lapidous-Jiao per-sample quantities (LJ99 eqs. 3-7, docs/spec.md 6), one source for the host
- * (host/lj_metric.cpp) and the OpenCL kernel (kernels/lj.cl). Binary64 throughout.
+ * (host/lj/lj_metric.cpp) and the OpenCL kernel (kernels/lj.cl). Binary64 throughout.
  *
  * Stable forms: eq. 7 as written, |Ze(D + delta) - Ze(D)|, subtracts two nearly equal distances
  * when delta is small (32-bit formats, large f/d). Each buffer's difference is rewritten in closed

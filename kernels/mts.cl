@@ -3,7 +3,7 @@
 // the measurement kernel only, depth stored in one storage format and tested.
 //
 // One program variant per (technique class, storage format, depth range, pipeline options),
-// chosen by -D defines (host/kernel_variant.cpp), so the per-pixel loop has no run-time switch:
+// chosen by -D defines (host/runtime/kernel_variant.cpp), so the per-pixel loop has no run-time switch:
 //   GRID               quads per plane side (vertices (GRID+1)^2, triangles 2*GRID^2)
 //   DEPTH_FROM         0 projection, 1 vertex-stage log (Gilg eq. 5), 2 fragment-stage depth
 //   FRAG_DEPTH         with DEPTH_FROM 2: 1 linear, 2 w_buffer, 3 log
@@ -15,7 +15,7 @@
 //   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
 //   DF_*               the storage format (formats/depth_format.h)
 //
-// Arithmetic forms (the host reference, host/reference_pipeline.cpp, uses the same ones):
+// Arithmetic forms (the host reference, host/mts/reference_pipeline.cpp, uses the same ones):
 //   matrix * vector     r_i = ((m_i0 x + m_i1 y) + m_i2 z) + m_i3 w
 //   window x, y         x_w = x_ndc * (W/2) + W/2
 //   edge function       E = dx * (py - ay) - dy * (px - ax), anchored at the lower vertex index
@@ -581,7 +581,7 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
 }
 
 // Plane A does not depend on the separation, so the host sets it up once per (distance, frame)
-// for every probe of the distance (host/mts_evaluator.cpp, the plane-A cache): its triangles, its
+// for every probe of the distance (host/mts/mts_evaluator.cpp, the plane-A cache): its triangles, its
 // code bounds per band, and per kernel row its coverage segments and coverage margin.
 #define MAXC 24 /* segments a cached row holds; a row with more is computed where it is used */
 #define RW_N 0
@@ -589,7 +589,7 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
 #define RW_X 2
 #define RW_T (RW_X + MAXC + 1)
 #define ROW_WORDS (RW_T + MAXC)
-/* CACHE_A_CODES (host/kernel_variant.h): plane A's stored code at every pixel of a cached row, so
+/* CACHE_A_CODES (host/runtime/kernel_variant.h): plane A's stored code at every pixel of a cached row, so
  * the pixel loop evaluates plane B only; rows of kernel_w + 16 codes (a 16-lane store past a
  * segment's end lands in the next segment or the padding). */
 
@@ -1098,7 +1098,7 @@ __kernel void mts_a_bands(__global const float* restrict probes, __global const 
 }
 
 // Where plane A of (probe, visit) sits in the plane-A cache: a_slots holds per probe its slot and
-// the frame its visit starts at (host/mts_evaluator.h, frame order); each slot holds all
+// the frame its visit starts at (host/mts/mts_evaluator.h, frame order); each slot holds all
 // frames_total frames of its distance; the launch covers visits first_frame.. of each probe. The
 // start frame and first_frame + visit both lie below frames_total, so one subtraction wraps their
 // sum (no division: mts_raster runs this per kernel row).
@@ -1185,7 +1185,7 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
                                                                   int x_end, int ordered,
                                                                   __global const uint* ca) {
   /* pixel centres step by exactly 16: ox is an integer and coordinates stay below 2^15
-   * (host/scene.cpp kMaxKernelSide), so (ox + idx) + 0.5f is exact for every idx */
+   * (host/model/scene.cpp kMaxKernelSide), so (ox + idx) + 0.5f is exact for every idx */
 #define PX16(I0) ((ox + convert_float16((I0) + LANES)) + 0.5f)
 #define PIECE_FIGHTS(FIGHT16)                                                                  \
   {                                                                                            \
@@ -1219,7 +1219,7 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 // (LEQUAL: B's smaller end code above A's larger) is decided without touching its inside, and a
 // piece of one or two pixels is decided by its ends outright. Only the rest is evaluated pixel by
 // pixel, 16 at a time. Log depth is monotone only up to the library log's error (OpenCL 1.2
-// allows 3 ulp): its end codes must clear the bound by LOG_CODE_SLACK (host/kernel_variant.cpp),
+// allows 3 ulp): its end codes must clear the bound by LOG_CODE_SLACK (host/runtime/kernel_variant.cpp),
 // the most codes that error can move a code either way at both ends of both planes.
 // Pieces are then taken left to right and the row stops after the first that fights. In a band
 // mts_frame_bounds certified inside (D_INSIDE, D_ORDERED) there is no end pass, and the whole row

@@ -1,10 +1,10 @@
-// What the plain host reference pipeline (host/reference_pipeline.cpp: every kernel pixel of
+// What the plain host reference pipeline (host/mts/reference_pipeline.cpp: every kernel pixel of
 // every frame, no shortcuts) says of a probe: the independent check of the kernel's outcomes and
 // of a row's bracket.
 #pragma once
 
-#include "host/reference_pipeline.h"
-#include "host/technique.h"
+#include "host/mts/reference_pipeline.h"
+#include "host/model/technique.h"
 
 namespace depthprec::test {
 

@@ -128,7 +128,7 @@ TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
   CHECK_THAT(merge.output, Contains("cannot read"));
 }
 
-// lj-table, tradeoff and cost are record batches (host/batch.h): the same guarantees.
+// lj-table, tradeoff and cost are record batches (host/batch/batch.h): the same guarantees.
 TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "[batch]") {
   const std::vector<std::pair<std::string, std::string>> batches = {
       {"lj-table", "lj-table --samples 20000 --no-timing --format-out json"},

@@ -7,7 +7,7 @@
 // code's width.
 #include <catch2/catch.hpp>
 
-#include "host/resolve.h"
+#include "host/model/resolve.h"
 #include "mts_fixture.h"
 #include "reference_outcome.h"
 

@@ -6,9 +6,9 @@
 #include <cstring>
 #include <random>
 
-#include "host/device_encode.h"
-#include "host/opencl_runtime.h"
-#include "host/storage_format.h"
+#include "host/runtime/device_encode.h"
+#include "host/runtime/opencl_runtime.h"
+#include "host/model/storage_format.h"
 
 using namespace depthprec;
 

@@ -22,7 +22,7 @@ double number(const json& v) {
   return NAN;  // "nan" or anything else: a failure below
 }
 
-// NaN in a JSON output is null (nlohmann) or the string "nan" (host/json_number.h).
+// NaN in a JSON output is null (nlohmann) or the string "nan" (host/base/json_number.h).
 int nan_values(const json& j) {
   if (j.is_null() || j == "nan" || (j.is_number_float() && std::isnan(j.get<double>()))) return 1;
   int n = 0;

@@ -1,4 +1,4 @@
-// Frame order (host/mts_evaluator.h): a probe visits the frames from the one that decided the last
+// Frame order (host/mts/mts_evaluator.h): a probe visits the frames from the one that decided the last
 // fighting probe of its distance, so a fighting probe below the MTS is decided at its first
 // frame, and whether it fights does not change.
 #include <catch2/catch.hpp>

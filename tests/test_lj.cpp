@@ -3,9 +3,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "host/lj_metric.h"
-#include "host/lj_pipeline.h"
-#include "host/resolve.h"
+#include "host/lj/lj_metric.h"
+#include "host/lj/lj_pipeline.h"
+#include "host/model/resolve.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;

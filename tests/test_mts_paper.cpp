@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "host/frame_setup.h"
+#include "host/model/frame_setup.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;

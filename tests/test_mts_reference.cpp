@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "host/frame_setup.h"
-#include "host/reference_pipeline.h"
+#include "host/model/frame_setup.h"
+#include "host/mts/reference_pipeline.h"
 #include "mts_fixture.h"
 #include "reference_outcome.h"
 

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "host/frame_setup.h"
-#include "host/mts_search.h"
+#include "host/model/frame_setup.h"
+#include "host/mts/mts_search.h"
 
 using namespace depthprec;
 

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <random>
 
-#include "host/errors.h"
-#include "host/mts_run.h"
+#include "host/base/errors.h"
+#include "host/mts/mts_run.h"
 #include "mts_fixture.h"
 #include "reference_outcome.h"
 

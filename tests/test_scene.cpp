@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <fstream>
 
-#include "host/errors.h"
-#include "host/scene.h"
+#include "host/base/errors.h"
+#include "host/model/scene.h"
 
 using namespace depthprec;
 using Catch::Matchers::Contains;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "host/errors.h"
+#include "host/base/errors.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <random>
 
-#include "host/frame_setup.h"
-#include "host/mts_exact.h"
-#include "host/mts_run.h"
-#include "host/scene.h"
+#include "host/model/frame_setup.h"
+#include "host/mts/mts_exact.h"
+#include "host/mts/mts_run.h"
+#include "host/model/scene.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;

@@ -4,8 +4,8 @@
 #include <random>
 
 #include "format_reference.h"
-#include "host/errors.h"
-#include "host/storage_format.h"
+#include "host/base/errors.h"
+#include "host/model/storage_format.h"
 
 using namespace depthprec;
 using Catch::Matchers::Contains;

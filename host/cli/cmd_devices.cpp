@@ -1,7 +1,7 @@
 #include <fmt/format.h>
 
 #include "host/cli/commands.h"
-#include "host/opencl_runtime.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec::cli {
 

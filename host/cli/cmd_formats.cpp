@@ -4,10 +4,10 @@
 #include <vector>
 
 #include "host/cli/commands.h"
-#include "host/device_encode.h"
-#include "host/errors.h"
-#include "host/opencl_runtime.h"
-#include "host/storage_format.h"
+#include "host/runtime/device_encode.h"
+#include "host/base/errors.h"
+#include "host/runtime/opencl_runtime.h"
+#include "host/model/storage_format.h"
 
 namespace depthprec::cli {
 

@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cli/commands.h"
-#include "host/batch.h"
+#include "host/batch/batch.h"
 #include "host/cli/scene_options.h"
-#include "host/errors.h"
-#include "host/mts_run.h"
-#include "host/row_json.h"
+#include "host/base/errors.h"
+#include "host/mts/mts_run.h"
+#include "host/output/row_json.h"
 
 namespace depthprec::cli {
 

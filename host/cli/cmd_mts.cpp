@@ -11,12 +11,12 @@
 
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
-#include "host/batch.h"
-#include "host/errors.h"
-#include "host/interrupt.h"
-#include "host/mts_run.h"
-#include "host/progress.h"
-#include "host/row_json.h"
+#include "host/batch/batch.h"
+#include "host/base/errors.h"
+#include "host/base/interrupt.h"
+#include "host/mts/mts_run.h"
+#include "host/output/progress.h"
+#include "host/output/row_json.h"
 
 namespace depthprec::cli {
 

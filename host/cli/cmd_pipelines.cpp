@@ -11,11 +11,11 @@
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/errors.h"
-#include "host/json_number.h"
-#include "host/mts_run.h"
-#include "host/report.h"
-#include "host/text_table.h"
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+#include "host/mts/mts_run.h"
+#include "host/output/report.h"
+#include "host/output/text_table.h"
 
 namespace depthprec::cli {
 

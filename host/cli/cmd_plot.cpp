@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "host/cli/commands.h"
-#include "host/errors.h"
-#include "host/gnuplot.h"
-#include "host/row_json.h"
+#include "host/base/errors.h"
+#include "host/output/gnuplot.h"
+#include "host/output/row_json.h"
 
 namespace depthprec::cli {
 

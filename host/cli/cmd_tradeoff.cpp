@@ -9,14 +9,14 @@
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/batch.h"
-#include "host/errors.h"
-#include "host/gnuplot.h"
-#include "host/json_number.h"
-#include "host/row_json.h"
-#include "host/mts_run.h"
-#include "host/text_table.h"
-#include "host/version.h"
+#include "host/batch/batch.h"
+#include "host/base/errors.h"
+#include "host/output/gnuplot.h"
+#include "host/base/json_number.h"
+#include "host/output/row_json.h"
+#include "host/mts/mts_run.h"
+#include "host/output/text_table.h"
+#include "host/base/version.h"
 
 namespace depthprec::cli {
 

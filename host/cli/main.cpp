@@ -6,11 +6,11 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "host/cl.h"
+#include "host/runtime/cl.h"
 #include "host/cli/commands.h"
-#include "host/did_you_mean.h"
-#include "host/errors.h"
-#include "host/version.h"
+#include "host/base/did_you_mean.h"
+#include "host/base/errors.h"
+#include "host/base/version.h"
 
 int main(int argc, char** argv) {
   using namespace depthprec;

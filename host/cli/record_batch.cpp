@@ -1,7 +1,7 @@
 #include "host/cli/record_batch.h"
 
-#include "host/progress.h"
-#include "host/report.h"
+#include "host/output/progress.h"
+#include "host/output/report.h"
 
 namespace depthprec::cli {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "host/batch.h"
+#include "host/batch/batch.h"
 #include "host/cli/commands.h"
-#include "host/opencl_runtime.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec::cli {
 

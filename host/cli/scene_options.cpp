@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "host/errors.h"
+#include "host/base/errors.h"
 
 namespace depthprec::cli {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene.h"
+#include "host/model/scene.h"
 
 namespace depthprec::cli {
 

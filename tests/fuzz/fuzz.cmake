@@ -4,12 +4,12 @@
 set(FUZZ_FLAGS -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -g -O1)
 add_library(scene_fuzz_core STATIC
   ${EMBEDDED_CPP}
-  ${PROJECT_SOURCE_DIR}/host/expand_embedded.cpp
-  ${PROJECT_SOURCE_DIR}/host/scene.cpp
-  ${PROJECT_SOURCE_DIR}/host/technique.cpp
-  ${PROJECT_SOURCE_DIR}/host/storage_format.cpp
-  ${PROJECT_SOURCE_DIR}/host/kernel_variant.cpp
-  ${PROJECT_SOURCE_DIR}/host/opencl_runtime.cpp
+  ${PROJECT_SOURCE_DIR}/host/runtime/expand_embedded.cpp
+  ${PROJECT_SOURCE_DIR}/host/model/scene.cpp
+  ${PROJECT_SOURCE_DIR}/host/model/technique.cpp
+  ${PROJECT_SOURCE_DIR}/host/model/storage_format.cpp
+  ${PROJECT_SOURCE_DIR}/host/runtime/kernel_variant.cpp
+  ${PROJECT_SOURCE_DIR}/host/runtime/opencl_runtime.cpp
 )
 target_include_directories(scene_fuzz_core PUBLIC ${PROJECT_SOURCE_DIR})
 target_compile_options(scene_fuzz_core PRIVATE ${FUZZ_FLAGS})

@@ -1,12 +1,12 @@
-// libFuzzer target: the scene parser and validator (host/scene.cpp) on arbitrary bytes. Bad input
+// libFuzzer target: the scene parser and validator (host/model/scene.cpp) on arbitrary bytes. Bad input
 // must end in depthprec::InputError with a message; anything else (a crash, a sanitizer report,
 // another exception) is a bug. Built and run by scripts/fuzz.sh; see docs/fuzzing.md.
 #include <cstdint>
 #include <cstdlib>
 #include <string>
 
-#include "host/errors.h"
-#include "host/scene.h"
+#include "host/base/errors.h"
+#include "host/model/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

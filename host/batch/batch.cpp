@@ -1,0 +1,161 @@
+#include "host/batch/batch.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <map>
+
+#include "host/base/errors.h"
+#include "host/base/interrupt.h"
+#include "host/output/progress.h"
+#include "host/base/version.h"
+
+namespace depthprec {
+
+Shard Shard::parse(const std::string& text) {
+  Shard s;
+  if (text.empty()) return s;
+  int i = 0, n = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || n < 1 || i < 1 || i > n)
+    throw Error(ExitCode::usage, fmt::format("--shard '{}': expected i/N with 1 <= i <= N, e.g. 2/8", text));
+  s.index = i - 1;
+  s.count = n;
+  return s;
+}
+
+RowJournal::RowJournal(const std::string& output, bool resume) {
+  if (output.empty()) {
+    if (resume)
+      throw Error(ExitCode::usage, "--resume needs --output FILE: the journal of finished rows lives beside it");
+    return;
+  }
+  path_ = output + ".rows.jsonl";
+  std::ifstream in(path_);
+  if (in.good() && !resume)
+    throw Error(ExitCode::output, fmt::format("{} holds the finished rows of an interrupted run: continue it "
+                                              "with --resume, or delete it to start over",
+                                              path_));
+  std::string line;
+  int number = 0;
+  while (resume && std::getline(in, line)) {
+    ++number;
+    if (line.empty()) continue;
+    auto j = nlohmann::json::parse(line, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) {
+      // a line cut short by a kill: everything before it is whole
+      fmt::print(stderr, "depthprec: {}:{}: incomplete row left out (it will be recomputed)\n", path_, number);
+      break;
+    }
+    earlier_.push_back(std::move(j));
+  }
+  in.close();
+  out_ = std::make_unique<std::ofstream>(path_, std::ios::app);
+  if (!*out_) throw OutputError(fmt::format("cannot write the row journal '{}'", path_));
+}
+
+void RowJournal::append(const nlohmann::json& record) {
+  if (!out_) return;
+  *out_ << record.dump() << '\n';
+  out_->flush();
+  if (!*out_) throw OutputError(fmt::format("cannot append to the row journal '{}'", path_));
+}
+
+void RowJournal::remove() {
+  if (!out_) return;
+  out_.reset();
+  std::remove(path_.c_str());
+}
+
+void throw_interrupted(const RowJournal& journal, size_t finished) {
+  if (journal.active())
+    throw Error(ExitCode::interrupted,
+                fmt::format("interrupted: {} finished rows kept in {}; the same command with --resume continues",
+                            finished, journal.path()));
+  throw Error(ExitCode::interrupted, fmt::format("interrupted: the {} finished rows are above", finished));
+}
+
+std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJournal& journal,
+                                      const Shard& shard, const std::string& what, bool progress,
+                                      const std::function<void(const std::vector<nlohmann::json>&)>& on_partial) {
+  std::map<std::string, nlohmann::json> have;
+  for (const auto& r : journal.earlier())
+    if (r.contains("key") && r["key"].is_string()) have[r["key"].get<std::string>()] = r;
+  size_t todo = 0;
+  for (size_t k = 0; k < units.size(); ++k)
+    if (shard.holds(k) && !have.count(units[k].key)) ++todo;
+  install_interrupt_handlers();
+  auto in_order = [&] {
+    std::vector<nlohmann::json> out;
+    for (size_t k = 0; k < units.size(); ++k)
+      if (shard.holds(k) && have.count(units[k].key)) out.push_back(have[units[k].key]);
+    return out;
+  };
+  const auto stop_here = [&] {
+    const auto done = in_order();
+    if (!journal.active() && on_partial) on_partial(done);
+    throw_interrupted(journal, done.size());
+  };
+  {
+    Progress bar(what, todo, progress);
+    for (size_t k = 0; k < units.size(); ++k) {
+      if (!shard.holds(k) || have.count(units[k].key)) continue;
+      if (interrupt_requested()) stop_here();
+      nlohmann::json record;
+      try {
+        record = units[k].compute();
+      } catch (...) {
+        // A signal can also break what the unit was doing (a kernel build inside PoCL's compiler
+        // fails when SIGINT lands in it): once a stop is requested, the failure is the interruption.
+        if (!interrupt_requested()) throw;
+        stop_here();
+      }
+      record["key"] = units[k].key;
+      journal.append(record);
+      have[units[k].key] = std::move(record);
+      bar.advance();
+    }
+  }
+  return in_order();
+}
+
+nlohmann::json batch_header(const std::string& kind, const std::string& device, const std::string& shard) {
+  nlohmann::json h = {{"program", "depthprec"}, {"version", kVersion}, {"kind", kind}, {"device", device}};
+  if (!shard.empty()) h["shard"] = shard;
+  return h;
+}
+
+namespace {
+// Fields holding measured times: left out with --no-timing.
+const char* const kTimingFields[] = {"seconds", "kernel_seconds", "ns_per_fragment_pair"};
+
+void strip_timing(nlohmann::json& j) {
+  if (j.is_object())
+    for (const char* f : kTimingFields) j.erase(f);
+  if (j.is_object() || j.is_array())
+    for (auto& v : j) strip_timing(v);
+}
+}  // namespace
+
+std::string records_json(const nlohmann::json& header, const std::vector<nlohmann::json>& records, bool timing,
+                         const nlohmann::json& derived) {
+  nlohmann::json j = header;
+  for (auto& [k, v] : derived.items()) {
+    j[k] = v;
+    if (!timing) strip_timing(j[k]);
+  }
+  j["records"] = nlohmann::json::array();
+  for (nlohmann::json r : records) {
+    if (!timing) strip_timing(r);
+    j["records"].push_back(std::move(r));
+  }
+  return j.dump(2) + "\n";
+}
+
+std::map<std::string, nlohmann::json> by_key(const std::vector<nlohmann::json>& records) {
+  std::map<std::string, nlohmann::json> out;
+  for (const auto& r : records) out[r.at("key").get<std::string>()] = r;
+  return out;
+}
+
+}  // namespace depthprec

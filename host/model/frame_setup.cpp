@@ -1,0 +1,153 @@
+#include "host/model/frame_setup.h"
+
+#include <cmath>
+#include <glm/glm.hpp>
+
+namespace depthprec {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+template <class T>
+using Mat = glm::mat<4, 4, T, glm::defaultp>;
+
+// glm is column-major: m[c][r].
+template <class T>
+Mat4f to_row_major(const Mat<T>& m) {
+  Mat4f out{};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r * 4 + c] = static_cast<float>(m[c][r]);
+  return out;
+}
+
+template <class T>
+Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
+  const T half_fov = static_cast<T>(s.fov_y_deg * kPi / 360.0);
+  const T sy = T(1) / std::tan(half_fov);
+  const T aspect = static_cast<T>(s.viewport_w) / static_cast<T>(s.viewport_h);
+  const T sx = sy / aspect;
+  const Row3<T> row = projection_row3<T>(pair.technique, pair.depth_range, n, f);
+  Mat<T> P(T(0));
+  P[0][0] = sx;
+  P[1][1] = sy;
+  P[2][2] = row.a;
+  P[3][2] = row.b;
+  P[2][3] = T(-1);
+  return P;
+}
+
+template <class T>
+Mat<T> model(const Scene& s, double D, int frame) {
+  const auto ang = frame_angles(s, frame);
+  const T dist = static_cast<T>(D);
+  const T half_fov = static_cast<T>(s.fov_y_deg * kPi / 360.0);
+  const T side = static_cast<T>(s.plane_margin) * T(2) * dist * std::tan(half_fov);
+  const T cx = std::cos(static_cast<T>(ang[0])), sx = std::sin(static_cast<T>(ang[0]));
+  const T cy = std::cos(static_cast<T>(ang[1])), sy = std::sin(static_cast<T>(ang[1]));
+  const T cz = std::cos(static_cast<T>(ang[2])), sz = std::sin(static_cast<T>(ang[2]));
+  Mat<T> Rx(T(1)), Ry(T(1)), Rz(T(1)), S(T(1)), Tr(T(1));
+  Rx[1][1] = cx; Rx[2][1] = -sx; Rx[1][2] = sx; Rx[2][2] = cx;
+  Ry[0][0] = cy; Ry[2][0] = sy; Ry[0][2] = -sy; Ry[2][2] = cy;
+  Rz[0][0] = cz; Rz[1][0] = -sz; Rz[0][1] = sz; Rz[1][1] = cz;
+  S[0][0] = side;
+  S[1][1] = side;
+  Tr[3][2] = -dist;
+  return Tr * (Rx * Ry * Rz) * S;
+}
+
+template <class T>
+ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, double f64) {
+  ProbeConstants pc;
+  const T n = static_cast<T>(n64), f = static_cast<T>(f64);
+  const Mat<T> P = projection<T>(s, pair, n, f);
+  pc.P = to_row_major(P);
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) pc.P_full[r * 4 + c] = static_cast<double>(P[c][r]);
+  pc.near = static_cast<float>(n);
+  pc.far = static_cast<float>(f);
+  pc.range = static_cast<float>(f - n);
+  const T k = static_cast<T>(s.params.log_k);
+  pc.log_k = static_cast<float>(k);
+  pc.log_L = static_cast<float>(std::log(k * f + T(1)));
+  pc.layer_near = n64;
+  pc.layer_far = f64;
+  return pc;
+}
+
+}  // namespace
+
+std::array<float, 24> ProbeConstants::packed() const {
+  std::array<float, 24> out{};
+  for (int i = 0; i < 16; ++i) out[i] = P[i];
+  out[16] = near;
+  out[17] = far;
+  out[18] = range;
+  out[19] = log_k;
+  out[20] = log_L;
+  return out;
+}
+
+std::array<double, 3> frame_angles(const Scene& s, int frame) {
+  const double a = frame * s.delta_a;
+  std::array<double, 3> out{};
+  for (int i = 0; i < 3; ++i)
+    out[i] = s.rotation_range_deg * kPi / 180.0 *
+             std::sin(s.rotation_step[i] * a + s.rotation_offset[i]);
+  return out;
+}
+
+ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z) {
+  double n = s.near, f = s.far;
+  EvalPair geometry = pair;
+  if (pair.technique == Technique::layered) {
+    const Layer l = layer_bounds(layer_of(z, s.near, s.far, s.params), s.near, s.far, s.params);
+    n = l.near;
+    f = l.far;
+    geometry.technique = s.params.layer_mapping;
+  }
+  return s.pipeline.matrix_precision == MatrixPrecision::single
+             ? constants<float>(s, geometry, n, f)
+             : constants<double>(s, geometry, n, f);
+}
+
+Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame) {
+  const bool premult = s.pipeline.compose == Compose::premultiplied;
+  if (s.pipeline.matrix_precision == MatrixPrecision::single) {
+    const Mat<float> M = model<float>(s, D, frame);
+    if (!premult) return to_row_major(M);
+    Mat<float> P;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) P[c][r] = pc.P[r * 4 + c];
+    return to_row_major(Mat<float>(P * M));
+  }
+  const Mat<double> M = model<double>(s, D, frame);
+  if (!premult) return to_row_major(M);
+  Mat<double> P;  // the binary64 P, so P * MV is rounded once, at the end
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) P[c][r] = pc.P_full[r * 4 + c];
+  return to_row_major(Mat<double>(P * M));
+}
+
+std::array<double, 16> model_matrix_f64(const Scene& s, double D, int frame) {
+  const Mat<double> M = model<double>(s, D, frame);
+  std::array<double, 16> out{};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r * 4 + c] = M[c][r];
+  return out;
+}
+
+double seen_separation(double z, double s) {
+  return static_cast<double>(static_cast<float>(z + s)) - static_cast<double>(static_cast<float>(z));
+}
+
+double vertex_bound(double z) {
+  // z itself is rarely a binary32 (1.005 is not): B moves off A's vertex once z + s passes the
+  // midpoint between fl32(z) and the next binary32 above it.
+  const float zf = static_cast<float>(z);
+  const double mid = 0.5 * (static_cast<double>(zf) + static_cast<double>(std::nextafter(zf, INFINITY)));
+  return mid - z;
+}
+
+}  // namespace depthprec
+

@@ -1,0 +1,48 @@
+// What the host hands the GPU for one probe (z, s) of one pair: the projection and technique
+// constants, and per frame the model-view (or P*MV) matrix of each plane, built as an
+// application would (docs/spec.md 2.1, 5.1): in binary32, or in binary64 rounded once at the end.
+#pragma once
+
+#include <array>
+
+#include "host/model/scene.h"
+
+namespace depthprec {
+
+using Mat4f = std::array<float, 16>;  // row-major: m[r * 4 + c]
+
+// Row r of m times v in binary32, in the kernels' order: ((m0 x + m1 y) + m2 z) + m3 w.
+inline float mat_row_dot(const Mat4f& m, int r, const float v[4]) {
+  return ((m[r * 4] * v[0] + m[r * 4 + 1] * v[1]) + m[r * 4 + 2] * v[2]) + m[r * 4 + 3] * v[3];
+}
+
+// Per-probe constants, laid out as the kernel reads them (PROBE_STRIDE = 24 floats).
+struct ProbeConstants {
+  Mat4f P{};
+  std::array<double, 16> P_full{};  // P in the matrix precision before rounding to binary32
+  float near = 0, far = 0, range = 0, log_k = 0, log_L = 0;
+  double layer_near = 0, layer_far = 0;  // the sub-frustum used (layered), else near/far
+  std::array<float, 24> packed() const;
+};
+
+ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z);
+
+// The rotation angles of frame k in radians (binary64; the animation input, not GPU arithmetic).
+std::array<double, 3> frame_angles(const Scene& scene, int frame);
+
+// Model-view of a plane at requested distance D (binary64: z for plane A, z + s for plane B) in
+// frame k; with compose = premultiplied, P * MV instead.
+Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame);
+
+// The model matrix of a plane at distance D in frame k in binary64, never rounded: the exact
+// geometry of the storage-limited pipeline. Row-major.
+std::array<double, 16> model_matrix_f64(const Scene& scene, double D, int frame);
+
+// fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
+double seen_separation(double z, double s);
+// The vertex-precision bound (docs/spec.md 5.3): the distance from z to the midpoint between fl32(z) and
+// the next binary32 above; for a smaller s, fl32(z + s) == fl32(z) and the planes coincide. For a
+// z that is a binary32 this is half its spacing.
+double vertex_bound(double z);
+
+}  // namespace depthprec

@@ -1,0 +1,438 @@
+#include "host/model/scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "host/runtime/embedded_sources.h"
+#include "host/base/errors.h"
+
+namespace depthprec {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kDefaultPath = "data/gilg2021.json";
+constexpr int kMaxKernelSide = 16384;
+
+const std::set<std::string> kTopKeys = {
+    "name", "description", "near", "far", "kernel", "viewport", "fov_y_deg", "plane_margin",
+    "plane_subdivisions", "frames", "delta_a", "rotation_range_deg", "rotation_step",
+    "rotation_offset", "distances", "rel_precision", "max_separation_factor", "stiffness_probes", "pipeline",
+    "log_k", "layers", "layer_mapping", "layer_overlap", "evaluate"};
+const std::set<std::string> kPipelineKeys = {"depth_range", "matrix_precision", "compose", "divide",
+                                             "rounding", "denormals", "contraction"};
+const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
+
+// "line L, column C" of a byte offset in text (1-based, as editors count).
+std::string position_of(const std::string& text, size_t offset) {
+  size_t line = 1, col = 1;
+  for (size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return fmt::format("{}:{}", line, col);
+}
+
+// Where a key first appears in the file, for errors about keys (nlohmann keeps no positions).
+std::string where(const std::string& source, const std::string& text, const std::string& key) {
+  const size_t at = text.empty() ? std::string::npos : text.find("\"" + key + "\"");
+  if (at == std::string::npos) return source;
+  return source + ":" + position_of(text, at);
+}
+
+json parse_text(const std::string& text, const std::string& source) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string msg = e.what();
+    const auto p = msg.find("parse error");
+    if (p != std::string::npos) msg = msg.substr(p);
+    throw InputError(fmt::format("{}:{}: malformed JSON: {}", source,
+                                 position_of(text, e.byte > 0 ? e.byte - 1 : 0), msg));
+  } catch (const json::exception& e) {
+    // e.g. a number too large for binary64 (found by the fuzzer): no position is known
+    std::string msg = e.what();
+    const auto p = msg.find("] ");
+    if (p != std::string::npos) msg = msg.substr(p + 2);
+    throw InputError(fmt::format("{}: malformed JSON: {}", source, msg));
+  }
+}
+
+void check_known_keys(const json& j, const std::set<std::string>& known, const std::string& what,
+                      const std::string& source, const std::string& text) {
+  if (!j.is_object()) return;
+  for (const auto& item : j.items()) {
+    if (known.count(item.key())) continue;
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    throw InputError(fmt::format("{}: unknown key '{}' in {}; known keys: {}",
+                                 where(source, text, item.key()), item.key(), what, list));
+  }
+}
+
+void check_user_keys(const json& j, const std::string& source, const std::string& text) {
+  if (!j.is_object()) throw InputError(fmt::format("{}: a scene is a JSON object", source));
+  check_known_keys(j, kTopKeys, "the scene", source, text);
+  if (j.contains("pipeline")) check_known_keys(j["pipeline"], kPipelineKeys, "pipeline", source, text);
+  if (j.contains("evaluate") && j["evaluate"].is_array())
+    for (const auto& p : j["evaluate"]) check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
+}
+
+// Reads typed values with errors that name the key and say what is allowed.
+class Reader {
+ public:
+  // origins: the command-line option that set a key (e.g. "--near 5", "--set near=5"); a key
+  // found there is blamed on it rather than on the scene file.
+  Reader(const json& j, std::string source, std::string text, const std::map<std::string, std::string>& origins)
+      : j_(j), source_(std::move(source)), text_(std::move(text)), origins_(origins) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& msg) const {
+    for (std::string k = key;; k = k.substr(0, k.rfind('.'))) {  // "pipeline.divide", then "pipeline"
+      const auto o = origins_.find(k);
+      if (o != origins_.end()) throw InputError(fmt::format("{}: '{}' {}", o->second, key, msg));
+      if (k.find('.') == std::string::npos) break;
+    }
+    const std::string leaf = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
+    throw InputError(fmt::format("{}: '{}' {}", where(source_, text_, leaf), key, msg));
+  }
+
+  const json& at(const std::string& key) const {
+    const json* p = &j_;
+    std::stringstream ss(key);
+    std::string part;
+    while (std::getline(ss, part, '.')) {
+      if (!p->is_object() || !p->contains(part)) fail(key, "is missing");
+      p = &(*p)[part];
+    }
+    return *p;
+  }
+
+  // A number; "inf" is accepted where allow_inf (JSON has no infinity).
+  double number(const std::string& key, bool allow_inf = false) const {
+    const json& v = at(key);
+    if (allow_inf && v.is_string() && (v == "inf" || v == "infinity")) return INFINITY;
+    if (!v.is_number())
+      fail(key, fmt::format("must be a number{}, not {}", allow_inf ? " or \"inf\"" : "", v.dump()));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(key, "must be finite");
+    return d;
+  }
+
+  double positive(const std::string& key, bool allow_inf = false) const {
+    const double d = number(key, allow_inf);
+    if (!(d > 0)) fail(key, fmt::format("must be > 0, not {}", d));
+    return d;
+  }
+
+  int integer(const std::string& key, int lo, int hi) const {
+    const json& v = at(key);
+    if (!v.is_number_integer()) fail(key, fmt::format("must be a whole number, not {}", v.dump()));
+    const auto i = v.get<long long>();
+    if (i < lo || i > hi) fail(key, fmt::format("must be {}..{}, not {}", lo, hi, i));
+    return static_cast<int>(i);
+  }
+
+  std::string string(const std::string& key) const {
+    const json& v = at(key);
+    if (!v.is_string()) fail(key, fmt::format("must be a string, not {}", v.dump()));
+    return v.get<std::string>();
+  }
+
+  bool boolean(const std::string& key) const {
+    const json& v = at(key);
+    if (!v.is_boolean()) fail(key, fmt::format("must be true or false, not {}", v.dump()));
+    return v.get<bool>();
+  }
+
+  std::array<int, 2> size2(const std::string& key, int hi) const {
+    const json& v = at(key);
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
+      fail(key, fmt::format("must be [width, height] in pixels, not {}", v.dump()));
+    const auto w = v[0].get<long long>(), h = v[1].get<long long>();
+    if (w < 1 || h < 1 || w > hi || h > hi)
+      fail(key, fmt::format("sides must be 1..{} pixels, not {}", hi, v.dump()));
+    return {static_cast<int>(w), static_cast<int>(h)};
+  }
+
+  std::array<double, 3> vec3(const std::string& key) const {
+    const json& v = at(key);
+    if (!v.is_array() || v.size() != 3)
+      fail(key, fmt::format("must be three numbers [x, y, z], not {}", v.dump()));
+    std::array<double, 3> out{};
+    for (int i = 0; i < 3; ++i) {
+      if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
+        fail(key, fmt::format("must be three finite numbers, not {}", v.dump()));
+      out[i] = v[i].get<double>();
+    }
+    return out;
+  }
+
+  // Converts an enum-like string with the given parser, reporting the key on failure.
+  template <class F>
+  auto choice(const std::string& key, F parse) const {
+    const std::string s = string(key);
+    try {
+      return parse(s);
+    } catch (const InputError& e) {
+      fail(key, e.what());
+    }
+  }
+
+ private:
+  const json& j_;
+  std::string source_;
+  std::string text_;
+  const std::map<std::string, std::string>& origins_;
+};
+
+MatrixPrecision parse_matrix_precision(const std::string& s) {
+  if (s == "float") return MatrixPrecision::single;
+  if (s == "double") return MatrixPrecision::binary64;
+  throw InputError(fmt::format("unknown matrix precision '{}': expected float or double", s));
+}
+Compose parse_compose(const std::string& s) {
+  if (s == "separate") return Compose::separate;
+  if (s == "premultiplied") return Compose::premultiplied;
+  throw InputError(fmt::format("unknown compose '{}': expected separate or premultiplied", s));
+}
+Divide parse_divide(const std::string& s) {
+  if (s == "reciprocal") return Divide::reciprocal;
+  if (s == "exact") return Divide::exact;
+  throw InputError(fmt::format("unknown divide '{}': expected reciprocal or exact", s));
+}
+
+// "a.b=value": value parsed as JSON, or taken as a string when it is not JSON.
+void apply_override(json& j, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(fmt::format("override '{}' must be key=value, e.g. near=0.5 or "
+                                 "pipeline.depth_range=zero_to_one",
+                                 assignment));
+  const std::string key = assignment.substr(0, eq);
+  const std::string raw = assignment.substr(eq + 1);
+  json value = json::parse(raw, nullptr, false);
+  if (value.is_discarded()) value = raw;
+  json* p = &j;
+  std::stringstream ss(key);
+  std::string part;
+  std::vector<std::string> parts;
+  while (std::getline(ss, part, '.')) parts.push_back(part);
+  for (size_t i = 0; i + 1 < parts.size(); ++i) p = &(*p)[parts[i]];
+  (*p)[parts.back()] = value;
+}
+
+}  // namespace
+
+void check_pairs(const Scene& s) {
+  if (std::isfinite(s.far)) return;
+  for (const auto& p : s.evaluate)
+    if (has_far_plane(p.technique))
+      throw InputError(fmt::format("far = inf: {} needs a finite far plane (as do all of {}); only "
+                                   "infinite, reversed_infinite and inverse_w have none",
+                                   p.label(), finite_far_technique_names()));
+}
+
+void check_planes_cover_kernel(const Scene& s) {
+  // The square planes span plane_margin times the viewport's height in both directions (their
+  // side is plane_margin * 2 D tan(fov/2)), centred: a kernel wider than that has pixels no plane
+  // covers in any frame, and no probe could be accepted.
+  const double plane_px = s.plane_margin * s.viewport_h;
+  if (s.kernel_w > plane_px || s.kernel_h > plane_px)
+    throw InputError(fmt::format(
+        "kernel {}x{} is wider than the planes, which span plane_margin x viewport height = {} x {} = {:g} "
+        "pixels: no probe could be accepted; raise plane_margin to at least {:g} or narrow the kernel",
+        s.kernel_w, s.kernel_h, s.plane_margin, s.viewport_h, plane_px,
+        std::ceil(100.0 * std::max(s.kernel_w, s.kernel_h) / s.viewport_h * 1.05) / 100));
+}
+
+std::string EvalPair::label() const {
+  return fmt::format("{}/{}/{}", info(technique).name, format, to_string(depth_range));
+}
+
+const std::string& default_scene_text() {
+  static const std::string text = embedded_sources().at(kDefaultPath);
+  return text;
+}
+
+namespace {
+Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
+                  const std::string& text, const std::map<std::string, std::string>& origins);
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides, bool check,
+                 const std::map<std::string, std::string>& origins) {
+  if (path.empty()) return load_scene_text("", "", overrides, check, origins);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
+  std::stringstream buf;
+  buf << in.rdbuf();
+  return load_scene_text(buf.str(), path, overrides, check, origins);
+}
+
+Scene load_scene_text(const std::string& text, const std::string& path,
+                      const std::vector<std::string>& overrides, bool check,
+                      const std::map<std::string, std::string>& origins) {
+  json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
+  std::string source = std::string("embedded:") + kDefaultPath;
+  if (!path.empty()) {
+    source = path;
+    const json user = parse_text(text, path);
+    check_user_keys(user, path, text);
+    // A scene that lists its own pairs replaces the default list, not merges into it.
+    merged.merge_patch(user);
+    if (user.contains("evaluate")) merged["evaluate"] = user["evaluate"];
+  }
+  std::map<std::string, std::string> blame = origins;
+  if (!overrides.empty()) {
+    json patch = json::object();
+    for (const auto& o : overrides) {
+      apply_override(patch, o);
+      blame.emplace(o.substr(0, o.find('=')), "--set " + o);
+    }
+    check_user_keys(patch, "--set", "");
+    merged.merge_patch(patch);
+    if (patch.contains("evaluate")) merged["evaluate"] = patch["evaluate"];
+    if (!overrides.empty()) source += " (with --set overrides)";
+  }
+
+  Scene s = parse_scene(merged, source, path.empty() ? source : path, text, blame);
+  if (check) check_pairs(s);
+  return s;
+}
+
+Scene scene_from_json(const json& j, const std::string& source) {
+  json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
+  check_user_keys(j, source, "");
+  merged.merge_patch(j);
+  if (j.contains("evaluate")) merged["evaluate"] = j["evaluate"];
+  Scene s = parse_scene(merged, source, source, "", {});
+  check_pairs(s);
+  return s;
+}
+
+namespace {
+
+Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
+                  const std::string& text, const std::map<std::string, std::string>& origins) {
+  const Reader r(merged, where_name, text, origins);
+  Scene s;
+  s.source = source;
+  s.name = r.string("name");
+  s.description = r.string("description");
+  s.near = r.positive("near");
+  s.far = r.positive("far", true);
+  if (!(s.far > s.near)) r.fail("far", fmt::format("must be > near ({}), not {}", s.near, s.far));
+  const auto k = r.size2("kernel", kMaxKernelSide);
+  const auto vp = r.size2("viewport", kMaxKernelSide);
+  s.kernel_w = k[0];
+  s.kernel_h = k[1];
+  s.viewport_w = vp[0];
+  s.viewport_h = vp[1];
+  if (s.kernel_w > s.viewport_w || s.kernel_h > s.viewport_h)
+    r.fail("kernel", fmt::format("must fit in the viewport {}x{}", s.viewport_w, s.viewport_h));
+  s.fov_y_deg = r.positive("fov_y_deg");
+  if (s.fov_y_deg >= 180) r.fail("fov_y_deg", "must be below 180 degrees");
+  s.plane_margin = r.positive("plane_margin");
+  s.plane_subdivisions = r.integer("plane_subdivisions", 1, 11);
+  s.frames = r.integer("frames", 1, 1000000);
+  s.delta_a = r.number("delta_a");
+  s.rotation_range_deg = r.number("rotation_range_deg");
+  if (std::abs(s.rotation_range_deg) >= 45) r.fail("rotation_range_deg", "must be below 45 degrees");
+  s.rotation_step = r.vec3("rotation_step");
+  s.rotation_offset = r.vec3("rotation_offset");
+  const json& dist = r.at("distances");
+  if (!dist.is_array() || dist.empty())
+    r.fail("distances", "must be a non-empty list of eye distances > 0");
+  for (const auto& d : dist) {
+    if (!d.is_number() || !(d.get<double>() > 0) || !std::isfinite(d.get<double>()))
+      r.fail("distances", fmt::format("must hold finite eye distances > 0, not {}", d.dump()));
+    const double z = d.get<double>();
+    // The planes are placed in binary32: at its largest value fl32(z) has no binary32 above it
+    // (the vertex bound is infinite), past it fl32(z) is infinite.
+    if (!(static_cast<float>(z) < std::numeric_limits<float>::max()))
+      r.fail("distances", fmt::format("{:g} is not below binary32's largest value {:g}: the pipeline cannot place "
+                                      "a plane there", z, static_cast<double>(std::numeric_limits<float>::max())));
+    // A row is keyed by its distance (journals, shards, shared computations): each distance once.
+    const auto same = std::find(s.distances.begin(), s.distances.end(), z);
+    if (same != s.distances.end())
+      r.fail("distances", fmt::format("lists {:g} twice (entries {} and {}); list each distance once", z,
+                                      same - s.distances.begin() + 1, s.distances.size() + 1));
+    s.distances.push_back(z);
+  }
+  s.rel_precision = r.positive("rel_precision");
+  if (s.rel_precision >= 1) r.fail("rel_precision", "must be below 1 (e.g. 0.0009765625 = 2^-10)");
+  s.max_separation_factor = r.positive("max_separation_factor");
+  if (s.max_separation_factor < 1) r.fail("max_separation_factor", "must be >= 1");
+  s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
+
+  s.pipeline.depth_range = r.choice("pipeline.depth_range", [](const std::string& v) -> std::optional<DepthRange> {
+    if (v == "technique") return std::nullopt;
+    try {
+      return parse_depth_range(v);
+    } catch (const InputError&) {
+      throw InputError(fmt::format("unknown depth range '{}': expected gl, zero_to_one or technique "
+                                   "(each technique's own: zero_to_one for reversed, reversed_infinite and "
+                                   "inverse_w, gl otherwise)", v));
+    }
+  });
+  s.pipeline.matrix_precision = r.choice("pipeline.matrix_precision", parse_matrix_precision);
+  s.pipeline.compose = r.choice("pipeline.compose", parse_compose);
+  s.pipeline.divide = r.choice("pipeline.divide", parse_divide);
+  s.pipeline.rounding = r.choice("pipeline.rounding", parse_rounding);
+  s.pipeline.denormals = r.choice("pipeline.denormals", parse_denormals);
+  s.pipeline.contraction = r.boolean("pipeline.contraction");
+
+  s.params.log_k = r.positive("log_k");
+  s.params.layers = r.integer("layers", 1, 64);
+  s.params.layer_mapping = r.choice("layer_mapping", parse_technique);
+  if (s.params.layer_mapping != Technique::standard && s.params.layer_mapping != Technique::reversed &&
+      s.params.layer_mapping != Technique::linear)
+    r.fail("layer_mapping", "must be standard, reversed or linear");
+  s.params.layer_overlap = r.number("layer_overlap");
+  if (s.params.layer_overlap < 0 || s.params.layer_overlap > 1)
+    r.fail("layer_overlap", "must be 0..1 (a fraction of the layer's far bound)");
+
+  const json& ev = r.at("evaluate");
+  if (!ev.is_array() || ev.empty())
+    r.fail("evaluate", "must be a non-empty list of {\"technique\", \"format\"[, \"depth_range\"]}");
+  for (size_t i = 0; i < ev.size(); ++i) {
+    const std::string base = fmt::format("evaluate.{}", i);
+    if (!ev[i].is_object() || !ev[i].contains("technique") || !ev[i].contains("format"))
+      r.fail("evaluate", fmt::format("entry {} must be an object with technique and format", i));
+    EvalPair p;
+    try {
+      p.technique = parse_technique(ev[i]["technique"].get<std::string>());
+      p.format = ev[i]["format"].get<std::string>();
+      StorageFormat::parse(p.format);
+      p.depth_range = ev[i].contains("depth_range")
+                          ? parse_depth_range(ev[i]["depth_range"].get<std::string>())
+                          : s.range_for(p.technique);
+    } catch (const InputError& e) {
+      r.fail(base, e.what());
+    } catch (const json::exception&) {
+      r.fail(base, "must hold strings for technique, format and depth_range");
+    }
+    s.evaluate.push_back(p);
+  }
+  s.json = merged;
+  return s;
+}
+
+}  // namespace
+
+}  // namespace depthprec

@@ -1,0 +1,102 @@
+// A scene: every parameter of the MTS measurement (docs/spec.md 5.1), the pipeline options (docs/spec.md 2) and
+// the (technique, format[, depth_range]) pairs to evaluate. data/gilg2021.json, embedded in the
+// binary, is the one source of the defaults: a scene file or a --set override only says what
+// differs from it.
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "host/model/storage_format.h"
+#include "host/model/technique.h"
+
+namespace depthprec {
+
+enum class MatrixPrecision { single, binary64 };  // "float", "double"
+enum class Compose { separate, premultiplied };
+enum class Divide { reciprocal, exact };
+
+struct Pipeline {
+  // The depth range of pairs that name none; none here ("technique" in a scene): each technique's
+  // own (TechniqueInfo::range: zero_to_one for the reversed mappings, gl otherwise).
+  std::optional<DepthRange> depth_range;
+  MatrixPrecision matrix_precision = MatrixPrecision::single;
+  Compose compose = Compose::separate;
+  Divide divide = Divide::reciprocal;
+  Rounding rounding = Rounding::nearest_even;
+  Denormals denormals = Denormals::keep;
+  bool contraction = false;
+};
+
+struct EvalPair {
+  Technique technique;
+  std::string format;
+  DepthRange depth_range;
+  std::string label() const;  // "reversed/float32/zero_to_one"
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string source;  // file path, or "embedded:data/gilg2021.json"
+  double near = 0, far = 0;
+  int kernel_w = 0, kernel_h = 0, viewport_w = 0, viewport_h = 0;
+  double fov_y_deg = 0;
+  double plane_margin = 0;
+  int plane_subdivisions = 0;
+  int frames = 0;
+  double delta_a = 0;
+  double rotation_range_deg = 0;
+  std::array<double, 3> rotation_step{}, rotation_offset{};
+  std::vector<double> distances;
+  double rel_precision = 0;
+  double max_separation_factor = 0;
+  int stiffness_probes = 0;  // per side of each resolved MTS (docs/stability.md)
+  Pipeline pipeline;
+  TechniqueParams params;
+  std::vector<EvalPair> evaluate;
+
+  nlohmann::json json;  // the merged, validated scene as JSON (for output headers)
+
+  // The depth range a pair of technique t gets when it names none.
+  DepthRange range_for(Technique t) const { return pipeline.depth_range.value_or(info(t).range); }
+
+  StorageFormat storage_format(const EvalPair& p) const {
+    return StorageFormat::parse(p.format, pipeline.rounding, pipeline.denormals);
+  }
+};
+
+// path empty: the embedded default. overrides: "key=value" with a JSON value (bare words are
+// taken as strings), dotted keys for nested objects: "pipeline.depth_range=zero_to_one",
+// "kernel=[50,50]", "near=0.1". Throws InputError naming the file, line:column and key.
+// check = false leaves check_pairs to a caller that replaces the pairs first. origins names the
+// option behind an override's key ("near" -> "--near 5"), so errors blame what the user typed;
+// an override it does not name is blamed on "--set key=value".
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {}, bool check = true,
+                 const std::map<std::string, std::string>& origins = {});
+
+// The same from the text of a scene file (path names it in errors; "" for no file).
+Scene load_scene_text(const std::string& text, const std::string& path,
+                      const std::vector<std::string>& overrides = {}, bool check = true,
+                      const std::map<std::string, std::string>& origins = {});
+
+// Checks what the scene's pairs need of it (a finite far plane for the techniques that clip at
+// one); throws InputError naming the pair. load_scene calls it; so does whoever replaces the pairs.
+void check_pairs(const Scene& scene);
+
+// Refuses a kernel wider than the planes (every probe would see uncovered pixels and none could
+// be accepted). The commands call it up front; the library leaves such scenes to the search,
+// which never accepts a probe with an uncovered pixel (tests use them to check exactly that).
+void check_planes_cover_kernel(const Scene& scene);
+
+// A scene from a JSON object (as JSON outputs carry it in their header), over the defaults.
+Scene scene_from_json(const nlohmann::json& j, const std::string& source);
+
+// The JSON text of the embedded default scene.
+const std::string& default_scene_text();
+
+}  // namespace depthprec

@@ -1,0 +1,113 @@
+#include "host/model/technique.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "host/base/did_you_mean.h"
+#include "host/base/errors.h"
+
+namespace depthprec {
+
+const char* to_string(DepthRange r) { return r == DepthRange::gl ? "gl" : "zero_to_one"; }
+
+DepthRange parse_depth_range(const std::string& s) {
+  if (s == "gl") return DepthRange::gl;
+  if (s == "zero_to_one") return DepthRange::zero_to_one;
+  throw InputError(fmt::format("unknown depth range '{}': expected gl or zero_to_one", s));
+}
+
+const std::vector<TechniqueInfo>& technique_table() {
+  using D = DepthFrom;
+  using F = FragmentDepth;
+  const DepthRange gl = DepthRange::gl, zo = DepthRange::zero_to_one;
+  static const std::vector<TechniqueInfo> table = {
+      // id                      name                 depth from      fragment     greater range clips_near
+      {Technique::standard, "standard", D::projection, F::none, false, gl, true},
+      {Technique::infinite, "infinite", D::projection, F::none, false, gl, true},
+      {Technique::reversed, "reversed", D::projection, F::none, true, zo, true},
+      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, zo, true},
+      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, gl, false},
+      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, gl, true},
+      {Technique::linear, "linear", D::fragment, F::linear, false, gl, true},
+      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, gl, true},
+      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, zo, true},
+      {Technique::layered, "layered", D::projection, F::none, false, gl, true},
+  };
+  return table;
+}
+
+const TechniqueInfo& info(Technique t) {
+  for (const auto& i : technique_table())
+    if (i.id == t) return i;
+  throw Error(ExitCode::internal, "technique missing from the table");
+}
+
+bool has_far_plane(Technique t) {
+  return t != Technique::infinite && t != Technique::reversed_infinite && t != Technique::inverse_w;
+}
+
+std::string finite_far_technique_names() {
+  std::string s;
+  for (const auto& i : technique_table())
+    if (has_far_plane(i.id)) s += (s.empty() ? "" : ", ") + std::string(i.name);
+  return s;
+}
+
+std::string technique_names() {
+  std::string s;
+  for (const auto& i : technique_table()) s += (s.empty() ? "" : ", ") + std::string(i.name);
+  return s;
+}
+
+Technique parse_technique(const std::string& s) {
+  for (const auto& i : technique_table())
+    if (s == i.name) return i.id;
+  std::vector<std::string> names;
+  for (const auto& i : technique_table()) names.push_back(i.name);
+  throw InputError(
+      fmt::format("unknown technique '{}'{}: expected one of {}", s, technique_suggestion(s, names), technique_names()));
+}
+
+double depth_of_distance(Technique t, double n, double f, const TechniqueParams& p, double w) {
+  // The gl and zero_to_one window depths are the same function of w (only their binary32
+  // evaluation differs), so one closed form per technique, each without cancellation.
+  switch (t) {
+    case Technique::standard: return f * (w - n) / ((f - n) * w);
+    case Technique::infinite: return (w - n) / w;
+    case Technique::reversed: return n * (f - w) / ((f - n) * w);
+    case Technique::reversed_infinite:
+    case Technique::inverse_w: return n / w;
+    case Technique::log_vertex:
+    case Technique::log_fragment: return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
+    case Technique::linear: return (w - n) / (f - n);
+    case Technique::w_buffer: return w / f;
+    case Technique::layered: {
+      const Layer l = layer_bounds(layer_of(w, n, f, p), n, f, p);
+      return depth_of_distance(p.layer_mapping, l.near, l.far, p, w);
+    }
+  }
+  return NAN;
+}
+
+void throw_layered_has_no_single_mapping() {
+  throw InputError(
+      "layered has one mapping per layer: ask for its layer_mapping with the layer's near and far");
+}
+
+Layer layer_bounds(int i, double n, double f, const TechniqueParams& p) {
+  const double ratio = f / n;
+  const double lo = n * std::pow(ratio, static_cast<double>(i) / p.layers);
+  const double hi = i + 1 == p.layers ? f : n * std::pow(ratio, static_cast<double>(i + 1) / p.layers);
+  return {i == 0 ? n : lo, i + 1 == p.layers ? f : hi * (1.0 + p.layer_overlap)};
+}
+
+int layer_of(double z, double n, double f, const TechniqueParams& p) {
+  for (int i = p.layers - 1; i > 0; --i) {
+    const double lo = n * std::pow(f / n, static_cast<double>(i) / p.layers);
+    if (z >= lo) return i;
+  }
+  return 0;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,452 @@
+#include "host/mts/mts_evaluator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include "host/base/errors.h"
+
+namespace depthprec {
+
+namespace {
+
+constexpr int kProbeStride = 24;
+constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8, kBounds = 16, kReused = 32;
+constexpr int kCountShift = 8;
+constexpr uint32_t kVertexNonFinite = 1;  // kernels/mts.cl V_NONFINITE
+
+// Kernel rows per band that mts_frame_bounds decides at once from code bounds: a band's depth
+// range grows with its height, so smaller bands are decided closer to the MTS but cost more
+// bounds work per row.
+constexpr cl_uint kBandRows = 32;
+
+// The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
+// this (all frames of each) and at most kMaxSlots; a run with more goes through them in groups.
+constexpr size_t kPlaneACacheBytes = size_t{1} << 30;
+constexpr size_t kMaxSlots = 64;
+
+// Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
+// launch (a new size for every batch shape) recompiles again and again.
+constexpr size_t kLocal = 16;
+size_t padded_size(size_t n) { return (n + kLocal - 1) / kLocal * kLocal; }
+cl::NDRange padded(size_t n) { return cl::NDRange(padded_size(n)); }
+
+// A read-only device copy of a host array.
+template <class T>
+cl::Buffer buffer_of(const cl::Context& context, const std::vector<T>& v) {
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * v.size(), const_cast<T*>(v.data()));
+}
+
+}  // namespace
+
+int batch_frames(int done, int total) {
+  const int want = done == 0 ? 4 : done < 20 ? 16 : 64;
+  return std::min(want, total - done);
+}
+
+std::vector<size_t> undecided(const std::vector<bool>& decided) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < decided.size(); ++i)
+    if (!decided[i]) out.push_back(i);
+  return out;
+}
+
+std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::vector<size_t>& active,
+                                  int first_frame, int frames, size_t kernel_h, std::vector<ProbeResult>& results,
+                                  std::vector<bool>& decided, uint64_t& after_decision) {
+  std::vector<uint64_t> probe_pairs(active.size(), 0);
+  for (size_t i = 0; i < active.size(); ++i) {
+    ProbeResult& r = results[active[i]];
+    for (int f = 0; f < frames; ++f) {
+      uint32_t flags = 0;
+      uint64_t frame_pairs = 0;
+      for (size_t y = 0; y < kernel_h; ++y) {
+        const uint32_t v = rows[(i * frames + f) * kernel_h + y];
+        flags |= v;
+        frame_pairs += v >> kCountShift;
+      }
+      probe_pairs[i] += frame_pairs;
+      if (decided[active[i]]) {  // frames after the deciding one: work, not outcome
+        after_decision += frame_pairs;
+        continue;
+      }
+      r.frames = first_frame + f + 1;
+      r.any_clipped |= (flags & kClipped) != 0;
+      r.any_uncovered |= (flags & kUncovered) != 0;
+      if (flags & kNonFinite) {
+        r.any_non_finite = true;
+        r.outcome = Outcome::non_finite;
+        decided[active[i]] = true;
+      } else if (flags & kFight) {
+        r.outcome = Outcome::fight;
+        decided[active[i]] = true;
+      }
+    }
+    r.fragment_pairs += probe_pairs[i];
+  }
+  return probe_pairs;
+}
+
+void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided) {
+  for (size_t i = 0; i < results.size(); ++i)
+    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
+}
+
+const char* to_string(Outcome o) {
+  switch (o) {
+    case Outcome::clean: return "clean";
+    case Outcome::fight: return "fight";
+    case Outcome::clipped: return "clipped";
+    case Outcome::non_finite: return "non_finite";
+    case Outcome::uncovered: return "uncovered";
+  }
+  return "?";
+}
+
+MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts)
+    : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)), shortcuts_(shortcuts) {
+  const cl::Program program = rt_.program(variant_.program, variant_.options);
+  setup_ = cl::Kernel(program, "mts_setup");
+  a_rows_ = cl::Kernel(program, "mts_a_rows");
+  a_bands_ = cl::Kernel(program, "mts_a_bands");
+  raster_ = cl::Kernel(program, "mts_raster");
+  bounds_ = cl::Kernel(program, "mts_frame_bounds");
+  codes_ = cl::Kernel(program, "mts_codes");
+  // The buffer layout is the program's (kernels/mts.cl mts_layout), so host and kernels cannot
+  // disagree on it.
+  cl::Kernel layout(program, "mts_layout");
+  cl::Buffer sizes(rt_.context(), CL_MEM_WRITE_ONLY, 4 * sizeof(cl_uint));
+  layout.setArg(0, sizes);
+  rt_.queue().enqueueTask(layout);
+  cl_uint got[4] = {0, 0, 0, 0};
+  rt_.queue().enqueueReadBuffer(sizes, CL_TRUE, 0, sizeof got, got);
+  plane_floats_ = got[0];
+  row_words_ = got[1];
+  band_words_ = got[2];
+  decided_words_ = got[3];
+  max_slots_ = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
+}
+
+size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {
+  std::vector<double> zs;
+  for (const Probe& p : probes) zs.push_back(p.z);
+  std::sort(zs.begin(), zs.end());
+  const size_t distinct = static_cast<size_t>(std::unique(zs.begin(), zs.end()) - zs.begin());
+  const size_t want = std::min(max_slots_, distinct);
+  if (want <= a_.capacity) return distinct;
+  a_ = PlaneACache{};  // buffers are allocated at the next fill; what the old ones held is refilled
+  a_.capacity = want;
+  a_.z.assign(want, std::numeric_limits<double>::quiet_NaN());
+  a_.last_use.assign(want, 0);
+  return distinct;
+}
+
+size_t MtsEvaluator::code_row_words() const {
+  return variant_.cache_a_codes ? static_cast<size_t>(scene_.kernel_w) + 16 : 0;
+}
+
+cl_uint MtsEvaluator::bands() const {
+  return (static_cast<cl_uint>(scene_.kernel_h) + kBandRows - 1) / kBandRows;
+}
+
+size_t MtsEvaluator::a_slot_bytes() const {
+  const size_t f = static_cast<size_t>(scene_.frames), kh = static_cast<size_t>(scene_.kernel_h);
+  return sizeof(float) * (kProbeStride + f * plane_floats_) +
+         sizeof(uint32_t) * f * (1 + kh * (row_words_ + code_row_words()) + band_words_ * bands());
+}
+
+cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
+                              cl_uint first_plane, cl::Buffer& tris, cl::Buffer& vflags) {
+  const size_t planes = mats.size() / 16;
+  const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
+  set_args(setup_, consts, mat_buf, per_probe, 0.5f * static_cast<float>(scene_.viewport_w),
+           0.5f * static_cast<float>(scene_.viewport_h), origin_x(), origin_y(),
+           static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), kBandRows, tris, vflags,
+           first_plane, static_cast<cl_uint>(planes));
+  cl::Event done;
+  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal), nullptr, &done);
+  ++launches_;
+  return done;
+}
+
+namespace {
+double device_seconds(const cl::Event& e) {
+  return 1e-9 * static_cast<double>(e.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                                    e.getProfilingInfo<CL_PROFILING_COMMAND_START>());
+}
+}  // namespace
+
+std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                                                 double& kernel_seconds, std::vector<int>& launches) {
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const auto frames = static_cast<cl_uint>(scene_.frames);
+  if (a_.tris() == nullptr) {
+    const size_t n = a_.capacity;
+    a_.consts = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * kProbeStride * n);
+    a_.tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats_);
+    a_.vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames);
+    a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * kh * row_words_);
+    a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * bands() * band_words_);
+    a_.codes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
+  }
+  ++a_.clock;
+  constexpr cl_uint kNotHeld = std::numeric_limits<cl_uint>::max();
+  std::vector<cl_uint> slots(active.size(), kNotHeld);
+  launches.assign(active.size(), 0);
+  std::vector<bool> in_use(a_.capacity, false);
+  for (size_t i = 0; i < active.size(); ++i) {  // first the slots already held, so none is evicted
+    const auto it = std::find(a_.z.begin(), a_.z.end(), probes[active[i]].z);
+    if (it == a_.z.end()) continue;
+    slots[i] = static_cast<cl_uint>(it - a_.z.begin());
+    in_use[slots[i]] = true;
+    a_.last_use[slots[i]] = a_.clock;
+  }
+  for (size_t i = 0; i < active.size(); ++i) {
+    if (slots[i] != kNotHeld) continue;
+    const double z = probes[active[i]].z;
+    // a distance filled earlier in this loop (several probes of one distance)
+    const auto it = std::find(a_.z.begin(), a_.z.end(), z);
+    if (it != a_.z.end()) {
+      slots[i] = static_cast<cl_uint>(it - a_.z.begin());
+      continue;
+    }
+    // the least recently used slot no probe of this launch needs (run() keeps the distances of
+    // one launch within the capacity)
+    size_t slot = a_.capacity;
+    for (size_t k = 0; k < a_.capacity; ++k)
+      if (!in_use[k] && (slot == a_.capacity || a_.last_use[k] < a_.last_use[slot])) slot = k;
+    if (slot == a_.capacity) throw Error(ExitCode::internal, "plane-A cache: more distances in one launch than slots");
+    a_.z[slot] = z;
+    a_.last_use[slot] = a_.clock;
+    in_use[slot] = true;
+    slots[i] = static_cast<cl_uint>(slot);
+
+    const ProbeConstants pc = probe_constants(scene_, pair_, z);
+    const auto packed = pc.packed();
+    rt_.queue().enqueueWriteBuffer(a_.consts, CL_TRUE, sizeof(float) * kProbeStride * slot,
+                                   sizeof(float) * kProbeStride, packed.data());  // packed is local
+    std::vector<float> mats(static_cast<size_t>(frames) * 16);
+    for (cl_uint f = 0; f < frames; ++f) {
+      const Mat4f m = plane_matrix(scene_, pc, z, static_cast<int>(f));
+      std::copy(m.begin(), m.end(), mats.begin() + f * 16);
+    }
+    const auto first_plane = static_cast<cl_uint>(slot * frames);
+    const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
+    set_args(a_rows_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(), origin_y(),
+             a_.rows, a_.codes, static_cast<cl_uint>(frames * kh));
+    cl::Event rows_done, bands_done;
+    rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh), cl::NDRange(kLocal), nullptr,
+                                     &rows_done);
+    set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(), origin_y(),
+             bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
+    rt_.queue().enqueueNDRangeKernel(a_bands_, cl::NullRange, padded(frames * bands()), cl::NDRange(kLocal),
+                                     nullptr, &bands_done);
+    bands_done.wait();
+    launches_ += 2;
+    launches[i] = 3;
+    kernel_seconds += device_seconds(set_up) + device_seconds(rows_done) + device_seconds(bands_done);
+  }
+  return slots;
+}
+
+cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                                      const std::vector<cl_uint>& slots, const std::vector<int>& first_visited,
+                                      int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
+                                      cl::Buffer& tris, cl::Buffer& vflags) {
+  std::vector<float> consts(active.size() * kProbeStride);
+  std::vector<float> mats(active.size() * frames * 16);
+  std::vector<cl_uint> slot_and_start(2 * active.size());
+  for (size_t i = 0; i < active.size(); ++i) {
+    const Probe& p = probes[active[i]];
+    const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
+    const auto packed = pc.packed();
+    std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
+    const int start = first_visited[active[i]];
+    for (int f = 0; f < frames; ++f) {
+      const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, (start + first_frame + f) % scene_.frames);
+      std::copy(b.begin(), b.end(), mats.begin() + (i * frames + f) * 16);
+    }
+    slot_and_start[2 * i] = slots[i];
+    slot_and_start[2 * i + 1] = static_cast<cl_uint>(start);
+  }
+  probe_buf = buffer_of(rt_.context(), consts);
+  slot_buf = buffer_of(rt_.context(), slot_and_start);
+  const size_t planes = active.size() * frames;
+  tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats_);
+  vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
+  return setup(probe_buf, mats, static_cast<cl_uint>(frames), 0, tris, vflags);
+}
+
+CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
+  if (reserve_plane_a(probes) > a_.capacity)
+    throw Error(ExitCode::internal, "coverage audit: more distances than plane-A cache slots");
+  std::vector<size_t> all(probes.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  double ksecs = 0;
+  std::vector<int> cache_launches;
+  const std::vector<cl_uint> slots = cache_plane_a(probes, all, ksecs, cache_launches);
+  const int frames = scene_.frames;
+  cl::Buffer probe_buf, slot_buf, tris, vflags;
+  setup_plane_b(probes, all, slots, std::vector<int>(probes.size(), 0), 0, frames, probe_buf, slot_buf, tris,
+                vflags);
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const size_t items = probes.size() * frames * kh;
+  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
+  cl::Kernel k(rt_.program(variant_.program, variant_.options), "mts_coverage_audit");
+  set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0}, static_cast<cl_uint>(frames),
+           kw, kh, origin_x(), origin_y(), static_cast<cl_uint>(frames), out, static_cast<cl_uint>(items));
+  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
+  std::vector<uint32_t> words(items);
+  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, words.data());
+  CoverageAudit a;
+  for (const uint32_t w : words) {
+    a.rows += (w >> 3) & 1;
+    a.b_differs += w & 1;
+    a.certified += (w >> 1) & 1;
+    a.certified_but_differs += (w >> 2) & 1;
+  }
+  return a;
+}
+
+std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
+  std::vector<ProbeResult> results(probes.size());
+  std::vector<bool> decided(probes.size(), false);
+  reserve_plane_a(probes);
+  std::vector<int> first_visited(probes.size(), 0);
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const auto it = last_fight_frame_.find(probes[i].z);
+    if (it != last_fight_frame_.end()) first_visited[i] = it->second;
+  }
+  // Probes whose distances fit in the plane-A cache at once go through the frames together.
+  std::vector<double> zs;
+  std::vector<bool> pending(probes.size(), true);
+  for (size_t first = 0; first < probes.size(); ++first) {
+    if (!pending[first]) continue;
+    zs.clear();
+    std::vector<size_t> group;
+    for (size_t i = first; i < probes.size(); ++i) {
+      if (!pending[i]) continue;
+      const bool known = std::find(zs.begin(), zs.end(), probes[i].z) != zs.end();
+      if (!known && zs.size() == a_.capacity) continue;
+      if (!known) zs.push_back(probes[i].z);
+      group.push_back(i);
+      pending[i] = false;
+    }
+    run_group(probes, group, first_visited, results, decided);
+  }
+  finish_outcomes(results, decided);
+  for (const auto& r : results) by_outcome_[static_cast<size_t>(r.outcome)] += r.fragment_pairs;
+  return results;
+}
+
+void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
+                             const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
+                             std::vector<bool>& decided) {
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const float ox = origin_x(), oy = origin_y();
+  int done = 0;
+  while (done < scene_.frames) {
+    std::vector<size_t> active;
+    for (const size_t i : group)
+      if (!decided[i]) active.push_back(i);
+    if (active.empty()) break;
+    const int frames = batch_frames(done, scene_.frames);
+    const auto t0 = std::chrono::steady_clock::now();
+    double ksecs = 0;
+    std::vector<int> cache_launches;
+    const std::vector<cl_uint> slots = cache_plane_a(probes, active, ksecs, cache_launches);
+    cl::Buffer probe_buf, slot_buf, tris, vflags;
+    const cl::Event setup_done =
+        setup_plane_b(probes, active, slots, first_visited, done, frames, probe_buf, slot_buf, tris, vflags);
+    const size_t planes = active.size() * frames;
+    const size_t items = planes * kh;
+    const size_t band_items = planes * bands();
+    cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items * decided_words_);
+    cl::Event bounds_done;
+    if (shortcuts_) {
+      set_args(bounds_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.bands, slot_buf, static_cast<cl_uint>(done),
+               static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy, static_cast<cl_uint>(frames), bands(),
+               kBandRows, decided_bands, static_cast<cl_uint>(band_items));
+      rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items), cl::NDRange(kLocal),
+                                       nullptr, &bounds_done);
+      ++launches_;
+    } else {
+      rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0, sizeof(uint32_t) * band_items * decided_words_,
+                                    nullptr, &bounds_done);
+    }
+    std::vector<uint32_t> rows(items);
+    cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
+    set_args(raster_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf,
+             static_cast<cl_uint>(done), a_.codes, static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
+             static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
+             static_cast<cl_uint>(shortcuts_), result);
+    cl::Event raster_done;
+    rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange,
+                                     cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
+                                     cl::NDRange(kLocal, 1, 1), nullptr, &raster_done);
+    rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
+    for (const uint32_t v : rows) {
+      if (v & kBounds) by_bounds_ += v >> kCountShift;
+      else if (v >> kCountShift) ++rows_rasterised_;
+      if (v & kReused) ++rows_reused_;
+    }
+    ++launches_;
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ksecs += device_seconds(setup_done) + device_seconds(bounds_done) + device_seconds(raster_done);
+    wall_seconds_ += secs;
+    kernel_seconds_ += ksecs;
+
+    const std::vector<uint64_t> probe_pairs =
+        fold_launch(rows, active, done, frames, kh, results, decided, after_decision_);
+    for (const size_t i : active)
+      if (decided[i])  // a fight or a non-finite frame: the next probes of this distance start there
+        last_fight_frame_[probes[i].z] = (first_visited[i] + results[i].frames - 1) % scene_.frames;
+    uint64_t launch_pairs = 0;
+    for (const uint64_t n : probe_pairs) launch_pairs += n;
+    for (size_t i = 0; i < active.size(); ++i) {
+      const double share = launch_pairs ? static_cast<double>(probe_pairs[i]) / static_cast<double>(launch_pairs)
+                                        : 1.0 / static_cast<double>(active.size());
+      results[active[i]].seconds += secs * share;
+      results[active[i]].kernel_seconds += ksecs * share;
+      // set-up, bounds and raster, and the plane-A cache's launches when this batch filled it
+      results[active[i]].launches += (shortcuts_ ? 3 : 2) + cache_launches[i];
+    }
+    pairs_ += launch_pairs;
+    done += frames;
+  }
+}
+
+FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const auto packed = pc.packed();
+  const cl::Buffer probe_buf = buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));
+  std::vector<float> mats;
+  for (const double d : {probe.z, probe.z + probe.s}) {
+    const Mat4f m = plane_matrix(scene_, pc, d, frame);
+    mats.insert(mats.end(), m.begin(), m.end());
+  }
+  cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * plane_floats_);
+  cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * 2);
+  setup(probe_buf, mats, 2, 0, tris, vflags);
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const size_t pixels = static_cast<size_t>(kw) * kh;
+  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * 4 * pixels);
+  set_args(codes_, probe_buf, tris, kw, origin_x(), origin_y(), out, kh);
+  rt_.queue().enqueueNDRangeKernel(codes_, cl::NullRange, padded(kh), cl::NDRange(kLocal));
+  std::vector<uint32_t> raw(4 * pixels);
+  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * raw.size(), raw.data());
+  uint32_t vf[2] = {0, 0};
+  rt_.queue().enqueueReadBuffer(vflags, CL_TRUE, 0, sizeof vf, vf);
+  FrameCodes fc;
+  fc.width = static_cast<int>(kw);
+  fc.height = static_cast<int>(kh);
+  for (size_t i = 0; i < pixels; ++i) {
+    fc.code_a.push_back(raw[4 * i]);
+    fc.code_b.push_back(raw[4 * i + 1]);
+    fc.status_a.push_back((vf[0] & kVertexNonFinite) ? 2 : static_cast<uint8_t>(raw[4 * i + 2]));
+    fc.status_b.push_back((vf[1] & kVertexNonFinite) ? 2 : static_cast<uint8_t>(raw[4 * i + 3]));
+  }
+  return fc;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,177 @@
+// Runs kernels/mts.cl for batches of probes (z, s) of one pair: each probe is rendered frame by
+// frame until its first fight (docs/spec.md 5.2: a probe stops at its first fighting frame), many probes and
+// frames per launch so independent distances share the device.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "host/model/frame_setup.h"
+#include "host/runtime/kernel_variant.h"
+#include "host/runtime/opencl_runtime.h"
+#include "host/model/scene.h"
+
+namespace depthprec {
+
+struct Probe {
+  double z;  // requested distance of plane A
+  double s;  // requested separation: plane B at fl32(z + s)
+};
+
+// uncovered: no fight, but a kernel pixel that a plane does not cover (the search's reading of a
+// clean result with any_uncovered; the evaluator itself reports clean and the flag).
+enum class Outcome { clean, fight, clipped, non_finite, uncovered };
+const char* to_string(Outcome o);
+
+struct ProbeResult {
+  Outcome outcome = Outcome::clean;
+  int frames = 0;               // frames rendered up to and including the deciding one (all if clean)
+  uint64_t fragment_pairs = 0;  // pairs the kernel evaluated for this probe
+  bool any_clipped = false, any_non_finite = false, any_uncovered = false;
+  double seconds = 0;         // share of the launches' wall time, by fragment pairs
+  double kernel_seconds = 0;  // share of the launches' device time (profiling events), likewise
+  uint64_t launches = 0;      // kernel launches this probe took part in
+};
+
+// Stored codes and status (0 ok, 1 clipped, 2 non-finite, 3 uncovered) of both planes at every
+// kernel pixel of one frame, row-major from the kernel's bottom-left pixel.
+struct FrameCodes {
+  int width = 0, height = 0;
+  std::vector<uint32_t> code_a, code_b;
+  std::vector<uint8_t> status_a, status_b;
+};
+
+// Decides batches of probes: the emulated pipeline (MtsEvaluator) or the storage-limited one
+// (ExactEvaluator, host/mts/mts_exact.h), so one search drives both.
+class ProbeEvaluator {
+ public:
+  virtual ~ProbeEvaluator() = default;
+  virtual std::vector<ProbeResult> run(const std::vector<Probe>& probes) = 0;
+};
+
+// Frames per launch: most fighting probes fight in their first frames, so start small; a clean
+// probe needs every frame, so grow.
+int batch_frames(int done, int total);
+
+// Indices of the probes not decided yet: the ones the next launch renders.
+std::vector<size_t> undecided(const std::vector<bool>& decided);
+
+// One launch's row words (flags | fragment pairs << 8 per (active probe, frame, kernel row), the
+// layout kernels/mts.cl and kernels/mts_exact.cl share), folded frame by frame into the active
+// probes' results: a probe is decided at its first frame with a fight or a non-finite value.
+// Returns each active probe's fragment pairs (all frames); those of frames after a probe's
+// deciding one are also added to after_decision.
+std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::vector<size_t>& active,
+                                  int first_frame, int frames, size_t kernel_h, std::vector<ProbeResult>& results,
+                                  std::vector<bool>& decided, uint64_t& after_decision);
+// After the last frame: an undecided probe that saw clipping is clipped, not clean.
+void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided);
+
+// What mts_coverage_audit found over the cached kernel rows of a set of probes (every frame).
+struct CoverageAudit {
+  uint64_t rows = 0;                   // cached rows audited
+  uint64_t b_differs = 0;              // rows where plane B's own coverage differs from plane A's
+  uint64_t certified = 0;              // rows the shortcut would take B's coverage from A's
+  uint64_t certified_but_differs = 0;  // both: the shortcut would be wrong (must be 0)
+};
+
+class MtsEvaluator : public ProbeEvaluator {
+ public:
+  // shortcuts: work the kernels save only where a certificate says the answer stays the same —
+  // bands of rows decided clean from code bounds (mts_frame_bounds) before rasterising, and plane
+  // B's coverage of a row taken from plane A's within A's coverage margin (b_coverage_is_a); off
+  // only to check that they never change a result.
+  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true);
+
+  std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
+  FrameCodes codes(const Probe& probe, int frame);
+  // For the tests: checks the coverage shortcut of mts_raster against plane B's own coverage on
+  // every cached row of every frame of the probes (at most max_plane_a_slots() of them).
+  CoverageAudit audit_coverage(const std::vector<Probe>& probes);
+
+  const KernelVariant& variant() const { return variant_; }
+  uint64_t fragment_pairs() const { return pairs_; }
+  uint64_t launches() const { return launches_; }
+  double kernel_seconds() const { return kernel_seconds_; }  // device time of all launches
+  double wall_seconds() const { return wall_seconds_; }      // host wall time of all launches
+  // Fragment pairs spent on probes by their outcome (index: Outcome), and on the frames of a
+  // launch batch after a probe's deciding frame: where the work goes (-v prints it).
+  const std::array<uint64_t, 4>& pairs_by_outcome() const { return by_outcome_; }
+  uint64_t pairs_after_decision() const { return after_decision_; }
+  // Fragment pairs in bands decided clean from code bounds, without rasterising.
+  uint64_t pairs_decided_by_bounds() const { return by_bounds_; }
+  // Rasterised kernel rows, and those of them whose plane-B coverage was plane A's.
+  uint64_t rows_rasterised() const { return rows_rasterised_; }
+  uint64_t rows_with_coverage_of_a() const { return rows_reused_; }
+  // Distances the plane-A cache may hold at once (cache_plane_a): its memory budget's share.
+  size_t max_plane_a_slots() const { return max_slots_; }
+
+ private:
+  // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
+  // tris and vflags from first_plane on; plane k uses the probe constants (consts) of
+  // (first_plane + k) / per_probe. Returns its event.
+  cl::Event setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe, cl_uint first_plane,
+                  cl::Buffer& tris, cl::Buffer& vflags);
+  // Plane A depends on the distance and frame only, so it is set up, its rows' coverage and codes
+  // found and its code bounds per band computed once per distance, for all frames, and kept for
+  // every later probe of the distance (kernels/mts.cl mts_a_rows, mts_a_bands). Returns each active probe's
+  // slot, filling the slots of distances not held yet; adds their device time, and sets each
+  // active probe's launches to those that filled its slot now (0 when it was held).
+  std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                                     double& kernel_seconds, std::vector<int>& launches);
+  // Sets up plane B of the active probes for their visits [first_frame, first_frame + frames) (a
+  // probe's visit k renders frame (first_visited + k) mod frames), with their constants, plane-A
+  // slots and first frames (slot_buf: slot, first frame per probe); returns the set-up kernel's event.
+  cl::Event setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
+                          const std::vector<cl_uint>& slots, const std::vector<int>& first_visited,
+                          int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
+                          cl::Buffer& tris, cl::Buffer& vflags);
+  // Renders the probes of group (distances that fit in the cache together) frame batch by frame batch.
+  void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
+                 const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
+                 std::vector<bool>& decided);
+  size_t a_slot_bytes() const;
+  // Grows the plane-A cache (emptying it) to hold the probes' distances, within max_slots_;
+  // returns how many distinct distances the probes have.
+  size_t reserve_plane_a(const std::vector<Probe>& probes);
+  size_t code_row_words() const;  // per kernel row of plane A's cached codes (0: not cached)
+  cl_uint bands() const;
+
+  OpenClRuntime& rt_;
+  const Scene& scene_;
+  EvalPair pair_;
+  KernelVariant variant_;
+  // The kernel's bottom-left corner in window coordinates (the kernel is centred in the viewport).
+  float origin_x() const { return static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2); }
+  float origin_y() const { return static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2); }
+
+  cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_, codes_;
+  size_t plane_floats_ = 0;  // floats per plane record (kernels/mts.cl PLANE_STRIDE)
+  size_t row_words_ = 0;     // words per cached row of plane A (ROW_WORDS)
+  size_t band_words_ = 0;    // words per band of plane A (BAND_WORDS)
+  size_t decided_words_ = 0; // words per band of mts_frame_bounds' verdicts (DECIDED_WORDS)
+  size_t max_slots_ = 1;
+  struct PlaneACache {
+    size_t capacity = 0;          // slots, each one distance with all its frames
+    std::vector<double> z;        // the distance in each slot (NaN: free)
+    std::vector<uint64_t> last_use;
+    uint64_t clock = 0;
+    cl::Buffer consts, tris, vflags, rows, bands, codes;
+  } a_;
+  bool shortcuts_ = true;
+  // Frame order: a probe visits the frames cyclically from the one that decided the last fighting
+  // probe of its distance (0 before there is one). Below the MTS a distance fights in few frames,
+  // mostly the same ones probe after probe, so a fighting probe is decided in its first launch
+  // instead of after most frames. Whether a probe fights does not depend on the order; which of
+  // its frames decides it, and so its frames count and a non_finite or clipped seen before the
+  // fight, does (docs/mts.md, frame order).
+  std::map<double, int> last_fight_frame_;
+  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0, rows_rasterised_ = 0, rows_reused_ = 0;
+  std::array<uint64_t, 4> by_outcome_{};
+  double kernel_seconds_ = 0, wall_seconds_ = 0;
+};
+
+}  // namespace depthprec

@@ -1,0 +1,95 @@
+#include "host/mts/mts_exact.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "host/runtime/kernel_variant.h"
+
+namespace depthprec {
+
+namespace {
+
+constexpr size_t kLocal = 16;
+constexpr double kPi = 3.14159265358979323846;
+
+int depth_map(Technique t) {
+  switch (t) {
+    case Technique::standard: return 0;
+    case Technique::infinite: return 1;
+    case Technique::reversed: return 2;
+    case Technique::reversed_infinite:
+    case Technique::inverse_w: return 3;
+    case Technique::log_vertex:
+    case Technique::log_fragment: return 4;
+    case Technique::linear: return 5;
+    default: return 6;  // w_buffer
+  }
+}
+
+}  // namespace
+
+ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair)
+    : rt_(rt), scene_(scene), pair_(pair) {
+  const Technique t = depth_path(scene, pair.technique);
+  const TechniqueInfo& ti = info(t);
+  const std::string options =
+      fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}", base_build_options(false), depth_map(t),
+                  ti.from == DepthFrom::fragment ? 1 : 0, ti.greater ? 1 : 0, scene.storage_format(pair).defines());
+  kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options), "mts_exact");
+}
+
+std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
+  std::vector<ProbeResult> results(probes.size());
+  std::vector<bool> decided(probes.size(), false);
+  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const double tan_half = std::tan(scene_.fov_y_deg * kPi / 360.0);
+  const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
+  int done = 0;
+  while (done < scene_.frames) {
+    const std::vector<size_t> active = undecided(decided);
+    if (active.empty()) break;
+    const int frames = batch_frames(done, scene_.frames);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<double> planes(active.size() * frames * 2 * 16);
+    for (size_t i = 0; i < active.size(); ++i) {
+      const Probe& pr = probes[active[i]];
+      // the mapping's near and far ride in the spare centre.w slots: plane A's layer for
+      // layered, so every probe of a launch keeps its own
+      const ProbeConstants pc = probe_constants(scene_, pair_, pr.z);
+      for (int f = 0; f < frames; ++f)
+        for (int p = 0; p < 2; ++p) {
+          const auto M = model_matrix_f64(scene_, p == 0 ? pr.z : pr.z + pr.s, done + f);
+          double* dst = planes.data() + ((i * frames + f) * 2 + p) * 16;
+          for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 3; ++r) dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
+          dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
+        }
+    }
+    cl::Buffer plane_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(double) * planes.size(),
+                         planes.data());
+    const size_t items = active.size() * frames * kh;
+    cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
+    set_args(kernel_, plane_buf, kw, kh, static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
+             static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
+             static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
+             aspect * tan_half, tan_half, scene_.params.log_k, out, static_cast<cl_uint>(items));
+    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange((items + kLocal - 1) / kLocal * kLocal),
+                                     cl::NDRange(kLocal));
+    std::vector<uint32_t> rows(items);
+    rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    uint64_t after_decision = 0;  // work the -v breakdown counts for the emulated pipeline only
+    fold_launch(rows, active, done, frames, kh, results, decided, after_decision);
+    for (const size_t i : active) {
+      results[i].seconds += secs / static_cast<double>(active.size());
+      results[i].launches += 1;
+    }
+    done += frames;
+  }
+  finish_outcomes(results, decided);
+  return results;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,22 @@
+// The storage-limited pipeline of MTS attribution (kernels/mts_exact.cl): the same probes and
+// frames as MtsEvaluator, with everything before storage exact up to binary64 -- plane B at
+// z + s itself, not fl32(z + s) -- so a search over it measures what storage alone allows.
+#pragma once
+
+#include "host/mts/mts_evaluator.h"
+
+namespace depthprec {
+
+class ExactEvaluator : public ProbeEvaluator {
+ public:
+  ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair);
+  std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
+
+ private:
+  OpenClRuntime& rt_;
+  const Scene& scene_;
+  EvalPair pair_;
+  cl::Kernel kernel_;
+};
+
+}  // namespace depthprec

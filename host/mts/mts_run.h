@@ -1,0 +1,45 @@
+// Runs every pair of a scene through the MTS search and gathers what the reports need.
+#pragma once
+
+#include <functional>
+#include <set>
+
+#include "host/runtime/opencl_runtime.h"
+#include "host/output/report.h"
+
+namespace depthprec {
+
+struct MtsRun {
+  std::vector<MtsRow> rows;  // pair order of the scene, distance order within a pair
+  RunInfo info;
+};
+
+// What a batch run leaves out and where its rows go as they finish.
+struct RunControl {
+  std::set<std::string> done;  // row keys (row_key) finished by an earlier run: not recomputed
+  int shard_index = 0;         // this run computes the rows k with k % shard_count == shard_index,
+  int shard_count = 1;         // k = pair index * distances + distance index (scene order)
+  std::function<void(const MtsRow&)> on_row;  // each row as it finishes (journal)
+  std::function<bool()> stop;                 // interrupt request, checked between launches
+  bool attribute = false;  // also the storage- and arithmetic-limited MTS of every row
+  // Pairs evaluated side by side, each by its own host thread and queue: the device's cores stay
+  // busy while one pair's launch drains or its host waits. Rows are the same for any number;
+  // measured times then include the other pairs' share of the device. Attribution runs one.
+  // 3 on this 2-core machine: the default table 30.5 s with 1, 28.7 with 2, 27.2 with 3, no
+  // better with 4 or 6 and 1.7x the memory (docs/performance.md, session 6).
+  int jobs = 3;
+};
+
+// The kernel variants the scene needs, in pair order (labels): deterministic, whatever a run
+// actually had to build.
+std::vector<std::string> scene_variants(const Scene& scene);
+
+// log: where verbose lines go (variants built, pairs evaluated); null for silence. The rows
+// returned are the ones this run computed, in scene order.
+MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
+                 const std::function<void(const std::string&)>& log = {}, const RunControl& control = {});
+
+// Rows in scene order (pairs as listed, distances as listed).
+void sort_rows(const Scene& scene, std::vector<MtsRow>& rows);
+
+}  // namespace depthprec

@@ -1,0 +1,245 @@
+#include "host/mts/mts_search.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/base/errors.h"
+#include "host/model/resolve.h"
+#include "host/model/technique.h"
+
+namespace depthprec {
+
+namespace {
+// A bisection halves its bracket each probe: past this many, the bracket is below binary64
+// resolution and something else (a bracket that cannot shrink) is going on.
+constexpr int kMaxProbes = 2200;
+}  // namespace
+
+Bisection::Bisection(double z, double rel_precision, double max_separation_factor, double coincide_below)
+    : z_(z), rel_(rel_precision), limit_(max_separation_factor * z), coincide_(coincide_below), next_(z) {}
+
+void Bisection::record(Outcome o) {
+  history_.emplace_back(next_, o);
+  ++probes_;
+  const double s = next_;
+  if (o == Outcome::non_finite) non_finite_ = true;
+  if (o == Outcome::clipped) clipped_ = true;
+  if (o == Outcome::uncovered) uncovered_ = true;
+  const bool not_accepted = o == Outcome::clipped || o == Outcome::uncovered;
+  const bool fights = o == Outcome::fight || o == Outcome::non_finite || (not_accepted && resolved());
+  if (doubling_) {
+    if (fights) {
+      lo_ = s;
+      next_ = 2 * s;
+      if (next_ > limit_) done_ = true;  // unresolvable
+      return;
+    }
+    doubling_ = false;
+    if (o == Outcome::clean) hi_ = s;
+    else ceil_ = s;  // clipped or uncovered: too far
+  } else if (fights) {
+    if (s > hi_) non_monotone_ = true;
+    lo_ = s;
+  } else if (o == Outcome::clean) {
+    if (s < lo_) non_monotone_ = true;
+    hi_ = s;
+  } else {
+    ceil_ = s;
+  }
+  advance();
+}
+
+void Bisection::advance() {
+  const double upper = resolved() ? hi_ : ceil_;
+  if ((upper - lo_) / upper <= rel_ || probes_ >= kMaxProbes || (!resolved() && upper < coincide_)) {
+    done_ = true;
+    return;
+  }
+  next_ = 0.5 * (lo_ + upper);
+  if (!(next_ > lo_ && next_ < upper)) done_ = true;  // bracket at binary64 resolution
+}
+
+std::string MtsRow::flags() const {
+  std::string f;
+  auto add = [&f](bool on, const char* name) {
+    if (on) f += (f.empty() ? "" : ",") + std::string(name);
+  };
+  add(non_finite, "non_finite");
+  add(clipped, "clipped");
+  add(unresolvable, "unresolvable");
+  add(non_monotone, "non_monotone");
+  add(uncovered, "uncovered");
+  add(beyond_far, "beyond_far_plane");
+  add(before_near, "nearer_than_near_plane");
+  add(below_one_code, "below_one_code");
+  return f;
+}
+
+void MtsRow::set_dominant(double rel_precision) {
+  const double v = vertex_bound * (1 + 2 * rel_precision);
+  // unresolvable factors are +inf and dominate
+  if (storage_mts <= v && arithmetic_mts <= v) dominant = "vertex";
+  else dominant = storage_mts >= arithmetic_mts ? "storage" : "arithmetic";
+}
+
+bool MtsRow::factor_above_mts(double rel_precision) const {
+  if (!attributed() || unresolvable) return false;
+  const double limit = mts * (1 + 2 * rel_precision);
+  return storage_mts > limit || arithmetic_mts > limit;
+}
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::resolved: return "resolved";
+    case Verdict::unresolvable: return "unresolvable";
+    case Verdict::non_finite: return "non_finite";
+    case Verdict::clipped: return "clipped";
+    case Verdict::uncovered: return "uncovered";
+    case Verdict::below_vertex_bound: return "below vertex bound";
+    case Verdict::beyond_far_plane: return "beyond far plane";
+    case Verdict::nearer_than_near_plane: return "nearer than near plane";
+  }
+  return "?";
+}
+
+Verdict MtsRow::verdict() const {
+  if (beyond_far) return Verdict::beyond_far_plane;
+  if (before_near) return Verdict::nearer_than_near_plane;
+  if (!unresolvable) {
+    // B within the vertex bound coincides with A and must fight: a clean answer there is no
+    // measurement (e.g. planes that cover no kernel pixel), never a confident number.
+    return mts < vertex_bound ? Verdict::below_vertex_bound : Verdict::resolved;
+  }
+  if (non_finite) return Verdict::non_finite;
+  if (clipped) return Verdict::clipped;
+  if (uncovered) return Verdict::uncovered;
+  return Verdict::unresolvable;
+}
+
+namespace {
+
+// Separations of the stiffness probes: n above hi, n below lo, at relative offsets r, 8r, 64r...
+// (r the bisection's precision; below lo at most halfway to 0).
+std::vector<double> stiffness_separations(double lo, double hi, double r, int n) {
+  std::vector<double> out;
+  double step = r;
+  for (int k = 0; k < n; ++k, step *= 8) {
+    out.push_back(hi * (1 + step));
+    if (lo > 0) out.push_back(lo * (1 - std::min(step, 0.5)));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
+                                const std::vector<double>& distances,
+                                const std::function<void(const MtsRow&)>& on_row,
+                                const std::function<bool()>& stop) {
+  std::vector<Bisection> searches;
+  std::vector<MtsRow> rows(distances.size());
+  // Per distance: 0 bisecting, 1 stiffness probes to run, 2 finished.
+  std::vector<int> phase(distances.size(), 0);
+  std::vector<std::vector<std::pair<double, Outcome>>> extra(distances.size());
+  for (size_t i = 0; i < distances.size(); ++i) {
+    rows[i].pair = pair;
+    rows[i].z = distances[i];
+    rows[i].vertex_bound = vertex_bound(distances[i]);
+    searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor, rows[i].vertex_bound);
+    if (has_far_plane(pair.technique) && distances[i] > scene.far) {
+      rows[i].beyond_far = true;  // plane A itself is clipped: nothing to search
+      phase[i] = 2;
+    } else if (info(pair.technique).clips_near && distances[i] < scene.near) {
+      rows[i].before_near = true;  // likewise
+      phase[i] = 2;
+    }
+  }
+  auto finish = [&](size_t i) {
+    const Bisection& b = searches[i];
+    MtsRow& row = rows[i];
+    if (!row.beyond_far && !row.before_near) {
+      row.probes = b.probes() + static_cast<int>(extra[i].size());
+      row.lo = b.lo();
+      row.hi = b.hi();
+      row.unresolvable = !b.resolved();
+      row.mts = b.hi();
+      row.mts_seen = b.resolved() ? seen_separation(row.z, b.hi()) : b.hi();
+      row.non_finite = b.saw_non_finite();
+      row.clipped = !b.resolved() && b.saw_clipped();
+      if (b.resolved()) {
+        const double width = code_interval_width(
+            mapping_at(pair.technique, scene.near, scene.far, scene.params, row.z), scene.storage_format(pair), row.z);
+        row.below_one_code = row.mts_seen < width * (1 - 2 * scene.rel_precision);
+        if (row.below_one_code) row.code_width = width;
+      }
+      auto note = [&row](double s, Outcome o) {
+        if (o == Outcome::fight || o == Outcome::non_finite) row.fight_max = std::max(row.fight_max, s);
+        if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
+        if (o == Outcome::non_finite) row.non_finite = true;
+      };
+      for (const auto& [s, o] : b.history()) note(s, o);
+      for (const auto& [s, o] : extra[i]) note(s, o);
+      row.non_monotone = b.non_monotone() || row.fight_max > row.clean_min;
+    } else {
+      row.unresolvable = true;
+      row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
+    }
+    if (on_row) on_row(row);
+  };
+  for (size_t i = 0; i < distances.size(); ++i)
+    if (phase[i] == 2) finish(i);
+  for (;;) {
+    if (stop && stop()) throw Error(ExitCode::interrupted, "interrupted");
+    std::vector<std::pair<size_t, bool>> owner;  // (distance, is a stiffness probe)
+    std::vector<Probe> probes;
+    for (size_t i = 0; i < searches.size(); ++i) {
+      if (phase[i] == 0) {
+        owner.push_back({i, false});
+        probes.push_back({distances[i], searches[i].next()});
+      } else if (phase[i] == 1) {
+        for (double s : stiffness_separations(searches[i].lo(), searches[i].hi(), scene.rel_precision,
+                                               scene.stiffness_probes)) {
+          owner.push_back({i, true});
+          probes.push_back({distances[i], s});
+        }
+      }
+    }
+    if (probes.empty()) break;
+    const auto results = evaluator.run(probes);
+    // A launch renders every probe in it: a row whose probes (stiffness probes, several at once)
+    // shared this round's launches took part in as many as its busiest probe, not their sum, so
+    // a row never counts more launches than the run made.
+    std::vector<uint64_t> round_launches(rows.size(), 0);
+    for (size_t k = 0; k < probes.size(); ++k)
+      round_launches[owner[k].first] = std::max(round_launches[owner[k].first], results[k].launches);
+    for (size_t i = 0; i < rows.size(); ++i) rows[i].launches += round_launches[i];
+    for (size_t k = 0; k < probes.size(); ++k) {
+      const size_t i = owner[k].first;
+      MtsRow& row = rows[i];
+      const ProbeResult& r = results[k];
+      row.frames += static_cast<uint64_t>(r.frames);
+      row.fragment_pairs += r.fragment_pairs;
+      row.seconds += r.seconds;
+      row.kernel_seconds += r.kernel_seconds;
+      row.uncovered |= r.any_uncovered;
+      row.clipped_probes += r.any_clipped ? 1 : 0;
+      // Nothing was compared at an uncovered pixel: such a probe is never clean.
+      const Outcome o = r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
+      if (owner[k].second) extra[i].emplace_back(probes[k].s, o);
+      else searches[i].record(o);
+    }
+    for (size_t i = 0; i < searches.size(); ++i) {
+      if (phase[i] == 1) {
+        phase[i] = 2;
+        finish(i);
+      } else if (phase[i] == 0 && searches[i].done()) {
+        const bool stiff = searches[i].resolved() && scene.stiffness_probes > 0;
+        phase[i] = stiff ? 1 : 2;
+        if (!stiff) finish(i);
+      }
+    }
+  }
+  return rows;
+}
+
+}  // namespace depthprec

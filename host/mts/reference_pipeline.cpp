@@ -1,0 +1,198 @@
+#include "host/mts/reference_pipeline.h"
+
+#include <cmath>
+#include <vector>
+
+#include "host/runtime/kernel_variant.h"
+
+namespace depthprec {
+
+namespace {
+
+struct Vertex {
+  float x, y, d, q;
+};
+
+struct Edge {
+  float ax, ay, dx, dy;
+  bool negate, owns;
+};
+
+struct Triangle {
+  Edge e[3];
+  bool valid;
+  float x0, y0, d0, dzdx, dzdy, q0, dqdx, dqdy, ymin, ymax;
+};
+
+enum Status { ok = 0, clipped = 1, non_finite = 2, uncovered = 3 };
+
+struct Plane {
+  std::vector<Triangle> tris;
+  bool non_finite = false;
+};
+
+
+Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, const Mat4f& M) {
+  const TechniqueInfo& ti = info(depth_path(s, pair.technique));
+  const bool gl = pair.depth_range == DepthRange::gl;
+  const int g = s.plane_subdivisions;
+  const float hw = 0.5f * static_cast<float>(s.viewport_w);
+  const float hh = 0.5f * static_cast<float>(s.viewport_h);
+  Plane plane;
+  std::vector<Vertex> v((g + 1) * (g + 1));
+  for (int j = 0; j <= g; ++j) {
+    for (int i = 0; i <= g; ++i) {
+      const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
+                            static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
+      float clip[4];
+      if (s.pipeline.compose == Compose::premultiplied) {
+        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(M, r, obj);
+      } else {
+        float eye[4];
+        for (int r = 0; r < 4; ++r) eye[r] = mat_row_dot(M, r, obj);
+        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye);
+      }
+      if (ti.from == DepthFrom::vertex_log) {
+        const float t = std::log(pc.log_k * clip[3] + 1.0f);
+        clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];
+      }
+      const float inv_w = 1.0f / clip[3];
+      float ndc[3];
+      for (int r = 0; r < 3; ++r)
+        ndc[r] = s.pipeline.divide == Divide::exact ? clip[r] / clip[3] : clip[r] * inv_w;
+      Vertex& vx = v[j * (g + 1) + i];
+      vx.x = ndc[0] * hw + hw;
+      vx.y = ndc[1] * hh + hh;
+      vx.d = gl ? ndc[2] * 0.5f + 0.5f : ndc[2];
+      vx.q = inv_w;
+      if (!std::isfinite(vx.x) || !std::isfinite(vx.y) || !std::isfinite(vx.q)) plane.non_finite = true;
+      if (ti.from != DepthFrom::fragment && !std::isfinite(vx.d)) plane.non_finite = true;
+    }
+  }
+  for (int t = 0; t < 2 * g * g; ++t) {
+    const int quad = t / 2, qi = quad % g, qj = quad / g;
+    const int a = qj * (g + 1) + qi, b = a + 1, c = a + g + 2, d = a + g + 1;
+    const int vi[3] = {a, (t & 1) ? c : b, (t & 1) ? d : c};
+    Triangle tri{};
+    for (int e = 0; e < 3; ++e) {
+      const int va = vi[e], vb = vi[(e + 1) % 3];
+      const Vertex& lo = v[std::min(va, vb)];
+      const Vertex& hi = v[std::max(va, vb)];
+      tri.e[e] = {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y, va > vb, false};
+    }
+    const Vertex& p2 = v[vi[2]];
+    float orient = tri.e[0].dx * (p2.y - tri.e[0].ay) - tri.e[0].dy * (p2.x - tri.e[0].ax);
+    if (tri.e[0].negate) orient = -orient;
+    if (orient < 0.0f)
+      for (auto& e : tri.e) e.negate = !e.negate;
+    tri.valid = orient != 0.0f && std::isfinite(orient);
+    for (auto& e : tri.e) {
+      const float sg = e.negate ? -1.0f : 1.0f;
+      const float dx = sg * e.dx, dy = sg * e.dy;
+      e.owns = dy < 0.0f || (dy == 0.0f && dx < 0.0f);
+    }
+    const Vertex &v0 = v[vi[0]], &v1 = v[vi[1]], &v2 = v[vi[2]];
+    const float e1x = v1.x - v0.x, e1y = v1.y - v0.y, e2x = v2.x - v0.x, e2y = v2.y - v0.y;
+    const float det = e1x * e2y - e2x * e1y;
+    const float e1d = v1.d - v0.d, e2d = v2.d - v0.d, e1q = v1.q - v0.q, e2q = v2.q - v0.q;
+    tri.x0 = v0.x;
+    tri.y0 = v0.y;
+    tri.d0 = v0.d;
+    tri.dzdx = (e1d * e2y - e2d * e1y) / det;
+    tri.dzdy = (e2d * e1x - e1d * e2x) / det;
+    tri.q0 = v0.q;
+    tri.dqdx = (e1q * e2y - e2q * e1y) / det;
+    tri.dqdy = (e2q * e1x - e1q * e2x) / det;
+    tri.ymin = std::fmin(std::fmin(v0.y, v1.y), v2.y);
+    tri.ymax = std::fmax(std::fmax(v0.y, v1.y), v2.y);
+    plane.tris.push_back(tri);
+  }
+  return plane;
+}
+
+bool inside(const Triangle& t, float px, float py) {
+  for (const Edge& e : t.e) {
+    float E = e.dx * (py - e.ay) - e.dy * (px - e.ax);
+    if (e.negate) E = -E;
+    if (!(E > 0.0f || (E == 0.0f && e.owns))) return false;
+  }
+  return true;
+}
+
+class PlaneRow {
+ public:
+  PlaneRow(const Plane& p, float py) : plane_(p) {
+    for (size_t t = 0; t < p.tris.size(); ++t)
+      if (p.tris[t].valid && p.tris[t].ymin <= py && py <= p.tris[t].ymax) cand_.push_back(static_cast<int>(t));
+  }
+  // The lowest-index triangle whose edge tests pass (candidates are in index order).
+  int find(float px, float py) const {
+    for (int c : cand_)
+      if (inside(plane_.tris[c], px, py)) return c;
+    return -1;
+  }
+
+ private:
+  const Plane& plane_;
+  std::vector<int> cand_;
+};
+
+Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
+                const ProbeConstants& pc, const Triangle& t, float px, float py, uint32_t& code) {
+  const TechniqueInfo& ti = info(depth_path(s, pair.technique));
+  const float tx = px - t.x0, ty = py - t.y0;
+  float d;
+  if (ti.from == DepthFrom::fragment) {
+    const float q = (t.q0 + t.dqdx * tx) + t.dqdy * ty;
+    const float w = 1.0f / q;
+    if (!std::isfinite(w)) return non_finite;
+    if (w < pc.near || w > pc.far) return clipped;
+    switch (ti.fragment) {
+      case FragmentDepth::linear: d = (w - pc.near) / pc.range; break;
+      case FragmentDepth::w_buffer: d = w / pc.far; break;
+      default: d = std::log(pc.log_k * w + 1.0f) / pc.log_L; break;
+    }
+    if (std::isnan(d)) return non_finite;
+    d = std::fmin(std::fmax(d, 0.0f), 1.0f);
+  } else {
+    d = (t.d0 + t.dzdx * tx) + t.dzdy * ty;
+    if (!std::isfinite(d)) return non_finite;
+    if (!(d >= 0.0f && d <= 1.0f)) return clipped;
+  }
+  code = fmt.encode(d);
+  return ok;
+}
+
+}  // namespace
+
+FrameCodes reference_frame(const Scene& s, const EvalPair& pair, const Probe& probe, int frame) {
+  const StorageFormat fmt = s.storage_format(pair);
+  const ProbeConstants pc = probe_constants(s, pair, probe.z);
+  const Plane a = setup_plane(s, pair, pc, plane_matrix(s, pc, probe.z, frame));
+  const Plane b = setup_plane(s, pair, pc, plane_matrix(s, pc, probe.z + probe.s, frame));
+  const float ox = static_cast<float>((s.viewport_w - s.kernel_w) / 2);
+  const float oy = static_cast<float>((s.viewport_h - s.kernel_h) / 2);
+  FrameCodes fc;
+  fc.width = s.kernel_w;
+  fc.height = s.kernel_h;
+  for (int y = 0; y < s.kernel_h; ++y) {
+    const float py = oy + static_cast<float>(y) + 0.5f;
+    PlaneRow ra(a, py), rb(b, py);
+    for (int x = 0; x < s.kernel_w; ++x) {
+      const float px = ox + static_cast<float>(x) + 0.5f;
+      uint32_t ca = 0, cb = 0;
+      const int ta = ra.find(px, py), tb = rb.find(px, py);
+      Status sa = ta < 0 ? uncovered : fragment(s, pair, fmt, pc, a.tris[ta], px, py, ca);
+      Status sb = tb < 0 ? uncovered : fragment(s, pair, fmt, pc, b.tris[tb], px, py, cb);
+      if (a.non_finite) sa = non_finite;
+      if (b.non_finite) sb = non_finite;
+      fc.code_a.push_back(ca);
+      fc.code_b.push_back(cb);
+      fc.status_a.push_back(static_cast<uint8_t>(sa));
+      fc.status_b.push_back(static_cast<uint8_t>(sb));
+    }
+  }
+  return fc;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,243 @@
+#include "host/output/report.h"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "host/base/errors.h"
+#include "host/output/row_json.h"
+#include "host/output/text_table.h"
+#include "host/base/version.h"
+
+namespace depthprec {
+
+using nlohmann::json;
+
+std::string human(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (std::isnan(v)) return "nan";
+  if (v == 0) return "0";
+  return fmt::format("{:.4g}", v);
+}
+
+std::string exact(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return fmt::format("{:.17g}", v);
+}
+
+namespace {
+
+json header(const Scene& scene, const RunInfo& run) {
+  json h = {{"program", "depthprec"},
+            {"version", kVersion},
+            {"device", run.device},
+            {"scene_source", scene.source},
+            {"scene", scene.json},
+            {"kernel_variants", run.variants},
+            {"fragment_pairs", run.fragment_pairs},
+            {"kind", run.kind},
+            {"separation_reported", "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)"}};
+  if (!run.shard.empty()) h["shard"] = run.shard;
+  if (run.timing) {  // measured, and specific to this process (a resumed run does less)
+    h["wall_seconds"] = run.wall_seconds;
+    h["kernel_seconds"] = run.kernel_seconds;
+    h["kernel_launches"] = run.launches;
+  }
+  return h;
+}
+
+
+// A table cell: the MTS, or the verdict that replaces it (unresolvable stays "inf", Gilg's ∞).
+std::string table_cell(const MtsRow& r, bool full) {
+  switch (r.verdict()) {
+    case Verdict::resolved:
+    case Verdict::unresolvable: return full ? exact(r.mts) : human(r.mts);
+    case Verdict::non_finite: return "non-finite";
+    case Verdict::clipped: return "clipped";
+    case Verdict::uncovered: return "uncovered";
+    case Verdict::below_vertex_bound: return "<vb";
+    case Verdict::beyond_far_plane: return "beyond far";
+    case Verdict::nearer_than_near_plane: return "before near";
+  }
+  return "?";
+}
+
+std::string footer(const RunInfo& run) {
+  std::string s = fmt::format("fragment pairs evaluated: {}, kernel variants: {}", run.fragment_pairs,
+                              run.variants.size());
+  if (run.timing && run.wall_seconds > 0)
+    s += fmt::format(", kernel launches: {}, wall time: {:.2f} s (kernels {:.2f} s), {} evaluated by this run, "
+                     "{:.3g} fragment pairs/s",
+                     run.launches, run.wall_seconds, run.kernel_seconds, run.evaluated_pairs,
+                     static_cast<double>(run.evaluated_pairs) / run.wall_seconds);
+  return s;
+}
+
+}  // namespace
+
+std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
+                        const std::string& format) {
+  if (format == "json") {
+    json j = header(scene, run);
+    j["rows"] = json::array();
+    for (const auto& r : rows) j["rows"].push_back(row_to_json(r, run.timing));
+    return j.dump(2) + "\n";
+  }
+  const bool full = format == "csv";
+  auto num = [full](double v) { return full ? exact(v) : human(v); };
+  std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true},
+                              {"z"}, {"mts"}, {"lo"}, {"hi"}, {"mts_seen"}, {"vertex_bound"},
+                              {"mts/vb"}, {"mts_upper"}, {"verdict", true}, {"probes"}, {"frames"},
+                              {"fragment_pairs"}, {"launches"}};
+  bool attributed = false;
+  for (const auto& r : rows) attributed |= r.attributed();
+  if (attributed)
+    for (const char* c : {"storage_mts", "arithmetic_mts"}) cols.push_back({c});
+  if (attributed) cols.push_back({"dominant", true});
+  if (run.timing) {
+    cols.push_back({"seconds"});
+    cols.push_back({"kernel_s"});
+  }
+  cols.push_back({"flags", true});
+  std::vector<std::vector<std::string>> cells;
+  for (const auto& r : rows) {
+    std::vector<std::string> c = {info(r.pair.technique).name, r.pair.format,
+                                  to_string(r.pair.depth_range), num(r.z), num(r.mts), num(r.lo),
+                                  num(r.hi), num(r.mts_seen), num(r.vertex_bound),
+                                  num(r.mts / r.vertex_bound),
+                                  r.non_monotone && r.fight_max > r.mts ? num(r.fight_max) : "-",
+                                  to_string(r.verdict()), std::to_string(r.probes),
+                                  std::to_string(r.frames), std::to_string(r.fragment_pairs),
+                                  std::to_string(r.launches)};
+    if (attributed) {
+      c.push_back(num(r.storage_mts));
+      c.push_back(num(r.arithmetic_mts));
+      c.push_back(r.dominant + (r.factor_above_mts(scene.rel_precision) ? " (factor > mts)" : ""));
+    }
+    if (run.timing) {
+      c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
+      c.push_back(full ? exact(r.kernel_seconds) : fmt::format("{:.3f}", r.kernel_seconds));
+    }
+    c.push_back(r.flags());
+    cells.push_back(c);
+  }
+  if (format == "csv") return csv(cols, cells);
+  std::string out = grid(cols, cells, format == "markdown");
+  out += (format == "markdown" ? "\n" : "") + footer(run) + "\n";
+  return out;
+}
+
+std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
+                         const std::string& format) {
+  if (format == "json") return render_rows(scene, rows, run, "json");
+  // Columns in the scene's pair order, rows in distance order.
+  std::vector<std::string> labels;
+  std::map<std::string, size_t> col_of;
+  for (const auto& p : scene.evaluate) {
+    const std::string l = p.label();
+    if (col_of.emplace(l, labels.size()).second) labels.push_back(l);
+  }
+  std::vector<double> zs = scene.distances;
+  std::map<std::pair<double, std::string>, const MtsRow*> at;
+  for (const auto& r : rows) at[{r.z, r.pair.label()}] = &r;
+  const bool full = format == "csv";
+  std::vector<Column> cols = {{"z"}, {"vertex_bound"}};
+  for (const auto& l : labels) cols.push_back({l});
+  std::vector<std::vector<std::string>> cells;
+  bool any_mark = false, any_below_code = false;
+  for (double z : zs) {
+    std::vector<std::string> c = {full ? exact(z) : human(z), full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
+    for (const auto& l : labels) {
+      const auto it = at.find({z, l});
+      if (it == at.end()) {
+        c.push_back("");
+        continue;
+      }
+      const MtsRow& r = *it->second;
+      std::string v = table_cell(r, full);
+      if (r.attributed() && !full) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
+      if (!full && r.below_one_code) {
+        v += "~";
+        any_below_code = true;
+      }
+      if (!full && (r.non_monotone || r.non_finite || r.clipped || r.uncovered)) {
+        v += "*";
+        any_mark = true;
+      }
+      c.push_back(v);
+    }
+    cells.push_back(c);
+  }
+  if (format == "csv") return csv(cols, cells);
+  const bool md = format == "markdown";
+  std::string out;
+  if (md) {
+    out += fmt::format("MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
+                       "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
+                       "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
+                       scene.name, human(scene.near), human(scene.far), scene.kernel_w,
+                       scene.kernel_h, scene.frames, human(scene.rel_precision));
+  }
+  out += grid(cols, cells, md);
+  if (any_mark) {
+    out += md ? "\n" : "";
+    out += "* flagged (non_monotone, uncovered, or a probe was non-finite or clipped); see --format-out json\n";
+  }
+  if (any_below_code) {
+    out += md ? "\n" : "";
+    out += "~ below one storage code at its z (flag below_one_code): the planes' depths in the kernel did not "
+           "span a code, so where z falls between codes decided it; a z nearby can need up to one code "
+           "(code_width in --format-out json)\n";
+  }
+  bool attributed = false;
+  for (const auto& r : rows) attributed |= r.attributed();
+  if (attributed) {
+    out += md ? "\n" : "\n";
+    out += "S / A / V: the dominant factor -- storage (the MTS of the binary64 pipeline stored in the format), "
+           "arithmetic (the binary32 pipeline without storage quantisation) or vertex (the vertex bound). "
+           "The factors:\n\n";
+    std::vector<Column> acols = {{"pair", true}, {"z"}, {"mts"}, {"storage"}, {"arithmetic"}, {"vertex_bound"},
+                                 {"dominant", true}, {"note", true}};
+    std::vector<std::vector<std::string>> acells;
+    for (const auto& r : rows) {
+      if (!r.attributed()) continue;
+      acells.push_back({r.pair.label(), human(r.z), table_cell(r, false), human(r.storage_mts),
+                        human(r.arithmetic_mts), human(r.vertex_bound), r.dominant,
+                        r.factor_above_mts(scene.rel_precision) ? "a factor exceeds the MTS" : ""});
+    }
+    out += grid(acols, acells, md);
+  }
+  out += (md ? "\n" : "") + footer(run) + "\n";
+  return out;
+}
+
+void check_writable(const std::string& path) {
+  if (path.empty()) return;
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "w");
+  if (!f) throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+  std::fclose(f);
+  std::remove(tmp.c_str());
+}
+
+void write_output(const std::string& path, const std::string& text) {
+  if (path.empty()) {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "w");
+  if (!f) throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+}
+
+}  // namespace depthprec

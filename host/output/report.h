@@ -1,0 +1,42 @@
+// Renders MTS results: the long form (one line per pair and distance, every field of docs/spec.md 5.4)
+// and the batch precision table (one row per distance, one column per pair), as aligned text,
+// CSV, JSON (with a header object) or Markdown.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "host/mts/mts_search.h"
+#include "host/model/scene.h"
+
+namespace depthprec {
+
+struct RunInfo {
+  std::string device;
+  std::vector<std::string> variants;  // kernel variants built, as labels
+  uint64_t fragment_pairs = 0;  // the rows' work: what the measurement takes, however it was run
+  uint64_t evaluated_pairs = 0;  // what this process's kernels evaluated (rows taken over from an
+                                 // identical computation, or resumed, cost nothing): the rate's numerator
+  uint64_t launches = 0;
+  double wall_seconds = 0;
+  double kernel_seconds = 0;
+  bool timing = true;  // false: leave every measured time out (--no-timing)
+  std::string kind = "mts";  // "mts" (one line per row) or "table" (wide): what merge re-renders
+  std::string shard;         // "i/N" when this output is one shard of a batch
+};
+
+std::string human(double v);  // 4 significant digits, "inf", "0"
+std::string exact(double v);  // round-trippable binary64
+
+std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
+                        const std::string& format);
+std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
+                         const std::string& format);
+
+// Writes text to path atomically (temporary file, then rename), or to stdout when path is "".
+// Throws OutputError naming the path.
+void write_output(const std::string& path, const std::string& text);
+// Fails early, before a long run, when path cannot be written.
+void check_writable(const std::string& path);
+
+}  // namespace depthprec

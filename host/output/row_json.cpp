@@ -1,0 +1,108 @@
+#include "host/output/row_json.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+
+namespace depthprec {
+
+using nlohmann::json;
+
+namespace {
+
+json number(double v) { return json_number(v); }
+
+double read_number(const json& j, const char* key) {
+  if (!j.contains(key)) throw InputError(fmt::format("row is missing '{}'", key));
+  return number_from_json(j.at(key), std::string("row field ") + key);
+}
+
+}  // namespace
+
+std::string row_key(const EvalPair& pair, double z) { return fmt::format("{}@{:.17g}", pair.label(), z); }
+
+json row_to_json(const MtsRow& r, bool timing) {
+  json j = {{"technique", info(r.pair.technique).name},
+            {"format", r.pair.format},
+            {"depth_range", to_string(r.pair.depth_range)},
+            {"z", r.z},
+            {"mts", number(r.mts)},
+            {"lo", r.lo},
+            {"hi", number(r.hi)},
+            {"mts_seen", number(r.mts_seen)},
+            {"vertex_bound", r.vertex_bound},
+            {"probes", r.probes},
+            {"clipped_probes", r.clipped_probes},
+            {"frames", r.frames},
+            {"fragment_pairs", r.fragment_pairs},
+            {"kernel_launches", r.launches},
+            {"fight_max", number(r.fight_max)},
+            {"clean_min", number(r.clean_min)},
+            {"flags", r.flags()},
+            {"verdict", to_string(r.verdict())}};
+  if (r.below_one_code) j["code_width"] = number(r.code_width);
+  if (r.attributed()) {
+    j["storage_mts"] = number(r.storage_mts);
+    j["arithmetic_mts"] = number(r.arithmetic_mts);
+    j["dominant"] = r.dominant;
+  }
+  if (timing) {
+    j["seconds"] = r.seconds;
+    j["kernel_seconds"] = r.kernel_seconds;
+  }
+  return j;
+}
+
+MtsRow row_from_json(const json& j) {
+  if (!j.is_object()) throw InputError("a row must be a JSON object");
+  MtsRow r;
+  try {
+    r.pair.technique = parse_technique(j.at("technique").get<std::string>());
+    r.pair.format = j.at("format").get<std::string>();
+    r.pair.depth_range = parse_depth_range(j.at("depth_range").get<std::string>());
+    r.probes = j.at("probes").get<int>();
+    r.clipped_probes = j.at("clipped_probes").get<int>();
+    r.frames = j.at("frames").get<uint64_t>();
+    r.fragment_pairs = j.at("fragment_pairs").get<uint64_t>();
+    r.launches = j.at("kernel_launches").get<uint64_t>();
+    const std::string flags = j.at("flags").get<std::string>();
+    std::stringstream ss(flags);
+    std::string f;
+    while (std::getline(ss, f, ',')) {
+      if (f == "non_finite") r.non_finite = true;
+      else if (f == "clipped") r.clipped = true;
+      else if (f == "unresolvable") r.unresolvable = true;
+      else if (f == "non_monotone") r.non_monotone = true;
+      else if (f == "uncovered") r.uncovered = true;
+      else if (f == "beyond_far_plane") r.beyond_far = true;
+      else if (f == "nearer_than_near_plane") r.before_near = true;
+      else if (f == "below_one_code") r.below_one_code = true;
+      else throw InputError(fmt::format("unknown row flag '{}'", f));
+    }
+  } catch (const json::exception& e) {
+    throw InputError(fmt::format("malformed row {}: {}", j.dump(), e.what()));
+  }
+  r.z = read_number(j, "z");
+  r.mts = read_number(j, "mts");
+  r.lo = read_number(j, "lo");
+  r.hi = read_number(j, "hi");
+  r.mts_seen = read_number(j, "mts_seen");
+  r.vertex_bound = read_number(j, "vertex_bound");
+  r.fight_max = read_number(j, "fight_max");
+  if (j.contains("storage_mts")) {
+    r.storage_mts = read_number(j, "storage_mts");
+    r.arithmetic_mts = read_number(j, "arithmetic_mts");
+    r.dominant = j.value("dominant", "");
+  }
+  r.clean_min = read_number(j, "clean_min");
+  if (r.below_one_code) r.code_width = read_number(j, "code_width");
+  if (j.contains("seconds")) r.seconds = read_number(j, "seconds");
+  if (j.contains("kernel_seconds")) r.kernel_seconds = read_number(j, "kernel_seconds");
+  return r;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,50 @@
+#include "host/runtime/kernel_variant.h"
+
+#include <fmt/format.h>
+
+#include "host/runtime/opencl_runtime.h"
+
+namespace depthprec {
+
+Technique depth_path(const Scene& scene, Technique t) {
+  return t == Technique::layered ? scene.params.layer_mapping : t;
+}
+
+KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
+  const TechniqueInfo& ti = info(depth_path(scene, pair.technique));
+  const StorageFormat f = scene.storage_format(pair);
+  const int depth_from = ti.from == DepthFrom::projection ? 0 : ti.from == DepthFrom::vertex_log ? 1 : 2;
+  const int frag = ti.fragment == FragmentDepth::linear     ? 1
+                   : ti.fragment == FragmentDepth::w_buffer ? 2
+                   : ti.fragment == FragmentDepth::log      ? 3
+                                                            : 0;
+  const Pipeline& p = scene.pipeline;
+  // Log depth through the library log is monotone only up to its error, <= 3 ulp in OpenCL 1.2
+  // (sec. 7.4); with the division after it, d is within 4 ulp of a monotone function of w. In
+  // codes that is at most s = ceil(4 ulp / code spacing) + 1 on each side, and a piece decided
+  // from its ends needs B's and A's end codes 4 s apart (both planes, both ends).
+  long long log_slack = 0;
+  if (frag == 3) {
+    const df_format& fs = f.spec();
+    const int fine = fs.kind == DF_KIND_UNORM ? static_cast<int>(fs.bits) + 2 : fs.man_bits;
+    const long long s = (fine > 21 ? (1LL << (fine - 21)) : 1LL) + 1;
+    log_slack = 4 * s;
+  }
+  KernelVariant v;
+  v.program = "kernels/mts.cl";
+  v.cache_a_codes = depth_from == 2 && !p.contraction;
+  v.options = fmt::format(
+      "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DRANGE_GL={} -DCOMPARE_GREATER={} "
+      "-DDIVIDE_EXACT={} -DCOMPOSE_PREMULT={} -DCONTRACT={} -DLOG_CODE_SLACK={}UL -DCACHE_A_CODES={} {}",
+      base_build_options(p.denormals == Denormals::flush), scene.plane_subdivisions, depth_from,
+      frag, pair.depth_range == DepthRange::gl ? 1 : 0, ti.greater ? 1 : 0,
+      p.divide == Divide::exact ? 1 : 0, p.compose == Compose::premultiplied ? 1 : 0,
+      p.contraction ? 1 : 0, log_slack, v.cache_a_codes ? 1 : 0, f.defines());
+  const char* from = depth_from == 0 ? "projection" : depth_from == 1 ? "vertex_log" : "fragment";
+  const char* fd = frag == 1 ? "linear" : frag == 2 ? "w_buffer" : frag == 3 ? "log" : "";
+  v.label = fmt::format("{}{}{}/{}/{}/{}", from, frag ? ":" : "", fd, ti.greater ? "GEQUAL" : "LEQUAL",
+                        to_string(pair.depth_range), f.name());
+  return v;
+}
+
+}  // namespace depthprec

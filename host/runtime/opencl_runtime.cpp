@@ -1,0 +1,190 @@
+#include "host/runtime/opencl_runtime.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+
+#include "host/runtime/embedded_sources.h"
+#include "host/base/errors.h"
+
+namespace depthprec {
+
+namespace {
+
+constexpr const char* kNoPlatform =
+    "no OpenCL platform found: install the PoCL CPU driver (apt-get install pocl-opencl-icd, or "
+    "run scripts/setup.sh)";
+
+std::vector<cl::Platform> platforms_or_throw() {
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error&) {
+    platforms.clear();
+  }
+  if (platforms.empty()) throw RuntimeError(kNoPlatform);
+  return platforms;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back()))))
+    s.pop_back();
+  return s;
+}
+
+DeviceInfo describe(const cl::Platform& p, const cl::Device& d, int pi, int di) {
+  DeviceInfo info;
+  info.platform_index = pi;
+  info.device_index = di;
+  info.platform_name = trim(p.getInfo<CL_PLATFORM_NAME>());
+  info.platform_version = trim(p.getInfo<CL_PLATFORM_VERSION>());
+  info.device_name = trim(d.getInfo<CL_DEVICE_NAME>());
+  const auto type = d.getInfo<CL_DEVICE_TYPE>();
+  info.device_type = (type & CL_DEVICE_TYPE_CPU)   ? "CPU"
+                     : (type & CL_DEVICE_TYPE_GPU) ? "GPU"
+                                                   : "other";
+  info.opencl_c_version = trim(d.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
+  info.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+  info.fp64 = d.getInfo<CL_DEVICE_DOUBLE_FP_CONFIG>() != 0;
+  info.fp32_denormals = (d.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_DENORM) != 0;
+  info.global_mem_bytes = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  return info;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<DeviceInfo> out;
+  const auto platforms = platforms_or_throw();
+  for (size_t pi = 0; pi < platforms.size(); ++pi) {
+    std::vector<cl::Device> devices;
+    try {
+      platforms[pi].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error&) {
+      continue;  // a platform with no device is listed by clinfo, not by us
+    }
+    for (size_t di = 0; di < devices.size(); ++di)
+      out.push_back(describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di)));
+  }
+  return out;
+}
+
+OpenClRuntime::OpenClRuntime(const std::string& selector_arg) {
+  std::string selector = selector_arg;
+  if (selector.empty()) {
+    if (const char* env = std::getenv(kDeviceEnvVar)) selector = env;
+  }
+  const auto platforms = platforms_or_throw();
+  struct Candidate {
+    cl::Platform platform;
+    cl::Device device;
+    DeviceInfo info;
+  };
+  std::vector<Candidate> all;
+  for (size_t pi = 0; pi < platforms.size(); ++pi) {
+    std::vector<cl::Device> devices;
+    try {
+      platforms[pi].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error&) {
+      continue;
+    }
+    for (size_t di = 0; di < devices.size(); ++di)
+      all.push_back({platforms[pi], devices[di],
+                     describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di))});
+  }
+  if (all.empty()) throw RuntimeError(kNoPlatform);
+
+  const Candidate* chosen = nullptr;
+  if (selector.empty()) {
+    for (const auto& c : all)
+      if (!chosen && c.info.device_type == "CPU" &&
+          lower(c.info.platform_name).find("portable computing language") != std::string::npos)
+        chosen = &c;
+    for (const auto& c : all)
+      if (!chosen && c.info.device_type == "CPU") chosen = &c;
+    if (!chosen) chosen = &all.front();
+  } else {
+    int pi = -1, di = -1;
+    char tail = 0;
+    if (std::sscanf(selector.c_str(), "%d:%d%c", &pi, &di, &tail) == 2) {
+      for (const auto& c : all)
+        if (c.info.platform_index == pi && c.info.device_index == di) chosen = &c;
+    } else {
+      for (const auto& c : all)
+        if (!chosen && (lower(c.info.device_name).find(lower(selector)) != std::string::npos ||
+                        lower(c.info.platform_name).find(lower(selector)) != std::string::npos))
+          chosen = &c;
+    }
+    if (!chosen) {
+      std::string known;
+      for (const auto& c : all)
+        known += fmt::format("\n  {}:{}  {} / {}", c.info.platform_index, c.info.device_index,
+                             c.info.platform_name, c.info.device_name);
+      throw RuntimeError(fmt::format(
+          "no OpenCL device matches '{}' (from --device or ${}); expected P:D or part of a name "
+          "among:{}",
+          selector, kDeviceEnvVar, known));
+    }
+  }
+  info_ = chosen->info;
+  device_ = chosen->device;
+  try {
+    context_ = cl::Context(device_);
+    (void)queue();  // the constructing thread's queue: a device that cannot make one fails here
+  } catch (const cl::Error& e) {
+    throw RuntimeError(fmt::format("cannot open OpenCL device {}: {} ({})", description(), e.what(),
+                                   e.err()));
+  }
+}
+
+std::string OpenClRuntime::description() const {
+  return fmt::format("{} / {} ({})", info_.platform_name, info_.device_name, info_.opencl_c_version);
+}
+
+cl::CommandQueue& OpenClRuntime::queue() {
+  std::lock_guard<std::mutex> lock(queues_mutex_);
+  auto it = queues_.find(std::this_thread::get_id());
+  // Profiling on: kernel time per launch is reported next to wall time.
+  if (it == queues_.end())
+    it = queues_.emplace(std::this_thread::get_id(), cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE)).first;
+  return it->second;
+}
+
+std::string base_build_options(bool flush_denormals) {
+  std::string o = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt";
+  if (flush_denormals) o += " -cl-denorms-are-zero";
+  return o;
+}
+
+cl::Program OpenClRuntime::program(const std::string& path, const std::string& options) {
+  std::lock_guard<std::mutex> lock(programs_mutex_);
+  const auto key = std::make_pair(path, options);
+  const auto it = cache_.find(key);
+  if (it != cache_.end()) return it->second;
+  const std::string source = expand_embedded(path);
+  cl::Program program(context_, source);
+  try {
+    program.build({device_}, options.c_str());
+  } catch (const cl::Error& e) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+    } catch (const cl::Error&) {
+      log = "(no build log)";
+    }
+    throw RuntimeError(fmt::format("building OpenCL program {} failed ({}) on {}\n  options: {}\n"
+                                   "  build log:\n{}",
+                                   path, e.err(), description(), options, log));
+  }
+  cache_.emplace(key, program);
+  return program;
+}
+
+}  // namespace depthprec

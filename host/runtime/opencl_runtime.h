@@ -1,0 +1,73 @@
+// OpenCL platform and device selection, one context, an in-order queue per host thread, and an
+// in-process cache of built programs keyed by (source, build options, device).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "host/runtime/cl.h"
+
+namespace depthprec {
+
+struct DeviceInfo {
+  int platform_index = 0;
+  int device_index = 0;
+  std::string platform_name;
+  std::string platform_version;
+  std::string device_name;
+  std::string device_type;
+  std::string opencl_c_version;
+  unsigned compute_units = 0;
+  bool fp64 = false;
+  bool fp32_denormals = false;
+  unsigned long long global_mem_bytes = 0;
+};
+
+// Every device of every platform. Throws RuntimeError naming the package to install when the
+// ICD loader finds no platform.
+std::vector<DeviceInfo> list_devices();
+
+// The environment variable that selects a device when --device is not given.
+constexpr const char* kDeviceEnvVar = "DEPTHPREC_DEVICE";
+
+class OpenClRuntime {
+ public:
+  // selector: "" (then $DEPTHPREC_DEVICE, then the first PoCL CPU device, then the first CPU
+  // device), "P:D" (platform and device index as `depthprec devices` lists them), or a
+  // case-insensitive part of the platform or device name.
+  explicit OpenClRuntime(const std::string& selector = "");
+
+  const DeviceInfo& info() const { return info_; }
+  std::string description() const;
+  cl::Context& context() { return context_; }
+  // The calling thread's in-order queue (profiling on), made on first use: host threads driving
+  // separate evaluations (run_scene's jobs) each wait only for their own commands, and the device
+  // runs both threads' work-groups side by side.
+  cl::CommandQueue& queue();
+  cl::Device& device() { return device_; }
+
+  // The program built from an embedded source (path relative to the project root) with the
+  // given options; built once per (path, options) and kept. Throws RuntimeError with the build
+  // log and the options on failure.
+  cl::Program program(const std::string& path, const std::string& options);
+
+ private:
+  DeviceInfo info_;
+  cl::Device device_;
+  cl::Context context_;
+  std::mutex queues_mutex_;
+  std::map<std::thread::id, cl::CommandQueue> queues_;
+  std::mutex programs_mutex_;
+  std::map<std::pair<std::string, std::string>, cl::Program> cache_;
+};
+
+// Options every depthprec program is built with: OpenCL C 1.2, IEEE division (docs/spec.md's GPU
+// divides correctly rounded), denormals kept unless flush is asked for.
+std::string base_build_options(bool flush_denormals);
+
+}  // namespace depthprec
