@@ -29,6 +29,14 @@ inline CliResult run_cli(const std::string& args, const std::string& env = "") {
   return r;
 }
 
+// path, with any output and journal (path.rows.jsonl) an earlier, failed run left there removed:
+// a test's run must not meet an interrupted run's journal.
+inline std::string fresh(const std::string& path) {
+  std::remove(path.c_str());
+  std::remove((path + ".rows.jsonl").c_str());
+  return path;
+}
+
 // The whole text of a file ("" if it cannot be read): outputs the commands wrote.
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path);

@@ -15,6 +15,7 @@
 #include "run_cli.h"
 
 using depthprec::test::run_cli;
+using depthprec::test::fresh;
 using depthprec::test::slurp;
 using Catch::Matchers::Contains;
 
@@ -65,7 +66,7 @@ int run_and_interrupt(const std::string& args, const std::string& journal, int s
 }  // namespace
 
 TEST_CASE("an interrupted table keeps its finished rows and resumes to identical bytes", "[batch]") {
-  const std::string full = "/tmp/depthprec_test_full.json", cut = "/tmp/depthprec_test_cut.json";
+  const std::string full = fresh("/tmp/depthprec_test_full.json"), cut = fresh("/tmp/depthprec_test_cut.json");
   for (const auto& f : {full, cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
   REQUIRE(run_cli(kBatch + " -o " + full).exit_code == 0);
   for (const int sig : {SIGINT, SIGTERM}) {
@@ -91,7 +92,7 @@ TEST_CASE("an interrupted table keeps its finished rows and resumes to identical
 // infinite's rows are standard's computations (n = 1, f = 1e9): with two jobs its pair waits for
 // standard's. An interrupt then ends the run at once, the waiting pair included.
 TEST_CASE("an interrupt stops a run whose pairs are waiting for each other", "[batch]") {
-  const std::string cut = "/tmp/depthprec_test_wait.json";
+  const std::string cut = fresh("/tmp/depthprec_test_wait.json");
   for (const auto& f : {cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
   const auto t0 = std::chrono::steady_clock::now();
   const int code = run_and_interrupt("table -t standard,infinite -f unorm24 --distances 2,64,2048,65536,2097152 "
@@ -103,15 +104,15 @@ TEST_CASE("an interrupt stops a run whose pairs are waiting for each other", "[b
 }
 
 TEST_CASE("shards merge to the bytes of the whole batch", "[batch]") {
-  const std::string full = "/tmp/depthprec_test_whole.json";
+  const std::string full = fresh("/tmp/depthprec_test_whole.json");
   REQUIRE(run_cli(kBatch + " -o " + full).exit_code == 0);
   std::string parts;
   for (int i = 1; i <= 3; ++i) {
-    const std::string part = "/tmp/depthprec_test_part" + std::to_string(i) + ".json";
+    const std::string part = fresh("/tmp/depthprec_test_part" + std::to_string(i) + ".json");
     REQUIRE(run_cli(kBatch + " --shard " + std::to_string(i) + "/3 -o " + part).exit_code == 0);
     parts += " " + part;
   }
-  const std::string merged = "/tmp/depthprec_test_merged.json";
+  const std::string merged = fresh("/tmp/depthprec_test_merged.json");
   REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o " + merged).exit_code == 0);
   CHECK(slurp(merged) == slurp(full));
 }
@@ -139,7 +140,7 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
   for (const auto& [name, args] : batches) {
     INFO(name);
     const std::string base = "/tmp/depthprec_test_" + name;
-    const std::string full = base + "_full.json", cut = base + "_cut.json";
+    const std::string full = fresh(base + "_full.json"), cut = fresh(base + "_cut.json");
     for (const auto& f : {full, cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
     REQUIRE(run_cli(args + " -o " + full).exit_code == 0);
     CHECK(run_and_interrupt(args + " -o " + cut, cut + ".rows.jsonl", SIGINT) == 130);
@@ -169,7 +170,7 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
 TEST_CASE("rows taken over from an identical computation read the same in shards", "[batch]") {
   const std::string args = "table -t standard,infinite -f unorm24 --distances 2,64,2048,65536 --kernel 40x40 "
                            "--frames 10 --no-timing --format-out json";
-  const std::string whole = "/tmp/depthprec_test_taken_whole.json";
+  const std::string whole = fresh("/tmp/depthprec_test_taken_whole.json");
   REQUIRE(run_cli(args + " -o " + whole).exit_code == 0);
   const auto j = nlohmann::json::parse(slurp(whole));
   REQUIRE(j["rows"].size() == 8);
@@ -183,11 +184,12 @@ TEST_CASE("rows taken over from an identical computation read the same in shards
   }
   std::string parts;
   for (int i = 1; i <= 2; ++i) {
-    const std::string part = "/tmp/depthprec_test_taken_part" + std::to_string(i) + ".json";
+    const std::string part = fresh("/tmp/depthprec_test_taken_part" + std::to_string(i) + ".json");
     REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " + part).exit_code == 0);
     parts += " " + part;
   }
-  REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o /tmp/depthprec_test_taken_merged.json").exit_code == 0);
+  REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o " + fresh("/tmp/depthprec_test_taken_merged.json"))
+              .exit_code == 0);
   CHECK(slurp("/tmp/depthprec_test_taken_merged.json") == slurp(whole));
 }
 
@@ -199,7 +201,7 @@ TEST_CASE("any number of jobs gives the same bytes and the same verbose lines in
                            "--kernel 60x60 --frames 20 --no-timing --format-out json";
   std::string first_output, first_lines;
   for (const int jobs : {1, 3, 8}) {
-    const std::string out = "/tmp/depthprec_test_jobs" + std::to_string(jobs) + ".json";
+    const std::string out = fresh("/tmp/depthprec_test_jobs" + std::to_string(jobs) + ".json");
     const auto r = run_cli("-v " + args + " --jobs " + std::to_string(jobs) + " -o " + out);
     REQUIRE(r.exit_code == 0);
     // each verbose line up to its first number: the pair or variant it names, in order

@@ -12,6 +12,7 @@
 #include "run_cli.h"
 
 using depthprec::test::run_cli;
+using depthprec::test::fresh;
 using depthprec::test::slurp;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -104,7 +105,7 @@ TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
 }
 
 TEST_CASE("the output file's extension chooses the format", "[cli]") {
-  const std::string json = "/tmp/depthprec_test_ext.json", csv = "/tmp/depthprec_test_ext.csv";
+  const std::string json = fresh("/tmp/depthprec_test_ext.json"), csv = fresh("/tmp/depthprec_test_ext.csv");
   REQUIRE(run_cli(kSmall + " --distances 64 -o " + json).exit_code == 0);
   CHECK(nlohmann::json::parse(slurp(json))["rows"].size() == 1);
   REQUIRE(run_cli(kSmall + " --distances 64 -o " + csv).exit_code == 0);
@@ -117,7 +118,7 @@ TEST_CASE("the output file's extension chooses the format", "[cli]") {
 TEST_CASE("merge refuses a missing or repeated shard, naming it", "[cli][batch][errors]") {
   const std::string args = kSmall + " --distances 2,64,2048 --format-out json";
   for (int i = 1; i <= 2; ++i)
-    REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o /tmp/depthprec_test_sh" + std::to_string(i) + ".json")
+    REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " + fresh("/tmp/depthprec_test_sh" + std::to_string(i) + ".json"))
                 .exit_code == 0);
   const auto missing = run_cli("merge /tmp/depthprec_test_sh1.json --format-out json");
   CHECK(missing.exit_code == 3);

@@ -6,6 +6,7 @@
 #include "run_cli.h"
 
 using depthprec::test::run_cli;
+using depthprec::test::fresh;
 using depthprec::test::slurp;
 using Catch::Matchers::Contains;
 
@@ -52,7 +53,7 @@ TEST_CASE("table in every output format", "[cli][table]") {
 }
 
 TEST_CASE("output option writes the file and an unwritable path fails before the run", "[cli][table]") {
-  const std::string path = "/tmp/depthprec_test_table.csv";
+  const std::string path = fresh("/tmp/depthprec_test_table.csv");
   std::remove(path.c_str());
   const auto r = run_cli("table -t linear -f unorm24 --format-out csv -o " + path + " " + kSmall);
   REQUIRE(r.exit_code == 0);
@@ -98,7 +99,7 @@ TEST_CASE("cost lists depth-path cost, precision, LJ error and structural costs"
 }
 
 TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
-  const std::string json = "/tmp/depthprec_test_plot.json", png = "/tmp/depthprec_test_plot.png";
+  const std::string json = fresh("/tmp/depthprec_test_plot.json"), png = fresh("/tmp/depthprec_test_plot.png");
   std::remove(png.c_str());
   REQUIRE(run_cli("mts -t standard,linear -f unorm24 --format-out json -o " + json + " " + kSmall).exit_code == 0);
   const auto r = run_cli("plot " + json + " -o " + png);
@@ -114,7 +115,7 @@ TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
 }
 
 TEST_CASE("tradeoff, cost and lj-table plot through gnuplot with --plot", "[cli][plot]") {
-  const std::string a = "/tmp/depthprec_test_tradeoff.svg", b = "/tmp/depthprec_test_lj.png";
+  const std::string a = fresh("/tmp/depthprec_test_tradeoff.svg"), b = fresh("/tmp/depthprec_test_lj.png");
   std::remove(a.c_str());
   std::remove(b.c_str());
   REQUIRE(run_cli("tradeoff -t linear -f unorm16 --distances 4096 --plot " + a).exit_code == 0);

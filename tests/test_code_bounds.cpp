@@ -74,7 +74,7 @@ TEST_CASE("plane B's coverage is taken from plane A's only where it is the same"
   for (const auto& [t, range] : {std::pair{Technique::standard, DepthRange::gl},
                                  std::pair{Technique::reversed, DepthRange::zero_to_one}}) {
     const EvalPair pair{t, "float32", range};
-    MtsEvaluator ev(runtime(), scene, pair);
+    MtsEvaluator ev(runtime(), scene, pair, true, MtsEvaluator::Kernels::with_tests);
     std::vector<Probe> probes;
     for (int i = 0; i < 20; ++i)
       for (double f : {1.0, 1e-3, 1e-6}) probes.push_back({1.005 * std::pow(2.3, i), 1.005 * std::pow(2.3, i) * f});

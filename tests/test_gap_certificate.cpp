@@ -1,4 +1,4 @@
-// The gap certificate (kernels/mts.cl plane_gap_range, frag_gap_clear) decides bands clean from the
+// The gap certificate (kernels/mts/bounds.cl plane_gap_range, frag_gap_clear) decides bands clean from the
 // distance between the planes and a rounding-error bound. Its margin is thinnest just above the
 // MTS, so that is where it is checked: from just below the MTS to 16x above it, every probe result
 // must be what the plain rows give, and the certificate must decide bands the code bounds do not.

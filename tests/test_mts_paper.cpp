@@ -57,7 +57,7 @@ TEST_CASE("no fragment of either plane is clipped at z = 1.005 in any frame", "[
   const Scene scene = load_scene("");
   for (const Technique t : {Technique::standard, Technique::reversed, Technique::linear}) {
     const EvalPair pair{t, "float32", DepthRange::gl};
-    MtsEvaluator ev(runtime(), scene, pair);
+    MtsEvaluator ev(runtime(), scene, pair, true, MtsEvaluator::Kernels::with_tests);
     const Probe p{1.005, vertex_bound(1.005) * 4};
     for (int frame = 0; frame < scene.frames; ++frame) {
       const FrameCodes fc = ev.codes(p, frame);

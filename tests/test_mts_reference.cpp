@@ -19,7 +19,7 @@ struct Compared {
 };
 
 Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, int frame) {
-  MtsEvaluator ev(runtime(), scene, pair);
+  MtsEvaluator ev(runtime(), scene, pair, true, MtsEvaluator::Kernels::with_tests);
   const FrameCodes k = ev.codes(probe, frame);
   const FrameCodes r = reference_frame(scene, pair, probe, frame);
   Compared c;

@@ -77,14 +77,14 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
 
 }  // namespace
 
-std::array<float, 24> ProbeConstants::packed() const {
-  std::array<float, 24> out{};
-  for (int i = 0; i < 16; ++i) out[i] = P[i];
-  out[16] = near;
-  out[17] = far;
-  out[18] = range;
-  out[19] = log_k;
-  out[20] = log_L;
+std::array<float, PROBE_STRIDE> ProbeConstants::packed() const {
+  std::array<float, PROBE_STRIDE> out{};
+  for (int i = 0; i < MAT_STRIDE; ++i) out[i] = P[i];
+  out[C_NEAR] = near;
+  out[C_FAR] = far;
+  out[C_RANGE] = range;
+  out[C_LOGK] = log_k;
+  out[C_LOGL] = log_L;
   return out;
 }
 

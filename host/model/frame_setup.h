@@ -6,6 +6,7 @@
 #include <array>
 
 #include "host/model/scene.h"
+#include "kernels/mts_layout.h"
 
 namespace depthprec {
 
@@ -16,13 +17,14 @@ inline float mat_row_dot(const Mat4f& m, int r, const float v[4]) {
   return ((m[r * 4] * v[0] + m[r * 4 + 1] * v[1]) + m[r * 4 + 2] * v[2]) + m[r * 4 + 3] * v[3];
 }
 
-// Per-probe constants, laid out as the kernel reads them (PROBE_STRIDE = 24 floats).
+// Per-probe constants, packed as the kernels read them (kernels/mts_layout.h: PROBE_STRIDE floats,
+// P then the C_* offsets).
 struct ProbeConstants {
   Mat4f P{};
   std::array<double, 16> P_full{};  // P in the matrix precision before rounding to binary32
   float near = 0, far = 0, range = 0, log_k = 0, log_L = 0;
   double layer_near = 0, layer_far = 0;  // the sub-frustum used (layered), else near/far
-  std::array<float, 24> packed() const;
+  std::array<float, PROBE_STRIDE> packed() const;
 };
 
 ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z);

@@ -5,15 +5,17 @@
 #include <limits>
 
 #include "host/base/errors.h"
+#include "kernels/mts_layout.h"
 
 namespace depthprec {
 
 namespace {
 
-constexpr int kProbeStride = 24;
-constexpr uint32_t kFight = 1, kClipped = 2, kNonFinite = 4, kUncovered = 8, kBounds = 16, kReused = 32;
-constexpr int kCountShift = 8;
-constexpr uint32_t kVertexNonFinite = 1;  // kernels/mts.cl V_NONFINITE
+constexpr int kProbeStride = PROBE_STRIDE;
+constexpr uint32_t kFight = R_FIGHT, kClipped = R_CLIPPED, kNonFinite = R_NONFINITE, kUncovered = R_UNCOVERED,
+                   kBounds = R_BOUNDS, kReused = R_REUSED;
+constexpr int kCountShift = R_COUNT_SHIFT;
+constexpr uint32_t kVertexNonFinite = V_NONFINITE;
 
 // Kernel rows per band that mts_frame_bounds decides at once from code bounds: a band's depth
 // range grows with its height, so smaller bands are decided closer to the MTS but cost more
@@ -103,28 +105,28 @@ const char* to_string(Outcome o) {
   return "?";
 }
 
-MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts)
+MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts,
+                           Kernels kernels)
     : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)), shortcuts_(shortcuts) {
-  const cl::Program program = rt_.program(variant_.program, variant_.options);
-  setup_ = cl::Kernel(program, "mts_setup");
-  a_rows_ = cl::Kernel(program, "mts_a_rows");
-  a_bands_ = cl::Kernel(program, "mts_a_bands");
-  raster_ = cl::Kernel(program, "mts_raster");
-  bounds_ = cl::Kernel(program, "mts_frame_bounds");
-  codes_ = cl::Kernel(program, "mts_codes");
-  // The buffer layout is the program's (kernels/mts.cl mts_layout), so host and kernels cannot
-  // disagree on it.
-  cl::Kernel layout(program, "mts_layout");
-  cl::Buffer sizes(rt_.context(), CL_MEM_WRITE_ONLY, 4 * sizeof(cl_uint));
-  layout.setArg(0, sizes);
-  rt_.queue().enqueueTask(layout);
-  cl_uint got[4] = {0, 0, 0, 0};
-  rt_.queue().enqueueReadBuffer(sizes, CL_TRUE, 0, sizeof got, got);
-  plane_floats_ = got[0];
-  row_words_ = got[1];
-  band_words_ = got[2];
-  decided_words_ = got[3];
+  with_tests_ = kernels == Kernels::with_tests;
+  program_ = rt_.program(with_tests_ ? "kernels/mts_test.cl" : variant_.program, variant_.options);
+  setup_ = cl::Kernel(program_, "mts_setup");
+  a_rows_ = cl::Kernel(program_, "mts_a_rows");
+  a_bands_ = cl::Kernel(program_, "mts_a_bands");
+  raster_ = cl::Kernel(program_, "mts_raster");
+  bounds_ = cl::Kernel(program_, "mts_frame_bounds");
+  // The buffer layout is kernels/mts_layout.h, which the kernels include too.
+  plane_floats_ = MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions));
+  row_words_ = ROW_WORDS;
+  band_words_ = BAND_WORDS;
+  decided_words_ = DECIDED_WORDS;
   max_slots_ = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
+}
+
+const cl::Program& MtsEvaluator::test_program() const {
+  if (!with_tests_)
+    throw Error(ExitCode::internal, "the test kernels need an MtsEvaluator built with Kernels::with_tests");
+  return program_;
 }
 
 size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {
@@ -142,7 +144,7 @@ size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {
 }
 
 size_t MtsEvaluator::code_row_words() const {
-  return variant_.cache_a_codes ? static_cast<size_t>(scene_.kernel_w) + 16 : 0;
+  return variant_.cache_a_codes ? static_cast<size_t>(scene_.kernel_w) + CODE_ROW_PAD : 0;
 }
 
 cl_uint MtsEvaluator::bands() const {
@@ -292,7 +294,7 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const size_t items = probes.size() * frames * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-  cl::Kernel k(rt_.program(variant_.program, variant_.options), "mts_coverage_audit");
+  cl::Kernel k(test_program(), "mts_coverage_audit");
   set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0}, static_cast<cl_uint>(frames),
            kw, kh, origin_x(), origin_y(), static_cast<cl_uint>(frames), out, static_cast<cl_uint>(items));
   rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
@@ -431,8 +433,9 @@ FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const size_t pixels = static_cast<size_t>(kw) * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * 4 * pixels);
-  set_args(codes_, probe_buf, tris, kw, origin_x(), origin_y(), out, kh);
-  rt_.queue().enqueueNDRangeKernel(codes_, cl::NullRange, padded(kh), cl::NDRange(kLocal));
+  cl::Kernel codes(test_program(), "mts_codes");
+  set_args(codes, probe_buf, tris, kw, origin_x(), origin_y(), out, kh);
+  rt_.queue().enqueueNDRangeKernel(codes, cl::NullRange, padded(kh), cl::NDRange(kLocal));
   std::vector<uint32_t> raw(4 * pixels);
   rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * raw.size(), raw.data());
   uint32_t vf[2] = {0, 0};

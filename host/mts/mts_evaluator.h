@@ -60,7 +60,7 @@ int batch_frames(int done, int total);
 std::vector<size_t> undecided(const std::vector<bool>& decided);
 
 // One launch's row words (flags | fragment pairs << 8 per (active probe, frame, kernel row), the
-// layout kernels/mts.cl and kernels/mts_exact.cl share), folded frame by frame into the active
+// layout of kernels/mts_layout.h, which kernels/mts.cl and kernels/mts_exact.cl write), folded frame by frame into the active
 // probes' results: a probe is decided at its first frame with a fight or a non-finite value.
 // Returns each active probe's fragment pairs (all frames); those of frames after a probe's
 // deciding one are also added to after_decision.
@@ -84,12 +84,19 @@ class MtsEvaluator : public ProbeEvaluator {
   // bands of rows decided clean from code bounds (mts_frame_bounds) before rasterising, and plane
   // B's coverage of a row taken from plane A's within A's coverage margin (b_coverage_is_a); off
   // only to check that they never change a result.
-  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true);
+  //
+  // kernels: production programs hold only what a run needs (kernels/mts.cl); with_tests builds
+  // kernels/mts_test.cl instead, the same kernels plus mts_codes and mts_coverage_audit, which
+  // codes() and audit_coverage() need.
+  enum class Kernels { production, with_tests };
+  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true,
+               Kernels kernels = Kernels::production);
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
-  FrameCodes codes(const Probe& probe, int frame);
+  FrameCodes codes(const Probe& probe, int frame);  // needs Kernels::with_tests
   // For the tests: checks the coverage shortcut of mts_raster against plane B's own coverage on
-  // every cached row of every frame of the probes (at most max_plane_a_slots() of them).
+  // every cached row of every frame of the probes (at most max_plane_a_slots() of them). Needs
+  // Kernels::with_tests.
   CoverageAudit audit_coverage(const std::vector<Probe>& probes);
 
   const KernelVariant& variant() const { return variant_; }
@@ -117,7 +124,7 @@ class MtsEvaluator : public ProbeEvaluator {
                   cl::Buffer& tris, cl::Buffer& vflags);
   // Plane A depends on the distance and frame only, so it is set up, its rows' coverage and codes
   // found and its code bounds per band computed once per distance, for all frames, and kept for
-  // every later probe of the distance (kernels/mts.cl mts_a_rows, mts_a_bands). Returns each active probe's
+  // every later probe of the distance (kernels/mts/plane_a.cl mts_a_rows, kernels/mts/bounds.cl mts_a_bands). Returns each active probe's
   // slot, filling the slots of distances not held yet; adds their device time, and sets each
   // active probe's launches to those that filled its slot now (0 when it was held).
   std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
@@ -148,8 +155,11 @@ class MtsEvaluator : public ProbeEvaluator {
   float origin_x() const { return static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2); }
   float origin_y() const { return static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2); }
 
-  cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_, codes_;
-  size_t plane_floats_ = 0;  // floats per plane record (kernels/mts.cl PLANE_STRIDE)
+  cl::Program program_;
+  bool with_tests_ = false;
+  cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_;
+  const cl::Program& test_program() const;  // program_, or an internal error without the test kernels
+  size_t plane_floats_ = 0;  // floats per plane record (kernels/mts_layout.h MTS_PLANE_STRIDE)
   size_t row_words_ = 0;     // words per cached row of plane A (ROW_WORDS)
   size_t band_words_ = 0;    // words per band of plane A (BAND_WORDS)
   size_t decided_words_ = 0; // words per band of mts_frame_bounds' verdicts (DECIDED_WORDS)

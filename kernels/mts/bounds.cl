@@ -1,0 +1,331 @@
+// Code bounds per band and the gap certificate: bands decided clean without rasterising.
+
+// The smallest and largest stored code of one plane over the kernel pixels of rows [r0, r1) that
+// any of its triangles may own (each triangle's bounding box, one pixel wider, clipped to the
+// band), and whether any of them is clipped or non-finite. Depth is monotone in px along a row
+// and, through the row term, in py (every rounding step is monotone), so its extremes over a box
+// of pixel centres lie at the box's corners; the corners are evaluated with the very expressions
+// of the per-pixel loop, 16 at a time (4 triangles x 4 corners).
+typedef struct {
+  ulong lo, hi;
+  int bad;
+} code_bounds_t;
+
+// The kernel pixels (column i0..i1, row j0..j1) of rows [r0, r1) that triangle R may own
+// (kernel_pixel_box, stored by mts_setup). Empty when i0 > i1 or j0 > j1.
+static inline int4 pixel_box(__global const float* R, int r0, int r1) {
+  const int4 box = vload4(0, (__global const int*)R + T_BOX);
+  return (int4)(box.s0, box.s1, max(box.s2, r0), min(box.s3, r1 - 1));
+}
+
+static inline code_bounds_t plane_code_bounds(__global const float* T, __global const float* P, float ox,
+                                              float oy, int W, int r0, int r1) {
+  code_bounds_t b;
+  b.lo = 0xffffffffUL;
+  b.hi = 0UL;
+  b.bad = 0;
+  float c0[16], sl[16], x0[16], rt[16], px[16];
+  int n = 0;
+  for (int t = 0; t <= NT; ++t) {
+    if (t < NT) {
+      const int4 box = pixel_box(T + t * TRI_STRIDE, r0, r1);
+      const int i0 = box.s0, i1 = box.s1, j0 = box.s2, j1 = box.s3;
+      if (i0 > i1 || j0 > j1) continue;
+      for (int q = 0; q < 4; ++q) {
+        const float py = oy + (float)((q & 2) ? j1 : j0) + 0.5f;
+        const row_plane_t rp = row_plane(T, t, py);
+        c0[n] = rp.c0;
+        sl[n] = rp.slope;
+        x0[n] = rp.x0;
+        rt[n] = rp.row_term;
+        px[n] = ox + (float)((q & 1) ? i1 : i0) + 0.5f;
+        ++n;
+      }
+    }
+    if (n == 16 || (t == NT && n > 0)) {
+      for (int k = n; k < 16; ++k) { /* pad with the first corner */
+        c0[k] = c0[0]; sl[k] = sl[0]; x0[k] = x0[0]; rt[k] = rt[0]; px[k] = px[0];
+      }
+      row_plane16_t rp;
+      rp.c0 = vload16(0, c0);
+      rp.slope = vload16(0, sl);
+      rp.x0 = vload16(0, x0);
+      rp.row_term = vload16(0, rt);
+      const frag16_t f = fragment16(rp, P, vload16(0, px));
+      b.bad |= any(f.nonfinite | f.clipped);
+      /* halving reductions: 16 -> 8 -> 4 -> 2 -> 1 lanes */
+      const uint8 lo8 = min(f.code.lo, f.code.hi), hi8 = max(f.code.lo, f.code.hi);
+      const uint4 lo4 = min(lo8.lo, lo8.hi), hi4 = max(hi8.lo, hi8.hi);
+      const uint2 lo2 = min(lo4.lo, lo4.hi), hi2 = max(hi4.lo, hi4.hi);
+      b.lo = min(b.lo, (ulong)min(lo2.x, lo2.y));
+      b.hi = max(b.hi, (ulong)max(hi2.x, hi2.y));
+      n = 0;
+    }
+  }
+  return b;
+}
+
+// The gap certificate: a band is clean when, at every pixel, plane B's stored code lies beyond
+// plane A's, judged from the distance between the two planes rather than from their code ranges.
+// Code bounds (above) compare B's smallest code over the band with A's largest, which fails
+// whenever the band's own depth range exceeds the separation, as it does near the MTS at small
+// distances where depth changes by many codes per pixel. B is A scaled about the eye, so in window
+// space the two depth planes are nearly parallel and their distance hardly changes over the band.
+// Each triangle's depth is d = fl(fl(c0 + fl(s fl(px - x0))) + fl(t fl(py - y0))) (row_plane,
+// fragment16), which lies within E = 4.01 u (|c0| + |s (px - x0)| + |t (py - y0)|) + 2^-140 of the
+// exact L = c0 + s (px - x0) + t (py - y0), u = 2^-24: each of the six roundings contributes at
+// most u times its result, which the three terms bound; the 0.01 covers evaluating L and E in
+// binary64, 2^-140 the absolute error of subnormal results; fused operations only remove roundings.
+// Measured against one reference plane R (the exact L of plane A's triangle 0): every pixel a
+// triangle may own lies in its pixel_box, over which L - R is linear and E convex, so
+// L - E - R is smallest and L + E - R largest at the box's corners. With lo/hi the smallest
+// L - E - R and largest L + E - R over a plane's triangles in the band, d_B - d_A >= lo_B - hi_A at
+// every pixel, whichever triangles own it. B's code exceeds A's (LEQUAL) when that is above
+// GAP_STEP: one code step for unorm (round(d N) of values more than 1/N apart differ; no saturation
+// in an unclipped band), any positive amount for float32 (codes are the bit patterns, monotone in
+// d). GEQUAL mirrors it (hi_B below lo_A). Other formats, and fragment-stage depth (not an
+// interpolated plane), are not certified this way.
+//
+// Fragment-stage depth (DEPTH_FROM 2) interpolates q = 1/w the same way, so lo/hi bound q against
+// a reference plane R of q; d = h(q) is then a decreasing, convex function of q (frag_gap_clear),
+// and only LEQUAL set-ups use it.
+#if DF_KIND == 0
+#define GAP_STEP (1.0 / (double)DF_FORMAT_FROM_DEFINES().max_code)
+#elif DF_KIND == 1 && DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH
+#define GAP_STEP 0.0
+#endif
+#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER)
+#define GAP_CERT 1
+#else
+#define GAP_CERT 0
+#endif
+#if DEPTH_FROM == 2 /* the interpolated plane: q = 1/w_clip, or depth itself */
+#define G_C0 T_Q0
+#define G_DX T_DQDX
+#define G_DY T_DQDY
+#else
+#define G_C0 T_D0
+#define G_DX T_DZDX
+#define G_DY T_DZDY
+#endif
+
+#if GAP_CERT
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+// The reference plane's exact value R at (px, py), binary64 scalars or vectors alike.
+#define REF_PLANE_AT(ref, px, py)                                                     \
+  (((double)(ref)[G_C0] + (double)(ref)[G_DX] * ((px) - (double)(ref)[T_X0])) +        \
+   (double)(ref)[G_DY] * ((py) - (double)(ref)[T_Y0]))
+
+// L - R, and E, of 16 corners: triangle planes in lanes (c0, s, x0, t, y0 of each) against the
+// reference plane ref (same fields).
+static inline void plane_minus_ref16(const float* f, __global const float* ref, double16 px, double16 py,
+                                     double16* l, double16* e) {
+  const double16 sx = convert_double16(vload16(0, f + 16)) * (px - convert_double16(vload16(0, f + 32)));
+  const double16 ty = convert_double16(vload16(0, f + 48)) * (py - convert_double16(vload16(0, f + 64)));
+  const double16 c0 = convert_double16(vload16(0, f));
+  *l = ((c0 + sx) + ty) - REF_PLANE_AT(ref, px, py);
+  *e = (4.01 * 0x1.0p-24) * ((fabs(c0) + fabs(sx)) + fabs(ty)) + 0x1.0p-140;
+}
+
+// lo (smallest L - E - R) and hi (largest L + E - R) of plane T over rows [r0, r1); NaN when any
+// corner is not finite.
+static inline double2 plane_gap_range(__global const float* T, __global const float* ref, float ox, float oy,
+                                      int W, int r0, int r1) {
+  double lo = INFINITY, hi = -INFINITY;
+  int bad = 0;
+  float f[80], px[16], py[16];
+  int n = 0;
+  for (int t = 0; t <= NT; ++t) {
+    if (t < NT) {
+      __global const float* R = T + t * TRI_STRIDE;
+      const int4 box = pixel_box(R, r0, r1);
+      if (box.s0 > box.s1 || box.s2 > box.s3) continue;
+      for (int q = 0; q < 4; ++q) {
+        f[n] = R[G_C0];
+        f[16 + n] = R[G_DX];
+        f[32 + n] = R[T_X0];
+        f[48 + n] = R[G_DY];
+        f[64 + n] = R[T_Y0];
+        px[n] = ox + (float)((q & 1) ? box.s1 : box.s0) + 0.5f;
+        py[n] = oy + (float)((q & 2) ? box.s3 : box.s2) + 0.5f;
+        ++n;
+      }
+    }
+    if (n == 16 || (t == NT && n > 0)) {
+      for (int k = n; k < 16; ++k) { /* pad with the first corner */
+        for (int j = 0; j < 80; j += 16) f[j + k] = f[j];
+        px[k] = px[0];
+        py[k] = py[0];
+      }
+      double16 l, e;
+      plane_minus_ref16(f, ref, convert_double16(vload16(0, px)), convert_double16(vload16(0, py)), &l, &e);
+      bad |= !all(isfinite(l) && isfinite(e));
+      const double16 a = l - e, b = l + e;
+      const double8 a8 = fmin(a.lo, a.hi), b8 = fmax(b.lo, b.hi);
+      const double4 a4 = fmin(a8.lo, a8.hi), b4 = fmax(b8.lo, b8.hi);
+      const double2 a2 = fmin(a4.lo, a4.hi), b2 = fmax(b4.lo, b4.hi);
+      lo = fmin(lo, fmin(a2.x, a2.y));
+      hi = fmax(hi, fmax(b2.x, b2.y));
+      n = 0;
+    }
+  }
+  return bad ? (double2)(NAN, NAN) : (double2)(lo, hi);
+}
+
+#if DEPTH_FROM == 2
+// The exact depth h(q) of fragment-stage depth, and the most the binary32 computation of d from a
+// computed q can differ from it where h(q) <= h_max and w = 1/q <= w_max: w = fl(1/q) is within u
+// relative (correctly rounded division), then
+//   linear   d = fl(fl(w - n) / range): 2.001 u h + 1.001 u w / range
+//   w_buffer d = fl(w / far):           2.001 u h
+//   log      d = fl(log(fl(fl(k w) + 1)) / L): x = k w + 1 within 3.0001 u of ln x after the log,
+//            the log itself within 3 ulp (the bound LOG_CODE_SLACK assumes), so 7.02 u h + 3.001 u / L
+static inline double frag_h(__global const float* P, double q) {
+#if FRAG_DEPTH == 1
+  return (1.0 / q - (double)P[C_NEAR]) / (double)P[C_RANGE];
+#elif FRAG_DEPTH == 2
+  return 1.0 / (q * (double)P[C_FAR]);
+#else
+  return log((double)P[C_LOGK] / q + 1.0) / (double)P[C_LOGL];
+#endif
+}
+
+static inline double frag_err(__global const float* P, double h_max, double w_max) {
+  const double u = 0x1.0p-24;
+#if FRAG_DEPTH == 1
+  return 2.001 * u * h_max + 1.001 * u * w_max / (double)P[C_RANGE];
+#elif FRAG_DEPTH == 2
+  return 2.001 * u * h_max;
+#else
+  return 7.02 * u * h_max + 3.001 * u / (double)P[C_LOGL];
+#endif
+}
+
+// LEQUAL: whether B's code exceeds A's at every pixel of rows [r0, r1), given a = (lo, hi) of A's
+// q and b = (lo, hi) of B's q against the reference plane ref (plane_gap_range). At a pixel with
+// R = r: q_A >= r + lo_A, q_B <= r + hi_B, so (h decreasing) d_B - d_A >= h(r + hi_B) - h(r + lo_A)
+// - 2 err, and for hi_B < lo_A that difference of a convex h falls with r: its least is at the
+// band's largest R. Clamping d to [0, 1] keeps B's code above A's while A's d stays below 1 - step.
+static inline int frag_gap_clear(__global const float* P, __global const float* ref, double2 a, double2 b,
+                                 float ox, float oy, int W, int r0, int r1) {
+  double r_min = INFINITY, r_max = -INFINITY;
+  for (int q = 0; q < 4; ++q) {
+    const double px = (double)(ox + (float)((q & 1) ? W - 1 : 0) + 0.5f);
+    const double py = (double)(oy + (float)((q & 2) ? r1 - 1 : r0) + 0.5f);
+    const double r = REF_PLANE_AT(ref, px, py);
+    r_min = fmin(r_min, r);
+    r_max = fmax(r_max, r);
+  }
+  const double q_min = r_min + fmin(a.x, b.x);
+  if (!(q_min > 0.0) || !(b.y < a.x) || !isfinite(r_max)) return 0;
+  const double err = frag_err(P, frag_h(P, q_min), 1.0 / q_min) + 1e-12;
+  return frag_h(P, r_max + b.y) - frag_h(P, r_max + a.x) - 2.0 * err > GAP_STEP &&
+         1.0 - (frag_h(P, r_min + a.x) + err) > GAP_STEP;
+}
+#endif
+#endif
+
+// Per band of cached plane A: its code bounds lo, hi, bad, and the range of its gap certificate
+// (plane_gap_range against its own triangle 0; NaN where not computed). Global id:
+// plane * bands + band, planes from first_plane; the probe constants of plane p are those of p / per_probe.
+__kernel void mts_a_bands(__global const float* restrict probes, __global const float* restrict tris,
+                          __global const uint* restrict vflags, const uint first_plane, const uint per_probe,
+                          const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
+                          const uint bands, const uint band_rows, __global uint* restrict out, const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint plane = first_plane + id / bands, band = id % bands;
+  __global uint* o = out + ((size_t)plane * bands + band) * BAND_WORDS;
+  o[2] = 1u;
+  ((__global float*)o)[BW_GAP_LO] = NAN;
+  ((__global float*)o)[BW_GAP_HI] = NAN;
+  if (!band_covered(vflags[plane], band)) return;
+  const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
+  __global const float* T = tris + (size_t)plane * PLANE_STRIDE;
+  const code_bounds_t a = plane_code_bounds(T, probes + (plane / per_probe) * PROBE_STRIDE, origin_x, origin_y,
+                                            (int)kernel_w, r0, r1);
+  o[0] = (uint)a.lo;
+  o[1] = (uint)a.hi;
+  o[2] = (uint)a.bad;
+#if GAP_CERT
+  /* rounded outwards: the band's gap range is only ever widened */
+  const double2 g = plane_gap_range(T, T, origin_x, origin_y, (int)kernel_w, r0, r1);
+  ((__global float*)o)[BW_GAP_LO] = convert_float_rtn(g.x);
+  ((__global float*)o)[BW_GAP_HI] = convert_float_rtp(g.y);
+#endif
+}
+
+// Where plane A of (probe, visit) sits in the plane-A cache: a_slots holds per probe its slot and
+// the frame its visit starts at (host/mts/mts_evaluator.h, frame order); each slot holds all
+// frames_total frames of its distance; the launch covers visits first_frame.. of each probe. The
+// start frame and first_frame + visit both lie below frames_total, so one subtraction wraps their
+// sum (no division: mts_raster runs this per kernel row).
+static inline uint a_plane(__global const uint* a_slots, uint probe, uint visit, uint first_frame,
+                           uint frames_total) {
+  const uint f = a_slots[2u * probe + 1u] + first_frame + visit;
+  return a_slots[2u * probe] * frames_total + (f >= frames_total ? f - frames_total : f);
+}
+#define A_PLANE(pf) a_plane(a_slots, (pf) / frames, (pf) % frames, first_frame, frames_total)
+
+// Decides bands of kernel rows of a (probe, frame) clean without rasterising them, when both
+// planes certainly own every pixel of the band (band_covered) and their code bounds over it
+// exclude a fight: LEQUAL: B's smallest code above A's largest (log depth: by LOG_CODE_SLACK more,
+// as for pieces), or, where that fails, the gap certificate (plane_gap_range, frag_gap_clear).
+// Most probes of a search's descent from s = z are decided here. A band that is not decided goes
+// through mts_raster row by row, so the answer never depends on this pass, only the work does.
+// Global id: (probe * frames + frame) * bands + band.
+__kernel void mts_frame_bounds(__global const float* restrict probes, __global const float* restrict tris,
+                               __global const uint* restrict vflags, __global const float* restrict a_tris,
+                               __global const uint* restrict a_vflags,
+                               __global const uint* restrict a_bands, __global const uint* restrict a_slots,
+                               const uint first_frame, const uint frames_total, const uint kernel_w,
+                               const uint kernel_h, const float origin_x, const float origin_y,
+                               const uint frames, const uint bands, const uint band_rows,
+                               __global uint* restrict decided, const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint pf = id / bands, band = id - pf * bands;
+  const uint ap = A_PLANE(pf);
+  __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
+  __global uint* out = decided + (size_t)id * DECIDED_WORDS;
+  __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
+  __global const float* ref = a_tris + (size_t)ap * PLANE_STRIDE;
+  const int finite = !((a_vflags[ap] | vflags[pf]) & V_NONFINITE);
+  const uint oriented = finite && b_keeps_orientation(ref, TB) ? DV_ORIENTED : 0u;
+  ((__global float*)out)[DW_MOVED] = finite ? b_moved_from_a(ref, TB) : INFINITY;
+  out[DW_VERDICT] = D_RASTER | oriented;
+  __global const uint* a = a_bands + ((size_t)ap * bands + band) * BAND_WORDS;
+  if (!band_covered(a_vflags[ap], band) || !band_covered(vflags[pf], band) || a[2]) return;
+  const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
+  const code_bounds_t b = plane_code_bounds(TB, P, origin_x, origin_y, (int)kernel_w, r0, r1);
+  if (b.bad) return;
+#if COMPARE_GREATER
+  uint clean = b.hi + LOG_SLACK_OR_0 < (ulong)a[0];
+#else
+  uint clean = b.lo > (ulong)a[1] + LOG_SLACK_OR_0;
+#endif
+#if GAP_CERT
+  if (!clean) {
+    const double2 g = plane_gap_range(TB, ref, origin_x, origin_y, (int)kernel_w, r0, r1);
+    __global const float* ga = (__global const float*)a;
+#if DEPTH_FROM == 2
+    clean = frag_gap_clear(P, ref, (double2)(ga[BW_GAP_LO], ga[BW_GAP_HI]), g, origin_x, origin_y,
+                           (int)kernel_w, r0, r1);
+#elif COMPARE_GREATER
+    clean = (double)ga[BW_GAP_LO] - g.y > GAP_STEP;
+#else
+    clean = g.x - (double)ga[BW_GAP_HI] > GAP_STEP;
+#endif
+  }
+#endif
+  /* Not clean, but both planes are finite and unclipped at every pixel of the band (their bounds
+   * are not bad), so the status of every piece's ends is known. What the end-code pass could still
+   * do is exclude a piece whose B codes all clear A's, which near the MTS, where rows are
+   * rasterised, rarely happens: mts_raster goes straight to the pixel loop. Both paths give the
+   * same row verdict and count; only the work differs. If A's lowest code is at or above code(T)
+   * (T = df_order_exact_from), every depth of A is at or above T, and the pixel loop can compare
+   * depths instead of codes. */
+  const uint from = df_order_exact_from(DF_FORMAT_FROM_DEFINES());
+  const int ordered = from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
+  out[DW_VERDICT] = (clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE) | oriented;
+}

@@ -1,0 +1,279 @@
+// Which triangle covers which kernel pixels of a row, and when plane B's coverage is plane A's.
+
+// Does the pixel centre px (row py) pass edge e of triangle R? The same float expression for every
+// pixel, so span search below and the host reference agree on every pixel.
+static inline int edge_passes(__global const float* R, uint bits, int e, float px, float py) {
+  const float ax = R[4 * e], ay = R[4 * e + 1], dx = R[4 * e + 2], dy = R[4 * e + 3];
+  float E = dx * (py - ay) - dy * (px - ax);
+  if ((bits >> e) & 1u) E = -E;
+  return E > 0.0f || (E == 0.0f && ((bits >> (3 + e)) & 1u));
+}
+
+// Along a row, px - ax, dy * (.) and C - (.) are all monotone in px, so each edge's test is
+// monotone: the pixels passing it form a prefix or a suffix of the row, and the pixels inside the
+// triangle form one interval. Found here by walking from the analytic crossing to the exact
+// boundary of the very test a per-pixel rasteriser would do.
+static inline void edge_range(__global const float* R, uint bits, int e, float py, float ox, int W,
+                              int* lo, int* hi) {
+  const float dy = R[4 * e + 3];
+  const float sdy = ((bits >> e) & 1u) ? -dy : dy;
+  if (sdy == 0.0f) { /* constant along the row */
+    if (!edge_passes(R, bits, e, ox + 0.5f, py)) *hi = 0;
+    return;
+  }
+  /* The test is monotone, so its value at the row's two ends says whether there is a boundary
+   * to find at all; an edge far from the row (a near-horizontal one, say) passes or fails whole. */
+  const int first = edge_passes(R, bits, e, ox + 0.5f, py);
+  const int last = edge_passes(R, bits, e, ox + (float)(W - 1) + 0.5f, py);
+  if (first && last) return;
+  if (!first && !last) {
+    *hi = 0;
+    return;
+  }
+  const float cross = R[4 * e] + (py - R[4 * e + 1]) * R[T_DXDY + e] - ox - 0.5f; /* E ~ 0 here */
+  int g = isfinite(cross) ? (int)clamp(ceil(cross), -1.0f, (float)W + 1.0f) : 0;
+  g = clamp(g, 0, W);
+  if (sdy < 0.0f) {
+    /* s*E grows with px: pixels g.. pass; find the first passing index */
+    while (g > 0 && edge_passes(R, bits, e, ox + (float)(g - 1) + 0.5f, py)) --g;
+    while (g < W && !edge_passes(R, bits, e, ox + (float)g + 0.5f, py)) ++g;
+    *lo = max(*lo, g);
+  } else {
+    /* s*E falls with px: pixels ..g-1 pass; find the first failing index */
+    while (g < W && edge_passes(R, bits, e, ox + (float)g + 0.5f, py)) ++g;
+    while (g > 0 && !edge_passes(R, bits, e, ox + (float)(g - 1) + 0.5f, py)) --g;
+    *hi = min(*hi, g);
+  }
+}
+
+// The row's coverage by one plane as segments [seg_x[k], seg_x[k+1]) owned by triangle seg_t[k]
+// (-1: uncovered); where rounding lets two triangles claim a pixel, the lower index owns it.
+// Returns the number of segments; seg_x[n] == W.
+#define MAX_SEG (2 * NT + 2)
+static inline int row_segments(__global const float* T, float py, float ox, int W, int* seg_x,
+                               int* seg_t) {
+  __global const uint* TB = (__global const uint*)T;
+  /* Every edge's passing pixels [elo, ehi), 16 edges at a time: an edge passing or failing at
+   * both ends of the row passes or fails all of it (the test is monotone); a crossing edge's
+   * boundary is taken where the test flips between the guessed pixel and the one before it.
+   * Lanes where that check fails (-2) are placed by the scalar walk below. */
+  __global const float* SA = T + NT * TRI_STRIDE;
+  int elo[NE_PAD], ehi[NE_PAD];
+  const float px_first = ox + 0.5f, px_last = ox + (float)(W - 1) + 0.5f;
+  /* only the edges of the quad rows whose y-range holds the row: a run of indices (one or two
+   * rows of quads); which of their triangles meet the row is decided below */
+  int t_first = NT, t_last = -1;
+  for (int qj = 0; qj < GRID; ++qj) {
+    if (T[Q_YRANGE + 2 * qj] <= py && py <= T[Q_YRANGE + 2 * qj + 1]) {
+      t_first = min(t_first, 2 * GRID * qj);
+      t_last = 2 * GRID * (qj + 1) - 1;
+    }
+  }
+  const int g_first = (3 * t_first) / 16 * 16, g_end = 3 * (t_last + 1);
+  for (int g = g_first; g < g_end; g += 16) {
+    const float16 ax = vload16(0, SA + E_AX * NE_PAD + g), ay = vload16(0, SA + E_AY * NE_PAD + g);
+    const float16 dx = vload16(0, SA + E_DX * NE_PAD + g), dy = vload16(0, SA + E_DY * NE_PAD + g);
+    const float16 dxdy = vload16(0, SA + E_DXDY * NE_PAD + g);
+    const uint16 eb = vload16(0, (__global const uint*)SA + E_BITS * NE_PAD + g);
+    const int16 negate = convert_int16((eb & (uint16)1u) != (uint16)0u);
+    const int16 owns = convert_int16((eb & (uint16)2u) != (uint16)0u);
+    const float16 c = dx * (py - ay);
+#define EDGE_PASS16(PX)                                                                      \
+  ({                                                                                         \
+    float16 E_ = c - dy * ((PX) - ax);                                                       \
+    E_ = negate ? -E_ : E_;                                                                  \
+    (E_ > 0.0f) || ((E_ == 0.0f) && owns);                                                   \
+  })
+    const int16 p0 = EDGE_PASS16((float16)px_first);
+    const int16 p1 = EDGE_PASS16((float16)px_last);
+    const float16 sdy = negate ? -dy : dy;
+    const float16 cross = ax + (py - ay) * dxdy - ox - 0.5f;
+    const int16 gi = clamp(convert_int16(ceil(clamp(cross, -1.0f, (float)W + 1.0f))), 1, max(W - 1, 1));
+    const float16 pxg = (ox + convert_float16(gi)) + 0.5f;
+    const int16 pg = EDGE_PASS16(pxg);
+    const int16 pgm = EDGE_PASS16(pxg - 1.0f);
+#undef EDGE_PASS16
+    const int16 all = (int16)W, none = (int16)0;
+    /* sdy < 0: suffix passes, lo = boundary; sdy > 0: prefix passes, hi = boundary */
+    const int16 flat = sdy == 0.0f;
+    const int16 up = sdy < 0.0f;
+    const int16 whole = p0 && p1;
+    const int16 empty = !p0 && !p1;
+    const int16 found_up = up && !p0 && p1 && pg && !pgm;
+    const int16 found_dn = !up && p0 && !p1 && !pg && pgm;
+    int16 lo16 = none, hi16 = all;
+    lo16 = found_up ? gi : lo16;
+    hi16 = found_dn ? gi : hi16;
+    hi16 = (flat ? !p0 : empty) ? none : hi16;
+    const int16 resolved = flat || whole || empty || found_up || found_dn;
+    lo16 = resolved ? lo16 : (int16)-2;
+    vstore16(lo16, 0, elo + g);
+    vstore16(hi16, 0, ehi + g);
+  }
+  int lo[NT], hi[NT], tri[NT], n = 0;
+  for (int t = t_first; t <= t_last; ++t) {
+    __global const float* R = T + t * TRI_STRIDE;
+    const uint bits = TB[t * TRI_STRIDE + T_BITS];
+    if (!(bits & 64u) || !(R[T_YMIN] <= py && py <= R[T_YMAX])) continue;
+    int a = 0, b = W;
+    for (int e = 0; e < 3 && a < b; ++e) {
+      const int k = 3 * t + e;
+      if (elo[k] == -2) {
+        edge_range(R, bits, e, py, ox, W, &a, &b);
+      } else {
+        a = max(a, elo[k]);
+        b = min(b, ehi[k]);
+      }
+    }
+    if (a < b) {
+      lo[n] = a;
+      hi[n] = b;
+      tri[n] = t;
+      ++n;
+    }
+  }
+  /* Usually the spans are disjoint (each pixel owned by one triangle): sorted by start they are
+   * the segments, with uncovered gaps between. Otherwise fall through to the general sweep. */
+  for (int i = 1; i < n; ++i) {
+    const int l = lo[i], h = hi[i], t = tri[i];
+    int j = i - 1;
+    while (j >= 0 && lo[j] > l) {
+      lo[j + 1] = lo[j];
+      hi[j + 1] = hi[j];
+      tri[j + 1] = tri[j];
+      --j;
+    }
+    lo[j + 1] = l;
+    hi[j + 1] = h;
+    tri[j + 1] = t;
+  }
+  int disjoint = 1;
+  for (int i = 1; i < n; ++i) disjoint &= hi[i - 1] <= lo[i];
+  if (disjoint) {
+    int ns = 0, cur = 0;
+    for (int i = 0; i < n; ++i) {
+      if (lo[i] > cur) {
+        seg_x[ns] = cur;
+        seg_t[ns++] = -1;
+      }
+      seg_x[ns] = lo[i];
+      seg_t[ns++] = tri[i];
+      cur = hi[i];
+    }
+    if (cur < W) {
+      seg_x[ns] = cur;
+      seg_t[ns++] = -1;
+    }
+    seg_x[ns] = W;
+    return ns;
+  }
+  /* boundaries: 0, W and every span end, sorted */
+  int bx[MAX_SEG];
+  int nb = 0;
+  bx[nb++] = 0;
+  for (int i = 0; i < n; ++i) {
+    bx[nb++] = lo[i];
+    bx[nb++] = hi[i];
+  }
+  for (int i = 1; i < nb; ++i) {
+    const int v = bx[i];
+    int j = i - 1;
+    while (j >= 0 && bx[j] > v) {
+      bx[j + 1] = bx[j];
+      --j;
+    }
+    bx[j + 1] = v;
+  }
+  int ns = 0;
+  for (int i = 0; i < nb; ++i) {
+    const int x0 = bx[i];
+    const int x1 = i + 1 < nb ? bx[i + 1] : W;
+    if (x1 <= x0 || x0 >= W) continue;
+    int owner = -1;
+    for (int k = 0; k < n; ++k)
+      if (lo[k] <= x0 && x0 < hi[k] && (owner < 0 || tri[k] < owner)) owner = tri[k];
+    if (ns > 0 && seg_t[ns - 1] == owner) continue; /* extend the previous segment */
+    seg_x[ns] = x0;
+    seg_t[ns] = owner;
+    ++ns;
+  }
+  seg_x[ns] = W;
+  return ns;
+}
+
+// Plane B is plane A moved along the view direction and scaled with its distance, so both project
+// to the same window triangles in exact arithmetic; in binary32 B's vertices lie some delta
+// (~1e-4 px) from A's. Returns a margin: for any B whose vertices all lie within less than it of
+// A's (per coordinate), and which owns each kernel pixel through exactly one triangle (V_COVERS),
+// B's coverage of the row is A's segments. Proof: each segment's triangle passes its three edge
+// tests at the segment's first and last pixel in B too, so (each test being monotone along the
+// row) at every pixel of the segment, and the one triangle that passes a pixel owns it; and the
+// row stays inside each triangle's y-range, which row_segments also asks. The edge value
+// E = dx (py - ay) - dy (px - ax) of a pixel moves by at most d (|dx| + |dy| + 2|py - ay| +
+// 2|px - ax|) + 4 d^2 when the edge's vertices move by d, and each binary32 evaluation (fused or
+// not) lies within 4.1 eps (|dx (py - ay)| + |dy (px - ax)|) of its exact value, so a pass with
+// E above twice that rounding bound plus the movement survives; the margin is the d at which the
+// movement would take half of what is left over, with 1 % slack for the margin's own rounding.
+// 0 when A leaves a pixel uncovered or a test sits at its rounding bound.
+static inline float coverage_margin(__global const float* T, float py, float ox, int n, const int* seg_x,
+                                    const int* seg_t) {
+  __global const float* SA = T + NT * TRI_STRIDE;
+  __global const uint* SB = (__global const uint*)SA + E_BITS * NE_PAD;
+  const float eps = 0x1.0p-24f;
+  float margin = INFINITY;
+  for (int k = 0; k < n; ++k) {
+    const int t = seg_t[k];
+    if (t < 0) return 0.0f;
+    __global const float* R = T + t * TRI_STRIDE;
+    margin = fmin(margin, fmin(py - R[T_YMIN], R[T_YMAX] - py));
+    for (int e = 0; e < 3; ++e) {
+      const int j = 3 * t + e;
+      const float ax = SA[E_AX * NE_PAD + j], ay = SA[E_AY * NE_PAD + j];
+      const float dx = SA[E_DX * NE_PAD + j], dy = SA[E_DY * NE_PAD + j];
+      for (int end = 0; end < 2; ++end) {
+        const float px = ox + (float)(end ? seg_x[k + 1] - 1 : seg_x[k]) + 0.5f;
+        const float u = py - ay, v = px - ax;
+        float E = dx * u - dy * v;
+        if (SB[j] & 1u) E = -E;
+        const float r = E - 16.0f * eps * (fabs(dx * u) + fabs(dy * v));
+        if (!(r > 0.0f)) return 0.0f;
+        const float c = 1.01f * (fabs(dx) + fabs(dy) + 2.0f * fabs(u) + 2.0f * fabs(v));
+        margin = fmin(margin, fmin(r / (2.2f * c), 0.99f * sqrt(r / 8.4f)));
+      }
+    }
+  }
+  return 0.99f * margin;
+}
+
+// How far plane B's vertices lie from plane A's: the largest per-coordinate difference (rounded
+// up). Both planes are finite (callers check V_NONFINITE first), so max needs no NaN handling,
+// which fmax would compile into compares and blends; the loads are aligned (V_XW).
+static inline float b_moved_from_a(__global const float* TA, __global const float* TB) {
+  __global const float16* a = (__global const float16*)(TA + V_XW);
+  __global const float16* b = (__global const float16*)(TB + V_XW);
+  float16 m = (float16)0.0f;
+  for (int k = 0; k < 2 * NV_PAD / 16; ++k) m = max(m, fabs(b[k] - a[k]));
+  const float8 m8 = max(m.lo, m.hi);
+  const float4 m4 = max(m8.lo, m8.hi);
+  const float2 m2 = max(m4.lo, m4.hi);
+  return 1.0001f * max(m2.x, m2.y);
+}
+
+// Whether every triangle of plane B has plane A's orientation (its edges negated alike).
+static inline int b_keeps_orientation(__global const float* TA, __global const float* TB) {
+  __global const uint* a = (__global const uint*)TA + T_BITS;
+  __global const uint* b = (__global const uint*)TB + T_BITS;
+  uint differ = 0u;
+  for (int t = 0; t < NT; ++t) differ |= (a[t * TRI_STRIDE] ^ b[t * TRI_STRIDE]) & 7u;
+  return differ == 0u;
+}
+
+// Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
+// the row through exactly one triangle (row_covered; a frame with a vertex near a pixel centre
+// loses only that pixel's row), B within A's coverage margin (coverage_margin: moved is
+// b_moved_from_a), and B's triangles keep A's orientation (oriented: b_keeps_orientation). The
+// last two are per frame: mts_frame_bounds finds them once.
+static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB, uint vflags_b, int row,
+                                  __global const uint* rec) {
+  return oriented && moved < ((__global const float*)rec)[RW_MARGIN] && row_covered(TB, vflags_b, row);
+}

@@ -1,0 +1,134 @@
+// Fragment depth and stored codes along a row, 16 pixels at a time, and the fight test.
+
+// A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
+typedef struct {
+  float c0, slope, x0, row_term;
+} row_plane_t;
+
+static inline row_plane_t row_plane(__global const float* T, int t, float py) {
+  __global const float* R = T + t * TRI_STRIDE;
+  row_plane_t rp;
+  rp.x0 = R[T_X0];
+#if DEPTH_FROM == 2
+  rp.c0 = R[T_Q0];
+  rp.slope = R[T_DQDX];
+  rp.row_term = R[T_DQDY] * (py - R[T_Y0]);
+#else
+  rp.c0 = R[T_D0];
+  rp.slope = R[T_DZDX];
+  rp.row_term = R[T_DZDY] * (py - R[T_Y0]);
+#endif
+  return rp;
+}
+
+// Row planes of 16 lanes: one triangle broadcast, or one triangle per lane (per piece).
+typedef struct {
+  float16 c0, slope, x0, row_term;
+} row_plane16_t;
+
+static inline row_plane16_t broadcast16(row_plane_t rp) {
+  row_plane16_t r;
+  r.c0 = (float16)rp.c0;
+  r.slope = (float16)rp.slope;
+  r.x0 = (float16)rp.x0;
+  r.row_term = (float16)rp.row_term;
+  return r;
+}
+
+// Depth and status of 16 fragments: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term, every
+// lane rounding on its own, as a scalar pipeline would. Masks are -1 / 0 per lane.
+typedef struct {
+  float16 d;
+  int16 nonfinite, clipped;
+} depth16_t;
+
+static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float16 px) {
+  depth16_t r;
+#if DEPTH_FROM == 2
+  const float16 q = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
+  const float16 w = 1.0f / q;
+  const int16 nf_w = !isfinite(w);
+  r.clipped = (w < P[C_NEAR]) || (w > P[C_FAR]);
+#if FRAG_DEPTH == 1
+  float16 d = (w - P[C_NEAR]) / P[C_RANGE];
+#elif FRAG_DEPTH == 2
+  float16 d = w / P[C_FAR];
+#else
+  float16 d = log(P[C_LOGK] * w + 1.0f) / P[C_LOGL];
+#endif
+  r.nonfinite = nf_w || isnan(d);
+  r.d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
+#else
+  r.d = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
+  r.nonfinite = !isfinite(r.d);
+  r.clipped = !((r.d >= 0.0f) && (r.d <= 1.0f));
+#endif
+  return r;
+}
+
+// Stored code and status of 16 fragments.
+typedef struct {
+  uint16 code;
+  int16 nonfinite, clipped;
+} frag16_t;
+
+static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, float16 px) {
+  const depth16_t z = depth16(rp, P, px);
+  frag16_t r;
+  r.code = df_encode16(z.d, DF_FORMAT_FROM_DEFINES());
+  r.nonfinite = z.nonfinite;
+  r.clipped = z.clipped;
+  return r;
+}
+
+// The stored code of 16 fragments known to be finite and unclipped (inside a piece whose ends
+// are, or a band whose bounds say so): their depth lies in [-0, 1], the clamped one too, so the
+// encoder needs no checks for values outside it. The same codes fragment16 gives there.
+static inline uint16 inside_code16(row_plane16_t rp, __global const float* P, float16 px) {
+  return df_encode16_unit(depth16(rp, P, px).d, DF_FORMAT_FROM_DEFINES());
+}
+
+static inline int16 fights16(uint16 code_a, uint16 code_b) {
+#if COMPARE_GREATER
+  return convert_int16(code_b >= code_a);
+#else
+  return convert_int16(code_b <= code_a);
+#endif
+}
+
+// fights16 from the depths themselves, for fragments of which at least one has a depth at or
+// above df_order_exact_from (in a D_ORDERED band every fragment of plane A has): there the codes
+// compare as the depths do, so neither needs encoding.
+static inline int16 ordered_fights16(float16 da, float16 db) {
+#if COMPARE_GREATER
+  return db >= da;
+#else
+  return db <= da;
+#endif
+}
+
+// Codes a piece or band decided from bounds must clear: the library log's error (mts_variant).
+#if DEPTH_FROM == 2 && FRAG_DEPTH == 3
+#define LOG_SLACK_OR_0 LOG_CODE_SLACK
+#else
+#define LOG_SLACK_OR_0 0UL
+#endif
+
+#define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+
+
+// Walks the row in pieces where both planes' covering triangles stay the same.
+#define FOR_EACH_PIECE(...)                                                            \
+  {                                                                                    \
+    int ka = 0, kb = 0, x = 0;                                                         \
+    while (x < W) {                                                                    \
+      while (seg_xa[ka + 1] <= x) ++ka;                                                \
+      while (seg_xb[kb + 1] <= x) ++kb;                                                \
+      const int x_end = min(seg_xa[ka + 1], seg_xb[kb + 1]);                           \
+      const int ta = seg_ta[ka], tb = seg_tb[kb];                                      \
+      __VA_ARGS__                                                                      \
+      x = x_end;                                                                       \
+    }                                                                                  \
+  }
+
+#define MAX_PIECES (2 * MAX_SEG)

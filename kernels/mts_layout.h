@@ -1,0 +1,117 @@
+/* The binary layout shared by the MTS kernels (kernels/mts.cl and its parts, kernels/mts_exact.cl) and the
+ * host (host/mts/mts_evaluator.cpp, host/model/frame_setup.cpp), one source for both as
+ * kernels/lj_formulas.h is for the LJ formulas: the records of a plane, of a probe's constants, of
+ * a cached row and band of plane A, of mts_frame_bounds' verdicts, and the bits of a row's result
+ * word. Valid C++ and OpenCL C. The plane record depends on the grid (quads per plane side):
+ * MTS_PLANE_STRIDE(grid) for the host, PLANE_STRIDE (GRID from -D) in the kernels. */
+#ifndef DEPTHPREC_MTS_LAYOUT_H
+#define DEPTHPREC_MTS_LAYOUT_H
+
+/* A plane record: NT triangle records of TRI_STRIDE floats, then its 3*NT edges as arrays
+ * (structure of arrays, padded to a multiple of 16) so a row can place all edge boundaries 16 at
+ * a time. */
+#define MTS_NV(g) (((g) + 1) * ((g) + 1))
+#define MTS_NT(g) (2 * (g) * (g))
+#define TRI_STRIDE 32
+#define MTS_NE(g) (3 * MTS_NT(g))
+#define MTS_NE_PAD(g) ((MTS_NE(g) + 15) / 16 * 16)
+#define E_AX 0
+#define E_AY 1
+#define E_DX 2
+#define E_DY 3
+#define E_DXDY 4
+#define E_BITS 5 /* uint: bit 0 negate, bit 1 owns */
+/* Then each row of quads' y-range (grid pairs ymin, ymax): the triangles a kernel row can meet
+ * are those of the quad rows whose range holds it, a run of indices. */
+#define MTS_Q_YRANGE(g) (MTS_NT(g) * TRI_STRIDE + 6 * MTS_NE_PAD(g))
+/* Then, from a multiple of 16 floats on (so they load as aligned float16, and every plane record
+ * starts at one), the window x and y of every vertex, padded with zeros to a multiple of 16: how
+ * far plane B's vertices lie from plane A's (b_moved_from_a). */
+#define MTS_NV_PAD(g) ((MTS_NV(g) + 15) / 16 * 16)
+#define MTS_V_XW(g) ((MTS_Q_YRANGE(g) + 2 * (g) + 15) / 16 * 16)
+#define MTS_V_YW(g) (MTS_V_XW(g) + MTS_NV_PAD(g))
+/* Then per vertex the kernel row of the pixel centre it lies near (int; -1: none, or padding):
+ * the rows covers_kernel's certificate does not hold for (row_covered). */
+#define MTS_V_BAD_ROW(g) (MTS_V_YW(g) + MTS_NV_PAD(g))
+#define MTS_PLANE_STRIDE(g) (MTS_V_BAD_ROW(g) + MTS_NV_PAD(g))
+
+/* Triangle record offsets */
+#define T_EDGES 0 /* 3 x (ax, ay, dx, dy) */
+#define T_BITS 12 /* uint: bit e negate edge e, bit 3+e owns edge e, bit 6 valid */
+#define T_X0 13
+#define T_Y0 14
+#define T_D0 15
+#define T_DZDX 16
+#define T_DZDY 17
+#define T_Q0 18
+#define T_DQDX 19
+#define T_DQDY 20
+#define T_YMIN 21
+#define T_YMAX 22
+#define T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
+#define T_BOX 28  /* int4: the kernel pixels the triangle may own (kernel_pixel_box) */
+
+/* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
+#define PROBE_STRIDE 24
+#define C_NEAR 16
+#define C_FAR 17
+#define C_RANGE 18
+#define C_LOGK 19
+#define C_LOGL 20
+#define MAT_STRIDE 16 /* a 4x4 matrix, row-major */
+
+/* A plane's flags (vflags): non-finite vertices; the coverage certificate (covers_kernel). */
+#define V_NONFINITE 1u
+#define V_COVERS 2u
+#define V_BAND_SHIFT 8
+#define V_MAX_BANDS 24u
+
+/* Per kernel row of one (probe, frame): the result word. The number of fragment pairs evaluated
+ * sits above the bits. kernels/mts_exact.cl writes the same word. */
+#define R_FIGHT 1u
+#define R_CLIPPED 2u
+#define R_NONFINITE 4u
+#define R_UNCOVERED 8u
+#define R_BOUNDS 16u /* the row's band was decided clean from code bounds, not rasterised */
+#define R_REUSED 32u /* plane B's coverage of the row was plane A's (coverage_margin) */
+#define R_COUNT_SHIFT 8
+
+/* Plane A does not depend on the separation, so the host sets it up once per (distance, frame)
+ * for every probe of the distance (host/mts/mts_evaluator.cpp, the plane-A cache): its triangles,
+ * its code bounds per band, and per kernel row its coverage segments and coverage margin. */
+#define MAXC 24 /* segments a cached row holds; a row with more is computed where it is used */
+#define RW_N 0
+#define RW_MARGIN 1
+#define RW_X 2
+#define RW_T (RW_X + MAXC + 1)
+#define ROW_WORDS (RW_T + MAXC)
+/* Per band of cached plane A (mts_a_bands): code bounds lo, hi, bad, then the gap range */
+#define BW_GAP_LO 3
+#define BW_GAP_HI 4
+#define BAND_WORDS 5
+/* CACHE_A_CODES (host/runtime/kernel_variant.h): plane A's stored code at every pixel of a cached
+ * row, so the pixel loop evaluates plane B only; rows of kernel_w + 16 codes (a 16-lane store
+ * past a segment's end lands in the next segment or the padding). */
+#define CODE_ROW_PAD 16
+
+/* mts_frame_bounds' words per band of a (probe, frame), read by mts_raster: the verdict (D_*, the
+ * bits D_MASK) with bit DV_ORIENTED: every triangle of plane B has plane A's orientation; and how
+ * far B's vertices lie from A's (b_moved_from_a, a float). Both are per frame, found per band so
+ * mts_raster reads one place. */
+#define DW_VERDICT 0
+#define DW_MOVED 1
+#define DECIDED_WORDS 2
+#define D_MASK 3u
+#define DV_ORIENTED 4u
+#define D_RASTER 0u  /* rasterise, deciding pieces from their end codes first */
+#define D_CLEAN 1u   /* clean from code bounds or the gap certificate: not rasterised */
+#define D_INSIDE 2u  /* rasterise straight through the pixel loop: see mts_frame_bounds */
+#define D_ORDERED 3u /* D_INSIDE, and every depth of plane A at or above df_order_exact_from */
+
+/* A fragment's status (mts_codes, for the tests; host/mts/reference_pipeline.cpp likewise) */
+#define S_OK 0
+#define S_CLIPPED 1
+#define S_NONFINITE 2
+#define S_UNCOVERED 3
+
+#endif
