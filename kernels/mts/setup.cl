@@ -10,7 +10,7 @@
 // half-planes lies inside the outline) with half a pixel to spare; no vertex within 1/8 pixel of a
 // pixel centre in both x and y; all coordinates below 8192 in magnitude (edge-test error below
 // 0.006 px) and no triangle angle below ~6 degrees (mts_setup), so a pixel centre 1/8 px from a
-// vertex is > 0.0125 px from that vertex's other edges. docs/performance.md has the argument.
+// vertex is > 0.0125 px from that vertex's other edges. docs/mts.md ("Shortcuts") has the argument.
 // A vertex near a pixel centre only spoils the certificate for the one pixel near it, so such
 // bands are named in the flags (bit V_BAND_SHIFT + band, bands of band_rows rows, the first 24
 // bands; a vertex in a later one clears V_COVERS) and the rest stay certified; and the pixel's
