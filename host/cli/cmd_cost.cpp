@@ -48,27 +48,12 @@ void plot_cost(const std::vector<CostPoint>& points, const std::string& output) 
   run_gnuplot(script, output);
 }
 
-// What a real GPU pays for the technique beyond its arithmetic.
+// What a real GPU pays for the technique beyond its arithmetic (the technique table's words; a
+// layered scene's layer count and mapping added).
 std::string structural_cost(const Scene& s, Technique t) {
-  const TechniqueInfo& ti = info(t);
-  if (t == Technique::layered)
-    return fmt::format("{} passes, depth cleared per layer; {} mapping per layer", s.params.layers,
-                       info(s.params.layer_mapping).name);
-  if (ti.from == DepthFrom::fragment)
-    return "writes depth in the fragment stage: no early depth test, weaker depth compression";
-  if (ti.from == DepthFrom::vertex_log) return "a log per vertex; depth not interpolated perspective-correctly";
-  return "projection matrix only";
-}
-
-// The LJ buffer a technique is, where there is one (docs/spec.md 6), else none.
-bool lj_buffer_of(Technique t, LjBuffer& b) {
-  switch (t) {
-    case Technique::standard: b = LjBuffer::z; return true;
-    case Technique::w_buffer: b = LjBuffer::w; return true;
-    case Technique::inverse_w: b = LjBuffer::inverse_w; return true;
-    case Technique::reversed: b = LjBuffer::complementary_z; return true;
-    default: return false;
-  }
+  if (t != Technique::layered) return info(t).gpu_cost;
+  return fmt::format("{} passes, depth cleared per layer; {} mapping per layer", s.params.layers,
+                     info(s.params.layer_mapping).name);
 }
 
 // One record per technique x format: its MTS run, LJ error and timing pass.
@@ -88,10 +73,9 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
                       {"depth_range", to_string(pair.depth_range)},
                       {"median_mts_over_vertex_bound", json_number(median)},
                       {"unresolvable_distances", unresolved}, {"structural_cost", structural_cost(scene, pair.technique)}};
-  LjBuffer b;
-  if (lj_buffer_of(pair.technique, b) && std::isfinite(scene.far)) {
+  if (info(pair.technique).lj_buffer && std::isfinite(scene.far)) {
     LjConfig c;
-    c.buffer = b;
+    c.buffer = parse_lj_buffer(info(pair.technique).lj_buffer);
     c.near = scene.near;
     c.far = scene.far;
     j["lj_ae"] = json_number(lj_average_error_device(rt, c, scene.storage_format(pair)).ae);

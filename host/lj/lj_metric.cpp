@@ -36,13 +36,9 @@ LjSampling parse_lj_sampling(const std::string& s) {
 }
 
 Technique lj_technique(LjBuffer b) {
-  switch (b) {
-    case LjBuffer::z: return Technique::standard;
-    case LjBuffer::w: return Technique::w_buffer;
-    case LjBuffer::inverse_w: return Technique::inverse_w;
-    case LjBuffer::complementary_z: return Technique::reversed;
-  }
-  return Technique::standard;
+  for (const auto& ti : technique_table())
+    if (ti.lj_buffer && to_string(b) == std::string(ti.lj_buffer)) return ti.id;
+  throw Error(ExitCode::internal, fmt::format("no technique is the LJ buffer {}", to_string(b)));
 }
 
 lj_config LjConfig::shared() const {

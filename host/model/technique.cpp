@@ -11,6 +11,25 @@ namespace depthprec {
 
 const char* to_string(DepthRange r) { return r == DepthRange::gl ? "gl" : "zero_to_one"; }
 
+const char* to_string(DepthFrom f) {
+  switch (f) {
+    case DepthFrom::projection: return "projection";
+    case DepthFrom::vertex_log: return "vertex_log";
+    case DepthFrom::fragment: return "fragment";
+  }
+  return "?";
+}
+
+const char* to_string(FragmentDepth f) {
+  switch (f) {
+    case FragmentDepth::none: return "";
+    case FragmentDepth::linear: return "linear";
+    case FragmentDepth::w_buffer: return "w_buffer";
+    case FragmentDepth::log: return "log";
+  }
+  return "?";
+}
+
 DepthRange parse_depth_range(const std::string& s) {
   if (s == "gl") return DepthRange::gl;
   if (s == "zero_to_one") return DepthRange::zero_to_one;
@@ -20,19 +39,28 @@ DepthRange parse_depth_range(const std::string& s) {
 const std::vector<TechniqueInfo>& technique_table() {
   using D = DepthFrom;
   using F = FragmentDepth;
+  using M = DepthMap;
   const DepthRange gl = DepthRange::gl, zo = DepthRange::zero_to_one;
+  const char* projection_only = "projection matrix only";
+  const char* fragment_write = "writes depth in the fragment stage: no early depth test, weaker depth compression";
+  // id, name, depth from, fragment depth, GEQUAL, range, clips at near, exact map, LJ buffer, GPU cost
   static const std::vector<TechniqueInfo> table = {
-      // id                      name                 depth from      fragment     greater range clips_near
-      {Technique::standard, "standard", D::projection, F::none, false, gl, true},
-      {Technique::infinite, "infinite", D::projection, F::none, false, gl, true},
-      {Technique::reversed, "reversed", D::projection, F::none, true, zo, true},
-      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, zo, true},
-      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, gl, false},
-      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, gl, true},
-      {Technique::linear, "linear", D::fragment, F::linear, false, gl, true},
-      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, gl, true},
-      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, zo, true},
-      {Technique::layered, "layered", D::projection, F::none, false, gl, true},
+      {Technique::standard, "standard", D::projection, F::none, false, gl, true, M::standard, "z", projection_only},
+      {Technique::infinite, "infinite", D::projection, F::none, false, gl, true, M::infinite, nullptr,
+       projection_only},
+      {Technique::reversed, "reversed", D::projection, F::none, true, zo, true, M::reversed, "complementary_z",
+       projection_only},
+      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, zo, true, M::n_over_w, nullptr,
+       projection_only},
+      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, gl, false, M::log, nullptr,
+       "a log per vertex; depth not interpolated perspective-correctly"},
+      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, gl, true, M::log, nullptr, fragment_write},
+      {Technique::linear, "linear", D::fragment, F::linear, false, gl, true, M::linear, nullptr, fragment_write},
+      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, gl, true, M::w_over_f, "w", fragment_write},
+      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, zo, true, M::n_over_w, "inverse_w",
+       projection_only},
+      {Technique::layered, "layered", D::projection, F::none, false, gl, true, M::standard, nullptr,
+       "one pass per layer, depth cleared per layer"},
   };
   return table;
 }
@@ -71,21 +99,19 @@ Technique parse_technique(const std::string& s) {
 
 double depth_of_distance(Technique t, double n, double f, const TechniqueParams& p, double w) {
   // The gl and zero_to_one window depths are the same function of w (only their binary32
-  // evaluation differs), so one closed form per technique, each without cancellation.
-  switch (t) {
-    case Technique::standard: return f * (w - n) / ((f - n) * w);
-    case Technique::infinite: return (w - n) / w;
-    case Technique::reversed: return n * (f - w) / ((f - n) * w);
-    case Technique::reversed_infinite:
-    case Technique::inverse_w: return n / w;
-    case Technique::log_vertex:
-    case Technique::log_fragment: return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
-    case Technique::linear: return (w - n) / (f - n);
-    case Technique::w_buffer: return w / f;
-    case Technique::layered: {
-      const Layer l = layer_bounds(layer_of(w, n, f, p), n, f, p);
-      return depth_of_distance(p.layer_mapping, l.near, l.far, p, w);
-    }
+  // evaluation differs), so one closed form per mapping, each without cancellation.
+  if (t == Technique::layered) {
+    const Layer l = layer_bounds(layer_of(w, n, f, p), n, f, p);
+    return depth_of_distance(p.layer_mapping, l.near, l.far, p, w);
+  }
+  switch (info(t).map) {
+    case DepthMap::standard: return f * (w - n) / ((f - n) * w);
+    case DepthMap::infinite: return (w - n) / w;
+    case DepthMap::reversed: return n * (f - w) / ((f - n) * w);
+    case DepthMap::n_over_w: return n / w;
+    case DepthMap::log: return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
+    case DepthMap::linear: return (w - n) / (f - n);
+    case DepthMap::w_over_f: return w / f;
   }
   return NAN;
 }

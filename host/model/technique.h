@@ -13,13 +13,20 @@ enum class DepthRange { gl, zero_to_one };
 const char* to_string(DepthRange r);
 DepthRange parse_depth_range(const std::string& s);  // throws InputError
 
-// Where d comes from, which decides the kernel's code path.
+// Where d comes from, which decides the kernel's code path; the values are kernels/mts.cl's
+// DEPTH_FROM and FRAG_DEPTH.
 enum class DepthFrom {
-  projection,  // d = z_ndc of P (window transform per depth range)
-  vertex_log,  // z_clip rewritten per vertex (Gilg eq. 5), then as projection
-  fragment,    // d written by the fragment stage from the perspective-correct w
+  projection = 0,  // d = z_ndc of P (window transform per depth range)
+  vertex_log = 1,  // z_clip rewritten per vertex (Gilg eq. 5), then as projection
+  fragment = 2,    // d written by the fragment stage from the perspective-correct w
 };
-enum class FragmentDepth { none, linear, w_buffer, log };
+enum class FragmentDepth { none = 0, linear = 1, w_buffer = 2, log = 3 };
+const char* to_string(DepthFrom f);      // "projection", "vertex_log", "fragment"
+const char* to_string(FragmentDepth f);  // "", "linear", "w_buffer", "log"
+
+// The exact mapping D(w) (docs/spec.md 3), one per family of techniques; the values are
+// kernels/mts_exact.cl's DEPTH_MAP.
+enum class DepthMap { standard = 0, infinite = 1, reversed = 2, n_over_w = 3, log = 4, linear = 5, w_over_f = 6 };
 
 enum class Technique {
   standard,
@@ -47,6 +54,9 @@ struct TechniqueInfo {
   // Whether a plane nearer than the near plane is clipped. log_vertex rewrites z_clip so that
   // every w in [0, far] maps into [0, 1]: it has no near clipping.
   bool clips_near;
+  DepthMap map;           // the exact D(w) (layered: its layer mapping's, per layer)
+  const char* lj_buffer;  // the Lapidous-Jiao buffer type it is (docs/spec.md 6), or nullptr
+  const char* gpu_cost;   // what a real GPU pays for it beyond its arithmetic (`cost`)
 };
 
 const std::vector<TechniqueInfo>& technique_table();
@@ -106,25 +116,22 @@ double depth_of_distance(Technique t, double near, double far, const TechniquePa
 
 template <class T>
 T distance_of_depth(Technique t, T n, T f, const TechniqueParams& p, T D) {
-  switch (t) {
-    case Technique::standard:  // D = f(Ze - n)/((f - n)Ze); 1 - D is exact for D >= 0.5
+  if (t == Technique::layered) throw_layered_has_no_single_mapping();
+  switch (info(t).map) {
+    case DepthMap::standard:  // D = f(Ze - n)/((f - n)Ze); 1 - D is exact for D >= 0.5
       return n * f / (f * (T(1) - D) + n * D);
-    case Technique::infinite:
+    case DepthMap::infinite:
       return n / (T(1) - D);
-    case Technique::reversed:  // D = n(f - Ze)/((f - n)Ze)
+    case DepthMap::reversed:  // D = n(f - Ze)/((f - n)Ze)
       return n * f / (n + D * (f - n));
-    case Technique::reversed_infinite:
-    case Technique::inverse_w:
+    case DepthMap::n_over_w:
       return n / D;
-    case Technique::linear:
+    case DepthMap::linear:
       return n + D * (f - n);
-    case Technique::w_buffer:
+    case DepthMap::w_over_f:
       return D * f;
-    case Technique::log_vertex:
-    case Technique::log_fragment:
+    case DepthMap::log:
       return T(std::expm1(double(D) * std::log1p(p.log_k * double(f))) / p.log_k);
-    case Technique::layered:
-      break;
   }
   throw_layered_has_no_single_mapping();
 }

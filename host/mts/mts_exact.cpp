@@ -14,20 +14,6 @@ namespace {
 constexpr size_t kLocal = 16;
 constexpr double kPi = 3.14159265358979323846;
 
-int depth_map(Technique t) {
-  switch (t) {
-    case Technique::standard: return 0;
-    case Technique::infinite: return 1;
-    case Technique::reversed: return 2;
-    case Technique::reversed_infinite:
-    case Technique::inverse_w: return 3;
-    case Technique::log_vertex:
-    case Technique::log_fragment: return 4;
-    case Technique::linear: return 5;
-    default: return 6;  // w_buffer
-  }
-}
-
 }  // namespace
 
 ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair)
@@ -35,7 +21,7 @@ ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const Eval
   const Technique t = depth_path(scene, pair.technique);
   const TechniqueInfo& ti = info(t);
   const std::string options =
-      fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}", base_build_options(false), depth_map(t),
+      fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}", base_build_options(false), static_cast<int>(info(t).map),
                   ti.from == DepthFrom::fragment ? 1 : 0, ti.greater ? 1 : 0, scene.storage_format(pair).defines());
   kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options), "mts_exact");
 }

@@ -13,11 +13,7 @@ Technique depth_path(const Scene& scene, Technique t) {
 KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   const TechniqueInfo& ti = info(depth_path(scene, pair.technique));
   const StorageFormat f = scene.storage_format(pair);
-  const int depth_from = ti.from == DepthFrom::projection ? 0 : ti.from == DepthFrom::vertex_log ? 1 : 2;
-  const int frag = ti.fragment == FragmentDepth::linear     ? 1
-                   : ti.fragment == FragmentDepth::w_buffer ? 2
-                   : ti.fragment == FragmentDepth::log      ? 3
-                                                            : 0;
+  const int depth_from = static_cast<int>(ti.from), frag = static_cast<int>(ti.fragment);
   const Pipeline& p = scene.pipeline;
   // Log depth through the library log is monotone only up to its error, <= 3 ulp in OpenCL 1.2
   // (sec. 7.4); with the division after it, d is within 4 ulp of a monotone function of w. In
@@ -40,9 +36,8 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
       frag, pair.depth_range == DepthRange::gl ? 1 : 0, ti.greater ? 1 : 0,
       p.divide == Divide::exact ? 1 : 0, p.compose == Compose::premultiplied ? 1 : 0,
       p.contraction ? 1 : 0, log_slack, v.cache_a_codes ? 1 : 0, f.defines());
-  const char* from = depth_from == 0 ? "projection" : depth_from == 1 ? "vertex_log" : "fragment";
-  const char* fd = frag == 1 ? "linear" : frag == 2 ? "w_buffer" : frag == 3 ? "log" : "";
-  v.label = fmt::format("{}{}{}/{}/{}/{}", from, frag ? ":" : "", fd, ti.greater ? "GEQUAL" : "LEQUAL",
+  v.label = fmt::format("{}{}{}/{}/{}/{}", to_string(ti.from), frag ? ":" : "", to_string(ti.fragment),
+                        ti.greater ? "GEQUAL" : "LEQUAL",
                         to_string(pair.depth_range), f.name());
   return v;
 }
