@@ -166,7 +166,6 @@ DF_FN df_u32 df_encode(float d, df_format f) {
     return zero != (U)0 ? (U)0 : (big != (U)0 ? (U)f.max_code : q);                         \
   }
 
-DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf, df_u64)
 #if defined(DF_OPENCL)
 DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf16, ulong16)
 

@@ -104,7 +104,6 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   const df_format fmt = DF_FORMAT_FROM_DEFINES();
   const double ndc_y = 2.0 * (oy + (double)y + 0.5) / vh - 1.0;
   const exact_row_t ra = exact_row(A, ndc_y, sx, sy), rb = exact_row(B, ndc_y, sx, sy);
-  long8 any_flag = (long8)0;
   ulong pairs = 0;
   uint flags = 0;
   for (uint x0 = 0; x0 < kw; x0 += 8) {

@@ -2,6 +2,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "run_cli.h"
 
@@ -15,13 +16,24 @@ const std::string kSmall = "--kernel 24x24 --frames 6 --distances 2,1024 ";
 }  // namespace
 
 TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec.md 5.4", "[cli][mts]") {
-  const auto r = run_cli("mts -t standard,reversed -f unorm24 " + kSmall);
+  const auto r = run_cli("mts -t standard,reversed -f unorm24 --format-out csv " + kSmall);
   REQUIRE(r.exit_code == 0);
-  for (const char* col : {"mts", "lo", "hi", "mts_seen", "vertex_bound", "frames", "fragment_pairs", "seconds", "flags"})
-    CHECK_THAT(r.output, Contains(col));
-  CHECK_THAT(r.output, Contains("standard"));
-  CHECK_THAT(r.output, Contains("reversed"));
-  CHECK_THAT(r.output, Contains("fragment pairs evaluated"));
+  std::istringstream lines(r.output);
+  std::string header, line;
+  std::getline(lines, header);
+  CHECK(header ==
+        "technique,format,depth_range,z,mts,lo,hi,mts_seen,vertex_bound,mts/vb,mts_upper,verdict,probes,frames,"
+        "fragment_pairs,launches,seconds,kernel_s,flags");
+  std::vector<std::string> rows;
+  while (std::getline(lines, line)) {
+    if (line.empty()) continue;
+    size_t end = 0;
+    for (int field = 0; field < 4; ++field) end = line.find(',', end + (field ? 1 : 0));
+    rows.push_back(line.substr(0, end));  // technique, format, depth range, z
+  }
+  // one row per pair and distance, pairs in order, each in its technique's own depth range
+  CHECK(rows == std::vector<std::string>{"standard,unorm24,gl,2", "standard,unorm24,gl,1024",
+                                         "reversed,unorm24,zero_to_one,2", "reversed,unorm24,zero_to_one,1024"});
 }
 
 TEST_CASE("no-timing output is byte-identical across runs", "[cli][mts]") {

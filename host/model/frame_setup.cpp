@@ -1,5 +1,7 @@
 #include "host/model/frame_setup.h"
 
+#include <glm/gtc/constants.hpp>
+
 #include <cmath>
 #include <glm/glm.hpp>
 
@@ -7,7 +9,6 @@ namespace depthprec {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 template <class T>
 using Mat = glm::mat<4, 4, T, glm::defaultp>;
@@ -23,7 +24,7 @@ Mat4f to_row_major(const Mat<T>& m) {
 
 template <class T>
 Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
-  const T half_fov = static_cast<T>(s.fov_y_deg * kPi / 360.0);
+  const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
   const T sy = T(1) / std::tan(half_fov);
   const T aspect = static_cast<T>(s.viewport_w) / static_cast<T>(s.viewport_h);
   const T sx = sy / aspect;
@@ -41,7 +42,7 @@ template <class T>
 Mat<T> model(const Scene& s, double D, int frame) {
   const auto ang = frame_angles(s, frame);
   const T dist = static_cast<T>(D);
-  const T half_fov = static_cast<T>(s.fov_y_deg * kPi / 360.0);
+  const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
   const T side = static_cast<T>(s.plane_margin) * T(2) * dist * std::tan(half_fov);
   const T cx = std::cos(static_cast<T>(ang[0])), sx = std::sin(static_cast<T>(ang[0]));
   const T cy = std::cos(static_cast<T>(ang[1])), sy = std::sin(static_cast<T>(ang[1]));
@@ -92,7 +93,7 @@ std::array<double, 3> frame_angles(const Scene& s, int frame) {
   const double a = frame * s.delta_a;
   std::array<double, 3> out{};
   for (int i = 0; i < 3; ++i)
-    out[i] = s.rotation_range_deg * kPi / 180.0 *
+    out[i] = s.rotation_range_deg * glm::pi<double>() / 180.0 *
              std::sin(s.rotation_step[i] * a + s.rotation_offset[i]);
   return out;
 }

@@ -27,10 +27,7 @@ constexpr cl_uint kBandRows = 32;
 constexpr size_t kPlaneACacheBytes = size_t{1} << 30;
 constexpr size_t kMaxSlots = 64;
 
-// Fixed work-group sizes: PoCL compiles a kernel once per local size, so letting it choose per
-// launch (a new size for every batch shape) recompiles again and again.
-constexpr size_t kLocal = 16;
-size_t padded_size(size_t n) { return (n + kLocal - 1) / kLocal * kLocal; }
+constexpr size_t kLocal = kWorkGroup;  // host/runtime/opencl_runtime.h
 cl::NDRange padded(size_t n) { return cl::NDRange(padded_size(n)); }
 
 // A read-only device copy of a host array.

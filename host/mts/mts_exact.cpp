@@ -1,5 +1,7 @@
 #include "host/mts/mts_exact.h"
 
+#include <glm/gtc/constants.hpp>
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -11,8 +13,6 @@ namespace depthprec {
 
 namespace {
 
-constexpr size_t kLocal = 16;
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
@@ -30,7 +30,7 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
-  const double tan_half = std::tan(scene_.fov_y_deg * kPi / 360.0);
+  const double tan_half = std::tan(scene_.fov_y_deg * glm::pi<double>() / 360.0);
   const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
   int done = 0;
   while (done < scene_.frames) {
@@ -61,8 +61,8 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
              static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
              static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
              aspect * tan_half, tan_half, scene_.params.log_k, out, static_cast<cl_uint>(items));
-    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange((items + kLocal - 1) / kLocal * kLocal),
-                                     cl::NDRange(kLocal));
+    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(padded_size(items)),
+                                     cl::NDRange(kWorkGroup));
     std::vector<uint32_t> rows(items);
     rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

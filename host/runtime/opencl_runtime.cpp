@@ -58,35 +58,16 @@ DeviceInfo describe(const cl::Platform& p, const cl::Device& d, int pi, int di) 
   return info;
 }
 
-}  // namespace
+struct Candidate {
+  cl::Platform platform;
+  cl::Device device;
+  DeviceInfo info;
+};
 
-std::vector<DeviceInfo> list_devices() {
-  std::vector<DeviceInfo> out;
+// Every device of every platform, numbered as `depthprec devices` lists them (a platform whose
+// device query fails has none: clinfo lists those, depthprec does not).
+std::vector<Candidate> enumerate_devices() {
   const auto platforms = platforms_or_throw();
-  for (size_t pi = 0; pi < platforms.size(); ++pi) {
-    std::vector<cl::Device> devices;
-    try {
-      platforms[pi].getDevices(CL_DEVICE_TYPE_ALL, &devices);
-    } catch (const cl::Error&) {
-      continue;  // a platform with no device is listed by clinfo, not by us
-    }
-    for (size_t di = 0; di < devices.size(); ++di)
-      out.push_back(describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di)));
-  }
-  return out;
-}
-
-OpenClRuntime::OpenClRuntime(const std::string& selector_arg) {
-  std::string selector = selector_arg;
-  if (selector.empty()) {
-    if (const char* env = std::getenv(kDeviceEnvVar)) selector = env;
-  }
-  const auto platforms = platforms_or_throw();
-  struct Candidate {
-    cl::Platform platform;
-    cl::Device device;
-    DeviceInfo info;
-  };
   std::vector<Candidate> all;
   for (size_t pi = 0; pi < platforms.size(); ++pi) {
     std::vector<cl::Device> devices;
@@ -99,6 +80,23 @@ OpenClRuntime::OpenClRuntime(const std::string& selector_arg) {
       all.push_back({platforms[pi], devices[di],
                      describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di))});
   }
+  return all;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<DeviceInfo> out;
+  for (const auto& c : enumerate_devices()) out.push_back(c.info);
+  return out;
+}
+
+OpenClRuntime::OpenClRuntime(const std::string& selector_arg) {
+  std::string selector = selector_arg;
+  if (selector.empty()) {
+    if (const char* env = std::getenv(kDeviceEnvVar)) selector = env;
+  }
+  const std::vector<Candidate> all = enumerate_devices();
   if (all.empty()) throw RuntimeError(kNoPlatform);
 
   const Candidate* chosen = nullptr;

@@ -66,6 +66,12 @@ class OpenClRuntime {
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;
 };
 
+// Work-group size of every 1-D launch: fixed, because PoCL compiles a kernel once per local size,
+// and letting it choose per launch (a new size for every batch shape) recompiles again and again.
+constexpr size_t kWorkGroup = 16;
+// n rounded up to a whole number of work-groups.
+inline size_t padded_size(size_t n) { return (n + kWorkGroup - 1) / kWorkGroup * kWorkGroup; }
+
 // Options every depthprec program is built with: OpenCL C 1.2, IEEE division (docs/spec.md's GPU
 // divides correctly rounded), denormals kept unless flush is asked for.
 std::string base_build_options(bool flush_denormals);
