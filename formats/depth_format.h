@@ -53,7 +53,8 @@ DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_styl
                               df_u32 flush) {
   df_format f;
   f.kind = DF_KIND_FLOAT;
-  f.bits = (df_u32)(exp_bits + man_bits) + (ieee_style ? 1u : 0u); /* IEEE-style keeps a sign bit, always 0 */
+  f.bits = (df_u32)(exp_bits + man_bits) +
+           (ieee_style ? 1u : 0u); /* IEEE-style keeps a sign bit, always 0 */
   f.exp_bits = exp_bits;
   f.man_bits = man_bits;
   f.bias = ieee_style ? (1 << (exp_bits - 1)) - 1 : (1 << exp_bits);
@@ -103,7 +104,8 @@ DF_FN df_u32 df_encode_unorm(df_u32 u, df_format f) {
 
 /* binary32 itself (float32 storage): a code is the depth's bit pattern. */
 DF_FN int df_is_binary32(df_format f) {
-  return f.kind == DF_KIND_FLOAT && f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 && !f.flush;
+  return f.kind == DF_KIND_FLOAT && f.exp_bits == 8 && f.man_bits == 23 && f.bias == 127 &&
+         !f.flush;
 }
 
 DF_FN df_u32 df_encode_float(df_u32 u, df_format f) {
@@ -113,7 +115,7 @@ DF_FN df_u32 df_encode_float(df_u32 u, df_format f) {
   df_u32 ex = u >> 23;
   df_u32 m = ex ? ((u & 0x7fffffu) | 0x800000u) : (u & 0x7fffffu);
   if (m == 0u) return 0u;
-  df_i32 k = (df_i32)(ex ? ex : 1u) - 150; /* d = m * 2^k exactly */
+  df_i32 k = (df_i32)(ex ? ex : 1u) - 150;   /* d = m * 2^k exactly */
   df_i32 p = (31 - (df_i32)df_clz32(m)) + k; /* binade: 2^p <= d < 2^(p+1) */
   df_i32 min_p = 1 - f.bias;                 /* binade of the smallest normal */
   df_i32 qp = p > min_p ? p : min_p;
@@ -138,8 +140,8 @@ DF_FN df_u32 df_encode_float(df_u32 u, df_format f) {
 /* Storage code of a binary32 window depth. */
 DF_FN df_u32 df_encode(float d, df_format f) {
   df_u32 u = df_float_bits(d);
-  if (u >> 31) return 0u;          /* negative, -0 */
-  if (u > 0x7f800000u) return 0u;  /* NaN */
+  if (u >> 31) return 0u;         /* negative, -0 */
+  if (u > 0x7f800000u) return 0u; /* NaN */
   if (u == 0x7f800000u) return f.max_code;
   return f.kind == DF_KIND_UNORM ? df_encode_unorm(u, f) : df_encode_float(u, f);
 }
@@ -148,22 +150,22 @@ DF_FN df_u32 df_encode(float d, df_format f) {
  * 64-bit lane type U (a scalar, or an OpenCL ulongN vector where the comparisons below act per
  * lane): `u` holds the binary32 bit pattern. The kernels' vector loop uses the vector
  * instantiation; tests prove it equal to df_encode on every binary32 in [0, 1]. */
-#define DF_DEFINE_ENCODE_UNORM_BF(NAME, U)                                                  \
-  DF_FN U NAME(U u, df_format f) {                                                          \
-    const U ex = (u >> 23) & (U)0xffu;                                                      \
-    const U man = u & (U)0x7fffffu;                                                         \
-    const U m = ex != (U)0 ? (man | (U)0x800000u) : man;                                    \
-    const U big = ex >= (U)127 ? (U)1 : (U)0; /* d >= 1, inf, NaN */                         \
-    const U s0 = (U)150 - (ex != (U)0 ? ex : (U)1);                                         \
-    const U s = big != (U)0 ? (U)23 : (s0 > (U)63 ? (U)63 : s0);                            \
-    const U p = m * (U)f.max_code;                                                          \
-    U q = p >> s;                                                                           \
-    const U rem = p - (q << s);                                                             \
-    const U halfway = ((U)1 << s) >> 1;                                                     \
-    if (f.rounding == DF_ROUND_NEAREST_EVEN)                                                \
-      q = (rem > halfway || (rem == halfway && (q & (U)1) != (U)0)) ? q + (U)1 : q;         \
+#define DF_DEFINE_ENCODE_UNORM_BF(NAME, U)                                                     \
+  DF_FN U NAME(U u, df_format f) {                                                             \
+    const U ex = (u >> 23) & (U)0xffu;                                                         \
+    const U man = u & (U)0x7fffffu;                                                            \
+    const U m = ex != (U)0 ? (man | (U)0x800000u) : man;                                       \
+    const U big = ex >= (U)127 ? (U)1 : (U)0; /* d >= 1, inf, NaN */                           \
+    const U s0 = (U)150 - (ex != (U)0 ? ex : (U)1);                                            \
+    const U s = big != (U)0 ? (U)23 : (s0 > (U)63 ? (U)63 : s0);                               \
+    const U p = m * (U)f.max_code;                                                             \
+    U q = p >> s;                                                                              \
+    const U rem = p - (q << s);                                                                \
+    const U halfway = ((U)1 << s) >> 1;                                                        \
+    if (f.rounding == DF_ROUND_NEAREST_EVEN)                                                   \
+      q = (rem > halfway || (rem == halfway && (q & (U)1) != (U)0)) ? q + (U)1 : q;            \
     const U zero = ((u >> 31) != (U)0 || (u & (U)0x7fffffffu) > (U)0x7f800000u) ? (U)1 : (U)0; \
-    return zero != (U)0 ? (U)0 : (big != (U)0 ? (U)f.max_code : q);                         \
+    return zero != (U)0 ? (U)0 : (big != (U)0 ? (U)f.max_code : q);                            \
   }
 
 #if defined(DF_OPENCL)
@@ -180,7 +182,8 @@ DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf16, ulong16)
  * gives 2^52, code 0. Truncation toward zero is the conversion itself. */
 DF_FN uint16 df_encode_unorm_f64_16_unit(float16 d, df_format f) {
   const double16 p = convert_double16(d) * (double16)((double)f.max_code);
-  return f.rounding == DF_ROUND_NEAREST_EVEN ? convert_uint16(as_ulong16(p + 0x1p52)) : convert_uint16(p);
+  return f.rounding == DF_ROUND_NEAREST_EVEN ? convert_uint16(as_ulong16(p + 0x1p52))
+                                             : convert_uint16(p);
 }
 
 /* Any binary32: negative and NaN store 0, 1 and above (and +inf) the largest code. The
@@ -188,25 +191,27 @@ DF_FN uint16 df_encode_unorm_f64_16_unit(float16 d, df_format f) {
 DF_FN uint16 df_encode_unorm_f64_16(float16 d, df_format f) {
   const uint16 u = as_uint16(d);
   const int16 zero = (u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u;
-  const int16 big = !zero && d >= 1.0f; /* and +inf */
+  const int16 big = !zero && d >= 1.0f;                 /* and +inf */
   const float16 in = (zero || big) ? (float16)0.0f : d; /* no inf or NaN reaches the conversion */
   const uint16 q = df_encode_unorm_f64_16_unit(in, f);
   return big ? (uint16)f.max_code : (zero ? (uint16)0 : q);
 }
 #endif
 
-/* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by lane through the
- * scalar encoder for the other float formats. */
+/* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by
+ * lane through the scalar encoder for the other float formats. */
 DF_FN uint16 df_encode16(float16 d, df_format f) {
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16(d, f);
 #endif
-  if (f.kind == DF_KIND_UNORM) return convert_uint16(df_encode_unorm_bf16(convert_ulong16(as_uint16(d)), f));
+  if (f.kind == DF_KIND_UNORM)
+    return convert_uint16(df_encode_unorm_bf16(convert_ulong16(as_uint16(d)), f));
   if (df_is_binary32(f)) {
     const uint16 u = as_uint16(d);
     /* negative and NaN store 0; finite non-negative values are their own code */
-    return ((u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u) ? (uint16)0
-           : (u == (uint16)0x7f800000u ? (uint16)f.max_code : u);
+    return ((u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u)
+               ? (uint16)0
+               : (u == (uint16)0x7f800000u ? (uint16)f.max_code : u);
   }
   float a[16];
   uint c[16];
@@ -222,15 +227,18 @@ DF_FN uint16 df_encode16_unit(float16 d, df_format f) {
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16_unit(d, f);
 #endif
-  if (df_is_binary32(f))
-    return as_uint16(d) & (uint16)0x7fffffffu; /* -0 stores 0 */
+  if (df_is_binary32(f)) return as_uint16(d) & (uint16)0x7fffffffu; /* -0 stores 0 */
   return df_encode16(d, f);
 }
 #endif
 
 /* The neighbouring codes, saturating at the ends of the code range. */
-DF_FN df_u32 df_code_above(df_u32 c, df_format f) { return c < f.max_code ? c + 1u : c; }
-DF_FN df_u32 df_code_below(df_u32 c) { return c > 0u ? c - 1u : c; }
+DF_FN df_u32 df_code_above(df_u32 c, df_format f) {
+  return c < f.max_code ? c + 1u : c;
+}
+DF_FN df_u32 df_code_below(df_u32 c) {
+  return c > 0u ? c - 1u : c;
+}
 
 /* A kernel specialised with -D defines (see host/model/storage_format.cpp) gets its format as a
  * compile-time constant, so every branch on the kind folds away. */
@@ -275,14 +283,16 @@ DF_FN df_u32 df_encode_f64(double d, df_format f) {
     const double frac = hi - q; /* exact: hi < 2^32 keeps >= 20 fraction bits */
     df_u64 code = (df_u64)q;
     if (f.rounding == DF_ROUND_NEAREST_EVEN) {
-      const double t = (frac - 0.5) + err; /* sign exact: |err| <= ulp(hi)/2 <= |frac - 0.5| unless 0 */
+      const double t =
+          (frac - 0.5) + err; /* sign exact: |err| <= ulp(hi)/2 <= |frac - 0.5| unless 0 */
       if (t > 0.0 || (t == 0.0 && (code & 1u))) code += 1u;
     } else if (frac == 0.0 && err < 0.0) {
       code -= 1u;
     }
     return code > (df_u64)f.max_code ? f.max_code : (df_u32)code;
   }
-  if (d > df_decode(f.max_code, f) * 2.0) return f.max_code; /* far above the largest code, and +inf */
+  if (d > df_decode(f.max_code, f) * 2.0)
+    return f.max_code; /* far above the largest code, and +inf */
   int e = 0;
   const double fr = frexp(d, &e);
   const df_u64 m = (df_u64)ldexp(fr, 53); /* d = m * 2^k exactly, 2^52 <= m < 2^53 */

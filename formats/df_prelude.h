@@ -31,7 +31,9 @@ DF_FN float df_bits_float(df_u32 u) {
   memcpy(&x, &u, sizeof x);
   return x;
 }
-DF_FN df_u32 df_clz32(df_u32 x) { return x ? (df_u32)__builtin_clz(x) : 32u; }
+DF_FN df_u32 df_clz32(df_u32 x) {
+  return x ? (df_u32)__builtin_clz(x) : 32u;
+}
 #endif
 
 #endif /* DF_PRELUDE_H */

@@ -15,13 +15,15 @@ __kernel void encode_range(const uint first_bits, const uint count, __global uin
     c[k] = df_encode(as_float(first_bits + i), DF_FORMAT_FROM_DEFINES());
     if (i < count) codes[i] = c[k];
   }
-  const uint16 bits = (uint16)(first_bits + base) +
-                      (uint16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const uint16 bits =
+      (uint16)(first_bits + base) + (uint16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   const uint16 v = df_encode16(as_float16(bits), DF_FORMAT_FROM_DEFINES());
   const int16 unit_domain = bits <= (uint16)0x3f800000u || bits == (uint16)0x80000000u;
-  const uint16 w = df_encode16_unit(as_float16(unit_domain ? bits : (uint16)0u), DF_FORMAT_FROM_DEFINES());
+  const uint16 w =
+      df_encode16_unit(as_float16(unit_domain ? bits : (uint16)0u), DF_FORMAT_FROM_DEFINES());
   uint differ = 0;
   for (int k = 0; k < 16; ++k)
-    differ += (base + (uint)k < count && (v[k] != c[k] || (unit_domain[k] && w[k] != c[k]))) ? 1u : 0u;
+    differ +=
+        (base + (uint)k < count && (v[k] != c[k] || (unit_domain[k] && w[k] != c[k]))) ? 1u : 0u;
   vector_differs[get_global_id(0)] = differ;
 }

@@ -23,11 +23,15 @@ typedef struct lj_config {
   int buffer;   /* LJ_* */
   int sampling; /* LJ_UNIFORM, LJ_INCREASING */
   double d, f;  /* near and far */
-  df_i64 n;  /* samples, both ends included */
+  df_i64 n;     /* samples, both ends included */
 } lj_config;
 
-DF_FN double lj_t(lj_config c, df_i64 i) { return (double)i / (double)(c.n - 1); }
-DF_FN double lj_rest(lj_config c, df_i64 i) { return (double)(c.n - 1 - i) / (double)(c.n - 1); }
+DF_FN double lj_t(lj_config c, df_i64 i) {
+  return (double)i / (double)(c.n - 1);
+}
+DF_FN double lj_rest(lj_config c, df_i64 i) {
+  return (double)(c.n - 1 - i) / (double)(c.n - 1);
+}
 
 /* Eye distance of sample i: d + (f - d)·i/(N - 1), exactly f at the last. */
 DF_FN double lj_distance(lj_config c, df_i64 i) {
@@ -37,10 +41,10 @@ DF_FN double lj_distance(lj_config c, df_i64 i) {
 /* Window depth D(Ze) of sample i (LJ eqs. 3-5 and the complementary Z of sec. 3). */
 DF_FN double lj_depth(lj_config c, df_i64 i) {
   const double Ze = lj_distance(c, i);
-  if (c.buffer == LJ_Z) return c.f * lj_t(c, i) / Ze;                 /* f/(f-d)·(1 - d/Ze) */
+  if (c.buffer == LJ_Z) return c.f * lj_t(c, i) / Ze; /* f/(f-d)·(1 - d/Ze) */
   if (c.buffer == LJ_W) return Ze / c.f;
   if (c.buffer == LJ_INVERSE_W) return c.d / Ze;
-  return c.d * lj_rest(c, i) / Ze;                                     /* d/(f-d)·(f/Ze - 1) */
+  return c.d * lj_rest(c, i) / Ze; /* d/(f-d)·(f/Ze - 1) */
 }
 
 /* Per-vertex error dDv: the full binary32 spacing above D, 2^-149 below 2^-126 and at 0. */
@@ -54,7 +58,7 @@ DF_FN double lj_vertex_error(double D) {
 /* dZe for depth D at distance Ze with representation error delta; +inf past the Z pole. */
 DF_FN double lj_distance_error(lj_config c, double D, double Ze, double delta) {
   const double d = c.d, f = c.f;
-  if (c.buffer == LJ_W) return delta * f; /* Ze(D) = D·f */
+  if (c.buffer == LJ_W) return delta * f;                             /* Ze(D) = D·f */
   if (c.buffer == LJ_INVERSE_W) return d * delta / (D * (D + delta)); /* d/D - d/(D + delta) */
   if (c.buffer == LJ_COMPLEMENTARY_Z) {
     /* Ze(D) = f/(1 + D·k), k = (f - d)/d, 1 + D·k = f/Ze */

@@ -25,17 +25,19 @@
 //                       s*dx < 0 (a top-left rule: exactly one of two neighbours owns the edge)
 //   covering triangle   the lowest-index triangle whose three edge tests pass
 //   depth (plane eq.)   d = (d0 + dzdx * (px - x0)) + dzdy * (py - y0), from vertex 0 of the
-//                       triangle, dzdx = (e1d e2y - e2d e1y) / det, dzdy = (e2d e1x - e1d e2x) / det
+//                       triangle, dzdx = (e1d e2y - e2d e1y) / det, dzdy = (e2d e1x - e1d e2x) /
+//                       det
 //   1/w (perspective)   the same plane equation over q = 1/w_clip; w = 1 / q
 //
 // This file is the program's entry: it checks the defines and includes the parts in the order
 // each needs the one before. The host-kernel binary layout is kernels/mts_layout.h; the kernels
 // only the tests use are in kernels/mts_test.cl, a program of its own.
 
-#if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) ||      \
-    !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||          \
+#if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
+    !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
     !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) || !defined(DF_KIND)
-#error "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES and the DF_* format defines (host/runtime/kernel_variant.cpp)"
+#error \
+    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
 #if CONTRACT
@@ -44,6 +46,8 @@
 #pragma OPENCL FP_CONTRACT OFF
 #endif
 
+// The order is the point: each part uses the ones above it.
+// clang-format off
 #include "formats/depth_format.h"   /* storage formats, shared with the host */
 #include "kernels/mts_layout.h"     /* buffer layout, shared with the host */
 #include "kernels/mts/common.cl"    /* layout names at this GRID, mat_vec, any16 */
@@ -53,3 +57,4 @@
 #include "kernels/mts/plane_a.cl"   /* mts_a_rows: the plane-A cache's row records */
 #include "kernels/mts/bounds.cl"    /* mts_a_bands, mts_frame_bounds: bands decided from code bounds */
 #include "kernels/mts/raster.cl"    /* mts_raster: the per-row fight search */
+// clang-format on

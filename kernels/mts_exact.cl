@@ -92,9 +92,10 @@ static double8 exact_w8(exact_row_t r, double8 ndc_x, long8* covered) {
 
 /* One work item per (probe, frame, kernel row), 8 pixels at a time: flags of the row's pixels
  * and the number of fragment pairs, as mts_raster reports them. */
-__kernel void mts_exact(__global const double4* planes, const uint kw, const uint kh, const double ox,
-                        const double oy, const double vw, const double vh, const double sx, const double sy,
-                        const double k, __global uint* out, const uint items) {
+__kernel void mts_exact(__global const double4* planes, const uint kw, const uint kh,
+                        const double ox, const double oy, const double vw, const double vh,
+                        const double sx, const double sy, const double k, __global uint* out,
+                        const uint items) {
   const uint item = get_global_id(0);
   if (item >= items) return;
   const uint y = item % kh, pf = item / kh;

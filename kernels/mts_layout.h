@@ -1,5 +1,5 @@
-/* The binary layout shared by the MTS kernels (kernels/mts.cl and its parts, kernels/mts_exact.cl) and the
- * host (host/mts/mts_evaluator.cpp, host/model/frame_setup.cpp), one source for both as
+/* The binary layout shared by the MTS kernels (kernels/mts.cl and its parts, kernels/mts_exact.cl)
+ * and the host (host/mts/mts_evaluator.cpp, host/model/frame_setup.cpp), one source for both as
  * kernels/lj_formulas.h is for the LJ formulas: the records of a plane, of a probe's constants, of
  * a cached row and band of plane A, of mts_frame_bounds' verdicts, and the bits of a row's result
  * word. Valid C++ and OpenCL C. The plane record depends on the grid (quads per plane side):

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "format_reference.h"
+#include "host/model/storage_format.h"
 #include "host/runtime/device_encode.h"
 #include "host/runtime/opencl_runtime.h"
-#include "host/model/storage_format.h"
 
 using namespace depthprec;
 
@@ -29,8 +29,7 @@ struct Tally {
 };
 
 void check_span(const std::vector<uint32_t>& codes, uint32_t first, uint32_t begin, uint32_t end,
-                const StorageFormat& f, const test::ReferenceFormat& rf, bool truncate,
-                Tally& t) {
+                const StorageFormat& f, const test::ReferenceFormat& rf, bool truncate, Tally& t) {
   uint64_t bad_ref = 0, bad_host = 0;
   for (uint32_t i = begin; i < end; ++i) {
     const uint32_t bits = first + i;
@@ -85,10 +84,11 @@ int main(int argc, char** argv) {
     }
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    fmt::print("exhaustive {} {}: {} inputs checked on {}, {} mismatches vs reference, {} vs host "
-               "build, {} in the 16-lane path ({:.1f} s)\n",
-               name, to_string(rounding), tally.checked.load(), rt.info().device_name,
-               tally.vs_reference.load(), tally.vs_host.load(), tally.vector_path.load(), secs);
+    fmt::print(
+        "exhaustive {} {}: {} inputs checked on {}, {} mismatches vs reference, {} vs host "
+        "build, {} in the 16-lane path ({:.1f} s)\n",
+        name, to_string(rounding), tally.checked.load(), rt.info().device_name,
+        tally.vs_reference.load(), tally.vs_host.load(), tally.vector_path.load(), secs);
     if (tally.checked.load() != uint64_t{kLast} + 1 || tally.vs_reference.load() != 0 ||
         tally.vs_host.load() != 0 || tally.vector_path.load() != 0)
       ok = false;

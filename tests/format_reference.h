@@ -12,8 +12,8 @@ namespace depthprec::test {
 struct ReferenceFormat {
   std::string name;
   bool unorm = false;
-  int bits = 0;       // unorm
-  int E = 0, M = 0;   // float
+  int bits = 0;      // unorm
+  int E = 0, M = 0;  // float
   int bias = 0;
   bool ieee = false;  // all-ones exponent reserved
 };

@@ -3,9 +3,9 @@
 
 #include <vector>
 
+#include "host/model/scene.h"
 #include "host/mts/mts_search.h"
 #include "host/runtime/opencl_runtime.h"
-#include "host/model/scene.h"
 
 namespace depthprec::test {
 

@@ -1,12 +1,13 @@
 // Runs the depthprec executable as a user would, capturing output and exit code.
 #pragma once
 
+#include <sys/wait.h>
+
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace depthprec::test {
 
@@ -17,7 +18,8 @@ struct CliResult {
 
 // env: assignments put before the command, e.g. "OCL_ICD_VENDORS=/nonexistent".
 inline CliResult run_cli(const std::string& args, const std::string& env = "") {
-  const std::string cmd = env + (env.empty() ? "" : " ") + "'" + DEPTHPREC_EXE + "' " + args + " 2>&1";
+  const std::string cmd =
+      env + (env.empty() ? "" : " ") + "'" + DEPTHPREC_EXE + "' " + args + " 2>&1";
   CliResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;

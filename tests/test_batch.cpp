@@ -1,30 +1,30 @@
 // No lost results: a batch killed mid-way keeps its finished rows, --resume completes it to the
 // same bytes as an uninterrupted run, and shards merge to the same bytes too.
-#include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 
 #include "run_cli.h"
 
-using depthprec::test::run_cli;
-using depthprec::test::fresh;
-using depthprec::test::slurp;
 using Catch::Matchers::Contains;
+using depthprec::test::fresh;
+using depthprec::test::run_cli;
+using depthprec::test::slurp;
 
 namespace {
 
 const std::string kBatch =
     "table -t standard,linear,reversed -f unorm24 --distances 2,64,2048,65536,2097152,67108864 "
     "--kernel 120x120 --frames 40 --no-timing --format-out json";
-
 
 size_t lines_in(const std::string& path) {
   const std::string s = slurp(path);
@@ -65,8 +65,10 @@ int run_and_interrupt(const std::string& args, const std::string& journal, int s
 
 }  // namespace
 
-TEST_CASE("an interrupted table keeps its finished rows and resumes to identical bytes", "[batch]") {
-  const std::string full = fresh("/tmp/depthprec_test_full.json"), cut = fresh("/tmp/depthprec_test_cut.json");
+TEST_CASE("an interrupted table keeps its finished rows and resumes to identical bytes",
+          "[batch]") {
+  const std::string full = fresh("/tmp/depthprec_test_full.json"),
+                    cut = fresh("/tmp/depthprec_test_cut.json");
   for (const auto& f : {full, cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
   REQUIRE(run_cli(kBatch + " -o " + full).exit_code == 0);
   for (const int sig : {SIGINT, SIGTERM}) {
@@ -77,7 +79,7 @@ TEST_CASE("an interrupted table keeps its finished rows and resumes to identical
     CHECK(code == 130);
     const size_t kept = lines_in(cut + ".rows.jsonl");
     CHECK(kept >= 1);
-    CHECK(kept < 18);  // stopped before the end
+    CHECK(kept < 18);                        // stopped before the end
     CHECK_FALSE(std::ifstream(cut).good());  // no half-written final file
     // starting over would lose the kept rows: refused
     const auto again = run_cli(kBatch + " -o " + cut);
@@ -95,9 +97,11 @@ TEST_CASE("an interrupt stops a run whose pairs are waiting for each other", "[b
   const std::string cut = fresh("/tmp/depthprec_test_wait.json");
   for (const auto& f : {cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
   const auto t0 = std::chrono::steady_clock::now();
-  const int code = run_and_interrupt("table -t standard,infinite -f unorm24 --distances 2,64,2048,65536,2097152 "
-                                     "--kernel 160x160 --frames 60 --jobs 2 --no-timing --format-out json -o " + cut,
-                                     cut + ".rows.jsonl", SIGINT);
+  const int code = run_and_interrupt(
+      "table -t standard,infinite -f unorm24 --distances 2,64,2048,65536,2097152 "
+      "--kernel 160x160 --frames 60 --jobs 2 --no-timing --format-out json -o " +
+          cut,
+      cut + ".rows.jsonl", SIGINT);
   CHECK(code == 130);
   CHECK(lines_in(cut + ".rows.jsonl") >= 1);
   CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 30);
@@ -133,10 +137,13 @@ TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
 TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "[batch]") {
   const std::vector<std::pair<std::string, std::string>> batches = {
       {"lj-table", "lj-table --samples 20000 --no-timing --format-out json"},
-      {"cost", "cost -t standard,reversed,linear,log_fragment -f unorm24 --distances 2,1024,1048576 --kernel 60x60 "
-               "--frames 20 --no-timing --format-out json"},
-      {"tradeoff", "tradeoff -t reversed -f float32 --depth-range zero_to_one --distances 2,1024 --no-timing "
-                   "--format-out json"}};
+      {"cost",
+       "cost -t standard,reversed,linear,log_fragment -f unorm24 --distances 2,1024,1048576 "
+       "--kernel 60x60 "
+       "--frames 20 --no-timing --format-out json"},
+      {"tradeoff",
+       "tradeoff -t reversed -f float32 --depth-range zero_to_one --distances 2,1024 --no-timing "
+       "--format-out json"}};
   for (const auto& [name, args] : batches) {
     INFO(name);
     const std::string base = "/tmp/depthprec_test_" + name;
@@ -156,7 +163,8 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
       REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " + part).exit_code == 0);
       parts += " " + part;
     }
-    const auto merged = run_cli("merge" + parts + " --no-timing --format-out json -o " + base + "_merged.json");
+    const auto merged =
+        run_cli("merge" + parts + " --no-timing --format-out json -o " + base + "_merged.json");
     REQUIRE(merged.exit_code == 0);
     CHECK(slurp(base + "_merged.json") == slurp(full));
     const auto one = run_cli("merge " + base + "_part1.json");
@@ -168,8 +176,9 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
 // standard and infinite compute the same thing with binary32 matrices (n = 1, f = 1e9): one run
 // takes infinite's rows over from standard's; shards that split them still merge to its bytes.
 TEST_CASE("rows taken over from an identical computation read the same in shards", "[batch]") {
-  const std::string args = "table -t standard,infinite -f unorm24 --distances 2,64,2048,65536 --kernel 40x40 "
-                           "--frames 10 --no-timing --format-out json";
+  const std::string args =
+      "table -t standard,infinite -f unorm24 --distances 2,64,2048,65536 --kernel 40x40 "
+      "--frames 10 --no-timing --format-out json";
   const std::string whole = fresh("/tmp/depthprec_test_taken_whole.json");
   REQUIRE(run_cli(args + " -o " + whole).exit_code == 0);
   const auto j = nlohmann::json::parse(slurp(whole));
@@ -188,7 +197,8 @@ TEST_CASE("rows taken over from an identical computation read the same in shards
     REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " + part).exit_code == 0);
     parts += " " + part;
   }
-  REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o " + fresh("/tmp/depthprec_test_taken_merged.json"))
+  REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o " +
+                  fresh("/tmp/depthprec_test_taken_merged.json"))
               .exit_code == 0);
   CHECK(slurp("/tmp/depthprec_test_taken_merged.json") == slurp(whole));
 }
@@ -196,9 +206,11 @@ TEST_CASE("rows taken over from an identical computation read the same in shards
 // Pairs run side by side (--jobs) with their own queues; a pair whose rows an earlier pair
 // computes waits for it. Neither may change a byte of the rows, nor the order of the verbose
 // lines (printed in pair order, whichever job finishes first).
-TEST_CASE("any number of jobs gives the same bytes and the same verbose lines in pair order", "[batch]") {
-  const std::string args = "table -t standard,infinite,linear,reversed -f unorm24,float32 --distances 2,2048,65536 "
-                           "--kernel 60x60 --frames 20 --no-timing --format-out json";
+TEST_CASE("any number of jobs gives the same bytes and the same verbose lines in pair order",
+          "[batch]") {
+  const std::string args =
+      "table -t standard,infinite,linear,reversed -f unorm24,float32 --distances 2,2048,65536 "
+      "--kernel 60x60 --frames 20 --no-timing --format-out json";
   std::string first_output, first_lines;
   for (const int jobs : {1, 3, 8}) {
     const std::string out = fresh("/tmp/depthprec_test_jobs" + std::to_string(jobs) + ".json");
@@ -208,14 +220,17 @@ TEST_CASE("any number of jobs gives the same bytes and the same verbose lines in
     std::string lines;
     std::istringstream in(r.output);
     for (std::string line; std::getline(in, line);)
-      if (line.find(':') != std::string::npos) lines += line.substr(0, line.find_first_of("0123456789")) + "\n";
+      if (line.find(':') != std::string::npos)
+        lines += line.substr(0, line.find_first_of("0123456789")) + "\n";
     INFO("--jobs " << jobs);
     // 6 variants built, 6 pairs computed, 2 (infinite) taken over from standard
     CHECK(std::count(lines.begin(), lines.end(), '\n') == 6 + 6 + 2);
     if (jobs == 1) {
       first_output = slurp(out);
       first_lines = lines;
-      CHECK_THAT(r.output, Contains("infinite/unorm24/gl: 3 distances computed exactly as by an earlier pair"));
+      CHECK_THAT(
+          r.output,
+          Contains("infinite/unorm24/gl: 3 distances computed exactly as by an earlier pair"));
       continue;
     }
     CHECK(slurp(out) == first_output);

@@ -1,7 +1,6 @@
 // The pieces every batch is made of, without the command line around them: shards, the journal
 // of finished rows, the batch loop, and the fold of a launch's row words into probe outcomes.
 #include <catch2/catch.hpp>
-
 #include <cstdio>
 #include <fstream>
 
@@ -29,7 +28,8 @@ TEST_CASE("a shard holds every N-th unit from its index", "[batch][unit]") {
   }
 }
 
-TEST_CASE("the journal keeps finished records, refuses to be overwritten and resumes", "[batch][unit]") {
+TEST_CASE("the journal keeps finished records, refuses to be overwritten and resumes",
+          "[batch][unit]") {
   const std::string out = test::fresh("/tmp/depthprec_test_pieces.json");
   {
     RowJournal j(out, false);
@@ -37,7 +37,8 @@ TEST_CASE("the journal keeps finished records, refuses to be overwritten and res
     j.append({{"key", "a"}, {"v", 1}});
     j.append({{"key", "b"}, {"v", 2}});
   }
-  std::ofstream(out + ".rows.jsonl", std::ios::app) << "{\"key\": \"c\", \"v\"";  // a line cut by a crash
+  std::ofstream(out + ".rows.jsonl", std::ios::app)
+      << "{\"key\": \"c\", \"v\"";  // a line cut by a crash
   CHECK_THROWS_WITH(RowJournal(out, false), Contains("--resume"));
   RowJournal resumed(out, true);
   REQUIRE(resumed.earlier().size() == 2);  // the incomplete line is not a record
@@ -64,10 +65,14 @@ TEST_CASE("a launch's row words fold into each probe's first deciding frame", "[
   const size_t kh = 2;
   const uint32_t pairs = 10u << R_COUNT_SHIFT;
   const std::vector<uint32_t> rows = {
-      pairs, pairs,                      // probe 0, frame 0: clean
-      pairs | R_FIGHT, pairs,            // probe 0, frame 1: a fight
-      pairs | R_CLIPPED, pairs,          // probe 2, frame 0: clipped
-      pairs, pairs | R_NONFINITE,        // probe 2, frame 1: non-finite
+      pairs,
+      pairs,  // probe 0, frame 0: clean
+      pairs | R_FIGHT,
+      pairs,  // probe 0, frame 1: a fight
+      pairs | R_CLIPPED,
+      pairs,  // probe 2, frame 0: clipped
+      pairs,
+      pairs | R_NONFINITE,  // probe 2, frame 1: non-finite
   };
   std::vector<ProbeResult> results(3);
   std::vector<bool> decided(3, false);

@@ -20,13 +20,16 @@ namespace {
 const EvalPair kPair{Technique::standard, "unorm24", DepthRange::gl};
 
 double code_width_at(const Scene& s, double z) {
-  return code_interval_width({Technique::standard, s.near, s.far, s.params}, s.storage_format(kPair), z);
+  return code_interval_width({Technique::standard, s.near, s.far, s.params},
+                             s.storage_format(kPair), z);
 }
 
 }  // namespace
 
-TEST_CASE("an MTS below one storage code is flagged, and the reference confirms its bracket", "[mts][reference]") {
-  const Scene scene = load_scene("", {"near=0.1", "far=10000", "kernel=[50,50]", "viewport=[200,200]"});
+TEST_CASE("an MTS below one storage code is flagged, and the reference confirms its bracket",
+          "[mts][reference]") {
+  const Scene scene =
+      load_scene("", {"near=0.1", "far=10000", "kernel=[50,50]", "viewport=[200,200]"});
   const double z = 5000;
   REQUIRE_THAT(code_width_at(scene, z), WithinRel(14.9, 0.01));  // resolve's figure at z
   const MtsRow row = mts_rows(scene, kPair.technique, kPair.format, kPair.depth_range, {z}).front();
@@ -43,8 +46,10 @@ TEST_CASE("an MTS below one storage code is flagged, and the reference confirms 
   CHECK(at_lo.outcome == Outcome::fight);
 }
 
-TEST_CASE("with the kernel filling the viewport the same set-up needs more than one code", "[mts]") {
-  const Scene scene = load_scene("", {"near=0.1", "far=10000", "kernel=[50,50]", "viewport=[50,50]"});
+TEST_CASE("with the kernel filling the viewport the same set-up needs more than one code",
+          "[mts]") {
+  const Scene scene =
+      load_scene("", {"near=0.1", "far=10000", "kernel=[50,50]", "viewport=[50,50]"});
   const double z = 5000;
   const MtsRow row = mts_rows(scene, kPair.technique, kPair.format, kPair.depth_range, {z}).front();
   REQUIRE(row.verdict() == Verdict::resolved);

@@ -1,19 +1,18 @@
 #include <catch2/catch.hpp>
-
 #include <fstream>
 
 #include "run_cli.h"
 
-using depthprec::test::run_cli;
 using Catch::Matchers::Contains;
+using depthprec::test::run_cli;
 
 TEST_CASE("formats prints bits, range and spacing, and round-trips on the device", "[cli]") {
   const auto r = run_cli("formats unorm24 float32 --value 0.5 --on-device");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Contains("spacing@0.5"));
-  CHECK_THAT(r.output, Contains("16777216"));   // unorm24 has 2^24 codes
-  CHECK_THAT(r.output, Contains("0x800000"));   // 0.5 rounds to 8388608 in unorm24 (tie to even)
-  CHECK_THAT(r.output, Contains("0x3f000000")); // float32 stores the bits of 0.5
+  CHECK_THAT(r.output, Contains("16777216"));    // unorm24 has 2^24 codes
+  CHECK_THAT(r.output, Contains("0x800000"));    // 0.5 rounds to 8388608 in unorm24 (tie to even)
+  CHECK_THAT(r.output, Contains("0x3f000000"));  // float32 stores the bits of 0.5
   CHECK_THAT(r.output, Contains("agrees"));
 }
 
@@ -60,7 +59,8 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
       {"mts /tmp/depthprec_bad.json", 3, "depthprec_bad.json:4:1: malformed JSON"},
       {"mts /tmp/depthprec_unknown.json", 3, "depthprec_unknown.json:2:3: unknown key 'kernal'"},
       {"mts /nonexistent/scene.json", 3, "cannot read scene file '/nonexistent/scene.json'"},
-      {"mts -t zbuffer", 3, "unknown technique 'zbuffer' (did you mean standard?): expected one of standard"},
+      {"mts -t zbuffer", 3,
+       "unknown technique 'zbuffer' (did you mean standard?): expected one of standard"},
       {"mts -f unorm40", 3, "unorm takes 1 to 32 bits"},
       {"mts -f e9m30", 3, "E = 1..8"},
       {"mts --near 0", 3, "'near' must be > 0"},

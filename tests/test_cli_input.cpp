@@ -2,7 +2,6 @@
 // is allowed, and the documented exit code (2 usage, 3 bad input, 5 output); engineers' names
 // for formats, buffers and commands get a "did you mean".
 #include <catch2/catch.hpp>
-
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -11,16 +10,15 @@
 
 #include "run_cli.h"
 
-using depthprec::test::run_cli;
-using depthprec::test::fresh;
-using depthprec::test::slurp;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
+using depthprec::test::fresh;
+using depthprec::test::run_cli;
+using depthprec::test::slurp;
 
 namespace {
 
 const std::string kSmall = "mts -t reversed -f float32 --kernel 24x24 --frames 4 --no-timing";
-
 
 }  // namespace
 
@@ -30,18 +28,21 @@ TEST_CASE("repeated distances are refused at once, not waited on", "[cli][errors
     const auto t0 = std::chrono::steady_clock::now();
     // Under a time limit: before they were refused, repeats waited forever (exit 124 here).
     const auto r = run_cli(kSmall + " --distances " + list, "timeout -s KILL 20");
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     CHECK(r.exit_code == 3);
     CHECK_THAT(r.output, Contains("--distances " + std::string(list)) && Contains("twice"));
     CHECK(seconds < 20);
   }
   for (const char* cmd : {"table", "cost"})
-    CHECK(run_cli(std::string(cmd) + " -t standard -f unorm24 --kernel 24x24 --frames 4 --distances 8,8",
+    CHECK(run_cli(std::string(cmd) +
+                      " -t standard -f unorm24 --kernel 24x24 --frames 4 --distances 8,8",
                   "timeout -s KILL 20")
               .exit_code == 3);
 }
 
-TEST_CASE("a technique named without a depth range runs in its own, and the row says which", "[cli][mts]") {
+TEST_CASE("a technique named without a depth range runs in its own, and the row says which",
+          "[cli][mts]") {
   const auto r = run_cli(kSmall + " --distances 500 --format-out csv");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Contains("reversed,float32,zero_to_one,500,"));
@@ -53,7 +54,8 @@ TEST_CASE("set-ups without a measurement are refused or get a verdict up front",
   const auto far_inf = run_cli("mts -t standard -f float32 --far inf --distances 10");
   CHECK(far_inf.exit_code == 3);
   CHECK_THAT(far_inf.output, Contains("far = inf: standard/float32/gl needs a finite far plane"));
-  CHECK(run_cli("mts -t infinite -f float32 --far inf --distances 10 --kernel 16x16 --frames 2").exit_code == 0);
+  CHECK(run_cli("mts -t infinite -f float32 --far inf --distances 10 --kernel 16x16 --frames 2")
+            .exit_code == 0);
   const auto huge = run_cli(kSmall + " --distances 1e300");
   CHECK(huge.exit_code == 3);
   CHECK_THAT(huge.output, StartsWith("depthprec: --distances 1e300:"));
@@ -64,7 +66,8 @@ TEST_CASE("set-ups without a measurement are refused or get a verdict up front",
   CHECK(rows[0]["probes"] == 0);
   CHECK(rows[1]["verdict"] == "resolved");
   for (const char* d : {"20000", "0.01"}) {
-    const auto res = run_cli(std::string("resolve -t standard -f unorm24 --near 0.1 --far 1e4 --distance ") + d);
+    const auto res =
+        run_cli(std::string("resolve -t standard -f unorm24 --near 0.1 --far 1e4 --distance ") + d);
     INFO(d);
     CHECK(res.exit_code == 3);
     CHECK_THAT(res.output, Contains("standard clips it"));
@@ -90,8 +93,11 @@ TEST_CASE("options are read strictly and blamed by name", "[cli][errors]") {
 }
 
 TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
-  for (const auto& [typed, meant] : {std::pair{"d24", "unorm24"}, {"D24", "unorm24"}, {"UNORM24", "unorm24"},
-                                     {"D32F", "float32"}, {"d16", "unorm16"}}) {
+  for (const auto& [typed, meant] : {std::pair{"d24", "unorm24"},
+                                     {"D24", "unorm24"},
+                                     {"UNORM24", "unorm24"},
+                                     {"D32F", "float32"},
+                                     {"d16", "unorm16"}}) {
     const auto r = run_cli(std::string("formats ") + typed);
     INFO(typed);
     CHECK(r.exit_code == 3);
@@ -105,7 +111,8 @@ TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
 }
 
 TEST_CASE("the output file's extension chooses the format", "[cli]") {
-  const std::string json = fresh("/tmp/depthprec_test_ext.json"), csv = fresh("/tmp/depthprec_test_ext.csv");
+  const std::string json = fresh("/tmp/depthprec_test_ext.json"),
+                    csv = fresh("/tmp/depthprec_test_ext.csv");
   REQUIRE(run_cli(kSmall + " --distances 64 -o " + json).exit_code == 0);
   CHECK(nlohmann::json::parse(slurp(json))["rows"].size() == 1);
   REQUIRE(run_cli(kSmall + " --distances 64 -o " + csv).exit_code == 0);
@@ -118,7 +125,8 @@ TEST_CASE("the output file's extension chooses the format", "[cli]") {
 TEST_CASE("merge refuses a missing or repeated shard, naming it", "[cli][batch][errors]") {
   const std::string args = kSmall + " --distances 2,64,2048 --format-out json";
   for (int i = 1; i <= 2; ++i)
-    REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " + fresh("/tmp/depthprec_test_sh" + std::to_string(i) + ".json"))
+    REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " +
+                    fresh("/tmp/depthprec_test_sh" + std::to_string(i) + ".json"))
                 .exit_code == 0);
   const auto missing = run_cli("merge /tmp/depthprec_test_sh1.json --format-out json");
   CHECK(missing.exit_code == 3);
@@ -130,8 +138,9 @@ TEST_CASE("merge refuses a missing or repeated shard, naming it", "[cli][batch][
 }
 
 TEST_CASE("an unwritable plot is refused before the batch runs", "[cli][plot][errors]") {
-  for (const char* cmd : {"cost -t standard -f unorm24 --distances 2 --kernel 16x16 --frames 2",
-                          "tradeoff -t reversed -f float32 --distances 2", "lj-table --samples 1000"}) {
+  for (const char* cmd :
+       {"cost -t standard -f unorm24 --distances 2 --kernel 16x16 --frames 2",
+        "tradeoff -t reversed -f float32 --distances 2", "lj-table --samples 1000"}) {
     INFO(cmd);
     const auto t0 = std::chrono::steady_clock::now();
     const auto r = run_cli(std::string(cmd) + " --plot /nonexistent/dir/p.png");
@@ -143,8 +152,9 @@ TEST_CASE("an unwritable plot is refused before the batch runs", "[cli][plot][er
 }
 
 TEST_CASE("a row never counts more launches than its run made", "[cli][mts]") {
-  const auto r = run_cli("mts -t reversed -f float32 --distances 2,1024,1048576 --kernel 40x40 --frames 20 "
-                         "--format-out json");
+  const auto r = run_cli(
+      "mts -t reversed -f float32 --distances 2,1024,1048576 --kernel 40x40 --frames 20 "
+      "--format-out json");
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.output);
   uint64_t sum = 0;

@@ -6,23 +6,25 @@
 
 #include "run_cli.h"
 
-using depthprec::test::run_cli;
-using depthprec::test::fresh;
-using depthprec::test::slurp;
 using Catch::Matchers::Contains;
+using depthprec::test::fresh;
+using depthprec::test::run_cli;
+using depthprec::test::slurp;
 
 namespace {
 const std::string kSmall = "--kernel 24x24 --frames 6 --distances 2,1024 ";
 }  // namespace
 
-TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec.md 5.4", "[cli][mts]") {
+TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec.md 5.4",
+          "[cli][mts]") {
   const auto r = run_cli("mts -t standard,reversed -f unorm24 --format-out csv " + kSmall);
   REQUIRE(r.exit_code == 0);
   std::istringstream lines(r.output);
   std::string header, line;
   std::getline(lines, header);
   CHECK(header ==
-        "technique,format,depth_range,z,mts,lo,hi,mts_seen,vertex_bound,mts/vb,mts_upper,verdict,probes,frames,"
+        "technique,format,depth_range,z,mts,lo,hi,mts_seen,vertex_bound,mts/"
+        "vb,mts_upper,verdict,probes,frames,"
         "fragment_pairs,launches,seconds,kernel_s,flags");
   std::vector<std::string> rows;
   while (std::getline(lines, line)) {
@@ -33,7 +35,8 @@ TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec
   }
   // one row per pair and distance, pairs in order, each in its technique's own depth range
   CHECK(rows == std::vector<std::string>{"standard,unorm24,gl,2", "standard,unorm24,gl,1024",
-                                         "reversed,unorm24,zero_to_one,2", "reversed,unorm24,zero_to_one,1024"});
+                                         "reversed,unorm24,zero_to_one,2",
+                                         "reversed,unorm24,zero_to_one,1024"});
 }
 
 TEST_CASE("no-timing output is byte-identical across runs", "[cli][mts]") {
@@ -64,7 +67,8 @@ TEST_CASE("table in every output format", "[cli][table]") {
   CHECK_FALSE(j.contains("wall_seconds"));
 }
 
-TEST_CASE("output option writes the file and an unwritable path fails before the run", "[cli][table]") {
+TEST_CASE("output option writes the file and an unwritable path fails before the run",
+          "[cli][table]") {
   const std::string path = fresh("/tmp/depthprec_test_table.csv");
   std::remove(path.c_str());
   const auto r = run_cli("table -t linear -f unorm24 --format-out csv -o " + path + " " + kSmall);
@@ -85,8 +89,10 @@ TEST_CASE("verbose mode names the kernel variants built and only the ones needed
   CHECK_THAT(r.output, Contains("-DDF_BITS=24u"));
 }
 
-TEST_CASE("tradeoff reports every ladder level against the reference with a Pareto front", "[cli][tradeoff]") {
-  const auto r = run_cli("tradeoff -t linear -f unorm24 --distances 4096 --no-timing --format-out json");
+TEST_CASE("tradeoff reports every ladder level against the reference with a Pareto front",
+          "[cli][tradeoff]") {
+  const auto r =
+      run_cli("tradeoff -t linear -f unorm24 --distances 4096 --no-timing --format-out json");
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.output);
   REQUIRE(j["levels"].size() == 14);
@@ -98,22 +104,26 @@ TEST_CASE("tradeoff reports every ladder level against the reference with a Pare
   // the cheapest level is on the front by construction: nothing does less work
   CHECK(j["levels"][13]["pareto"] == true);
   // coarser bisection can only widen the answer: 2^-4 is further off than 2^-10
-  CHECK(j["levels"][10]["max_rel_err"].get<double>() >= j["levels"][7]["max_rel_err"].get<double>());
+  CHECK(j["levels"][10]["max_rel_err"].get<double>() >=
+        j["levels"][7]["max_rel_err"].get<double>());
 }
 
 TEST_CASE("cost lists depth-path cost, precision, LJ error and structural costs", "[cli][cost]") {
-  const auto r = run_cli("cost -t standard,linear,layered -f unorm24 --distances 64,4096 --kernel 40x40 --frames 10");
+  const auto r = run_cli(
+      "cost -t standard,linear,layered -f unorm24 --distances 64,4096 --kernel 40x40 --frames 10");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Contains("ns/pair"));
-  CHECK_THAT(r.output, Contains("no early depth test"));   // linear writes fragment depth
-  CHECK_THAT(r.output, Contains("3 passes"));              // layered, 3 layers
-  CHECK_THAT(r.output, Contains("projection matrix only")); // standard
+  CHECK_THAT(r.output, Contains("no early depth test"));     // linear writes fragment depth
+  CHECK_THAT(r.output, Contains("3 passes"));                // layered, 3 layers
+  CHECK_THAT(r.output, Contains("projection matrix only"));  // standard
 }
 
 TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
-  const std::string json = fresh("/tmp/depthprec_test_plot.json"), png = fresh("/tmp/depthprec_test_plot.png");
+  const std::string json = fresh("/tmp/depthprec_test_plot.json"),
+                    png = fresh("/tmp/depthprec_test_plot.png");
   std::remove(png.c_str());
-  REQUIRE(run_cli("mts -t standard,linear -f unorm24 --format-out json -o " + json + " " + kSmall).exit_code == 0);
+  REQUIRE(run_cli("mts -t standard,linear -f unorm24 --format-out json -o " + json + " " + kSmall)
+              .exit_code == 0);
   const auto r = run_cli("plot " + json + " -o " + png);
   REQUIRE(r.exit_code == 0);
   const std::string bytes = slurp(png);
@@ -127,28 +137,34 @@ TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
 }
 
 TEST_CASE("tradeoff, cost and lj-table plot through gnuplot with --plot", "[cli][plot]") {
-  const std::string a = fresh("/tmp/depthprec_test_tradeoff.svg"), b = fresh("/tmp/depthprec_test_lj.png");
+  const std::string a = fresh("/tmp/depthprec_test_tradeoff.svg"),
+                    b = fresh("/tmp/depthprec_test_lj.png");
   std::remove(a.c_str());
   std::remove(b.c_str());
   REQUIRE(run_cli("tradeoff -t linear -f unorm16 --distances 4096 --plot " + a).exit_code == 0);
   CHECK_THAT(slurp(a), Contains("<svg") && Contains("Pareto front"));
   REQUIRE(run_cli("lj-table --samples 2000 --plot " + b).exit_code == 0);
   CHECK(slurp(b).substr(1, 3) == "PNG");
-  const auto no_time = run_cli("cost -t standard -f unorm24 --distances 64 --kernel 16x16 --frames 4 --no-timing --plot /tmp/x.png");
+  const auto no_time = run_cli(
+      "cost -t standard -f unorm24 --distances 64 --kernel 16x16 --frames 4 --no-timing --plot "
+      "/tmp/x.png");
   CHECK(no_time.exit_code == 2);
   CHECK_THAT(no_time.output, Contains("--plot needs the timing pass"));
 }
 
 TEST_CASE("pipelines compares matrix precision and composition per pair", "[cli][pipelines]") {
-  const auto r = run_cli("pipelines -t reversed_infinite,standard -f float32 --depth-range zero_to_one " + kSmall +
-                         "--no-timing --format-out csv");
+  const auto r =
+      run_cli("pipelines -t reversed_infinite,standard -f float32 --depth-range zero_to_one " +
+              kSmall + "--no-timing --format-out csv");
   REQUIRE(r.exit_code == 0);
   std::istringstream lines(r.output);
   std::string line, header;
   std::vector<std::string> rows;
   while (std::getline(lines, line))
-    if (line.rfind("pair,", 0) == 0) header = line;
-    else if (line.find("/float32/") != std::string::npos) rows.push_back(line);
+    if (line.rfind("pair,", 0) == 0)
+      header = line;
+    else if (line.find("/float32/") != std::string::npos)
+      rows.push_back(line);
   CHECK_THAT(header, Contains("double/premultiplied max"));
   REQUIRE(rows.size() == 2);
   // reversed_infinite's third row of P is (0, 0, 0, n): the same in binary32 and binary64, and
@@ -157,8 +173,8 @@ TEST_CASE("pipelines compares matrix precision and composition per pair", "[cli]
 }
 
 TEST_CASE("table --attribute marks each cell with its dominant factor", "[cli][table]") {
-  const auto r = run_cli("table -t reversed -f unorm24,float32 --depth-range zero_to_one " + kSmall +
-                         "--no-timing --attribute");
+  const auto r = run_cli("table -t reversed -f unorm24,float32 --depth-range zero_to_one " +
+                         kSmall + "--no-timing --attribute");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Contains("S / A / V: the dominant factor"));
   CHECK_THAT(r.output, Contains("storage"));  // reversed/unorm24 at 1024 is storage-limited

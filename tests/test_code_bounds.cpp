@@ -29,19 +29,21 @@ TEST_CASE("bands decided from code bounds and coverage taken from plane A change
   // margin 0.9: the planes leave the kernel's border uncovered, so no band may be decided (a square
   // viewport: the plane is sized to the vertical field of view)
   for (const std::string margin : {"1.1", "0.9"}) {
-    const Scene scene =
-        load_scene("", {"kernel=[48,48]", "viewport=[48,48]", "frames=12", "plane_margin=" + margin});
-    for (const auto& [t, format, range] : {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
-                                           std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
-                                           std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
-                                           std::tuple{Technique::linear, "unorm16", DepthRange::gl},
-                                           std::tuple{Technique::layered, "e4m12", DepthRange::gl}}) {
+    const Scene scene = load_scene(
+        "", {"kernel=[48,48]", "viewport=[48,48]", "frames=12", "plane_margin=" + margin});
+    for (const auto& [t, format, range] :
+         {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+          std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+          std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+          std::tuple{Technique::linear, "unorm16", DepthRange::gl},
+          std::tuple{Technique::layered, "e4m12", DepthRange::gl}}) {
       const EvalPair pair{t, format, range};
       MtsEvaluator with(runtime(), scene, pair), without(runtime(), scene, pair, false);
       const std::vector<Probe> probes = descent();
       const auto a = with.run(probes), b = without.run(probes);
       for (size_t k = 0; k < probes.size(); ++k) {
-        INFO(pair.label() << " margin " << margin << " z = " << probes[k].z << " s = " << probes[k].s);
+        INFO(pair.label() << " margin " << margin << " z = " << probes[k].z
+                          << " s = " << probes[k].s);
         CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
         CHECK(a[k].frames == b[k].frames);
         CHECK(a[k].fragment_pairs == b[k].fragment_pairs);
@@ -77,7 +79,8 @@ TEST_CASE("plane B's coverage is taken from plane A's only where it is the same"
     MtsEvaluator ev(runtime(), scene, pair, true, MtsEvaluator::Kernels::with_tests);
     std::vector<Probe> probes;
     for (int i = 0; i < 20; ++i)
-      for (double f : {1.0, 1e-3, 1e-6}) probes.push_back({1.005 * std::pow(2.3, i), 1.005 * std::pow(2.3, i) * f});
+      for (double f : {1.0, 1e-3, 1e-6})
+        probes.push_back({1.005 * std::pow(2.3, i), 1.005 * std::pow(2.3, i) * f});
     const CoverageAudit a = ev.audit_coverage(probes);
     INFO(pair.label() << ": " << a.rows << " rows, B differs in " << a.b_differs << ", certified "
                       << a.certified);

@@ -6,9 +6,9 @@
 #include <cstring>
 #include <random>
 
+#include "host/model/storage_format.h"
 #include "host/runtime/device_encode.h"
 #include "host/runtime/opencl_runtime.h"
-#include "host/model/storage_format.h"
 
 using namespace depthprec;
 
@@ -22,9 +22,9 @@ OpenClRuntime& runtime() {
 TEST_CASE("device and host encoders agree on sampled inputs", "[formats][device]") {
   // scalar and 16-lane device encoders, host encoder: one answer for every format family
   std::mt19937 rng(2021);
-  std::vector<std::string> names = {"unorm1", "unorm7", "unorm16", "unorm24", "unorm31", "unorm32",
-                                    "float16", "float24", "float32", "e1m15", "e2m5", "e4m12",
-                                    "e8m23", "e5m0", "e3m29"};
+  std::vector<std::string> names = {"unorm1",  "unorm7",  "unorm16", "unorm24", "unorm31",
+                                    "unorm32", "float16", "float24", "float32", "e1m15",
+                                    "e2m5",    "e4m12",   "e8m23",   "e5m0",    "e3m29"};
   for (const auto& name : names) {
     for (const Rounding r : {Rounding::nearest_even, Rounding::truncate}) {
       for (const Denormals dn : {Denormals::keep, Denormals::flush}) {
@@ -46,13 +46,13 @@ TEST_CASE("device and host encoders agree on sampled inputs", "[formats][device]
 }
 
 TEST_CASE("device encoder handles values outside 0..1 like the host", "[formats][device]") {
-  const std::vector<float> specials = {-1.0f,     -0.0f,     0.0f,   1.0f, 1.5f, 3e38f,
-                                       INFINITY,  -INFINITY, NAN,    1e-45f, 0.99999994f};
+  const std::vector<float> specials = {-1.0f,    -0.0f,     0.0f, 1.0f,   1.5f,       3e38f,
+                                       INFINITY, -INFINITY, NAN,  1e-45f, 0.99999994f};
   for (const char* name : {"unorm24", "unorm32", "float32", "float16", "e4m12"}) {
     const auto f = StorageFormat::parse(name);
     const auto dev = device_encode(runtime(), f, specials);
-    for (const uint32_t first : {0x7f7ffff8u, 0x7f800000u - 8u, 0xff7ffff8u, 0x3f7ffff8u, 0x7fc00000u - 4u,
-                                 0x80000000u /* -0 and negative denormals */}) {
+    for (const uint32_t first : {0x7f7ffff8u, 0x7f800000u - 8u, 0xff7ffff8u, 0x3f7ffff8u,
+                                 0x7fc00000u - 4u, 0x80000000u /* -0 and negative denormals */}) {
       std::vector<uint32_t> block;
       INFO(name << " block from " << first);
       CHECK(device_encode_range(runtime(), f, first, 16, block) == 0);

@@ -36,7 +36,8 @@ void check_scene(const std::string& name) {
   std::ifstream in(kDir + "expected.json");
   const json expected = json::parse(in);
   for (const auto& e : expected)
-    if (e["scene"] == name && e.contains("refused")) {  // a set-up with no measurement: exit 3, saying why
+    if (e["scene"] == name &&
+        e.contains("refused")) {  // a set-up with no measurement: exit 3, saying why
       INFO(r.output);
       CHECK(r.exit_code == 3);
       CHECK(r.output.find(e["refused"].get<std::string>()) != std::string::npos);
@@ -45,12 +46,13 @@ void check_scene(const std::string& name) {
   REQUIRE(r.exit_code == 0);
   const json out = json::parse(r.output);
   CHECK(nan_values(out) == 0);
-  const std::set<std::string> verdicts = {"resolved",           "unresolvable",     "non_finite",
-                                          "clipped",            "uncovered",        "below vertex bound",
-                                          "beyond far plane",   "nearer than near plane"};
+  const std::set<std::string> verdicts = {
+      "resolved",  "unresolvable",       "non_finite",       "clipped",
+      "uncovered", "below vertex bound", "beyond far plane", "nearer than near plane"};
   REQUIRE(out["rows"].size() == out["scene"]["evaluate"].size() * out["scene"]["distances"].size());
   for (const auto& row : out["rows"]) {
-    const std::string where = row["technique"].get<std::string>() + "/" + row["format"].get<std::string>() + "/" +
+    const std::string where = row["technique"].get<std::string>() + "/" +
+                              row["format"].get<std::string>() + "/" +
                               row["depth_range"].get<std::string>() + " z=" + row["z"].dump();
     INFO(name << ": " << where);
     const std::string v = row["verdict"];
@@ -59,7 +61,8 @@ void check_scene(const std::string& name) {
     CHECK_FALSE(std::isnan(mts));
     if (v == "resolved") {
       CHECK(std::isfinite(mts));
-      CHECK(mts >= row["vertex_bound"].get<double>());  // never a separation the vertices cannot hold
+      CHECK(mts >=
+            row["vertex_bound"].get<double>());  // never a separation the vertices cannot hold
       CHECK(row["flags"].get<std::string>().find("clipped") == std::string::npos);
     } else {
       CHECK(std::isinf(mts));
@@ -80,15 +83,39 @@ void check_scene(const std::string& name) {
 }  // namespace
 
 // One test per scene, so ctest -j spreads them.
-TEST_CASE("extreme near_equals_far", "[extreme]") { check_scene("near_equals_far"); }
-TEST_CASE("extreme far_1e12", "[extreme]") { check_scene("far_1e12"); }
-TEST_CASE("extreme far_1e30", "[extreme]") { check_scene("far_1e30"); }
-TEST_CASE("extreme far_infinite", "[extreme]") { check_scene("far_infinite"); }
-TEST_CASE("extreme far_infinite_refused", "[extreme]") { check_scene("far_infinite_refused"); }
-TEST_CASE("extreme near_tiny", "[extreme]") { check_scene("near_tiny"); }
-TEST_CASE("extreme near_huge", "[extreme]") { check_scene("near_huge"); }
-TEST_CASE("extreme log_k_small", "[extreme]") { check_scene("log_k_small"); }
-TEST_CASE("extreme log_k_large", "[extreme]") { check_scene("log_k_large"); }
-TEST_CASE("extreme denormal", "[extreme]") { check_scene("denormal"); }
-TEST_CASE("extreme small_formats", "[extreme]") { check_scene("small_formats"); }
-TEST_CASE("extreme beyond_far", "[extreme]") { check_scene("beyond_far"); }
+TEST_CASE("extreme near_equals_far", "[extreme]") {
+  check_scene("near_equals_far");
+}
+TEST_CASE("extreme far_1e12", "[extreme]") {
+  check_scene("far_1e12");
+}
+TEST_CASE("extreme far_1e30", "[extreme]") {
+  check_scene("far_1e30");
+}
+TEST_CASE("extreme far_infinite", "[extreme]") {
+  check_scene("far_infinite");
+}
+TEST_CASE("extreme far_infinite_refused", "[extreme]") {
+  check_scene("far_infinite_refused");
+}
+TEST_CASE("extreme near_tiny", "[extreme]") {
+  check_scene("near_tiny");
+}
+TEST_CASE("extreme near_huge", "[extreme]") {
+  check_scene("near_huge");
+}
+TEST_CASE("extreme log_k_small", "[extreme]") {
+  check_scene("log_k_small");
+}
+TEST_CASE("extreme log_k_large", "[extreme]") {
+  check_scene("log_k_large");
+}
+TEST_CASE("extreme denormal", "[extreme]") {
+  check_scene("denormal");
+}
+TEST_CASE("extreme small_formats", "[extreme]") {
+  check_scene("small_formats");
+}
+TEST_CASE("extreme beyond_far", "[extreme]") {
+  check_scene("beyond_far");
+}

@@ -1,5 +1,5 @@
-// Frame order (host/mts/mts_evaluator.h): a probe visits the frames from the one that decided the last
-// fighting probe of its distance, so a fighting probe below the MTS is decided at its first
+// Frame order (host/mts/mts_evaluator.h): a probe visits the frames from the one that decided the
+// last fighting probe of its distance, so a fighting probe below the MTS is decided at its first
 // frame, and whether it fights does not change.
 #include <catch2/catch.hpp>
 #include <string>
@@ -12,7 +12,8 @@ using namespace depthprec::test;
 TEST_CASE("a probe starts at the frame that decided its distance's last fight", "[mts][frames]") {
   const Scene scene = load_scene("", {"kernel=[48,48]", "viewport=[48,48]", "frames=40"});
   const EvalPair pair{Technique::standard, "unorm24", DepthRange::gl};
-  const std::vector<MtsRow> rows = mts_rows(scene, pair.technique, pair.format, pair.depth_range, {2.0, 300.0});
+  const std::vector<MtsRow> rows =
+      mts_rows(scene, pair.technique, pair.format, pair.depth_range, {2.0, 300.0});
   for (const MtsRow& row : rows) {
     REQUIRE(row.verdict() == Verdict::resolved);
     // the largest separation that fought, and one a little below it
@@ -21,7 +22,8 @@ TEST_CASE("a probe starts at the frame that decided its distance's last fight", 
     const ProbeResult in_order = fresh.run({first})[0];
     INFO("z = " << row.z << " lo = " << row.lo << " fought at frame " << in_order.frames - 1);
     REQUIRE(in_order.outcome == Outcome::fight);
-    CHECK(ordered.run({first})[0].frames == in_order.frames);  // nothing fought before: frame 0 first
+    CHECK(ordered.run({first})[0].frames ==
+          in_order.frames);  // nothing fought before: frame 0 first
     const ProbeResult next = ordered.run({second})[0];
     const ProbeResult next_in_order = MtsEvaluator(runtime(), scene, pair).run({second})[0];
     CHECK(to_string(next.outcome) == std::string(to_string(next_in_order.outcome)));

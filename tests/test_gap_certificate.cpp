@@ -1,10 +1,10 @@
-// The gap certificate (kernels/mts/bounds.cl plane_gap_range, frag_gap_clear) decides bands clean from the
-// distance between the planes and a rounding-error bound. Its margin is thinnest just above the
-// MTS, so that is where it is checked: from just below the MTS to 16x above it, every probe result
-// must be what the plain rows give, and the certificate must decide bands the code bounds do not.
-// Checked by temporary edits of kernels/mts.cl: with no rounding-error bound (E = 0, err = 0, and
-// the fragment test allowed a code step short) 168 assertions fail; a bound 8x too small still
-// passes here, so that part rests on the derivation in the kernel's comments.
+// The gap certificate (kernels/mts/bounds.cl plane_gap_range, frag_gap_clear) decides bands clean
+// from the distance between the planes and a rounding-error bound. Its margin is thinnest just
+// above the MTS, so that is where it is checked: from just below the MTS to 16x above it, every
+// probe result must be what the plain rows give, and the certificate must decide bands the code
+// bounds do not. Checked by temporary edits of kernels/mts.cl: with no rounding-error bound (E = 0,
+// err = 0, and the fragment test allowed a code step short) 168 assertions fail; a bound 8x too
+// small still passes here, so that part rests on the derivation in the kernel's comments.
 #include <catch2/catch.hpp>
 #include <string>
 #include <tuple>
@@ -14,23 +14,27 @@
 using namespace depthprec;
 using namespace depthprec::test;
 
-TEST_CASE("the gap certificate changes no probe result from just below the MTS upwards", "[mts][bounds]") {
+TEST_CASE("the gap certificate changes no probe result from just below the MTS upwards",
+          "[mts][bounds]") {
   const Scene scene = load_scene("", {"kernel=[64,64]", "viewport=[64,64]", "frames=16"});
-  for (const auto& [t, format, range] : {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
-                                         std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
-                                         std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
-                                         std::tuple{Technique::linear, "unorm24", DepthRange::gl}}) {
+  for (const auto& [t, format, range] :
+       {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+        std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+        std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+        std::tuple{Technique::linear, "unorm24", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};
     const std::vector<MtsRow> rows = mts_rows(scene, t, format, range, {1.005, 2.0, 64.0, 4096.0});
     std::vector<Probe> near, above;
     for (const MtsRow& row : rows) {
       REQUIRE(row.verdict() == Verdict::resolved);
-      for (const double f : {0.9, 0.97, 0.99, 1.0, 1.01, 1.03, 1.1, 1.3}) near.push_back({row.z, row.mts * f});
+      for (const double f : {0.9, 0.97, 0.99, 1.0, 1.01, 1.03, 1.1, 1.3})
+        near.push_back({row.z, row.mts * f});
       for (const double f : {2.0, 3.0, 4.0, 6.0, 8.0, 16.0}) above.push_back({row.z, row.mts * f});
     }
     MtsEvaluator with(runtime(), scene, pair), without(runtime(), scene, pair, false);
     for (const auto* probes : {&near, &above}) {
-      const uint64_t decided_before = with.pairs_decided_by_bounds(), pairs_before = with.fragment_pairs();
+      const uint64_t decided_before = with.pairs_decided_by_bounds(),
+                     pairs_before = with.fragment_pairs();
       const auto a = with.run(*probes), b = without.run(*probes);
       for (size_t k = 0; k < probes->size(); ++k) {
         INFO(pair.label() << " z = " << (*probes)[k].z << " s = " << (*probes)[k].s);
@@ -43,7 +47,8 @@ TEST_CASE("the gap certificate changes no probe result from just below the MTS u
         // the code bounds alone decide next to nothing at these distances so close to the MTS
         const uint64_t decided = with.pairs_decided_by_bounds() - decided_before;
         const uint64_t pairs = with.fragment_pairs() - pairs_before;
-        INFO(pair.label() << ": " << decided << " of " << pairs << " pairs decided without rasterising above the MTS");
+        INFO(pair.label() << ": " << decided << " of " << pairs
+                          << " pairs decided without rasterising above the MTS");
         CHECK(decided > pairs / 2);
       }
     }

@@ -12,8 +12,8 @@ using namespace depthprec;
 using Catch::Matchers::Contains;
 
 TEST_CASE("kernel programs expand to sources without a quoted include", "[kernels]") {
-  for (const char* program : {"kernels/mts.cl", "kernels/mts_test.cl", "kernels/mts_exact.cl", "kernels/lj.cl",
-                              "kernels/encode.cl"}) {
+  for (const char* program : {"kernels/mts.cl", "kernels/mts_test.cl", "kernels/mts_exact.cl",
+                              "kernels/lj.cl", "kernels/encode.cl"}) {
     INFO(program);
     const std::string source = expand_embedded(program);
     CHECK(source.find("#include \"") == std::string::npos);
@@ -28,5 +28,6 @@ TEST_CASE("an MTS variant without one of its defines does not build", "[kernels]
   const auto at = options.find("-DCACHE_A_CODES=");
   REQUIRE(at != std::string::npos);
   const std::string without = options.substr(0, at) + options.substr(options.find(' ', at));
-  CHECK_THROWS_WITH(test::runtime().program(v.program, without), Contains("kernels/mts.cl needs GRID"));
+  CHECK_THROWS_WITH(test::runtime().program(v.program, without),
+                    Contains("kernels/mts.cl needs GRID"));
 }

@@ -1,5 +1,5 @@
-// The paper's checks (Gilg et al. 2021, docs/spec.md 7) on the default scene, as issue "MTS evaluator"
-// states them. Each asserts a measured value that a wrong pipeline would get wrong.
+// The paper's checks (Gilg et al. 2021, docs/spec.md 7) on the default scene, as issue "MTS
+// evaluator" states them. Each asserts a measured value that a wrong pipeline would get wrong.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -9,10 +9,12 @@
 using namespace depthprec;
 using namespace depthprec::test;
 
-TEST_CASE("linear in unorm24 comes within 2x of (f-n)/2^24 for z from 2^12 to 2^26", "[mts][paper]") {
+TEST_CASE("linear in unorm24 comes within 2x of (f-n)/2^24 for z from 2^12 to 2^26",
+          "[mts][paper]") {
   const Scene scene = load_scene("");
   const double bound = (scene.far - scene.near) / std::ldexp(1.0, 24);
-  for (const auto& r : mts_rows(scene, Technique::linear, "unorm24", DepthRange::gl, powers_of_two(12, 26))) {
+  for (const auto& r :
+       mts_rows(scene, Technique::linear, "unorm24", DepthRange::gl, powers_of_two(12, 26))) {
     INFO("z = " << r.z << " mts = " << r.mts << " (f-n)/2^24 = " << bound);
     CHECK(r.flags().empty());
     CHECK(r.mts >= bound / 2);
@@ -37,16 +39,19 @@ TEST_CASE("standard (gl): MTS < 1e-6 at z = 2, unresolvable from z = 2^24", "[mt
   }
 }
 
-TEST_CASE("reversed float32 zero_to_one stays within 8x the vertex bound and gl is 100x worse at 2^20",
-          "[mts][paper]") {
+TEST_CASE(
+    "reversed float32 zero_to_one stays within 8x the vertex bound and gl is 100x worse at 2^20",
+    "[mts][paper]") {
   const Scene scene = load_scene("");
-  const auto rows = mts_rows(scene, Technique::reversed, "float32", DepthRange::zero_to_one, powers_of_two(1, 22));
+  const auto rows = mts_rows(scene, Technique::reversed, "float32", DepthRange::zero_to_one,
+                             powers_of_two(1, 22));
   for (const auto& r : rows) {
     INFO("z = " << r.z << " mts = " << r.mts << " vertex bound = " << r.vertex_bound);
     CHECK(r.mts <= 8 * r.vertex_bound);
     CHECK(r.mts >= r.vertex_bound);
   }
-  const auto gl = mts_rows(scene, Technique::reversed, "float32", DepthRange::gl, {std::ldexp(1.0, 20)});
+  const auto gl =
+      mts_rows(scene, Technique::reversed, "float32", DepthRange::gl, {std::ldexp(1.0, 20)});
   const double zero_to_one_at_2_20 = rows[19].mts;
   REQUIRE(rows[19].z == std::ldexp(1.0, 20));
   INFO("gl " << gl[0].mts << " vs zero_to_one " << zero_to_one_at_2_20);
@@ -62,7 +67,8 @@ TEST_CASE("no fragment of either plane is clipped at z = 1.005 in any frame", "[
     for (int frame = 0; frame < scene.frames; ++frame) {
       const FrameCodes fc = ev.codes(p, frame);
       int clipped = 0;
-      for (size_t i = 0; i < fc.status_a.size(); ++i) clipped += (fc.status_a[i] == 1) + (fc.status_b[i] == 1);
+      for (size_t i = 0; i < fc.status_a.size(); ++i)
+        clipped += (fc.status_a[i] == 1) + (fc.status_b[i] == 1);
       INFO(info(t).name << " frame " << frame);
       REQUIRE(clipped == 0);
     }

@@ -30,9 +30,11 @@ Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, i
       continue;
     }
     if (k.status_a[i] == 0 && k.status_b[i] == 0) ++c.ok_pixels;
-    for (const auto& [x, y] : {std::pair{k.code_a[i], r.code_a[i]}, std::pair{k.code_b[i], r.code_b[i]}}) {
+    for (const auto& [x, y] :
+         {std::pair{k.code_a[i], r.code_a[i]}, std::pair{k.code_b[i], r.code_b[i]}}) {
       if (x != y) ++c.differ;
-      if (std::llabs(static_cast<long long>(x) - static_cast<long long>(y)) > 1) ++c.off_by_more_than_one;
+      if (std::llabs(static_cast<long long>(x) - static_cast<long long>(y)) > 1)
+        ++c.off_by_more_than_one;
     }
   }
   return c;
@@ -40,9 +42,11 @@ Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, i
 
 }  // namespace
 
-TEST_CASE("kernel codes equal the host reference for every technique and depth range", "[mts][reference]") {
+TEST_CASE("kernel codes equal the host reference for every technique and depth range",
+          "[mts][reference]") {
   const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]"});
-  const std::vector<std::pair<double, double>> zs = {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}, {3e8, 3e8}};
+  const std::vector<std::pair<double, double>> zs = {
+      {1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}, {3e8, 3e8}};
   const int frames[] = {0, 37, 99};
   for (const auto& ti : technique_table()) {
     for (const DepthRange range : {DepthRange::gl, DepthRange::zero_to_one}) {
@@ -55,8 +59,10 @@ TEST_CASE("kernel codes equal the host reference for every technique and depth r
           const Compared c = compare(scene, pair, probe, frames[k % 3]);
           INFO(pair.label() << " z = " << probe.z << " s = " << probe.s);
           CHECK(c.status_differ == 0);
-          if (log) CHECK(c.off_by_more_than_one == 0);
-          else CHECK(c.differ == 0);
+          if (log)
+            CHECK(c.off_by_more_than_one == 0);
+          else
+            CHECK(c.differ == 0);
           compared += c.ok_pixels;
         }
         INFO(pair.label());
@@ -88,12 +94,13 @@ TEST_CASE("the same run gives bit-identical rows", "[mts]") {
 // clean, clipped, and the frame that decided) must be what the reference's per-pixel codes say.
 TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mts][reference]") {
   const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12"});
-  for (const auto& [t, format, range] : {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
-                                         std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
-                                         std::tuple{Technique::linear, "unorm16", DepthRange::gl},
-                                         std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one},
-                                         std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
-                                         std::tuple{Technique::log_fragment, "float32", DepthRange::gl}}) {
+  for (const auto& [t, format, range] :
+       {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+        std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+        std::tuple{Technique::linear, "unorm16", DepthRange::gl},
+        std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one},
+        std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+        std::tuple{Technique::log_fragment, "float32", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};
     MtsEvaluator ev(runtime(), scene, pair);
     std::vector<Probe> probes;

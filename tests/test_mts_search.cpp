@@ -1,5 +1,5 @@
-// The bisection itself (docs/spec.md 5.2), driven by synthetic outcomes: its probe sequence, bracket and
-// verdicts, independent of any device.
+// The bisection itself (docs/spec.md 5.2), driven by synthetic outcomes: its probe sequence,
+// bracket and verdicts, independent of any device.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -20,7 +20,8 @@ Bisection run(double z, double t, double c = INFINITY, double rel = std::ldexp(1
 }
 }  // namespace
 
-TEST_CASE("the probe sequence starts at z, doubles while fighting, then bisects at midpoints", "[search]") {
+TEST_CASE("the probe sequence starts at z, doubles while fighting, then bisects at midpoints",
+          "[search]") {
   const Bisection b = run(4.0, 37.0);
   const auto& h = b.history();
   REQUIRE(h.size() >= 5);

@@ -24,7 +24,8 @@ void check_same(const ProbeResult& a, const ProbeResult& b) {
 
 }  // namespace
 
-TEST_CASE("more distances than plane-A cache slots, and evictions, change no probe result", "[mts][cache]") {
+TEST_CASE("more distances than plane-A cache slots, and evictions, change no probe result",
+          "[mts][cache]") {
   const Scene scene = load_scene("", {"kernel=[24,24]", "viewport=[24,24]", "frames=6"});
   // standard reads plane A's codes from the pixels it computes; log_fragment from the cache
   for (const Technique t : {Technique::standard, Technique::log_fragment}) {

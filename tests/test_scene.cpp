@@ -43,9 +43,9 @@ TEST_CASE("a scene file overrides only what it names", "[scene]") {
 }
 
 TEST_CASE("overrides take JSON values and dotted keys", "[scene]") {
-  const Scene s = load_scene("", {"near=0.25", "kernel=[64,32]", "viewport=[64,32]",
-                                  "pipeline.depth_range=zero_to_one", "far=inf",
-                                  R"(evaluate=[{"technique": "infinite", "format": "float32"}])"});
+  const Scene s = load_scene(
+      "", {"near=0.25", "kernel=[64,32]", "viewport=[64,32]", "pipeline.depth_range=zero_to_one",
+           "far=inf", R"(evaluate=[{"technique": "infinite", "format": "float32"}])"});
   CHECK(s.near == 0.25);
   CHECK(s.kernel_w == 64);
   CHECK(s.kernel_h == 32);
@@ -57,14 +57,16 @@ TEST_CASE("scene errors name the file, position and key", "[scene][errors]") {
   const auto bad_json = write_temp("bad.json", "{\n  \"near\": 1.0,\n  \"far\": ,\n}");
   CHECK_THROWS_WITH(load_scene(bad_json), Contains("bad.json:3:") && Contains("malformed JSON"));
   const auto unknown = write_temp("unknown.json", "{\n  \"nera\": 1.0\n}");
-  CHECK_THROWS_WITH(load_scene(unknown), Contains("unknown.json:2:3") && Contains("unknown key 'nera'"));
+  CHECK_THROWS_WITH(load_scene(unknown),
+                    Contains("unknown.json:2:3") && Contains("unknown key 'nera'"));
   const auto neg = write_temp("neg.json", "{\"near\": -1}");
   CHECK_THROWS_WITH(load_scene(neg), Contains("'near' must be > 0"));
   CHECK_THROWS_WITH(load_scene("", {"far=0.5"}), Contains("'far' must be > near"));
   CHECK_THROWS_WITH(load_scene("", {"frames=0"}), Contains("'frames' must be 1..1000000"));
   CHECK_THROWS_WITH(load_scene("", {"kernel=[0,10]"}), Contains("'kernel' sides must be 1..16384"));
   CHECK_THROWS_WITH(load_scene("", {"log_k=0"}), Contains("'log_k' must be > 0"));
-  CHECK_THROWS_WITH(load_scene("", {"pipeline.compose=fused"}), Contains("expected separate or premultiplied"));
+  CHECK_THROWS_WITH(load_scene("", {"pipeline.compose=fused"}),
+                    Contains("expected separate or premultiplied"));
   CHECK_THROWS_WITH(load_scene("", {R"(evaluate=[{"technique":"zbuffer","format":"float32"}])"}),
                     Contains("unknown technique 'zbuffer'") && Contains("reversed_infinite"));
   CHECK_THROWS_WITH(load_scene("", {R"(evaluate=[{"technique":"linear","format":"unorm40"}])"}),
@@ -76,7 +78,9 @@ TEST_CASE("scene errors name the file, position and key", "[scene][errors]") {
 // Inputs the fuzzer (scripts/fuzz.sh) found to escape as something other than an InputError.
 TEST_CASE("fuzzer regressions end in input errors", "[scene][errors][fuzz]") {
   // a number beyond binary64 made nlohmann::json throw out_of_range, not parse_error
-  const std::string overflow = "6666666666e6666666666666&6666666{\n  \"name\": \"g66666666666e6666666666666&666666666{\n";
+  const std::string overflow =
+      "6666666666e6666666666666&6666666{\n  \"name\": \"g66666666666e6666666666666&666666666{\n";
   CHECK_THROWS_AS(load_scene_text(overflow, "crash.json"), InputError);
-  CHECK_THROWS_WITH(load_scene_text("{\"near\": 1e999999}", "big.json"), Contains("malformed JSON") && Contains("big.json"));
+  CHECK_THROWS_WITH(load_scene_text("{\"near\": 1e999999}", "big.json"),
+                    Contains("malformed JSON") && Contains("big.json"));
 }

@@ -5,9 +5,9 @@
 #include <random>
 
 #include "host/model/frame_setup.h"
+#include "host/model/scene.h"
 #include "host/mts/mts_exact.h"
 #include "host/mts/mts_run.h"
-#include "host/model/scene.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;
@@ -33,7 +33,8 @@ TEST_CASE("a non-monotone row's bracket holds real outcomes on both sides", "[st
   // standard/unorm24 in [0,1] flips around its MTS from z = 2^13 on (docs/stability.md)
   const Scene s = small_scene(60, 20);
   const EvalPair pair{Technique::standard, "unorm24", DepthRange::zero_to_one};
-  const auto rows = mts_rows(s, pair.technique, pair.format, pair.depth_range, powers_of_two(13, 18));
+  const auto rows =
+      mts_rows(s, pair.technique, pair.format, pair.depth_range, powers_of_two(13, 18));
   int flagged = 0;
   for (const auto& r : rows) {
     INFO("z = " << r.z);
@@ -47,8 +48,9 @@ TEST_CASE("a non-monotone row's bracket holds real outcomes on both sides", "[st
     }
     ++flagged;
     CHECK(r.fight_max > r.clean_min);
-    CHECK(probe(runtime(), s, pair, r.z, r.fight_max) == Outcome::fight);   // the upper MTS fights
-    CHECK(probe(runtime(), s, pair, r.z, r.clean_min) == Outcome::clean);   // and the lowest clean is clean
+    CHECK(probe(runtime(), s, pair, r.z, r.fight_max) == Outcome::fight);  // the upper MTS fights
+    CHECK(probe(runtime(), s, pair, r.z, r.clean_min) ==
+          Outcome::clean);  // and the lowest clean is clean
   }
   CHECK(flagged >= 1);
 }
@@ -97,7 +99,8 @@ TEST_CASE("random valid scenes: rows keep their invariants", "[stability][proper
     s.far = k % 4 == 3 ? INFINITY : s.near * std::pow(10.0, 1 + 11 * u(rng));
     s.distances.clear();
     for (int i = 0; i < 3; ++i)
-      s.distances.push_back(s.near * std::pow(std::isinf(s.far) ? 1e12 : 1.5 * s.far / s.near, u(rng)));
+      s.distances.push_back(s.near *
+                            std::pow(std::isinf(s.far) ? 1e12 : 1.5 * s.far / s.near, u(rng)));
     const EvalPair pair{techniques[rng() % techniques.size()].id, formats[rng() % 3],
                         rng() % 2 ? DepthRange::gl : DepthRange::zero_to_one};
     s.evaluate = {pair};

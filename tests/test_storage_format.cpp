@@ -91,15 +91,15 @@ TEST_CASE("float formats: exact values, carries, saturation, flush", "[formats]"
   const auto f16 = StorageFormat::parse("float16");
   CHECK(f16.encode(1.0f) == 0x3c00u);
   CHECK(f16.encode(0.5f) == 0x3800u);
-  CHECK(f16.encode(1e9f) == 0x7bffu);                       // saturates below infinity
-  CHECK(f16.encode(std::ldexp(1.0f, -20)) == 16u);          // subnormal in float16
-  CHECK(f16.encode(std::ldexp(1.0f, -25)) == 0u);           // half the smallest: tie to 0
-  CHECK(f16.encode(std::ldexp(1.5f, -25)) == 1u);           // above half: rounds up
+  CHECK(f16.encode(1e9f) == 0x7bffu);               // saturates below infinity
+  CHECK(f16.encode(std::ldexp(1.0f, -20)) == 16u);  // subnormal in float16
+  CHECK(f16.encode(std::ldexp(1.0f, -25)) == 0u);   // half the smallest: tie to 0
+  CHECK(f16.encode(std::ldexp(1.5f, -25)) == 1u);   // above half: rounds up
   const auto f16t = StorageFormat::parse("float16", Rounding::truncate);
   CHECK(f16t.encode(std::ldexp(1.5f, -25)) == 0u);
   const auto f16z = StorageFormat::parse("float16", Rounding::nearest_even, Denormals::flush);
   CHECK(f16z.encode(std::ldexp(1.0f, -20)) == 0u);
-  CHECK(f16z.encode(std::ldexp(1.0f, -14)) == 0x0400u);     // smallest normal survives
+  CHECK(f16z.encode(std::ldexp(1.0f, -14)) == 0x0400u);  // smallest normal survives
   // 1 - 2^-24 rounds up across the binade boundary to exactly 1.0 in float16
   CHECK(f16.encode(1.0f - std::ldexp(1.0f, -24)) == 0x3c00u);
   const auto e4 = StorageFormat::parse("e4m12");
@@ -122,7 +122,8 @@ TEST_CASE("e1m<M> is the fixed-point format with 2^(M+1) uniform codes", "[forma
 
 TEST_CASE("code_floor agrees with truncating encode and brackets binary64 values", "[formats]") {
   std::mt19937 rng(7);
-  for (const char* name : {"unorm16", "unorm24", "unorm32", "float24", "float16", "e4m12", "e2m5"}) {
+  for (const char* name :
+       {"unorm16", "unorm24", "unorm32", "float24", "float16", "e4m12", "e2m5"}) {
     const auto f = StorageFormat::parse(name, Rounding::truncate);
     for (int i = 0; i < 20000; ++i) {
       const float d = from_bits(rng() % 0x3f800001u);
@@ -142,15 +143,17 @@ TEST_CASE("defines describe the format for a kernel", "[formats]") {
         "-DDF_KIND=1 -DDF_E=4 -DDF_M=12 -DDF_IEEE=0u -DDF_ROUNDING=1u -DDF_FLUSH=1u");
 }
 
-TEST_CASE("binary64 encode: the binary32 codes for binary32 inputs, correctly rounded otherwise", "[formats]") {
+TEST_CASE("binary64 encode: the binary32 codes for binary32 inputs, correctly rounded otherwise",
+          "[formats]") {
   std::mt19937_64 rng(20261121);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (const char* name : {"unorm1", "unorm16", "unorm24", "unorm32", "float32", "float24", "float16", "e4m12",
-                           "e2m5", "e8m24"}) {
+  for (const char* name : {"unorm1", "unorm16", "unorm24", "unorm32", "float32", "float24",
+                           "float16", "e4m12", "e2m5", "e8m24"}) {
     for (const Rounding r : {Rounding::nearest_even, Rounding::truncate}) {
       for (const Denormals dn : {Denormals::keep, Denormals::flush}) {
         const auto f = StorageFormat::parse(name, r, dn);
-        INFO(name << (r == Rounding::truncate ? " truncate" : " nearest") << (dn == Denormals::flush ? " flush" : ""));
+        INFO(name << (r == Rounding::truncate ? " truncate" : " nearest")
+                  << (dn == Denormals::flush ? " flush" : ""));
         int bad32 = 0, bad64 = 0;
         for (int i = 0; i < 20000; ++i) {
           // spread over the binades, down into binary32's subnormals
@@ -169,17 +172,18 @@ TEST_CASE("binary64 encode: the binary32 codes for binary32 inputs, correctly ro
             const unsigned __int128 p = m * f.max_code();
             unsigned __int128 q = shift >= 127 ? 0 : p >> shift;
             if (r == Rounding::nearest_even && shift < 127) {
-              const unsigned __int128 rem = p - (q << shift), half = static_cast<unsigned __int128>(1) << (shift - 1);
+              const unsigned __int128 rem = p - (q << shift),
+                                      half = static_cast<unsigned __int128>(1) << (shift - 1);
               if (rem > half || (rem == half && (q & 1))) ++q;
             }
             if (c != static_cast<uint32_t>(q)) ++bad64;
           } else if (c < f.max_code() && !(dn == Denormals::flush && c == 0)) {
             const double hi = f.decode(c + 1);
             const bool inside = lo <= d && d < hi;
-            const bool nearer = r == Rounding::truncate ||
-                                (d - lo < hi - d || (d - lo == hi - d && (c & 1u) == 0));
-            const bool carried = r == Rounding::nearest_even && c > 0 && f.decode(c - 1) < d && d < lo &&
-                                 lo - d <= d - f.decode(c - 1);
+            const bool nearer =
+                r == Rounding::truncate || (d - lo < hi - d || (d - lo == hi - d && (c & 1u) == 0));
+            const bool carried = r == Rounding::nearest_even && c > 0 && f.decode(c - 1) < d &&
+                                 d < lo && lo - d <= d - f.decode(c - 1);
             if (!((inside && nearer) || carried)) ++bad64;
           }
         }
@@ -190,7 +194,9 @@ TEST_CASE("binary64 encode: the binary32 codes for binary32 inputs, correctly ro
   }
 }
 
-TEST_CASE("from df_order_exact_from on, codes follow binary32 order: a depth test needs no encoding", "[formats]") {
+TEST_CASE(
+    "from df_order_exact_from on, codes follow binary32 order: a depth test needs no encoding",
+    "[formats]") {
   // Every binary32 from T's predecessor to 1: codes strictly increasing. With d >= T > d', that
   // puts code(d') <= code(pred T) < code(T) <= code(d); with both >= T, order is kept exactly.
   // One step lower (T's predecessor itself as T) must fail: T is the least such pattern.

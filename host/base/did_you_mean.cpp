@@ -9,7 +9,8 @@ namespace depthprec {
 namespace {
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -20,8 +21,10 @@ size_t edit_distance(const std::string& a, const std::string& b) {
   for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
   for (size_t i = 1; i <= a.size(); ++i)
     for (size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      d[i][j] = std::min(
+          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
     }
   return d[a.size()][b.size()];
 }
@@ -81,26 +84,41 @@ std::string format_suggestion(const std::string& typed) {
       {"fp16", "float16"},
       {"half", "float16"},
   };
-  static const std::vector<std::string> names = {"unorm16", "unorm24", "unorm32", "float16", "float24", "float32"};
+  static const std::vector<std::string> names = {"unorm16", "unorm24", "unorm32",
+                                                 "float16", "float24", "float32"};
   return suggest(typed, aliases, names);
 }
 
 std::string technique_suggestion(const std::string& typed, const std::vector<std::string>& names) {
   static const std::map<std::string, std::string> aliases = {
-      {"z", "standard"},          {"zbuffer", "standard"},         {"z_buffer", "standard"},
-      {"perspective", "standard"}, {"infinite_far", "infinite"},    {"reverse_z", "reversed"},
-      {"reversed_z", "reversed"}, {"reverse", "reversed"},          {"complementary_z", "reversed"},
-      {"log", "log_vertex or log_fragment"}, {"logarithmic", "log_vertex or log_fragment"},
-      {"w", "w_buffer"},          {"wbuffer", "w_buffer"},          {"1/w", "inverse_w"},
+      {"z", "standard"},
+      {"zbuffer", "standard"},
+      {"z_buffer", "standard"},
+      {"perspective", "standard"},
+      {"infinite_far", "infinite"},
+      {"reverse_z", "reversed"},
+      {"reversed_z", "reversed"},
+      {"reverse", "reversed"},
+      {"complementary_z", "reversed"},
+      {"log", "log_vertex or log_fragment"},
+      {"logarithmic", "log_vertex or log_fragment"},
+      {"w", "w_buffer"},
+      {"wbuffer", "w_buffer"},
+      {"1/w", "inverse_w"},
   };
   return suggest(typed, aliases, names);
 }
 
 std::string buffer_suggestion(const std::string& typed) {
   static const std::map<std::string, std::string> aliases = {
-      {"reversed", "complementary_z"},   {"reversed_z", "complementary_z"}, {"reverse_z", "complementary_z"},
-      {"reversed_infinite", "inverse_w"}, {"standard", "z"},                 {"z_buffer", "z"},
-      {"linear", "w"},                   {"w_buffer", "w"},
+      {"reversed", "complementary_z"},
+      {"reversed_z", "complementary_z"},
+      {"reverse_z", "complementary_z"},
+      {"reversed_infinite", "inverse_w"},
+      {"standard", "z"},
+      {"z_buffer", "z"},
+      {"linear", "w"},
+      {"w_buffer", "w"},
   };
   static const std::vector<std::string> names = {"z", "w", "inverse_w", "complementary_z"};
   return suggest(typed, aliases, names);

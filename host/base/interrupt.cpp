@@ -19,6 +19,8 @@ void install_interrupt_handlers() {
   std::signal(SIGTERM, on_signal);
 }
 
-bool interrupt_requested() { return requested.load(); }
+bool interrupt_requested() {
+  return requested.load();
+}
 
 }  // namespace depthprec

@@ -19,7 +19,8 @@ double number_from_json(const nlohmann::json& v, const std::string& what) {
   if (v == "inf") return INFINITY;
   if (v == "-inf") return -INFINITY;
   if (v == "nan") return NAN;
-  throw InputError(fmt::format("'{}' must be a number, \"inf\", \"-inf\" or \"nan\", not {}", what, v.dump()));
+  throw InputError(
+      fmt::format("'{}' must be a number, \"inf\", \"-inf\" or \"nan\", not {}", what, v.dump()));
 }
 
 }  // namespace depthprec

@@ -7,8 +7,8 @@
 
 #include "host/base/errors.h"
 #include "host/base/interrupt.h"
-#include "host/output/progress.h"
 #include "host/base/version.h"
+#include "host/output/progress.h"
 
 namespace depthprec {
 
@@ -18,7 +18,8 @@ Shard Shard::parse(const std::string& text) {
   int i = 0, n = 0;
   char tail = 0;
   if (std::sscanf(text.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || n < 1 || i < 1 || i > n)
-    throw Error(ExitCode::usage, fmt::format("--shard '{}': expected i/N with 1 <= i <= N, e.g. 2/8", text));
+    throw Error(ExitCode::usage,
+                fmt::format("--shard '{}': expected i/N with 1 <= i <= N, e.g. 2/8", text));
   s.index = i - 1;
   s.count = n;
   return s;
@@ -27,15 +28,17 @@ Shard Shard::parse(const std::string& text) {
 RowJournal::RowJournal(const std::string& output, bool resume) {
   if (output.empty()) {
     if (resume)
-      throw Error(ExitCode::usage, "--resume needs --output FILE: the journal of finished rows lives beside it");
+      throw Error(ExitCode::usage,
+                  "--resume needs --output FILE: the journal of finished rows lives beside it");
     return;
   }
   path_ = output + ".rows.jsonl";
   std::ifstream in(path_);
   if (in.good() && !resume)
-    throw Error(ExitCode::output, fmt::format("{} holds the finished rows of an interrupted run: continue it "
-                                              "with --resume, or delete it to start over",
-                                              path_));
+    throw Error(ExitCode::output,
+                fmt::format("{} holds the finished rows of an interrupted run: continue it "
+                            "with --resume, or delete it to start over",
+                            path_));
   std::string line;
   int number = 0;
   while (resume && std::getline(in, line)) {
@@ -44,7 +47,8 @@ RowJournal::RowJournal(const std::string& output, bool resume) {
     auto j = nlohmann::json::parse(line, nullptr, false);
     if (j.is_discarded() || !j.is_object()) {
       // a line cut short by a kill: everything before it is whole
-      fmt::print(stderr, "depthprec: {}:{}: incomplete row left out (it will be recomputed)\n", path_, number);
+      fmt::print(stderr, "depthprec: {}:{}: incomplete row left out (it will be recomputed)\n",
+                 path_, number);
       break;
     }
     earlier_.push_back(std::move(j));
@@ -69,15 +73,19 @@ void RowJournal::remove() {
 
 void throw_interrupted(const RowJournal& journal, size_t finished) {
   if (journal.active())
-    throw Error(ExitCode::interrupted,
-                fmt::format("interrupted: {} finished rows kept in {}; the same command with --resume continues",
-                            finished, journal.path()));
-  throw Error(ExitCode::interrupted, fmt::format("interrupted: the {} finished rows are above", finished));
+    throw Error(
+        ExitCode::interrupted,
+        fmt::format(
+            "interrupted: {} finished rows kept in {}; the same command with --resume continues",
+            finished, journal.path()));
+  throw Error(ExitCode::interrupted,
+              fmt::format("interrupted: the {} finished rows are above", finished));
 }
 
-std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJournal& journal,
-                                      const Shard& shard, const std::string& what, bool progress,
-                                      const std::function<void(const std::vector<nlohmann::json>&)>& on_partial) {
+std::vector<nlohmann::json> run_batch(
+    const std::vector<BatchUnit>& units, RowJournal& journal, const Shard& shard,
+    const std::string& what, bool progress,
+    const std::function<void(const std::vector<nlohmann::json>&)>& on_partial) {
   std::map<std::string, nlohmann::json> have;
   for (const auto& r : journal.earlier())
     if (r.contains("key") && r["key"].is_string()) have[r["key"].get<std::string>()] = r;
@@ -106,7 +114,8 @@ std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJo
         record = units[k].compute();
       } catch (...) {
         // A signal can also break what the unit was doing (a kernel build inside PoCL's compiler
-        // fails when SIGINT lands in it): once a stop is requested, the failure is the interruption.
+        // fails when SIGINT lands in it): once a stop is requested, the failure is the
+        // interruption.
         if (!interrupt_requested()) throw;
         stop_here();
       }
@@ -119,8 +128,10 @@ std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJo
   return in_order();
 }
 
-nlohmann::json batch_header(const std::string& kind, const std::string& device, const std::string& shard) {
-  nlohmann::json h = {{"program", "depthprec"}, {"version", kVersion}, {"kind", kind}, {"device", device}};
+nlohmann::json batch_header(const std::string& kind, const std::string& device,
+                            const std::string& shard) {
+  nlohmann::json h = {
+      {"program", "depthprec"}, {"version", kVersion}, {"kind", kind}, {"device", device}};
   if (!shard.empty()) h["shard"] = shard;
   return h;
 }
@@ -137,8 +148,8 @@ void strip_timing(nlohmann::json& j) {
 }
 }  // namespace
 
-std::string records_json(const nlohmann::json& header, const std::vector<nlohmann::json>& records, bool timing,
-                         const nlohmann::json& derived) {
+std::string records_json(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                         bool timing, const nlohmann::json& derived) {
   nlohmann::json j = header;
   for (auto& [k, v] : derived.items()) {
     j[k] = v;

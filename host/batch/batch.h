@@ -4,8 +4,8 @@
 // as it finishes and stopping cleanly on Ctrl-C / SIGTERM.
 #pragma once
 
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -53,16 +53,18 @@ struct BatchUnit {
 // as it finishes; returns the shard's records in unit order, earlier ones included. On an
 // interrupt request it stops between units: with a journal it throws the interrupted Error;
 // without one it calls on_partial(finished records in unit order) first, so they are shown.
-std::vector<nlohmann::json> run_batch(const std::vector<BatchUnit>& units, RowJournal& journal,
-                                      const Shard& shard, const std::string& what, bool progress,
-                                      const std::function<void(const std::vector<nlohmann::json>&)>& on_partial);
+std::vector<nlohmann::json> run_batch(
+    const std::vector<BatchUnit>& units, RowJournal& journal, const Shard& shard,
+    const std::string& what, bool progress,
+    const std::function<void(const std::vector<nlohmann::json>&)>& on_partial);
 
 // The header of a record batch's JSON output: program, version, kind, device, and the shard.
-nlohmann::json batch_header(const std::string& kind, const std::string& device, const std::string& shard);
+nlohmann::json batch_header(const std::string& kind, const std::string& device,
+                            const std::string& shard);
 // header + {"records": ...} + the derived fields (results computed from the records); without
 // timing the measured-time fields are left out, so two runs compare byte for byte.
-std::string records_json(const nlohmann::json& header, const std::vector<nlohmann::json>& records, bool timing,
-                         const nlohmann::json& derived = nlohmann::json::object());
+std::string records_json(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                         bool timing, const nlohmann::json& derived = nlohmann::json::object());
 std::map<std::string, nlohmann::json> by_key(const std::vector<nlohmann::json>& records);
 
 }  // namespace depthprec

@@ -6,17 +6,17 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+#include "host/base/version.h"
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/base/errors.h"
-#include "host/base/json_number.h"
-#include "host/output/gnuplot.h"
 #include "host/lj/lj_metric.h"
 #include "host/mts/mts_run.h"
 #include "host/mts/mts_timing.h"
+#include "host/output/gnuplot.h"
 #include "host/output/text_table.h"
-#include "host/base/version.h"
 
 namespace depthprec::cli {
 
@@ -36,15 +36,19 @@ struct CostPoint {
 
 // Precision against cost: one labelled point per technique x format.
 void plot_cost(const std::vector<CostPoint>& points, const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output), gnuplot_quote(output));
-  script += "set logscale y\nset grid\nset key off\nset xlabel 'kernel cost [ns per fragment pair]'\n"
-            "set ylabel 'median MTS / vertex bound (lower is more precise)'\n"
-            "set title 'Precision against cost per technique and format' noenhanced\n"
-            "set offsets graph 0.05, graph 0.25, graph 0.1, graph 0.1\n$pts << EOD\n";
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
+                                   gnuplot_quote(output));
+  script +=
+      "set logscale y\nset grid\nset key off\nset xlabel 'kernel cost [ns per fragment pair]'\n"
+      "set ylabel 'median MTS / vertex bound (lower is more precise)'\n"
+      "set title 'Precision against cost per technique and format' noenhanced\n"
+      "set offsets graph 0.05, graph 0.25, graph 0.1, graph 0.1\n$pts << EOD\n";
   for (const auto& p : points)
     if (std::isfinite(p.median) && p.median > 0)
       script += fmt::format("{:.6g} {:.6g} {}\n", p.ns, p.median, gnuplot_quote(p.label));
-  script += "EOD\nplot $pts using 1:2 with points pt 7 ps 1.5, $pts using 1:2:3 with labels offset 1,0.5 left noenhanced\n";
+  script +=
+      "EOD\nplot $pts using 1:2 with points pt 7 ps 1.5, $pts using 1:2:3 with labels offset 1,0.5 "
+      "left noenhanced\n";
   run_gnuplot(script, output);
 }
 
@@ -57,22 +61,27 @@ std::string structural_cost(const Scene& s, Technique t) {
 }
 
 // One record per technique x format: its MTS run, LJ error and timing pass.
-nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool timing) {
+nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           bool timing) {
   Scene one = scene;
   one.evaluate = {pair};
   const MtsRun mts = run_scene(rt, one);
   std::vector<double> ratio;
   int unresolved = 0;
   for (const auto& r : mts.rows) {
-    if (r.unresolvable) ++unresolved;
-    else ratio.push_back(r.mts / r.vertex_bound);
+    if (r.unresolvable)
+      ++unresolved;
+    else
+      ratio.push_back(r.mts / r.vertex_bound);
   }
   std::sort(ratio.begin(), ratio.end());
   const double median = ratio.empty() ? INFINITY : ratio[ratio.size() / 2];
-  nlohmann::json j = {{"technique", info(pair.technique).name}, {"format", pair.format},
+  nlohmann::json j = {{"technique", info(pair.technique).name},
+                      {"format", pair.format},
                       {"depth_range", to_string(pair.depth_range)},
                       {"median_mts_over_vertex_bound", json_number(median)},
-                      {"unresolvable_distances", unresolved}, {"structural_cost", structural_cost(scene, pair.technique)}};
+                      {"unresolvable_distances", unresolved},
+                      {"structural_cost", structural_cost(scene, pair.technique)}};
   if (info(pair.technique).lj_buffer && std::isfinite(scene.far)) {
     LjConfig c;
     c.buffer = parse_lj_buffer(info(pair.technique).lj_buffer);
@@ -80,7 +89,8 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
     c.far = scene.far;
     j["lj_ae"] = json_number(lj_average_error_device(rt, c, scene.storage_format(pair)).ae);
   }
-  if (timing) j["ns_per_fragment_pair"] = time_depth_path(rt, scene, pair, TimingRegime::near).ns_per_pair();
+  if (timing)
+    j["ns_per_fragment_pair"] = time_depth_path(rt, scene, pair, TimingRegime::near).ns_per_pair();
   return j;
 }
 
@@ -98,7 +108,9 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
         header["scene_name"] = scene.name;
         std::vector<BatchUnit> units;
         for (const EvalPair& pair : scene.evaluate)
-          units.push_back({pair.label(), [&rt, &scene, pair, timing] { return cost_record(rt, scene, pair, timing); }});
+          units.push_back({pair.label(), [&rt, &scene, pair, timing] {
+                             return cost_record(rt, scene, pair, timing);
+                           }});
         return units;
       },
       render_cost_output);
@@ -106,28 +118,36 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
   std::vector<CostPoint> points;
   for (const auto& r : records)
     if (r.contains("ns_per_fragment_pair"))
-      points.push_back({fmt::format("{}/{}/{}", r["technique"].get<std::string>(), r["format"].get<std::string>(),
-                                    r["depth_range"].get<std::string>()),
-                        r["ns_per_fragment_pair"].get<double>(),
-                        number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound")});
+      points.push_back(
+          {fmt::format("{}/{}/{}", r["technique"].get<std::string>(),
+                       r["format"].get<std::string>(), r["depth_range"].get<std::string>()),
+           r["ns_per_fragment_pair"].get<double>(),
+           number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound")});
   plot_cost(points, o.plot);
 }
 
 }  // namespace
 
-std::string render_cost_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_cost_output(const nlohmann::json& header,
+                               const std::vector<nlohmann::json>& records,
                                const OutputOptions& out) {
   const bool timing = !out.no_timing;
   if (out.format_out == "json") return records_json(header, records, timing);
   Cells cells;
   for (const auto& r : records) {
-    std::vector<std::string> row = {r["technique"].get<std::string>(), r["format"].get<std::string>(),
+    std::vector<std::string> row = {r["technique"].get<std::string>(),
+                                    r["format"].get<std::string>(),
                                     r["depth_range"].get<std::string>()};
-    if (timing) row.push_back(r.contains("ns_per_fragment_pair") ? fmt::format("{:.2f}", r["ns_per_fragment_pair"].get<double>()) : "-");
-    const double median = number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound");
+    if (timing)
+      row.push_back(r.contains("ns_per_fragment_pair")
+                        ? fmt::format("{:.2f}", r["ns_per_fragment_pair"].get<double>())
+                        : "-");
+    const double median =
+        number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound");
     row.push_back(std::isinf(median) ? "inf" : fmt::format("{:.3g}", median));
     row.push_back(std::to_string(r["unresolvable_distances"].get<int>()));
-    row.push_back(r.contains("lj_ae") ? fmt::format("{:.3g}", number_from_json(r["lj_ae"], "lj_ae")) : "-");
+    row.push_back(r.contains("lj_ae") ? fmt::format("{:.3g}", number_from_json(r["lj_ae"], "lj_ae"))
+                                      : "-");
     row.push_back(r["structural_cost"].get<std::string>());
     cells.push_back(row);
   }
@@ -135,10 +155,15 @@ std::string render_cost_output(const nlohmann::json& header, const std::vector<n
   if (timing) cols.push_back({"ns/pair"});
   for (const char* c : {"median mts/vb", "unresolvable", "lj ae"}) cols.push_back({c});
   cols.push_back({"structural cost on a GPU", true});
-  return fmt::format("Cost and precision per technique (scene {}): {}median MTS over the vertex bound across "
-                     "the scene's distances, Lapidous-Jiao ae where the technique is one of its buffers\n\n",
-                     header.value("scene_name", std::string("?")),
-                     timing ? "ns per fragment pair of the kernel's depth path (timing pass, near-MTS probes), " : "") +
+  return fmt::format(
+             "Cost and precision per technique (scene {}): {}median MTS over the vertex bound "
+             "across "
+             "the scene's distances, Lapidous-Jiao ae where the technique is one of its "
+             "buffers\n\n",
+             header.value("scene_name", std::string("?")),
+             timing ? "ns per fragment pair of the kernel's depth path (timing pass, near-MTS "
+                      "probes), "
+                    : "") +
          render_cells(cols, cells, out.format_out);
 }
 
@@ -148,15 +173,19 @@ void add_cost_command(CLI::App& app, GlobalOptions& global) {
       "cost",
       "Per technique x format: the kernel's cost per fragment pair of its depth path (a dedicated\n"
       "timing pass), the precision it buys (median MTS / vertex bound over the scene's distances,\n"
-      "and the Lapidous-Jiao error where the technique is one of LJ's buffers), and the structural\n"
-      "costs a GPU pays (fragment-depth writes disable early depth test; layering costs a pass per\n"
+      "and the Lapidous-Jiao error where the technique is one of LJ's buffers), and the "
+      "structural\n"
+      "costs a GPU pays (fragment-depth writes disable early depth test; layering costs a pass "
+      "per\n"
       "layer). CSV/JSON output is the error-vs-cost plot data.\n"
       "Examples:\n"
-      "  depthprec cost -t standard,reversed,log_fragment,linear -f float32,unorm24 --distances 2,1024,1e6\n"
+      "  depthprec cost -t standard,reversed,log_fragment,linear -f float32,unorm24 --distances "
+      "2,1024,1e6\n"
       "  depthprec cost --format-out csv -o cost.csv");
   o->scene.add_to(*cmd, true);
   o->out.add_to(*cmd);
-  cmd->add_option("--plot", o->plot, "Also plot precision against cost (gnuplot), FILE.png or FILE.svg");
+  cmd->add_option("--plot", o->plot,
+                  "Also plot precision against cost (gnuplot), FILE.png or FILE.svg");
   o->batch.add_to(*cmd, "techniques x formats (k in scene order)");
   cmd->callback([o, &global]() { run_cost(*o, global); });
 }

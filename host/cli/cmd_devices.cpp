@@ -23,12 +23,12 @@ void add_devices_command(CLI::App& app, GlobalOptions& global) {
     for (const auto& d : devices) {
       const std::string desc =
           fmt::format("{} / {} ({})", d.platform_name, d.device_name, d.opencl_c_version);
-      fmt::print("{:<5} {:<6} {:<42} {:<22} {:>3} {:>5} {:>9} {:>8.1f}\n",
-                 fmt::format("{}{}:{}", desc == chosen ? "*" : " ", d.platform_index,
-                             d.device_index),
-                 d.device_type, d.device_name.substr(0, 42), d.opencl_c_version, d.compute_units,
-                 d.fp64 ? "yes" : "no", d.fp32_denormals ? "yes" : "no",
-                 static_cast<double>(d.global_mem_bytes) / (1024.0 * 1024.0 * 1024.0));
+      fmt::print(
+          "{:<5} {:<6} {:<42} {:<22} {:>3} {:>5} {:>9} {:>8.1f}\n",
+          fmt::format("{}{}:{}", desc == chosen ? "*" : " ", d.platform_index, d.device_index),
+          d.device_type, d.device_name.substr(0, 42), d.opencl_c_version, d.compute_units,
+          d.fp64 ? "yes" : "no", d.fp32_denormals ? "yes" : "no",
+          static_cast<double>(d.global_mem_bytes) / (1024.0 * 1024.0 * 1024.0));
       fmt::print("      platform: {} ({})\n", d.platform_name, d.platform_version);
     }
   });

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <vector>
 
-#include "host/cli/commands.h"
-#include "host/runtime/device_encode.h"
 #include "host/base/errors.h"
-#include "host/runtime/opencl_runtime.h"
+#include "host/cli/commands.h"
 #include "host/model/storage_format.h"
+#include "host/runtime/device_encode.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec::cli {
 
@@ -53,7 +53,8 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
     for (const auto& f : formats) {
       const uint32_t code = f.encode(d);
       const double stored = f.decode(code);
-      const double rel = d != 0.0f ? (stored - static_cast<double>(d)) / static_cast<double>(d) : 0.0;
+      const double rel =
+          d != 0.0f ? (stored - static_cast<double>(d)) / static_cast<double>(d) : 0.0;
       std::string device_col;
       if (rt) {
         const uint32_t dev = device_encode(*rt, f, std::vector<float>{d}).front();

@@ -6,18 +6,18 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+#include "host/base/version.h"
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/base/json_number.h"
-#include "host/base/errors.h"
-#include "host/output/gnuplot.h"
 #include "host/lj/lj_metric.h"
 #include "host/lj/lj_pipeline.h"
-#include "host/output/report.h"
 #include "host/model/resolve.h"
+#include "host/output/gnuplot.h"
+#include "host/output/report.h"
 #include "host/output/text_table.h"
-#include "host/base/version.h"
 
 namespace depthprec::cli {
 
@@ -46,12 +46,14 @@ struct LjOptions {
 
 void add_lj_common(CLI::App* cmd, LjOptions& o, bool with_buffer) {
   if (with_buffer)
-    cmd->add_option("--buffer", o.buffer, "z, w, inverse_w or complementary_z")->capture_default_str();
+    cmd->add_option("--buffer", o.buffer, "z, w, inverse_w or complementary_z")
+        ->capture_default_str();
   cmd->add_option("--near", o.near, "Near plane distance d")->capture_default_str();
   cmd->add_option("--far", o.far, "Far plane distance f")->capture_default_str();
   cmd->add_option("--samples", o.samples, "N sampled distances from d to f, both ends included")
       ->capture_default_str();
-  cmd->add_option("--sampling", o.sampling, "uniform, or increasing (weight Ze - d)")->capture_default_str();
+  cmd->add_option("--sampling", o.sampling, "uniform, or increasing (weight Ze - d)")
+      ->capture_default_str();
   o.out.add_to(*cmd);
 }
 
@@ -62,7 +64,8 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // The formats of a `bits`-bit buffer: E = 0 (integer) .. min(8, bits - 1).
 std::vector<std::string> split_formats(int bits) {
   std::vector<std::string> out = {fmt::format("unorm{}", bits)};
-  for (int e = 1; e <= std::min(8, bits - 1); ++e) out.push_back(fmt::format("e{}m{}", e, bits - e));
+  for (int e = 1; e <= std::min(8, bits - 1); ++e)
+    out.push_back(fmt::format("e{}m{}", e, bits - e));
   return out;
 }
 
@@ -87,13 +90,22 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
   const bool timing = !o.out.no_timing;
   std::string text;
   if (o.out.format_out == "json") {
-    nlohmann::json j = {{"program", "depthprec"}, {"version", kVersion}, {"device", rt.description()},
-                        {"buffer", o.buffer}, {"format", f.name()}, {"near", c.near}, {"far", c.far},
-                        {"samples", c.samples}, {"sampling", o.sampling},
-                        {"ae_host", exact(host.ae)}, {"ae_device", exact(dev.ae)},
-                        {"ae_pipeline", exact(pipe.ae)}, {"vertex_limited_fraction", host.vertex_limited},
+    nlohmann::json j = {{"program", "depthprec"},
+                        {"version", kVersion},
+                        {"device", rt.description()},
+                        {"buffer", o.buffer},
+                        {"format", f.name()},
+                        {"near", c.near},
+                        {"far", c.far},
+                        {"samples", c.samples},
+                        {"sampling", o.sampling},
+                        {"ae_host", exact(host.ae)},
+                        {"ae_device", exact(dev.ae)},
+                        {"ae_pipeline", exact(pipe.ae)},
+                        {"vertex_limited_fraction", host.vertex_limited},
                         {"infinite_samples", host.infinite_samples},
-                        {"pipeline_clipped_samples", pipe.clipped}, {"pipeline_off_code_samples", pipe.off_code}};
+                        {"pipeline_clipped_samples", pipe.clipped},
+                        {"pipeline_off_code_samples", pipe.off_code}};
     if (timing) j["ms"] = {{"host", host_ms}, {"device", dev_ms}, {"pipeline", pipe_ms}};
     text = j.dump(2) + "\n";
   } else {
@@ -103,14 +115,21 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
     Cells cells = {
         {"analytic, host binary64", human(host.ae), fmt::format("{:.1f}", host_ms),
          fmt::format("per-vertex term limits {:.1f} % of samples{}", 100 * host.vertex_limited,
-                     host.infinite_samples ? fmt::format("; {} samples past the Z pole", host.infinite_samples) : "")},
-        {"analytic, device binary64", human(dev.ae), fmt::format("{:.1f}", dev_ms), rt.info().device_name},
+                     host.infinite_samples
+                         ? fmt::format("; {} samples past the Z pole", host.infinite_samples)
+                         : "")},
+        {"analytic, device binary64", human(dev.ae), fmt::format("{:.1f}", dev_ms),
+         rt.info().device_name},
         {"pipeline-measured", human(pipe.ae), fmt::format("{:.1f}", pipe_ms),
-         fmt::format("{} samples stored off the exact code, {} clipped", pipe.off_code, pipe.clipped)}};
+         fmt::format("{} samples stored off the exact code, {} clipped", pipe.off_code,
+                     pipe.clipped)}};
     if (!timing)
       for (auto& row : cells) row.erase(row.begin() + 2);
-    text = fmt::format("Lapidous-Jiao average error: {} buffer, {}, near {}, far {} (f/d {}), N = {}, {} sampling\n\n",
-                       o.buffer, f.name(), human(c.near), human(c.far), human(c.far / c.near), c.samples, o.sampling) +
+    text = fmt::format(
+               "Lapidous-Jiao average error: {} buffer, {}, near {}, far {} (f/d {}), N = {}, {} "
+               "sampling\n\n",
+               o.buffer, f.name(), human(c.near), human(c.far), human(c.far / c.near), c.samples,
+               o.sampling) +
            render_cells(cols, cells, o.out.format_out);
   }
   write_output(o.out.output, text);
@@ -132,26 +151,36 @@ std::vector<Ranked> sweep(OpenClRuntime& rt, const LjConfig& c, int bits) {
 
 void run_select(const LjOptions& o, const GlobalOptions& g) {
   const LjConfig c = o.config();
-  if (o.bits < 2 || o.bits > 32) throw InputError(fmt::format("--bits must be 2..32, not {}", o.bits));
+  if (o.bits < 2 || o.bits > 32)
+    throw InputError(fmt::format("--bits must be 2..32, not {}", o.bits));
   check_writable(o.out.output);
   OpenClRuntime rt(g.device);
   auto ranked = sweep(rt, c, o.bits);
-  std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) { return a.ae < b.ae; });
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const Ranked& a, const Ranked& b) { return a.ae < b.ae; });
   std::string text;
   if (o.out.format_out == "json") {
-    nlohmann::json j = {{"buffer", o.buffer}, {"bits", o.bits}, {"near", c.near}, {"far", c.far},
-                        {"samples", c.samples}, {"sampling", o.sampling}, {"ranking", nlohmann::json::array()}};
-    for (const auto& r : ranked) j["ranking"].push_back({{"format", r.format}, {"E", r.e}, {"ae", exact(r.ae)}});
+    nlohmann::json j = {{"buffer", o.buffer},
+                        {"bits", o.bits},
+                        {"near", c.near},
+                        {"far", c.far},
+                        {"samples", c.samples},
+                        {"sampling", o.sampling},
+                        {"ranking", nlohmann::json::array()}};
+    for (const auto& r : ranked)
+      j["ranking"].push_back({{"format", r.format}, {"E", r.e}, {"ae", exact(r.ae)}});
     text = j.dump(2) + "\n";
   } else {
     Cells cells;
     int rank = 1;
     for (const auto& r : ranked)
-      cells.push_back({std::to_string(rank++), r.format, std::to_string(r.e), std::to_string(o.bits - r.e),
-                       human(r.ae), human(r.ae / ranked.front().ae)});
-    text = fmt::format("Best {}-bit storage for the {} buffer, near {}, far {} ({} sampling, N = {}):\n\n", o.bits,
-                       o.buffer, human(c.near), human(c.far), o.sampling, c.samples) +
-           render_cells({{"rank"}, {"format", true}, {"E"}, {"M"}, {"ae"}, {"x best"}}, cells, o.out.format_out);
+      cells.push_back({std::to_string(rank++), r.format, std::to_string(r.e),
+                       std::to_string(o.bits - r.e), human(r.ae), human(r.ae / ranked.front().ae)});
+    text = fmt::format(
+               "Best {}-bit storage for the {} buffer, near {}, far {} ({} sampling, N = {}):\n\n",
+               o.bits, o.buffer, human(c.near), human(c.far), o.sampling, c.samples) +
+           render_cells({{"rank"}, {"format", true}, {"E"}, {"M"}, {"ae"}, {"x best"}}, cells,
+                        o.out.format_out);
   }
   write_output(o.out.output, text);
 }
@@ -160,16 +189,20 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
 const std::vector<double> kLjRatios = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 1e4, 1e6};
 const char* const kLjSamplings[] = {"uniform", "increasing"};
 const int kLjBits[] = {16, 24};
-const LjBuffer kLjBuffers[] = {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w, LjBuffer::complementary_z};
+const LjBuffer kLjBuffers[] = {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w,
+                               LjBuffer::complementary_z};
 
 // LJ99 fig. 11: 32-bit buffers.
 struct LjPick {
   LjBuffer buffer;
   const char* format;
 };
-const LjPick kLjPicks[] = {{LjBuffer::z, "float32"},         {LjBuffer::z, "unorm24"},
-                           {LjBuffer::z, "unorm32"},         {LjBuffer::w, "unorm32"},
-                           {LjBuffer::inverse_w, "float32"}, {LjBuffer::complementary_z, "float32"},
+const LjPick kLjPicks[] = {{LjBuffer::z, "float32"},
+                           {LjBuffer::z, "unorm24"},
+                           {LjBuffer::z, "unorm32"},
+                           {LjBuffer::w, "unorm32"},
+                           {LjBuffer::inverse_w, "float32"},
+                           {LjBuffer::complementary_z, "float32"},
                            {LjBuffer::complementary_z, "e4m24"}};
 
 LjConfig table_config(LjBuffer b, double ratio, long long samples, LjSampling sampling) {
@@ -185,7 +218,9 @@ LjConfig table_config(LjBuffer b, double ratio, long long samples, LjSampling sa
 std::string split_key(const char* sampling, int bits, LjBuffer b, double r) {
   return fmt::format("{}/{}/{}/{:.17g}", sampling, bits, to_string(b), r);
 }
-std::string picks_key(double r) { return fmt::format("32bit/{:.17g}", r); }
+std::string picks_key(double r) {
+  return fmt::format("32bit/{:.17g}", r);
+}
 
 std::vector<BatchUnit> lj_table_units(OpenClRuntime& rt, long long samples) {
   std::vector<BatchUnit> units;
@@ -198,18 +233,22 @@ std::vector<BatchUnit> lj_table_units(OpenClRuntime& rt, long long samples) {
     for (int bits : kLjBits)
       for (const LjBuffer b : kLjBuffers)
         for (double r : kLjRatios)
-          units.push_back({split_key(sampling, bits, b, r), [&rt, samples, sampling, bits, b, r, aes] {
-                             std::vector<double> v;
-                             for (const auto& x : sweep(rt, table_config(b, r, samples, parse_lj_sampling(sampling)), bits))
-                               v.push_back(x.ae);
-                             return aes(v);
-                           }});
+          units.push_back(
+              {split_key(sampling, bits, b, r), [&rt, samples, sampling, bits, b, r, aes] {
+                 std::vector<double> v;
+                 for (const auto& x :
+                      sweep(rt, table_config(b, r, samples, parse_lj_sampling(sampling)), bits))
+                   v.push_back(x.ae);
+                 return aes(v);
+               }});
   for (double r : kLjRatios)
     units.push_back({picks_key(r), [&rt, samples, r, aes] {
                        std::vector<double> v;
                        for (const auto& p : kLjPicks)
-                         v.push_back(lj_average_error_device(rt, table_config(p.buffer, r, samples, LjSampling::uniform),
-                                                             StorageFormat::parse(p.format))
+                         v.push_back(lj_average_error_device(
+                                         rt,
+                                         table_config(p.buffer, r, samples, LjSampling::uniform),
+                                         StorageFormat::parse(p.format))
                                          .ae);
                        return aes(v);
                      }});
@@ -226,11 +265,12 @@ std::string render_lj_table(const std::map<std::string, nlohmann::json>& records
   };
   const bool md = format == "markdown";
   std::string text = md ? "# Lapidous-Jiao average depth error: the paper's experiments\n\n" : "";
-  text += fmt::format("ae per exponent width E (E = 0: integer unorm<bits>; E >= 1: LJ e<E>m<bits-E>), near 1, "
-                      "N = {} samples. inf: a sample passes the Z buffer's pole. best E 0/1: the integer "
-                      "format (LJ99 eq. 2 makes E = 0 and E = 1 the same; unorm's codes are 2^-bits relatively "
-                      "wider apart).\n",
-                      samples);
+  text += fmt::format(
+      "ae per exponent width E (E = 0: integer unorm<bits>; E >= 1: LJ e<E>m<bits-E>), near 1, "
+      "N = {} samples. inf: a sample passes the Z buffer's pole. best E 0/1: the integer "
+      "format (LJ99 eq. 2 makes E = 0 and E = 1 the same; unorm's codes are 2^-bits relatively "
+      "wider apart).\n",
+      samples);
   for (const char* sampling : kLjSamplings) {
     for (int bits : kLjBits) {
       for (const LjBuffer b : kLjBuffers) {
@@ -250,18 +290,21 @@ std::string render_lj_table(const std::map<std::string, nlohmann::json>& records
           }
           // LJ99 eq. 2 makes E = 0 and E = 1 one integer format; unorm's 1/(2^b - 1) spacing
           // differs from e1's 2^-b by 2^-b relative, so call that a tie.
-          const bool integer_tie = best <= 1 && std::abs(ae[0] - ae[1]) <= std::ldexp(2.0, -bits) * ae[1];
+          const bool integer_tie =
+              best <= 1 && std::abs(ae[0] - ae[1]) <= std::ldexp(2.0, -bits) * ae[1];
           row.push_back(std::isinf(ae[best]) ? "-" : integer_tie ? "0/1" : std::to_string(best));
           cells.push_back(row);
         }
         if (cells.empty()) continue;
-        text += fmt::format("\n{}{}-bit {} buffer, {} sampling\n\n", md ? "## " : "", bits, to_string(b), sampling);
+        text += fmt::format("\n{}{}-bit {} buffer, {} sampling\n\n", md ? "## " : "", bits,
+                            to_string(b), sampling);
         text += render_cells(cols, cells, format);
       }
     }
   }
   std::vector<Column> cols = {{"f/d"}};
-  for (const auto& p : kLjPicks) cols.push_back({fmt::format("{} {}", to_string(p.buffer), p.format)});
+  for (const auto& p : kLjPicks)
+    cols.push_back({fmt::format("{} {}", to_string(p.buffer), p.format)});
   Cells cells;
   for (double r : kLjRatios) {
     if (!records.count(picks_key(r))) continue;
@@ -270,23 +313,31 @@ std::string render_lj_table(const std::map<std::string, nlohmann::json>& records
     cells.push_back(row);
   }
   if (!cells.empty()) {
-    text += fmt::format("\n{}32-bit comparisons (LJ99 fig. 11), uniform sampling; e4m24 is the paper's 28-bit "
-                        "\"24.4\" format\n\n", md ? "## " : "");
+    text += fmt::format(
+        "\n{}32-bit comparisons (LJ99 fig. 11), uniform sampling; e4m24 is the paper's 28-bit "
+        "\"24.4\" format\n\n",
+        md ? "## " : "");
     text += render_cells(cols, cells, format);
   }
   return text;
 }
 
 // LJ error against f/d per format: one panel per buffer type, 16 bits, uniform sampling.
-void plot_lj_table(const std::map<std::string, nlohmann::json>& records, const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output), gnuplot_quote(output));
-  script += "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform sampling' noenhanced\n"
-            "set logscale xy\nset grid\nset key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
+void plot_lj_table(const std::map<std::string, nlohmann::json>& records,
+                   const std::string& output) {
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
+                                   gnuplot_quote(output));
+  script +=
+      "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform "
+      "sampling' noenhanced\n"
+      "set logscale xy\nset grid\nset key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
   for (const LjBuffer b : kLjBuffers) {
-    script += fmt::format("set title {} noenhanced\nplot ", gnuplot_quote(std::string(to_string(b)) + " buffer"));
+    script += fmt::format("set title {} noenhanced\nplot ",
+                          gnuplot_quote(std::string(to_string(b)) + " buffer"));
     for (int e = 0; e <= 8; ++e)
       script += fmt::format("'-' using 1:2 with linespoints title {}{}",
-                            gnuplot_quote(e == 0 ? "unorm16" : fmt::format("e{}m{}", e, 16 - e)), e < 8 ? ", " : "\n");
+                            gnuplot_quote(e == 0 ? "unorm16" : fmt::format("e{}m{}", e, 16 - e)),
+                            e < 8 ? ", " : "\n");
     for (int e = 0; e <= 8; ++e) {
       for (double r : kLjRatios) {
         const auto it = records.find(split_key("uniform", 16, b, r));
@@ -303,7 +354,8 @@ void plot_lj_table(const std::map<std::string, nlohmann::json>& records, const s
 
 }  // namespace
 
-std::string render_lj_table_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_lj_table_output(const nlohmann::json& header,
+                                   const std::vector<nlohmann::json>& records,
                                    const OutputOptions& out) {
   if (out.format_out == "json") return records_json(header, records, !out.no_timing);
   return render_lj_table(by_key(records), header.at("samples").get<long long>(), out.format_out);
@@ -350,24 +402,29 @@ void run_resolve(const ResolveOptions& o) {
   if (o.code >= 0) {
     if (o.code > 0xffffffffLL) throw InputError(fmt::format("--code {} is beyond 32 bits", o.code));
     const CodeInterval ci = resolve_code(s, f, static_cast<uint32_t>(o.code));
-    text = render_cells({{"code"}, {"depth"}, {"distance"}, {"distance_lo"}, {"distance_hi"}, {"width"}},
-                        {{std::to_string(ci.code), digits(ci.depth), digits(ci.distance), digits(ci.distance_lo),
-                          digits(ci.distance_hi), human(ci.distance_hi - ci.distance_lo)}},
-                        o.out.format_out);
+    text = render_cells(
+        {{"code"}, {"depth"}, {"distance"}, {"distance_lo"}, {"distance_hi"}, {"width"}},
+        {{std::to_string(ci.code), digits(ci.depth), digits(ci.distance), digits(ci.distance_lo),
+          digits(ci.distance_hi), human(ci.distance_hi - ci.distance_lo)}},
+        o.out.format_out);
   } else {
     std::vector<DistanceResolution> rows;
-    if (o.curve) rows = resolution_curve(s, f, o.points);
-    else rows.push_back(resolve_distance(s, f, o.distance));
+    if (o.curve)
+      rows = resolution_curve(s, f, o.points);
+    else
+      rows.push_back(resolve_distance(s, f, o.distance));
     Cells cells;
     for (const auto& r : rows)
-      cells.push_back({digits(r.distance), digits(r.depth), std::to_string(r.code), human(r.gap_below),
-                       human(r.gap_above), human(r.resolution)});
-    text = render_cells({{"distance"}, {"depth"}, {"code"}, {"gap_below"}, {"gap_above"}, {"resolution"}}, cells,
-                        o.out.format_out);
+      cells.push_back({digits(r.distance), digits(r.depth), std::to_string(r.code),
+                       human(r.gap_below), human(r.gap_above), human(r.resolution)});
+    text = render_cells(
+        {{"distance"}, {"depth"}, {"code"}, {"gap_below"}, {"gap_above"}, {"resolution"}}, cells,
+        o.out.format_out);
   }
   if (o.out.format_out == "text")
-    text = fmt::format("{} in {} ({}), near {}, far {}:\n", o.technique, f.name(), o.rounding, human(s.near),
-                       human(s.far)) + text;
+    text = fmt::format("{} in {} ({}), near {}, far {}:\n", o.technique, f.name(), o.rounding,
+                       human(s.near), human(s.far)) +
+           text;
   write_output(o.out.output, text);
 }
 
@@ -377,7 +434,8 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
   auto lj = std::make_shared<LjOptions>();
   auto* cmd = app.add_subcommand(
       "lj",
-      "Lapidous-Jiao average depth error (LJ99 eqs. 6-7, docs/spec.md 6) of a buffer type and storage\n"
+      "Lapidous-Jiao average depth error (LJ99 eqs. 6-7, docs/spec.md 6) of a buffer type and "
+      "storage\n"
       "format: analytic in binary64 on the host and on the device, and measured on the emulated\n"
       "binary32 pipeline. ae is the average eye-distance error normalised by (f - d).\n"
       "Examples:\n"
@@ -404,13 +462,15 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
   auto tab = std::make_shared<LjOptions>();
   auto* tcmd = app.add_subcommand(
       "lj-table",
-      "The paper's experiments: for 16 and 24 bits, each buffer type and f/d from 2 to 1e6, ae per\n"
+      "The paper's experiments: for 16 and 24 bits, each buffer type and f/d from 2 to 1e6, ae "
+      "per\n"
       "exponent width and the best one; and the 32-bit comparisons (LJ99 fig. 11).\n"
       "Example:\n"
       "  depthprec lj-table --format-out markdown -o docs/lapidous-jiao-tables.md");
   tcmd->add_option("--samples", tab->samples, "N samples per evaluation")->capture_default_str();
   tab->out.add_to(*tcmd);
-  tcmd->add_option("--plot", tab->plot, "Also plot ae against f/d per format, 16 bits (gnuplot), FILE.png or FILE.svg");
+  tcmd->add_option("--plot", tab->plot,
+                   "Also plot ae against f/d per format, 16 bits (gnuplot), FILE.png or FILE.svg");
   tab->batch.add_to(*tcmd, "table rows (k in output order)");
   tcmd->callback([tab, &global]() { run_lj_table(*tab, global); });
 
@@ -422,17 +482,22 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
       "range (--curve). Exact mappings; no emulated arithmetic.\n"
       "Examples:\n"
       "  depthprec resolve --technique standard --format unorm16 --near 0.01 --far 1000 --code 1\n"
-      "  depthprec resolve --technique reversed --format float32 --near 0.1 --far 1e4 --distance 5000\n"
-      "  depthprec resolve --technique reversed_infinite --format float32 --near 0.1 --far 1e4 --curve");
-  rcmd->add_option("-t,--technique", res->technique, "Technique: " + technique_names())->capture_default_str();
+      "  depthprec resolve --technique reversed --format float32 --near 0.1 --far 1e4 --distance "
+      "5000\n"
+      "  depthprec resolve --technique reversed_infinite --format float32 --near 0.1 --far 1e4 "
+      "--curve");
+  rcmd->add_option("-t,--technique", res->technique, "Technique: " + technique_names())
+      ->capture_default_str();
   rcmd->add_option("-f,--format", res->format, "Storage format")->capture_default_str();
   rcmd->add_option("--near", res->near, "Near plane")->capture_default_str();
-  rcmd->add_option("--far", res->far, "Far plane (inf for the infinite techniques)")->capture_default_str();
+  rcmd->add_option("--far", res->far, "Far plane (inf for the infinite techniques)")
+      ->capture_default_str();
   rcmd->add_option("--log-k", res->log_k, "k of the log techniques")->capture_default_str();
   rcmd->add_option("--rounding", res->rounding, "nearest_even or truncate")->capture_default_str();
   rcmd->add_option("--code", res->code, "A stored code");
   rcmd->add_option("--distance", res->distance, "An eye distance");
-  rcmd->add_flag("--curve", res->curve, "Resolution at --points distances, geometric from near to far");
+  rcmd->add_flag("--curve", res->curve,
+                 "Resolution at --points distances, geometric from near to far");
   rcmd->add_option("--points", res->points, "Points of --curve")->capture_default_str();
   res->out.add_to(*rcmd);
   rcmd->callback([res]() { run_resolve(*res); });

@@ -6,10 +6,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "host/cli/commands.h"
-#include "host/batch/batch.h"
-#include "host/cli/scene_options.h"
 #include "host/base/errors.h"
+#include "host/batch/batch.h"
+#include "host/cli/commands.h"
+#include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
 #include "host/output/row_json.h"
 
@@ -27,7 +27,8 @@ nlohmann::json read_json(const std::string& f) {
   if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
   auto j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object())
-    throw InputError(fmt::format("merge: '{}' is not a JSON output of a batch command (--format-out json)", f));
+    throw InputError(
+        fmt::format("merge: '{}' is not a JSON output of a batch command (--format-out json)", f));
   return j;
 }
 
@@ -47,16 +48,21 @@ std::vector<int> check_shards(const MergeOptions& o, const std::vector<nlohmann:
     } catch (const Error&) {
       throw InputError(fmt::format("merge: '{}' has a bad shard '{}'", f, shard));
     }
-    if (k == 0) count = part.count;
+    if (k == 0)
+      count = part.count;
     else if (part.count != count)
-      throw InputError(fmt::format("merge: '{}' is shard {} but '{}' is one of {} shards", f, shard, o.files.front(), count));
+      throw InputError(fmt::format("merge: '{}' is shard {} but '{}' is one of {} shards", f, shard,
+                                   o.files.front(), count));
     index[k] = part.index + 1;
     const auto [it, fresh] = seen.emplace(index[k], f);
-    if (!fresh) throw InputError(fmt::format("merge: shard {} given twice ('{}' and '{}')", shard, it->second, f));
+    if (!fresh)
+      throw InputError(
+          fmt::format("merge: shard {} given twice ('{}' and '{}')", shard, it->second, f));
   }
   for (int i = 1; i <= count; ++i)
     if (!seen.count(i))
-      throw InputError(fmt::format("merge: shard {}/{} is missing (given {} of {})", i, count, seen.size(), count));
+      throw InputError(fmt::format("merge: shard {}/{} is missing (given {} of {})", i, count,
+                                   seen.size(), count));
   return index;
 }
 
@@ -69,7 +75,8 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
     const std::string& f = o.files[k];
     const nlohmann::json& j = docs[k];
     if (!j.contains("rows") || !j.contains("scene"))
-      throw InputError(fmt::format("merge: '{}' is not a JSON output of mts or table (--format-out json)", f));
+      throw InputError(
+          fmt::format("merge: '{}' is not a JSON output of mts or table (--format-out json)", f));
     if (scene_json.is_null()) {
       scene_json = j["scene"];
       kind = j.value("kind", "mts");
@@ -101,15 +108,17 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
   write_output(o.out.output, text);
 }
 
-// lj-table, tradeoff, cost, pipelines: shard i/N holds the units k = i - 1, i - 1 + N, ... in order, so the
-// whole batch's records interleave the shards'.
-void merge_records(const MergeOptions& o, const std::string& kind, const std::vector<nlohmann::json>& docs) {
+// lj-table, tradeoff, cost, pipelines: shard i/N holds the units k = i - 1, i - 1 + N, ... in
+// order, so the whole batch's records interleave the shards'.
+void merge_records(const MergeOptions& o, const std::string& kind,
+                   const std::vector<nlohmann::json>& docs) {
   std::map<int, std::vector<nlohmann::json>> parts;  // shard index -> records
   nlohmann::json header;
   for (size_t k = 0; k < docs.size(); ++k) {
     const nlohmann::json& j = docs[k];
     if (j.value("kind", "") != kind || !j.contains("records"))
-      throw InputError(fmt::format("merge: '{}' is not a {} output (--format-out json)", o.files[k], kind));
+      throw InputError(
+          fmt::format("merge: '{}' is not a {} output (--format-out json)", o.files[k], kind));
   }
   const std::vector<int> index = check_shards(o, docs);
   const int count = static_cast<int>(docs.size());
@@ -123,7 +132,9 @@ void merge_records(const MergeOptions& o, const std::string& kind, const std::ve
     } else {
       nlohmann::json mine = header;
       mine.erase("device");
-      if (h != mine) throw InputError(fmt::format("merge: '{}' ran another batch than '{}'", o.files[k], o.files.front()));
+      if (h != mine)
+        throw InputError(
+            fmt::format("merge: '{}' ran another batch than '{}'", o.files[k], o.files.front()));
     }
     parts[index[k]] = j["records"].get<std::vector<nlohmann::json>>();
   }
@@ -138,10 +149,14 @@ void merge_records(const MergeOptions& o, const std::string& kind, const std::ve
     if (!any) break;
   }
   std::string text;
-  if (kind == "lj-table") text = render_lj_table_output(header, records, o.out);
-  else if (kind == "tradeoff") text = render_tradeoff_output(header, records, o.out);
-  else if (kind == "pipelines") text = render_pipelines_output(header, records, o.out);
-  else text = render_cost_output(header, records, o.out);
+  if (kind == "lj-table")
+    text = render_lj_table_output(header, records, o.out);
+  else if (kind == "tradeoff")
+    text = render_tradeoff_output(header, records, o.out);
+  else if (kind == "pipelines")
+    text = render_pipelines_output(header, records, o.out);
+  else
+    text = render_cost_output(header, records, o.out);
   write_output(o.out.output, text);
 }
 
@@ -151,8 +166,10 @@ void run_merge(const MergeOptions& o) {
   std::vector<nlohmann::json> docs;
   for (const auto& f : o.files) docs.push_back(read_json(f));
   const std::string kind = docs.front().value("kind", "mts");
-  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines") merge_records(o, kind, docs);
-  else merge_rows(o, docs);
+  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines")
+    merge_records(o, kind, docs);
+  else
+    merge_rows(o, docs);
 }
 
 }  // namespace

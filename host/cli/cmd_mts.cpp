@@ -9,11 +9,11 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "host/cli/commands.h"
-#include "host/cli/scene_options.h"
-#include "host/batch/batch.h"
 #include "host/base/errors.h"
 #include "host/base/interrupt.h"
+#include "host/batch/batch.h"
+#include "host/cli/commands.h"
+#include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
 #include "host/output/progress.h"
 #include "host/output/row_json.h"
@@ -33,20 +33,22 @@ struct MtsOptions {
 };
 
 void add_jobs_option(CLI::App* cmd, MtsOptions& o) {
-  cmd->add_option("--jobs", o.jobs,
-                  "Pairs evaluated side by side, each by its own host thread and OpenCL queue, so the "
-                  "device's cores stay busy while one pair waits between launches. The rows are the same "
-                  "for any value; measured times include the other pairs' share of the device, so use 1 "
-                  "to time rows alone. --attribute always runs one")
+  cmd->add_option(
+         "--jobs", o.jobs,
+         "Pairs evaluated side by side, each by its own host thread and OpenCL queue, so the "
+         "device's cores stay busy while one pair waits between launches. The rows are the same "
+         "for any value; measured times include the other pairs' share of the device, so use 1 "
+         "to time rows alone. --attribute always runs one")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
 }
 
 void add_attribute_flag(CLI::App* cmd, MtsOptions& o) {
-  cmd->add_flag("--attribute", o.attribute,
-                "Attribute each MTS: also the storage-limited MTS (the pipeline exact up to binary64, "
-                "then stored), the arithmetic-limited MTS (binary32 pipeline, no storage quantisation), "
-                "next to the vertex bound, and the dominant factor (docs/stability.md). About 2-3x the work");
+  cmd->add_flag(
+      "--attribute", o.attribute,
+      "Attribute each MTS: also the storage-limited MTS (the pipeline exact up to binary64, "
+      "then stored), the arithmetic-limited MTS (binary32 pipeline, no storage quantisation), "
+      "next to the vertex bound, and the dominant factor (docs/stability.md). About 2-3x the work");
 }
 
 void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
@@ -69,7 +71,8 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   std::vector<MtsRow> finished = earlier;
   size_t total = 0;
   for (size_t k = 0; k < scene.evaluate.size() * scene.distances.size(); ++k)
-    if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) == control.shard_index) ++total;
+    if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) == control.shard_index)
+      ++total;
   Progress progress(wide ? "table" : "mts", total - std::min(total, earlier.size()),
                     !global.quiet && stderr_is_terminal());
   auto journal_write = control.on_row;
@@ -121,7 +124,8 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   auto mts = std::make_shared<MtsOptions>();
   auto* cmd = app.add_subcommand(
       "mts",
-      "Minimum triangle separation (Gilg et al. 2021, docs/spec.md 5): per technique, storage format,\n"
+      "Minimum triangle separation (Gilg et al. 2021, docs/spec.md 5): per technique, storage "
+      "format,\n"
       "depth range and distance z, the smallest separation s of two planes at z and fl32(z+s)\n"
       "for which the farther plane never wins the depth test, found by the host's bisection\n"
       "over an emulated binary32 pipeline. One line per (pair, distance) with the bracket,\n"

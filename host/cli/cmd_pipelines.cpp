@@ -8,11 +8,11 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/base/errors.h"
-#include "host/base/json_number.h"
 #include "host/mts/mts_run.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
@@ -26,10 +26,11 @@ struct Variant {
   MatrixPrecision precision;
   Compose compose;
 };
-const Variant kVariants[] = {{"float/separate", MatrixPrecision::single, Compose::separate},
-                             {"float/premultiplied", MatrixPrecision::single, Compose::premultiplied},
-                             {"double/separate", MatrixPrecision::binary64, Compose::separate},
-                             {"double/premultiplied", MatrixPrecision::binary64, Compose::premultiplied}};
+const Variant kVariants[] = {
+    {"float/separate", MatrixPrecision::single, Compose::separate},
+    {"float/premultiplied", MatrixPrecision::single, Compose::premultiplied},
+    {"double/separate", MatrixPrecision::binary64, Compose::separate},
+    {"double/premultiplied", MatrixPrecision::binary64, Compose::premultiplied}};
 
 struct PipelinesOptions {
   SceneOptions scene;
@@ -55,7 +56,8 @@ nlohmann::json pair_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
 
 }  // namespace
 
-std::string render_pipelines_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_pipelines_output(const nlohmann::json& header,
+                                    const std::vector<nlohmann::json>& records,
                                     const OutputOptions& out) {
   if (out.format_out == "json") return records_json(header, records, !out.no_timing);
   std::vector<Column> cols = {{"pair", true}};
@@ -76,8 +78,10 @@ std::string render_pipelines_output(const nlohmann::json& header, const std::vec
       int changes = 0;
       for (size_t i = 0; i < base.size(); ++i) {
         const double a = number_from_json(base[i], "mts"), b = number_from_json(other[i], "mts");
-        if (std::isinf(a) != std::isinf(b)) ++changes;
-        else if (!std::isinf(a)) ratios.push_back(b / a);
+        if (std::isinf(a) != std::isinf(b))
+          ++changes;
+        else if (!std::isinf(a))
+          ratios.push_back(b / a);
       }
       std::sort(ratios.begin(), ratios.end());
       // the ratio farthest from 1, either way
@@ -90,10 +94,12 @@ std::string render_pipelines_output(const nlohmann::json& header, const std::vec
     }
     cells.push_back(row);
   }
-  return fmt::format("MTS under other host pipelines, relative to {} (matrix_precision/compose) on scene {}: "
-                     "median and farthest-from-1 ratio over the distances; verdicts = distances whose "
-                     "resolvable/unresolvable verdict changed\n\n",
-                     kVariants[0].name, header.value("scene_name", std::string("?"))) +
+  return fmt::format(
+             "MTS under other host pipelines, relative to {} (matrix_precision/compose) on scene "
+             "{}: "
+             "median and farthest-from-1 ratio over the distances; verdicts = distances whose "
+             "resolvable/unresolvable verdict changed\n\n",
+             kVariants[0].name, header.value("scene_name", std::string("?"))) +
          render_cells(cols, cells, out.format_out);
 }
 
@@ -109,7 +115,8 @@ void run_pipelines(const PipelinesOptions& o, const GlobalOptions& g) {
         header["scene_name"] = scene.name;
         std::vector<BatchUnit> units;
         for (const EvalPair& pair : scene.evaluate)
-          units.push_back({pair.label(), [&rt, &scene, pair] { return pair_record(rt, scene, pair); }});
+          units.push_back(
+              {pair.label(), [&rt, &scene, pair] { return pair_record(rt, scene, pair); }});
         return units;
       },
       render_pipelines_output);

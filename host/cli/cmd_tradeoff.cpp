@@ -6,17 +6,17 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+#include "host/base/version.h"
+#include "host/batch/batch.h"
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
-#include "host/batch/batch.h"
-#include "host/base/errors.h"
-#include "host/output/gnuplot.h"
-#include "host/base/json_number.h"
-#include "host/output/row_json.h"
 #include "host/mts/mts_run.h"
+#include "host/output/gnuplot.h"
+#include "host/output/row_json.h"
 #include "host/output/text_table.h"
-#include "host/base/version.h"
 
 namespace depthprec::cli {
 
@@ -31,12 +31,13 @@ struct Level {
 
 // The ladder of the issue: each budget alone, then combined; the first is the reference.
 std::vector<Level> ladder() {
-  return {{"reference", 200, 100, 12}, {"kernel 100", 100, 100, 12}, {"kernel 50", 50, 100, 12},
-          {"kernel 25", 25, 100, 12},  {"frames 50", 200, 50, 12},   {"frames 25", 200, 25, 12},
-          {"frames 10", 200, 10, 12},  {"precision 2^-10", 200, 100, 10},
+  return {{"reference", 200, 100, 12},     {"kernel 100", 100, 100, 12},
+          {"kernel 50", 50, 100, 12},      {"kernel 25", 25, 100, 12},
+          {"frames 50", 200, 50, 12},      {"frames 25", 200, 25, 12},
+          {"frames 10", 200, 10, 12},      {"precision 2^-10", 200, 100, 10},
           {"precision 2^-8", 200, 100, 8}, {"precision 2^-6", 200, 100, 6},
           {"precision 2^-4", 200, 100, 4}, {"100/50/2^-8", 100, 50, 8},
-          {"50/25/2^-6", 50, 25, 6},   {"25/10/2^-4", 25, 10, 4}};
+          {"50/25/2^-6", 50, 25, 6},       {"25/10/2^-4", 25, 10, 4}};
 }
 
 struct LevelResult {
@@ -57,12 +58,16 @@ struct TradeoffOptions {
 };
 
 // Error against cost: one point per level, the Pareto front joined. Errors of 0 sit on a floor.
-void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output), gnuplot_quote(output));
+void plot_tradeoff(const std::vector<LevelResult>& results, bool timing,
+                   const std::string& output) {
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
+                                   gnuplot_quote(output));
   script += fmt::format("set logscale xy\nset grid\nset key top right\nset xlabel '{}'\n",
                         timing ? "run time [s]" : "fragment pairs evaluated");
-  script += "set ylabel 'max relative MTS error vs the reference (0 plotted at 1e-6)'\n"
-            "set title 'Fidelity trade-off' noenhanced\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";
+  script +=
+      "set ylabel 'max relative MTS error vs the reference (0 plotted at 1e-6)'\n"
+      "set title 'Fidelity trade-off' noenhanced\nset offsets graph 0.05, graph 0.05, graph 0.05, "
+      "graph 0.05\n";
   script += "$levels << EOD\n";
   for (const auto& r : results)
     script += fmt::format("{:.6g} {:.6g} {}\n", timing ? r.seconds : static_cast<double>(r.pairs),
@@ -71,12 +76,15 @@ void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const s
   std::vector<const LevelResult*> front;
   for (const auto& r : results)
     if (r.pareto) front.push_back(&r);
-  std::sort(front.begin(), front.end(), [](const LevelResult* a, const LevelResult* b) { return a->pairs < b->pairs; });
+  std::sort(front.begin(), front.end(),
+            [](const LevelResult* a, const LevelResult* b) { return a->pairs < b->pairs; });
   for (const auto* r : front)
-    script += fmt::format("{:.6g} {:.6g}\n", timing ? r->seconds : static_cast<double>(r->pairs), std::max(r->max_err, 1e-6));
-  script += "EOD\nplot $levels using 1:2 with points pt 7 ps 1.5 title 'level', "
-            "$levels using 1:2:3 with labels offset 1,0.6 left noenhanced notitle, "
-            "$front using 1:2 with lines lw 2 title 'Pareto front'\n";
+    script += fmt::format("{:.6g} {:.6g}\n", timing ? r->seconds : static_cast<double>(r->pairs),
+                          std::max(r->max_err, 1e-6));
+  script +=
+      "EOD\nplot $levels using 1:2 with points pt 7 ps 1.5 title 'level', "
+      "$levels using 1:2:3 with labels offset 1,0.6 left noenhanced notitle, "
+      "$front using 1:2 with lines lw 2 title 'Pareto front'\n";
   run_gnuplot(script, output);
 }
 
@@ -90,9 +98,16 @@ nlohmann::json level_record(OpenClRuntime& rt, const Scene& base, const Level& l
   const MtsRun run = run_scene(rt, s);
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& r : run.rows)
-    rows.push_back({{"row", row_key(r.pair, r.z)}, {"mts", json_number(r.mts)}, {"unresolvable", r.unresolvable}});
-  return {{"level", lv.name}, {"kernel", lv.kernel}, {"frames", lv.frames}, {"precision_log2", lv.precision_log2},
-          {"fragment_pairs", run.info.fragment_pairs}, {"seconds", run.info.wall_seconds}, {"rows", rows}};
+    rows.push_back({{"row", row_key(r.pair, r.z)},
+                    {"mts", json_number(r.mts)},
+                    {"unresolvable", r.unresolvable}});
+  return {{"level", lv.name},
+          {"kernel", lv.kernel},
+          {"frames", lv.frames},
+          {"precision_log2", lv.precision_log2},
+          {"fragment_pairs", run.info.fragment_pairs},
+          {"seconds", run.info.wall_seconds},
+          {"rows", rows}};
 }
 
 // Errors against the reference record and the Pareto front; empty when the reference level is
@@ -106,19 +121,21 @@ std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& reco
   const auto& ref_rows = reference->at("rows");
   for (const auto& rec : records) {
     LevelResult r;
-    r.level = {rec.at("level").get<std::string>(), rec.at("kernel").get<int>(), rec.at("frames").get<int>(),
-               rec.at("precision_log2").get<int>()};
+    r.level = {rec.at("level").get<std::string>(), rec.at("kernel").get<int>(),
+               rec.at("frames").get<int>(), rec.at("precision_log2").get<int>()};
     r.seconds = rec.value("seconds", 0.0);
     r.pairs = rec.at("fragment_pairs").get<uint64_t>();
     std::vector<double> errs;
     const auto& rows = rec.at("rows");
     for (size_t i = 0; i < rows.size() && i < ref_rows.size(); ++i) {
-      const bool unres = rows[i].at("unresolvable").get<bool>(), ref_unres = ref_rows[i].at("unresolvable").get<bool>();
+      const bool unres = rows[i].at("unresolvable").get<bool>(),
+                 ref_unres = ref_rows[i].at("unresolvable").get<bool>();
       if (unres != ref_unres) {
         ++r.verdict_changes;
         r.changed.push_back(rows[i].at("row").get<std::string>());
       } else if (!unres) {
-        const double mts = number_from_json(rows[i].at("mts"), "mts"), ref = number_from_json(ref_rows[i].at("mts"), "mts");
+        const double mts = number_from_json(rows[i].at("mts"), "mts"),
+                     ref = number_from_json(ref_rows[i].at("mts"), "mts");
         errs.push_back(std::abs(mts - ref) / ref);
       }
     }
@@ -137,8 +154,10 @@ std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& reco
     a.pareto = true;
     for (const auto& b : results) {
       const bool cheaper_or_same = b.pairs <= a.pairs;
-      const bool better_or_same = std::make_pair(b.verdict_changes, b.max_err) <= std::make_pair(a.verdict_changes, a.max_err);
-      const bool strictly = b.pairs < a.pairs || std::make_pair(b.verdict_changes, b.max_err) < std::make_pair(a.verdict_changes, a.max_err);
+      const bool better_or_same = std::make_pair(b.verdict_changes, b.max_err) <=
+                                  std::make_pair(a.verdict_changes, a.max_err);
+      const bool strictly = b.pairs < a.pairs || std::make_pair(b.verdict_changes, b.max_err) <
+                                                     std::make_pair(a.verdict_changes, a.max_err);
       if (&a != &b && cheaper_or_same && better_or_same && strictly) a.pareto = false;
     }
   }
@@ -150,8 +169,9 @@ void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
   check_writable(o.out.output);
   check_plot_output(o.plot);
   if (!Shard::parse(o.batch.shard).holds(0) && o.out.format_out != "json")
-    throw Error(ExitCode::usage, "tradeoff --shard: this shard does not run the reference level the errors are "
-                                 "relative to; write shards with --format-out json and render them with merge");
+    throw Error(ExitCode::usage,
+                "tradeoff --shard: this shard does not run the reference level the errors are "
+                "relative to; write shards with --format-out json and render them with merge");
   const auto records = run_record_batch(
       "tradeoff", o.out, o.batch, g,
       [&base](OpenClRuntime& rt, nlohmann::json& header) {
@@ -170,28 +190,37 @@ void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
 
 }  // namespace
 
-std::string render_tradeoff_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_tradeoff_output(const nlohmann::json& header,
+                                   const std::vector<nlohmann::json>& records,
                                    const OutputOptions& out) {
   const bool timing = !out.no_timing;
   const std::vector<LevelResult> results = evaluate_levels(records);
   if (out.format_out == "json") {
     nlohmann::json levels = nlohmann::json::array();
     for (const auto& r : results)
-      levels.push_back({{"level", r.level.name}, {"kernel", r.level.kernel}, {"frames", r.level.frames},
-                        {"rel_precision", std::ldexp(1.0, -r.level.precision_log2)}, {"fragment_pairs", r.pairs},
-                        {"seconds", r.seconds}, {"median_rel_err", r.median_err}, {"max_rel_err", r.max_err},
-                        {"verdict_changes", r.changed}, {"pareto", r.pareto}});
+      levels.push_back({{"level", r.level.name},
+                        {"kernel", r.level.kernel},
+                        {"frames", r.level.frames},
+                        {"rel_precision", std::ldexp(1.0, -r.level.precision_log2)},
+                        {"fragment_pairs", r.pairs},
+                        {"seconds", r.seconds},
+                        {"median_rel_err", r.median_err},
+                        {"max_rel_err", r.max_err},
+                        {"verdict_changes", r.changed},
+                        {"pareto", r.pareto}});
     return records_json(header, records, timing, {{"levels", levels}});
   }
-  std::vector<Column> cols = {{"level", true}, {"kernel"}, {"frames"}, {"rel_precision"}, {"fragment_pairs"}};
+  std::vector<Column> cols = {
+      {"level", true}, {"kernel"}, {"frames"}, {"rel_precision"}, {"fragment_pairs"}};
   if (timing) cols.push_back({"seconds"});
   for (const char* c : {"median_rel_err", "max_rel_err", "verdict_changes"}) cols.push_back({c});
   cols.push_back({"pareto", true});
   Cells cells;
   for (const auto& r : results) {
-    std::vector<std::string> row = {r.level.name, fmt::format("{}x{}", r.level.kernel, r.level.kernel),
-                                    std::to_string(r.level.frames), fmt::format("2^-{}", r.level.precision_log2),
-                                    std::to_string(r.pairs)};
+    std::vector<std::string> row = {
+        r.level.name, fmt::format("{}x{}", r.level.kernel, r.level.kernel),
+        std::to_string(r.level.frames), fmt::format("2^-{}", r.level.precision_log2),
+        std::to_string(r.pairs)};
     if (timing) row.push_back(fmt::format("{:.2f}", r.seconds));
     row.push_back(fmt::format("{:.3g}", r.median_err));
     row.push_back(fmt::format("{:.3g}", r.max_err));
@@ -201,11 +230,15 @@ std::string render_tradeoff_output(const nlohmann::json& header, const std::vect
   }
   std::string changed;
   for (const auto& r : results)
-    for (const auto& c : r.changed) changed += fmt::format("{}: verdict changed at {}\n", r.level.name, c);
-  return fmt::format("Fidelity trade-off on scene {} ({} pairs x {} distances); errors relative to the "
-                     "reference level; Pareto front by fragment pairs vs (verdict changes, max error)\n\n",
-                     header.value("scene_name", std::string("?")), header.value("pairs", 0), header.value("distances", 0)) +
-         render_cells(cols, cells, out.format_out) + (changed.empty() || out.format_out == "csv" ? "" : "\n" + changed);
+    for (const auto& c : r.changed)
+      changed += fmt::format("{}: verdict changed at {}\n", r.level.name, c);
+  return fmt::format(
+             "Fidelity trade-off on scene {} ({} pairs x {} distances); errors relative to the "
+             "reference level; Pareto front by fragment pairs vs (verdict changes, max error)\n\n",
+             header.value("scene_name", std::string("?")), header.value("pairs", 0),
+             header.value("distances", 0)) +
+         render_cells(cols, cells, out.format_out) +
+         (changed.empty() || out.format_out == "csv" ? "" : "\n" + changed);
 }
 
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {
@@ -218,11 +251,13 @@ void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {
       "resolvable/unresolvable verdict changed, work and time, and the Pareto front.\n"
       "Fourteen full runs of the scene's pairs: choose few pairs and distances.\n"
       "Examples:\n"
-      "  depthprec tradeoff -t reversed -f float32 --depth-range zero_to_one --distances 2,1024,1e6\n"
+      "  depthprec tradeoff -t reversed -f float32 --depth-range zero_to_one --distances "
+      "2,1024,1e6\n"
       "  depthprec tradeoff -t standard,linear -f unorm24 --format-out json -o tradeoff.json");
   o->scene.add_to(*cmd, true);
   o->out.add_to(*cmd);
-  cmd->add_option("--plot", o->plot, "Also plot error against cost (gnuplot), FILE.png or FILE.svg");
+  cmd->add_option("--plot", o->plot,
+                  "Also plot error against cost (gnuplot), FILE.png or FILE.svg");
   o->batch.add_to(*cmd, "ladder levels (k in the order above)");
   cmd->callback([o, &global]() { run_tradeoff(*o, global); });
 }

@@ -29,16 +29,20 @@ void add_cost_command(CLI::App& app, GlobalOptions& global);
 void add_plot_command(CLI::App& app);
 void add_pipelines_command(CLI::App& app, GlobalOptions& global);
 
-// The record batches (lj-table, tradeoff, cost, pipelines) render their output from a header (what their
-// JSON output carries besides the records) and the records, so `merge` renders joined shards
+// The record batches (lj-table, tradeoff, cost, pipelines) render their output from a header (what
+// their JSON output carries besides the records) and the records, so `merge` renders joined shards
 // exactly as one run would.
-std::string render_lj_table_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_lj_table_output(const nlohmann::json& header,
+                                   const std::vector<nlohmann::json>& records,
                                    const OutputOptions& out);
-std::string render_tradeoff_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_tradeoff_output(const nlohmann::json& header,
+                                   const std::vector<nlohmann::json>& records,
                                    const OutputOptions& out);
-std::string render_pipelines_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_pipelines_output(const nlohmann::json& header,
+                                    const std::vector<nlohmann::json>& records,
                                     const OutputOptions& out);
-std::string render_cost_output(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+std::string render_cost_output(const nlohmann::json& header,
+                               const std::vector<nlohmann::json>& records,
                                const OutputOptions& out);
 
 }  // namespace depthprec::cli

@@ -1,16 +1,15 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <algorithm>
-
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 
-#include "host/runtime/cl.h"
-#include "host/cli/commands.h"
 #include "host/base/did_you_mean.h"
 #include "host/base/errors.h"
 #include "host/base/version.h"
+#include "host/cli/commands.h"
+#include "host/runtime/cl.h"
 
 int main(int argc, char** argv) {
   using namespace depthprec;
@@ -29,7 +28,8 @@ int main(int argc, char** argv) {
                  "OpenCL device: P:D as `depthprec devices` lists, or part of its name "
                  "(default: $DEPTHPREC_DEVICE, else the PoCL CPU device)");
   app.add_flag("-v,--verbose", global.verbose, "Say which kernel variants were built");
-  app.add_flag("-q,--quiet", global.quiet, "No progress line on stderr (it appears only on a terminal)");
+  app.add_flag("-q,--quiet", global.quiet,
+               "No progress line on stderr (it appears only on a terminal)");
   cli::add_devices_command(app, global);
   cli::add_formats_command(app, global);
   cli::add_mts_commands(app, global);
@@ -52,8 +52,10 @@ int main(int argc, char** argv) {
       if (a.empty() || a[0] == '-') continue;
       if (std::find(names.begin(), names.end(), a) != names.end()) break;
       const std::string near = closest_name(a, names);
-      std::fprintf(stderr, "depthprec: unknown command '%s'%s; the commands are %s (depthprec --help)\n", a.c_str(),
-                   near.empty() ? "" : (" (did you mean " + near + "?)").c_str(), fmt::format("{}", fmt::join(names, ", ")).c_str());
+      std::fprintf(stderr,
+                   "depthprec: unknown command '%s'%s; the commands are %s (depthprec --help)\n",
+                   a.c_str(), near.empty() ? "" : (" (did you mean " + near + "?)").c_str(),
+                   fmt::format("{}", fmt::join(names, ", ")).c_str());
       return static_cast<int>(ExitCode::usage);
     }
     const int rc = app.exit(e);

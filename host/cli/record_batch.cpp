@@ -6,7 +6,8 @@
 namespace depthprec::cli {
 
 std::vector<nlohmann::json> run_record_batch(
-    const std::string& kind, const OutputOptions& out, const BatchOptions& batch, const GlobalOptions& global,
+    const std::string& kind, const OutputOptions& out, const BatchOptions& batch,
+    const GlobalOptions& global,
     const std::function<std::vector<BatchUnit>(OpenClRuntime& rt, nlohmann::json& header)>& prepare,
     const RecordRenderer& render) {
   const Shard shard = Shard::parse(batch.shard);

@@ -15,13 +15,15 @@
 
 namespace depthprec::cli {
 
-using RecordRenderer = std::function<std::string(const nlohmann::json& header,
-                                                 const std::vector<nlohmann::json>& records, const OutputOptions&)>;
+using RecordRenderer =
+    std::function<std::string(const nlohmann::json& header,
+                              const std::vector<nlohmann::json>& records, const OutputOptions&)>;
 
 // prepare fills the header (batch_header's fields are set already) and lists the units; they may
 // keep a reference to the runtime, which lives until the output is written. Returns the records.
 std::vector<nlohmann::json> run_record_batch(
-    const std::string& kind, const OutputOptions& out, const BatchOptions& batch, const GlobalOptions& global,
+    const std::string& kind, const OutputOptions& out, const BatchOptions& batch,
+    const GlobalOptions& global,
     const std::function<std::vector<BatchUnit>(OpenClRuntime& rt, nlohmann::json& header)>& prepare,
     const RecordRenderer& render);
 

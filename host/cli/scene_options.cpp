@@ -20,7 +20,8 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
                  "data/gilg2021.json (Gilg et al. 2021)");
   cmd.add_option("--set", sets,
                  "Override any scene field: --set near=0.1 --set pipeline.divide=exact "
-                 "--set rotation_range_deg=2 (a kernel smaller than the viewport sees only the planes' centre: "
+                 "--set rotation_range_deg=2 (a kernel smaller than the viewport sees only the "
+                 "planes' centre: "
                  "use --kernel, which sets both)");
   if (with_pairs) {
     cmd.add_option("-t,--technique", techniques, "Technique(s): " + technique_names())
@@ -31,7 +32,8 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
     cmd.add_option("--depth-range", depth_ranges, "gl and/or zero_to_one")->delimiter(',');
   }
   // Split here rather than by CLI11's delimiter, which drops empty entries ("1,,2").
-  cmd.add_option("--distances", distances, "Eye distances of plane A, each once, in any order, e.g. 2,1024,1e6");
+  cmd.add_option("--distances", distances,
+                 "Eye distances of plane A, each once, in any order, e.g. 2,1024,1e6");
   cmd.add_option("--near", near, "Near plane distance");
   cmd.add_option("--far", far, "Far plane distance (inf for none)");
   cmd.add_option("--kernel", kernel, "Measurement kernel WxH in pixels (viewport follows)");
@@ -66,9 +68,13 @@ std::string number_text(const std::string& option, const std::string& v, bool al
 }
 
 std::string whole_number_text(const std::string& option, const std::string& v) {
-  const size_t sign = !v.empty() && v[0] == '-' ? 1 : 0;  // a negative count is a range error, named by the scene
-  const bool digits = v.size() > sign && v.find_first_not_of("0123456789", sign) == std::string::npos;
-  if (!digits) throw Error(ExitCode::usage, fmt::format("{} '{}': expected a whole number, e.g. 20", option, v));
+  const size_t sign =
+      !v.empty() && v[0] == '-' ? 1 : 0;  // a negative count is a range error, named by the scene
+  const bool digits =
+      v.size() > sign && v.find_first_not_of("0123456789", sign) == std::string::npos;
+  if (!digits)
+    throw Error(ExitCode::usage,
+                fmt::format("{} '{}': expected a whole number, e.g. 20", option, v));
   return v;
 }
 
@@ -80,8 +86,8 @@ Scene SceneOptions::load() const {
   // silently winning.
   std::vector<std::string> all;
   std::map<std::string, std::string> origins;
-  auto set_if = [&all, &origins](const std::string& option, const std::string& key, const std::string& user,
-                                 const std::string& json) {
+  auto set_if = [&all, &origins](const std::string& option, const std::string& key,
+                                 const std::string& user, const std::string& json) {
     if (user.empty()) return;
     all.push_back(key + "=" + json);
     origins[key] = option + " " + user;
@@ -118,9 +124,10 @@ Scene SceneOptions::load() const {
     }
     for (const auto& d : entries) {
       if (d.empty())
-        throw Error(ExitCode::usage, fmt::format("--distances: an empty entry in '{}'; separate distances "
-                                                 "by single commas, e.g. 2,1024,1e6",
-                                                 fmt::join(distances, ",")));
+        throw Error(ExitCode::usage,
+                    fmt::format("--distances: an empty entry in '{}'; separate distances "
+                                "by single commas, e.g. 2,1024,1e6",
+                                fmt::join(distances, ",")));
       list += (list.empty() ? "" : ",") + number_text("--distances", d);
       typed += (typed.empty() ? "" : ",") + d;
     }
@@ -130,7 +137,8 @@ Scene SceneOptions::load() const {
     const std::string key = set.substr(0, set.find('='));
     for (const auto& [k, option] : origins)
       if (k == key || k.rfind(key + ".", 0) == 0 || key.rfind(k + ".", 0) == 0)
-        throw Error(ExitCode::usage, fmt::format("{} and --set {} both set '{}': give it once", option, set, k));
+        throw Error(ExitCode::usage,
+                    fmt::format("{} and --set {} both set '{}': give it once", option, set, k));
   }
   all.insert(all.end(), sets.begin(), sets.end());
   Scene scene = load_scene(scene_file, all, false, origins);
@@ -150,11 +158,13 @@ Scene SceneOptions::load() const {
       for (const auto& f : fs) {
         StorageFormat::parse(f);
         const Technique tech = parse_technique(t);
-        // No --depth-range: each technique in the scene's range, or its own when the scene names none.
+        // No --depth-range: each technique in the scene's range, or its own when the scene names
+        // none.
         for (const auto r : rs.empty() ? std::vector<DepthRange>{scene.range_for(tech)} : rs) {
           scene.evaluate.push_back({tech, f, r});
           // the scene a header records is the one that ran
-          scene.json["evaluate"].push_back({{"technique", t}, {"format", f}, {"depth_range", to_string(r)}});
+          scene.json["evaluate"].push_back(
+              {{"technique", t}, {"format", f}, {"depth_range", to_string(r)}});
         }
       }
   }
@@ -176,10 +186,11 @@ std::string format_of_extension(const std::string& path) {
 }
 
 void OutputOptions::add_to(CLI::App& cmd) {
-  CLI::Option* chosen = cmd.add_option("--format-out", format_out,
-                                       "text, csv, json or markdown (default: from the --output file's extension "
-                                       ".txt, .csv, .json or .md, else text)")
-                            ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));
+  CLI::Option* chosen =
+      cmd.add_option("--format-out", format_out,
+                     "text, csv, json or markdown (default: from the --output file's extension "
+                     ".txt, .csv, .json or .md, else text)")
+          ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));
   cmd.add_option("-o,--output", output, "Write to this file instead of standard output");
   cmd.add_flag("--no-timing", no_timing,
                "Leave measured times out, so two runs' outputs compare byte for byte");
@@ -188,20 +199,25 @@ void OutputOptions::add_to(CLI::App& cmd) {
   cmd.parse_complete_callback([this, chosen]() {
     const std::string by_name = format_of_extension(output);
     if (by_name.empty()) return;
-    if (chosen->count() == 0) format_out = by_name;
+    if (chosen->count() == 0)
+      format_out = by_name;
     else if (format_out != by_name)
-      std::fprintf(stderr, "depthprec: note: --output %s gets --format-out %s, not the %s its name suggests\n",
-                   output.c_str(), format_out.c_str(), by_name.c_str());
+      std::fprintf(
+          stderr,
+          "depthprec: note: --output %s gets --format-out %s, not the %s its name suggests\n",
+          output.c_str(), format_out.c_str(), by_name.c_str());
   });
 }
 
 void BatchOptions::add_to(CLI::App& cmd, const std::string& units) {
-  cmd.add_flag("--resume", resume,
-               "Continue an interrupted run: rows in FILE.rows.jsonl (beside --output FILE) are kept, "
-               "the rest computed");
-  cmd.add_option("--shard", shard,
-                 "Compute part i of N (i/N): " + units +
-                     " k with k mod N = i - 1. Join the parts' JSON outputs with `depthprec merge`");
+  cmd.add_flag(
+      "--resume", resume,
+      "Continue an interrupted run: rows in FILE.rows.jsonl (beside --output FILE) are kept, "
+      "the rest computed");
+  cmd.add_option(
+      "--shard", shard,
+      "Compute part i of N (i/N): " + units +
+          " k with k mod N = i - 1. Join the parts' JSON outputs with `depthprec merge`");
 }
 
 }  // namespace depthprec::cli

@@ -12,22 +12,30 @@ namespace depthprec {
 
 const char* to_string(LjBuffer b) {
   switch (b) {
-    case LjBuffer::z: return "z";
-    case LjBuffer::w: return "w";
-    case LjBuffer::inverse_w: return "inverse_w";
-    case LjBuffer::complementary_z: return "complementary_z";
+    case LjBuffer::z:
+      return "z";
+    case LjBuffer::w:
+      return "w";
+    case LjBuffer::inverse_w:
+      return "inverse_w";
+    case LjBuffer::complementary_z:
+      return "complementary_z";
   }
   return "?";
 }
 
 LjBuffer parse_lj_buffer(const std::string& s) {
-  for (const LjBuffer b : {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w, LjBuffer::complementary_z})
+  for (const LjBuffer b :
+       {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w, LjBuffer::complementary_z})
     if (s == to_string(b)) return b;
-  throw InputError(fmt::format("unknown buffer type '{}'{}: expected z, w, inverse_w or complementary_z", s,
-                               buffer_suggestion(s)));
+  throw InputError(
+      fmt::format("unknown buffer type '{}'{}: expected z, w, inverse_w or complementary_z", s,
+                  buffer_suggestion(s)));
 }
 
-const char* to_string(LjSampling s) { return s == LjSampling::uniform ? "uniform" : "increasing"; }
+const char* to_string(LjSampling s) {
+  return s == LjSampling::uniform ? "uniform" : "increasing";
+}
 
 LjSampling parse_lj_sampling(const std::string& s) {
   if (s == "uniform") return LjSampling::uniform;
@@ -75,8 +83,9 @@ LjResult lj_finish(const LjConfig& c, const lj_partial* partials, size_t count) 
   r.samples = c.samples;
   r.infinite_samples = total.infinite;
   r.vertex_limited = static_cast<double>(total.vertex_limited) / static_cast<double>(c.samples);
-  r.ae = total.infinite ? INFINITY
-                        : (total.num + total.num_c) / ((c.far - c.near) * (total.den + total.den_c));
+  r.ae = total.infinite
+             ? INFINITY
+             : (total.num + total.num_c) / ((c.far - c.near) * (total.den + total.den_c));
   return r;
 }
 
@@ -94,7 +103,8 @@ LjResult lj_average_error_device(OpenClRuntime& rt, const LjConfig& c, const Sto
   // A fixed work-group size (PoCL compiles once per local size); the padding items see an empty
   // range and write zeros.
   const size_t local = 16;
-  const size_t items = static_cast<size_t>((c.samples + chunk - 1) / chunk + local - 1) / local * local;
+  const size_t items =
+      static_cast<size_t>((c.samples + chunk - 1) / chunk + local - 1) / local * local;
   cl::Buffer sums(rt.context(), CL_MEM_WRITE_ONLY, sizeof(double) * 4 * items);
   cl::Buffer counts(rt.context(), CL_MEM_WRITE_ONLY, sizeof(cl_long) * 2 * items);
   kernel.setArg(0, static_cast<cl_int>(c.buffer));

@@ -1,18 +1,23 @@
-// The Lapidous-Jiao average depth error (LJ99 eqs. 6-7, docs/spec.md 6) on the host and on the OpenCL
-// device. The per-sample formulas are kernels/lj_formulas.h, shared by both; this file parses the
-// user's words, validates, and sums.
+// The Lapidous-Jiao average depth error (LJ99 eqs. 6-7, docs/spec.md 6) on the host and on the
+// OpenCL device. The per-sample formulas are kernels/lj_formulas.h, shared by both; this file
+// parses the user's words, validates, and sums.
 #pragma once
 
 #include <string>
 
-#include "host/runtime/opencl_runtime.h"
 #include "host/model/storage_format.h"
 #include "host/model/technique.h"
+#include "host/runtime/opencl_runtime.h"
 #include "kernels/lj_formulas.h"
 
 namespace depthprec {
 
-enum class LjBuffer { z = LJ_Z, w = LJ_W, inverse_w = LJ_INVERSE_W, complementary_z = LJ_COMPLEMENTARY_Z };
+enum class LjBuffer {
+  z = LJ_Z,
+  w = LJ_W,
+  inverse_w = LJ_INVERSE_W,
+  complementary_z = LJ_COMPLEMENTARY_Z
+};
 enum class LjSampling { uniform = LJ_UNIFORM, increasing = LJ_INCREASING };
 
 const char* to_string(LjBuffer b);
@@ -36,8 +41,8 @@ struct LjConfig {
 void validate(const LjConfig& c);  // throws InputError naming the parameter
 
 struct LjResult {
-  double ae = 0;               // average normalised error; +inf if any sample passes the pole
-  double vertex_limited = 0;   // fraction of samples whose per-vertex term is >= the per-pixel one
+  double ae = 0;              // average normalised error; +inf if any sample passes the pole
+  double vertex_limited = 0;  // fraction of samples whose per-vertex term is >= the per-pixel one
   long long infinite_samples = 0;
   long long samples = 0;
 };

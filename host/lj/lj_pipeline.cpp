@@ -7,7 +7,8 @@
 
 namespace depthprec {
 
-LjPipelineResult lj_pipeline_error(const LjConfig& c, const StorageFormat& f, const Pipeline& pipeline) {
+LjPipelineResult lj_pipeline_error(const LjConfig& c, const StorageFormat& f,
+                                   const Pipeline& pipeline) {
   validate(c);
   const Technique t = lj_technique(c.buffer);
   const bool fragment = info(t).from == DepthFrom::fragment;

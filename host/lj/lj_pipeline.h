@@ -1,8 +1,8 @@
 // The Lapidous-Jiao average error measured on the emulated pipeline instead of the analytic
 // model: for each sampled Ze, a camera-facing plane at fl32(Ze) goes through the binary32
-// vertex stage, divide and storage of docs/spec.md 2 (the buffer's technique, zero_to_one); the error is
-// the eye-distance width of the interval its stored code stands for (the code and the next one
-// above, mapped back exactly). See docs/lapidous-jiao.md for where and why it differs.
+// vertex stage, divide and storage of docs/spec.md 2 (the buffer's technique, zero_to_one); the
+// error is the eye-distance width of the interval its stored code stands for (the code and the next
+// one above, mapped back exactly). See docs/lapidous-jiao.md for where and why it differs.
 #pragma once
 
 #include "host/lj/lj_metric.h"

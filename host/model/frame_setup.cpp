@@ -1,14 +1,12 @@
 #include "host/model/frame_setup.h"
 
-#include <glm/gtc/constants.hpp>
-
 #include <cmath>
 #include <glm/glm.hpp>
+#include <glm/gtc/constants.hpp>
 
 namespace depthprec {
 
 namespace {
-
 
 template <class T>
 using Mat = glm::mat<4, 4, T, glm::defaultp>;
@@ -48,9 +46,18 @@ Mat<T> model(const Scene& s, double D, int frame) {
   const T cy = std::cos(static_cast<T>(ang[1])), sy = std::sin(static_cast<T>(ang[1]));
   const T cz = std::cos(static_cast<T>(ang[2])), sz = std::sin(static_cast<T>(ang[2]));
   Mat<T> Rx(T(1)), Ry(T(1)), Rz(T(1)), S(T(1)), Tr(T(1));
-  Rx[1][1] = cx; Rx[2][1] = -sx; Rx[1][2] = sx; Rx[2][2] = cx;
-  Ry[0][0] = cy; Ry[2][0] = sy; Ry[0][2] = -sy; Ry[2][2] = cy;
-  Rz[0][0] = cz; Rz[1][0] = -sz; Rz[0][1] = sz; Rz[1][1] = cz;
+  Rx[1][1] = cx;
+  Rx[2][1] = -sx;
+  Rx[1][2] = sx;
+  Rx[2][2] = cx;
+  Ry[0][0] = cy;
+  Ry[2][0] = sy;
+  Ry[0][2] = -sy;
+  Ry[2][2] = cy;
+  Rz[0][0] = cz;
+  Rz[1][0] = -sz;
+  Rz[0][1] = sz;
+  Rz[1][1] = cz;
   S[0][0] = side;
   S[1][1] = side;
   Tr[3][2] = -dist;
@@ -139,16 +146,17 @@ std::array<double, 16> model_matrix_f64(const Scene& s, double D, int frame) {
 }
 
 double seen_separation(double z, double s) {
-  return static_cast<double>(static_cast<float>(z + s)) - static_cast<double>(static_cast<float>(z));
+  return static_cast<double>(static_cast<float>(z + s)) -
+         static_cast<double>(static_cast<float>(z));
 }
 
 double vertex_bound(double z) {
   // z itself is rarely a binary32 (1.005 is not): B moves off A's vertex once z + s passes the
   // midpoint between fl32(z) and the next binary32 above it.
   const float zf = static_cast<float>(z);
-  const double mid = 0.5 * (static_cast<double>(zf) + static_cast<double>(std::nextafter(zf, INFINITY)));
+  const double mid =
+      0.5 * (static_cast<double>(zf) + static_cast<double>(std::nextafter(zf, INFINITY)));
   return mid - z;
 }
 
 }  // namespace depthprec
-

@@ -42,9 +42,9 @@ std::array<double, 16> model_matrix_f64(const Scene& scene, double D, int frame)
 
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);
-// The vertex-precision bound (docs/spec.md 5.3): the distance from z to the midpoint between fl32(z) and
-// the next binary32 above; for a smaller s, fl32(z + s) == fl32(z) and the planes coincide. For a
-// z that is a binary32 this is half its spacing.
+// The vertex-precision bound (docs/spec.md 5.3): the distance from z to the midpoint between
+// fl32(z) and the next binary32 above; for a smaller s, fl32(z + s) == fl32(z) and the planes
+// coincide. For a z that is a binary32 this is half its spacing.
 double vertex_bound(double z);
 
 }  // namespace depthprec

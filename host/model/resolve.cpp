@@ -24,15 +24,17 @@ void validate(const ResolveSetup& s) {
   if (!(s.far > s.near))
     throw InputError(fmt::format("--far must be > near ({}), not {}", s.near, s.far));
   if (s.technique == Technique::layered)
-    throw InputError("resolve: layered has one mapping per layer; ask for its layer mapping with "
-                     "the layer's near and far");
+    throw InputError(
+        "resolve: layered has one mapping per layer; ask for its layer mapping with "
+        "the layer's near and far");
   const bool infinite_ok = s.technique == Technique::infinite ||
                            s.technique == Technique::reversed_infinite ||
                            s.technique == Technique::inverse_w;
   if (!std::isfinite(s.far) && !infinite_ok)
-    throw InputError(fmt::format("--far inf has no mapping for {}: only infinite, "
-                                 "reversed_infinite and inverse_w have no far plane",
-                                 info(s.technique).name));
+    throw InputError(
+        fmt::format("--far inf has no mapping for {}: only infinite, "
+                    "reversed_infinite and inverse_w have no far plane",
+                    info(s.technique).name));
 }
 
 ResolveSetup mapping_at(Technique t, double near, double far, const TechniqueParams& p, double z) {
@@ -49,7 +51,8 @@ double distance_gap(const ResolveSetup& s, double a, double b) {
 CodeInterval resolve_code(const ResolveSetup& s, const StorageFormat& f, uint32_t code) {
   validate(s);
   if (code > f.max_code())
-    throw InputError(fmt::format("--code {} is beyond {}'s largest code {}", code, f.name(), f.max_code()));
+    throw InputError(
+        fmt::format("--code {} is beyond {}'s largest code {}", code, f.name(), f.max_code()));
   CodeInterval ci;
   ci.code = code;
   ci.depth = f.decode(code);
@@ -78,11 +81,13 @@ DistanceResolution resolve_distance(const ResolveSetup& s, const StorageFormat& 
     throw InputError(fmt::format("--distance must be a finite eye distance > 0, not {}", w));
   // Outside the clip volume there is no stored depth to resolve: the pipeline clips the fragment.
   if (info(s.technique).clips_near && w < s.near)
-    throw InputError(fmt::format("--distance {} is nearer than the near plane {}: {} clips it (no depth is stored)",
-                                 w, s.near, info(s.technique).name));
+    throw InputError(fmt::format(
+        "--distance {} is nearer than the near plane {}: {} clips it (no depth is stored)", w,
+        s.near, info(s.technique).name));
   if (has_far_plane(s.technique) && w > s.far)
-    throw InputError(fmt::format("--distance {} is beyond the far plane {}: {} clips it (no depth is stored)", w,
-                                 s.far, info(s.technique).name));
+    throw InputError(
+        fmt::format("--distance {} is beyond the far plane {}: {} clips it (no depth is stored)", w,
+                    s.far, info(s.technique).name));
   DistanceResolution r;
   r.distance = w;
   r.depth = depth_of_distance(s.technique, s.near, s.far, s.params, w);
@@ -111,11 +116,12 @@ std::vector<DistanceResolution> resolution_curve(const ResolveSetup& s, const St
   validate(s);
   if (points < 2 || points > 1000000)
     throw InputError(fmt::format("--points must be 2..1000000, not {}", points));
-  if (!std::isfinite(s.far))
-    throw InputError("--curve needs a finite --far to span the range");
+  if (!std::isfinite(s.far)) throw InputError("--curve needs a finite --far to span the range");
   std::vector<DistanceResolution> out;
   for (int i = 0; i < points; ++i) {
-    const double w = i + 1 == points ? s.far : s.near * std::pow(s.far / s.near, static_cast<double>(i) / (points - 1));
+    const double w = i + 1 == points
+                         ? s.far
+                         : s.near * std::pow(s.far / s.near, static_cast<double>(i) / (points - 1));
     out.push_back(resolve_distance(s, f, w));
   }
   return out;

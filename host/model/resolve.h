@@ -1,7 +1,7 @@
 // Code <-> eye distance for a technique and storage format: which distances a stored code stands
 // for, which code a distance gets and how far apart its neighbours are, and the resolution
-// across the range. Exact mappings in binary64 (host/model/technique.cpp), differences of nearly equal
-// distances in binary128.
+// across the range. Exact mappings in binary64 (host/model/technique.cpp), differences of nearly
+// equal distances in binary128.
 #pragma once
 
 #include <cstdint>
@@ -20,8 +20,8 @@ struct ResolveSetup {
 
 struct CodeInterval {
   uint32_t code = 0;
-  double depth = 0;          // the code's stored value
-  double distance = 0;       // eye distance of that value
+  double depth = 0;                         // the code's stored value
+  double distance = 0;                      // eye distance of that value
   double depth_lo = 0, depth_hi = 0;        // depths that store this code (rounding mode's)
   double distance_lo = 0, distance_hi = 0;  // their eye distances, ordered lo <= hi
 };
@@ -29,9 +29,9 @@ struct CodeInterval {
 struct DistanceResolution {
   double distance = 0, depth = 0;
   uint32_t code = 0;
-  double gap_below = 0;  // eye distance to the neighbouring code on the near side
-  double gap_above = 0;  // ... and on the far side
-  double resolution = 0; // max of the two: the smallest step the buffer can resolve here
+  double gap_below = 0;   // eye distance to the neighbouring code on the near side
+  double gap_above = 0;   // ... and on the far side
+  double resolution = 0;  // max of the two: the smallest step the buffer can resolve here
 };
 
 void validate(const ResolveSetup& s);  // throws InputError

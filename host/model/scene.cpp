@@ -13,8 +13,8 @@
 #include <set>
 #include <sstream>
 
-#include "host/runtime/embedded_sources.h"
 #include "host/base/errors.h"
+#include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
 
@@ -25,13 +25,32 @@ namespace {
 constexpr const char* kDefaultPath = "data/gilg2021.json";
 constexpr int kMaxKernelSide = 16384;
 
-const std::set<std::string> kTopKeys = {
-    "name", "description", "near", "far", "kernel", "viewport", "fov_y_deg", "plane_margin",
-    "plane_subdivisions", "frames", "delta_a", "rotation_range_deg", "rotation_step",
-    "rotation_offset", "distances", "rel_precision", "max_separation_factor", "stiffness_probes", "pipeline",
-    "log_k", "layers", "layer_mapping", "layer_overlap", "evaluate"};
-const std::set<std::string> kPipelineKeys = {"depth_range", "matrix_precision", "compose", "divide",
-                                             "rounding", "denormals", "contraction"};
+const std::set<std::string> kTopKeys = {"name",
+                                        "description",
+                                        "near",
+                                        "far",
+                                        "kernel",
+                                        "viewport",
+                                        "fov_y_deg",
+                                        "plane_margin",
+                                        "plane_subdivisions",
+                                        "frames",
+                                        "delta_a",
+                                        "rotation_range_deg",
+                                        "rotation_step",
+                                        "rotation_offset",
+                                        "distances",
+                                        "rel_precision",
+                                        "max_separation_factor",
+                                        "stiffness_probes",
+                                        "pipeline",
+                                        "log_k",
+                                        "layers",
+                                        "layer_mapping",
+                                        "layer_overlap",
+                                        "evaluate"};
+const std::set<std::string> kPipelineKeys = {
+    "depth_range", "matrix_precision", "compose", "divide", "rounding", "denormals", "contraction"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -88,9 +107,11 @@ void check_known_keys(const json& j, const std::set<std::string>& known, const s
 void check_user_keys(const json& j, const std::string& source, const std::string& text) {
   if (!j.is_object()) throw InputError(fmt::format("{}: a scene is a JSON object", source));
   check_known_keys(j, kTopKeys, "the scene", source, text);
-  if (j.contains("pipeline")) check_known_keys(j["pipeline"], kPipelineKeys, "pipeline", source, text);
+  if (j.contains("pipeline"))
+    check_known_keys(j["pipeline"], kPipelineKeys, "pipeline", source, text);
   if (j.contains("evaluate") && j["evaluate"].is_array())
-    for (const auto& p : j["evaluate"]) check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
+    for (const auto& p : j["evaluate"])
+      check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
 }
 
 // Reads typed values with errors that name the key and say what is allowed.
@@ -98,16 +119,19 @@ class Reader {
  public:
   // origins: the command-line option that set a key (e.g. "--near 5", "--set near=5"); a key
   // found there is blamed on it rather than on the scene file.
-  Reader(const json& j, std::string source, std::string text, const std::map<std::string, std::string>& origins)
+  Reader(const json& j, std::string source, std::string text,
+         const std::map<std::string, std::string>& origins)
       : j_(j), source_(std::move(source)), text_(std::move(text)), origins_(origins) {}
 
   [[noreturn]] void fail(const std::string& key, const std::string& msg) const {
-    for (std::string k = key;; k = k.substr(0, k.rfind('.'))) {  // "pipeline.divide", then "pipeline"
+    for (std::string k = key;;
+         k = k.substr(0, k.rfind('.'))) {  // "pipeline.divide", then "pipeline"
       const auto o = origins_.find(k);
       if (o != origins_.end()) throw InputError(fmt::format("{}: '{}' {}", o->second, key, msg));
       if (k.find('.') == std::string::npos) break;
     }
-    const std::string leaf = key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
+    const std::string leaf =
+        key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
     throw InputError(fmt::format("{}: '{}' {}", where(source_, text_, leaf), key, msg));
   }
 
@@ -127,7 +151,8 @@ class Reader {
     const json& v = at(key);
     if (allow_inf && v.is_string() && (v == "inf" || v == "infinity")) return INFINITY;
     if (!v.is_number())
-      fail(key, fmt::format("must be a number{}, not {}", allow_inf ? " or \"inf\"" : "", v.dump()));
+      fail(key,
+           fmt::format("must be a number{}, not {}", allow_inf ? " or \"inf\"" : "", v.dump()));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(key, "must be finite");
     return d;
@@ -220,9 +245,10 @@ Divide parse_divide(const std::string& s) {
 void apply_override(json& j, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw InputError(fmt::format("override '{}' must be key=value, e.g. near=0.5 or "
-                                 "pipeline.depth_range=zero_to_one",
-                                 assignment));
+    throw InputError(
+        fmt::format("override '{}' must be key=value, e.g. near=0.5 or "
+                    "pipeline.depth_range=zero_to_one",
+                    assignment));
   const std::string key = assignment.substr(0, eq);
   const std::string raw = assignment.substr(eq + 1);
   json value = json::parse(raw, nullptr, false);
@@ -242,9 +268,10 @@ void check_pairs(const Scene& s) {
   if (std::isfinite(s.far)) return;
   for (const auto& p : s.evaluate)
     if (has_far_plane(p.technique))
-      throw InputError(fmt::format("far = inf: {} needs a finite far plane (as do all of {}); only "
-                                   "infinite, reversed_infinite and inverse_w have none",
-                                   p.label(), finite_far_technique_names()));
+      throw InputError(
+          fmt::format("far = inf: {} needs a finite far plane (as do all of {}); only "
+                      "infinite, reversed_infinite and inverse_w have none",
+                      p.label(), finite_far_technique_names()));
 }
 
 void check_planes_cover_kernel(const Scene& s) {
@@ -254,8 +281,10 @@ void check_planes_cover_kernel(const Scene& s) {
   const double plane_px = s.plane_margin * s.viewport_h;
   if (s.kernel_w > plane_px || s.kernel_h > plane_px)
     throw InputError(fmt::format(
-        "kernel {}x{} is wider than the planes, which span plane_margin x viewport height = {} x {} = {:g} "
-        "pixels: no probe could be accepted; raise plane_margin to at least {:g} or narrow the kernel",
+        "kernel {}x{} is wider than the planes, which span plane_margin x viewport height = {} x "
+        "{} = {:g} "
+        "pixels: no probe could be accepted; raise plane_margin to at least {:g} or narrow the "
+        "kernel",
         s.kernel_w, s.kernel_h, s.plane_margin, s.viewport_h, plane_px,
         std::ceil(100.0 * std::max(s.kernel_w, s.kernel_h) / s.viewport_h * 1.05) / 100));
 }
@@ -278,7 +307,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
                  const std::map<std::string, std::string>& origins) {
   if (path.empty()) return load_scene_text("", "", overrides, check, origins);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
+  if (!in)
+    throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
   std::stringstream buf;
   buf << in.rdbuf();
   return load_scene_text(buf.str(), path, overrides, check, origins);
@@ -352,7 +382,8 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.frames = r.integer("frames", 1, 1000000);
   s.delta_a = r.number("delta_a");
   s.rotation_range_deg = r.number("rotation_range_deg");
-  if (std::abs(s.rotation_range_deg) >= 45) r.fail("rotation_range_deg", "must be below 45 degrees");
+  if (std::abs(s.rotation_range_deg) >= 45)
+    r.fail("rotation_range_deg", "must be below 45 degrees");
   s.rotation_step = r.vec3("rotation_step");
   s.rotation_offset = r.vec3("rotation_offset");
   const json& dist = r.at("distances");
@@ -365,13 +396,17 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
     // The planes are placed in binary32: at its largest value fl32(z) has no binary32 above it
     // (the vertex bound is infinite), past it fl32(z) is infinite.
     if (!(static_cast<float>(z) < std::numeric_limits<float>::max()))
-      r.fail("distances", fmt::format("{:g} is not below binary32's largest value {:g}: the pipeline cannot place "
-                                      "a plane there", z, static_cast<double>(std::numeric_limits<float>::max())));
+      r.fail(
+          "distances",
+          fmt::format("{:g} is not below binary32's largest value {:g}: the pipeline cannot place "
+                      "a plane there",
+                      z, static_cast<double>(std::numeric_limits<float>::max())));
     // A row is keyed by its distance (journals, shards, shared computations): each distance once.
     const auto same = std::find(s.distances.begin(), s.distances.end(), z);
     if (same != s.distances.end())
-      r.fail("distances", fmt::format("lists {:g} twice (entries {} and {}); list each distance once", z,
-                                      same - s.distances.begin() + 1, s.distances.size() + 1));
+      r.fail("distances",
+             fmt::format("lists {:g} twice (entries {} and {}); list each distance once", z,
+                         same - s.distances.begin() + 1, s.distances.size() + 1));
     s.distances.push_back(z);
   }
   s.rel_precision = r.positive("rel_precision");
@@ -380,16 +415,19 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   if (s.max_separation_factor < 1) r.fail("max_separation_factor", "must be >= 1");
   s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
 
-  s.pipeline.depth_range = r.choice("pipeline.depth_range", [](const std::string& v) -> std::optional<DepthRange> {
-    if (v == "technique") return std::nullopt;
-    try {
-      return parse_depth_range(v);
-    } catch (const InputError&) {
-      throw InputError(fmt::format("unknown depth range '{}': expected gl, zero_to_one or technique "
-                                   "(each technique's own: zero_to_one for reversed, reversed_infinite and "
-                                   "inverse_w, gl otherwise)", v));
-    }
-  });
+  s.pipeline.depth_range =
+      r.choice("pipeline.depth_range", [](const std::string& v) -> std::optional<DepthRange> {
+        if (v == "technique") return std::nullopt;
+        try {
+          return parse_depth_range(v);
+        } catch (const InputError&) {
+          throw InputError(
+              fmt::format("unknown depth range '{}': expected gl, zero_to_one or technique "
+                          "(each technique's own: zero_to_one for reversed, reversed_infinite and "
+                          "inverse_w, gl otherwise)",
+                          v));
+        }
+      });
   s.pipeline.matrix_precision = r.choice("pipeline.matrix_precision", parse_matrix_precision);
   s.pipeline.compose = r.choice("pipeline.compose", parse_compose);
   s.pipeline.divide = r.choice("pipeline.divide", parse_divide);
@@ -400,8 +438,8 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.params.log_k = r.positive("log_k");
   s.params.layers = r.integer("layers", 1, 64);
   s.params.layer_mapping = r.choice("layer_mapping", parse_technique);
-  if (s.params.layer_mapping != Technique::standard && s.params.layer_mapping != Technique::reversed &&
-      s.params.layer_mapping != Technique::linear)
+  if (s.params.layer_mapping != Technique::standard &&
+      s.params.layer_mapping != Technique::reversed && s.params.layer_mapping != Technique::linear)
     r.fail("layer_mapping", "must be standard, reversed or linear");
   s.params.layer_overlap = r.number("layer_overlap");
   if (s.params.layer_overlap < 0 || s.params.layer_overlap > 1)
@@ -409,7 +447,8 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
 
   const json& ev = r.at("evaluate");
   if (!ev.is_array() || ev.empty())
-    r.fail("evaluate", "must be a non-empty list of {\"technique\", \"format\"[, \"depth_range\"]}");
+    r.fail("evaluate",
+           "must be a non-empty list of {\"technique\", \"format\"[, \"depth_range\"]}");
   for (size_t i = 0; i < ev.size(); ++i) {
     const std::string base = fmt::format("evaluate.{}", i);
     if (!ev[i].is_object() || !ev[i].contains("technique") || !ev[i].contains("format"))

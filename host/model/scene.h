@@ -1,13 +1,13 @@
-// A scene: every parameter of the MTS measurement (docs/spec.md 5.1), the pipeline options (docs/spec.md 2) and
-// the (technique, format[, depth_range]) pairs to evaluate. data/gilg2021.json, embedded in the
-// binary, is the one source of the defaults: a scene file or a --set override only says what
-// differs from it.
+// A scene: every parameter of the MTS measurement (docs/spec.md 5.1), the pipeline options
+// (docs/spec.md 2) and the (technique, format[, depth_range]) pairs to evaluate.
+// data/gilg2021.json, embedded in the binary, is the one source of the defaults: a scene file or a
+// --set override only says what differs from it.
 #pragma once
 
 #include <array>
 #include <map>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,8 +76,8 @@ struct Scene {
 // check = false leaves check_pairs to a caller that replaces the pairs first. origins names the
 // option behind an override's key ("near" -> "--near 5"), so errors blame what the user typed;
 // an override it does not name is blamed on "--set key=value".
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {}, bool check = true,
-                 const std::map<std::string, std::string>& origins = {});
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
+                 bool check = true, const std::map<std::string, std::string>& origins = {});
 
 // The same from the text of a scene file (path names it in errors; "" for no file).
 Scene load_scene_text(const std::string& text, const std::string& path,

@@ -18,8 +18,12 @@ const char* kAllowedFormats =
 
 }  // namespace
 
-const char* to_string(Rounding r) { return r == Rounding::nearest_even ? "nearest_even" : "truncate"; }
-const char* to_string(Denormals d) { return d == Denormals::keep ? "keep" : "flush"; }
+const char* to_string(Rounding r) {
+  return r == Rounding::nearest_even ? "nearest_even" : "truncate";
+}
+const char* to_string(Denormals d) {
+  return d == Denormals::keep ? "keep" : "flush";
+}
 
 Rounding parse_rounding(const std::string& s) {
   if (s == "nearest_even") return Rounding::nearest_even;
@@ -33,7 +37,8 @@ Denormals parse_denormals(const std::string& s) {
   throw InputError(fmt::format("unknown denormals mode '{}': expected keep or flush", s));
 }
 
-StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, Denormals denormals) {
+StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding,
+                                   Denormals denormals) {
   const df_u32 r = rounding == Rounding::nearest_even ? DF_ROUND_NEAREST_EVEN : DF_ROUND_TRUNCATE;
   const df_u32 fl = denormals == Denormals::flush ? 1u : 0u;
   StorageFormat f;
@@ -44,8 +49,8 @@ StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, D
   if (std::regex_match(name, m, std::regex("unorm([0-9]+)"))) {
     const long b = m[1].length() > 3 ? 999 : std::stol(m[1]);
     if (b < 1 || b > 32)
-      throw InputError(fmt::format("storage format '{}': unorm takes 1 to 32 bits, not {}", name,
-                                   m[1].str()));
+      throw InputError(
+          fmt::format("storage format '{}': unorm takes 1 to 32 bits, not {}", name, m[1].str()));
     f.spec_ = df_make_unorm(static_cast<df_u32>(b), r, fl);
   } else if (name == "float32") {
     f.spec_ = df_make_float(8, 23, 1, r, fl);
@@ -67,12 +72,12 @@ StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, D
           "binary32 depth is already a normal number)",
           name, e));
     if (mm > 31 || e + mm > 32)
-      throw InputError(fmt::format(
-          "storage format '{}': {} bits in all; M = 0..31 and E + M <= 32", name, e + mm));
+      throw InputError(fmt::format("storage format '{}': {} bits in all; M = 0..31 and E + M <= 32",
+                                   name, e + mm));
     f.spec_ = df_make_float(static_cast<df_i32>(e), static_cast<df_i32>(mm), 0, r, fl);
   } else {
-    throw InputError(
-        fmt::format("unknown storage format '{}'{}: expected {}", name, format_suggestion(name), kAllowedFormats));
+    throw InputError(fmt::format("unknown storage format '{}'{}: expected {}", name,
+                                 format_suggestion(name), kAllowedFormats));
   }
   return f;
 }
@@ -97,20 +102,23 @@ uint32_t StorageFormat::code_floor(double v) const {
   const int p = e - 1;  // 2^p <= v < 2^(p+1)
   const int qp = std::max(p, 1 - spec_.bias);
   const double n = std::floor(std::ldexp(v, spec_.man_bits - qp));
-  const uint64_t code = (static_cast<uint64_t>(qp + spec_.bias - 1) << spec_.man_bits) +
-                        static_cast<uint64_t>(n);
+  const uint64_t code =
+      (static_cast<uint64_t>(qp + spec_.bias - 1) << spec_.man_bits) + static_cast<uint64_t>(n);
   return static_cast<uint32_t>(std::min<uint64_t>(code, spec_.max_code));
 }
 
-double StorageFormat::spacing_at(double v) const { return df_spacing_at(v, spec_); }
+double StorageFormat::spacing_at(double v) const {
+  return df_spacing_at(v, spec_);
+}
 
 std::string StorageFormat::defines() const {
   if (spec_.kind == DF_KIND_UNORM)
     return fmt::format("-DDF_KIND=0 -DDF_BITS={}u -DDF_ROUNDING={}u -DDF_FLUSH={}u", spec_.bits,
                        spec_.rounding, spec_.flush);
   const bool ieee = spec_.bias == (1 << (spec_.exp_bits - 1)) - 1;
-  return fmt::format("-DDF_KIND=1 -DDF_E={} -DDF_M={} -DDF_IEEE={}u -DDF_ROUNDING={}u -DDF_FLUSH={}u",
-                     spec_.exp_bits, spec_.man_bits, ieee ? 1 : 0, spec_.rounding, spec_.flush);
+  return fmt::format(
+      "-DDF_KIND=1 -DDF_E={} -DDF_M={} -DDF_IEEE={}u -DDF_ROUNDING={}u -DDF_FLUSH={}u",
+      spec_.exp_bits, spec_.man_bits, ieee ? 1 : 0, spec_.rounding, spec_.flush);
 }
 
 }  // namespace depthprec

@@ -32,7 +32,9 @@ class StorageFormat {
   uint32_t max_code() const { return spec_.max_code; }
 
   uint32_t encode(float d) const { return df_encode(d, spec_); }
-  uint32_t encode64(double d) const { return df_encode_f64(d, spec_); }  // correctly rounded from binary64
+  uint32_t encode64(double d) const {
+    return df_encode_f64(d, spec_);
+  }  // correctly rounded from binary64
   double decode(uint32_t code) const { return df_decode(code, spec_); }
   uint32_t code_above(uint32_t c) const { return df_code_above(c, spec_); }
   uint32_t code_below(uint32_t c) const { return df_code_below(c); }

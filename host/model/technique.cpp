@@ -9,23 +9,32 @@
 
 namespace depthprec {
 
-const char* to_string(DepthRange r) { return r == DepthRange::gl ? "gl" : "zero_to_one"; }
+const char* to_string(DepthRange r) {
+  return r == DepthRange::gl ? "gl" : "zero_to_one";
+}
 
 const char* to_string(DepthFrom f) {
   switch (f) {
-    case DepthFrom::projection: return "projection";
-    case DepthFrom::vertex_log: return "vertex_log";
-    case DepthFrom::fragment: return "fragment";
+    case DepthFrom::projection:
+      return "projection";
+    case DepthFrom::vertex_log:
+      return "vertex_log";
+    case DepthFrom::fragment:
+      return "fragment";
   }
   return "?";
 }
 
 const char* to_string(FragmentDepth f) {
   switch (f) {
-    case FragmentDepth::none: return "";
-    case FragmentDepth::linear: return "linear";
-    case FragmentDepth::w_buffer: return "w_buffer";
-    case FragmentDepth::log: return "log";
+    case FragmentDepth::none:
+      return "";
+    case FragmentDepth::linear:
+      return "linear";
+    case FragmentDepth::w_buffer:
+      return "w_buffer";
+    case FragmentDepth::log:
+      return "log";
   }
   return "?";
 }
@@ -42,23 +51,29 @@ const std::vector<TechniqueInfo>& technique_table() {
   using M = DepthMap;
   const DepthRange gl = DepthRange::gl, zo = DepthRange::zero_to_one;
   const char* projection_only = "projection matrix only";
-  const char* fragment_write = "writes depth in the fragment stage: no early depth test, weaker depth compression";
-  // id, name, depth from, fragment depth, GEQUAL, range, clips at near, exact map, LJ buffer, GPU cost
+  const char* fragment_write =
+      "writes depth in the fragment stage: no early depth test, weaker depth compression";
+  // id, name, depth from, fragment depth, GEQUAL, range, clips at near, exact map, LJ buffer, GPU
+  // cost
   static const std::vector<TechniqueInfo> table = {
-      {Technique::standard, "standard", D::projection, F::none, false, gl, true, M::standard, "z", projection_only},
-      {Technique::infinite, "infinite", D::projection, F::none, false, gl, true, M::infinite, nullptr,
+      {Technique::standard, "standard", D::projection, F::none, false, gl, true, M::standard, "z",
        projection_only},
-      {Technique::reversed, "reversed", D::projection, F::none, true, zo, true, M::reversed, "complementary_z",
-       projection_only},
-      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, zo, true, M::n_over_w, nullptr,
-       projection_only},
-      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, gl, false, M::log, nullptr,
-       "a log per vertex; depth not interpolated perspective-correctly"},
-      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, gl, true, M::log, nullptr, fragment_write},
-      {Technique::linear, "linear", D::fragment, F::linear, false, gl, true, M::linear, nullptr, fragment_write},
-      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, gl, true, M::w_over_f, "w", fragment_write},
-      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, zo, true, M::n_over_w, "inverse_w",
-       projection_only},
+      {Technique::infinite, "infinite", D::projection, F::none, false, gl, true, M::infinite,
+       nullptr, projection_only},
+      {Technique::reversed, "reversed", D::projection, F::none, true, zo, true, M::reversed,
+       "complementary_z", projection_only},
+      {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, zo, true,
+       M::n_over_w, nullptr, projection_only},
+      {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, gl, false, M::log,
+       nullptr, "a log per vertex; depth not interpolated perspective-correctly"},
+      {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, gl, true, M::log,
+       nullptr, fragment_write},
+      {Technique::linear, "linear", D::fragment, F::linear, false, gl, true, M::linear, nullptr,
+       fragment_write},
+      {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, gl, true, M::w_over_f, "w",
+       fragment_write},
+      {Technique::inverse_w, "inverse_w", D::projection, F::none, true, zo, true, M::n_over_w,
+       "inverse_w", projection_only},
       {Technique::layered, "layered", D::projection, F::none, false, gl, true, M::standard, nullptr,
        "one pass per layer, depth cleared per layer"},
   };
@@ -93,8 +108,8 @@ Technique parse_technique(const std::string& s) {
     if (s == i.name) return i.id;
   std::vector<std::string> names;
   for (const auto& i : technique_table()) names.push_back(i.name);
-  throw InputError(
-      fmt::format("unknown technique '{}'{}: expected one of {}", s, technique_suggestion(s, names), technique_names()));
+  throw InputError(fmt::format("unknown technique '{}'{}: expected one of {}", s,
+                               technique_suggestion(s, names), technique_names()));
 }
 
 double depth_of_distance(Technique t, double n, double f, const TechniqueParams& p, double w) {
@@ -105,13 +120,20 @@ double depth_of_distance(Technique t, double n, double f, const TechniqueParams&
     return depth_of_distance(p.layer_mapping, l.near, l.far, p, w);
   }
   switch (info(t).map) {
-    case DepthMap::standard: return f * (w - n) / ((f - n) * w);
-    case DepthMap::infinite: return (w - n) / w;
-    case DepthMap::reversed: return n * (f - w) / ((f - n) * w);
-    case DepthMap::n_over_w: return n / w;
-    case DepthMap::log: return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
-    case DepthMap::linear: return (w - n) / (f - n);
-    case DepthMap::w_over_f: return w / f;
+    case DepthMap::standard:
+      return f * (w - n) / ((f - n) * w);
+    case DepthMap::infinite:
+      return (w - n) / w;
+    case DepthMap::reversed:
+      return n * (f - w) / ((f - n) * w);
+    case DepthMap::n_over_w:
+      return n / w;
+    case DepthMap::log:
+      return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
+    case DepthMap::linear:
+      return (w - n) / (f - n);
+    case DepthMap::w_over_f:
+      return w / f;
   }
   return NAN;
 }
@@ -124,7 +146,8 @@ void throw_layered_has_no_single_mapping() {
 Layer layer_bounds(int i, double n, double f, const TechniqueParams& p) {
   const double ratio = f / n;
   const double lo = n * std::pow(ratio, static_cast<double>(i) / p.layers);
-  const double hi = i + 1 == p.layers ? f : n * std::pow(ratio, static_cast<double>(i + 1) / p.layers);
+  const double hi =
+      i + 1 == p.layers ? f : n * std::pow(ratio, static_cast<double>(i + 1) / p.layers);
   return {i == 0 ? n : lo, i + 1 == p.layers ? f : hi * (1.0 + p.layer_overlap)};
 }
 

@@ -26,7 +26,15 @@ const char* to_string(FragmentDepth f);  // "", "linear", "w_buffer", "log"
 
 // The exact mapping D(w) (docs/spec.md 3), one per family of techniques; the values are
 // kernels/mts_exact.cl's DEPTH_MAP.
-enum class DepthMap { standard = 0, infinite = 1, reversed = 2, n_over_w = 3, log = 4, linear = 5, w_over_f = 6 };
+enum class DepthMap {
+  standard = 0,
+  infinite = 1,
+  reversed = 2,
+  n_over_w = 3,
+  log = 4,
+  linear = 5,
+  w_over_f = 6
+};
 
 enum class Technique {
   standard,
@@ -64,7 +72,8 @@ const TechniqueInfo& info(Technique t);
 Technique parse_technique(const std::string& s);  // throws InputError listing the names
 std::string technique_names();                    // "standard, infinite, ..." for help texts
 // Whether the technique clips at the far plane (the fragment-depth ones clip with the standard
-// projection's volume) and so needs a finite far; infinite, reversed_infinite and inverse_w have none.
+// projection's volume) and so needs a finite far; infinite, reversed_infinite and inverse_w have
+// none.
 bool has_far_plane(Technique t);
 // The techniques that need a finite far plane, for error messages: "standard, reversed, ...".
 std::string finite_far_technique_names();
@@ -91,7 +100,8 @@ Row3<T> projection_row3(Technique t, DepthRange r, T n, T f) {
     case Technique::inverse_w:  // d = n/w: the same matrix as reversed_infinite
       return {gl ? T(1) : T(0), gl ? T(2) * n : n};
     default:
-      return {gl ? -(f + n) / (f - n) : -f / (f - n), gl ? T(-2) * f * n / (f - n) : -f * n / (f - n)};
+      return {gl ? -(f + n) / (f - n) : -f / (f - n),
+              gl ? T(-2) * f * n / (f - n) : -f * n / (f - n)};
   }
 }
 

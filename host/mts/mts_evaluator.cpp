@@ -12,8 +12,8 @@ namespace depthprec {
 namespace {
 
 constexpr int kProbeStride = PROBE_STRIDE;
-constexpr uint32_t kFight = R_FIGHT, kClipped = R_CLIPPED, kNonFinite = R_NONFINITE, kUncovered = R_UNCOVERED,
-                   kBounds = R_BOUNDS, kReused = R_REUSED;
+constexpr uint32_t kFight = R_FIGHT, kClipped = R_CLIPPED, kNonFinite = R_NONFINITE,
+                   kUncovered = R_UNCOVERED, kBounds = R_BOUNDS, kReused = R_REUSED;
 constexpr int kCountShift = R_COUNT_SHIFT;
 constexpr uint32_t kVertexNonFinite = V_NONFINITE;
 
@@ -28,12 +28,15 @@ constexpr size_t kPlaneACacheBytes = size_t{1} << 30;
 constexpr size_t kMaxSlots = 64;
 
 constexpr size_t kLocal = kWorkGroup;  // host/runtime/opencl_runtime.h
-cl::NDRange padded(size_t n) { return cl::NDRange(padded_size(n)); }
+cl::NDRange padded(size_t n) {
+  return cl::NDRange(padded_size(n));
+}
 
 // A read-only device copy of a host array.
 template <class T>
 cl::Buffer buffer_of(const cl::Context& context, const std::vector<T>& v) {
-  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * v.size(), const_cast<T*>(v.data()));
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * v.size(),
+                    const_cast<T*>(v.data()));
 }
 
 }  // namespace
@@ -50,8 +53,9 @@ std::vector<size_t> undecided(const std::vector<bool>& decided) {
   return out;
 }
 
-std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::vector<size_t>& active,
-                                  int first_frame, int frames, size_t kernel_h, std::vector<ProbeResult>& results,
+std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows,
+                                  const std::vector<size_t>& active, int first_frame, int frames,
+                                  size_t kernel_h, std::vector<ProbeResult>& results,
                                   std::vector<bool>& decided, uint64_t& after_decision) {
   std::vector<uint64_t> probe_pairs(active.size(), 0);
   for (size_t i = 0; i < active.size(); ++i) {
@@ -93,18 +97,27 @@ void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>&
 
 const char* to_string(Outcome o) {
   switch (o) {
-    case Outcome::clean: return "clean";
-    case Outcome::fight: return "fight";
-    case Outcome::clipped: return "clipped";
-    case Outcome::non_finite: return "non_finite";
-    case Outcome::uncovered: return "uncovered";
+    case Outcome::clean:
+      return "clean";
+    case Outcome::fight:
+      return "fight";
+    case Outcome::clipped:
+      return "clipped";
+    case Outcome::non_finite:
+      return "non_finite";
+    case Outcome::uncovered:
+      return "uncovered";
   }
   return "?";
 }
 
-MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts,
-                           Kernels kernels)
-    : rt_(rt), scene_(scene), pair_(pair), variant_(mts_variant(scene, pair)), shortcuts_(shortcuts) {
+MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           bool shortcuts, Kernels kernels)
+    : rt_(rt),
+      scene_(scene),
+      pair_(pair),
+      variant_(mts_variant(scene, pair)),
+      shortcuts_(shortcuts) {
   with_tests_ = kernels == Kernels::with_tests;
   program_ = rt_.program(with_tests_ ? "kernels/mts_test.cl" : variant_.program, variant_.options);
   setup_ = cl::Kernel(program_, "mts_setup");
@@ -117,12 +130,14 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   row_words_ = ROW_WORDS;
   band_words_ = BAND_WORDS;
   decided_words_ = DECIDED_WORDS;
-  max_slots_ = std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
+  max_slots_ =
+      std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
 }
 
 const cl::Program& MtsEvaluator::test_program() const {
   if (!with_tests_)
-    throw Error(ExitCode::internal, "the test kernels need an MtsEvaluator built with Kernels::with_tests");
+    throw Error(ExitCode::internal,
+                "the test kernels need an MtsEvaluator built with Kernels::with_tests");
   return program_;
 }
 
@@ -154,16 +169,18 @@ size_t MtsEvaluator::a_slot_bytes() const {
          sizeof(uint32_t) * f * (1 + kh * (row_words_ + code_row_words()) + band_words_ * bands());
 }
 
-cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
-                              cl_uint first_plane, cl::Buffer& tris, cl::Buffer& vflags) {
+cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats,
+                              cl_uint per_probe, cl_uint first_plane, cl::Buffer& tris,
+                              cl::Buffer& vflags) {
   const size_t planes = mats.size() / 16;
   const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
   set_args(setup_, consts, mat_buf, per_probe, 0.5f * static_cast<float>(scene_.viewport_w),
            0.5f * static_cast<float>(scene_.viewport_h), origin_x(), origin_y(),
-           static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), kBandRows, tris, vflags,
-           first_plane, static_cast<cl_uint>(planes));
+           static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), kBandRows,
+           tris, vflags, first_plane, static_cast<cl_uint>(planes));
   cl::Event done;
-  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal), nullptr, &done);
+  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal),
+                                   nullptr, &done);
   ++launches_;
   return done;
 }
@@ -175,18 +192,25 @@ double device_seconds(const cl::Event& e) {
 }
 }  // namespace
 
-std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                                                 double& kernel_seconds, std::vector<int>& launches) {
+std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probes,
+                                                 const std::vector<size_t>& active,
+                                                 double& kernel_seconds,
+                                                 std::vector<int>& launches) {
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const auto frames = static_cast<cl_uint>(scene_.frames);
   if (a_.tris() == nullptr) {
     const size_t n = a_.capacity;
     a_.consts = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * kProbeStride * n);
-    a_.tris = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats_);
+    a_.tris =
+        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats_);
     a_.vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames);
-    a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * kh * row_words_);
-    a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames * bands() * band_words_);
-    a_.codes = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
+    a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
+                         sizeof(uint32_t) * n * frames * kh * row_words_);
+    a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
+                          sizeof(uint32_t) * n * frames * bands() * band_words_);
+    a_.codes =
+        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
+                   sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
   }
   ++a_.clock;
   constexpr cl_uint kNotHeld = std::numeric_limits<cl_uint>::max();
@@ -214,7 +238,8 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     size_t slot = a_.capacity;
     for (size_t k = 0; k < a_.capacity; ++k)
       if (!in_use[k] && (slot == a_.capacity || a_.last_use[k] < a_.last_use[slot])) slot = k;
-    if (slot == a_.capacity) throw Error(ExitCode::internal, "plane-A cache: more distances in one launch than slots");
+    if (slot == a_.capacity)
+      throw Error(ExitCode::internal, "plane-A cache: more distances in one launch than slots");
     a_.z[slot] = z;
     a_.last_use[slot] = a_.clock;
     in_use[slot] = true;
@@ -231,26 +256,29 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     }
     const auto first_plane = static_cast<cl_uint>(slot * frames);
     const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
-    set_args(a_rows_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(), origin_y(),
-             a_.rows, a_.codes, static_cast<cl_uint>(frames * kh));
+    set_args(a_rows_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
+             origin_y(), a_.rows, a_.codes, static_cast<cl_uint>(frames * kh));
     cl::Event rows_done, bands_done;
-    rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh), cl::NDRange(kLocal), nullptr,
-                                     &rows_done);
-    set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(), origin_y(),
-             bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
-    rt_.queue().enqueueNDRangeKernel(a_bands_, cl::NullRange, padded(frames * bands()), cl::NDRange(kLocal),
-                                     nullptr, &bands_done);
+    rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh),
+                                     cl::NDRange(kLocal), nullptr, &rows_done);
+    set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
+             origin_y(), bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
+    rt_.queue().enqueueNDRangeKernel(a_bands_, cl::NullRange, padded(frames * bands()),
+                                     cl::NDRange(kLocal), nullptr, &bands_done);
     bands_done.wait();
     launches_ += 2;
     launches[i] = 3;
-    kernel_seconds += device_seconds(set_up) + device_seconds(rows_done) + device_seconds(bands_done);
+    kernel_seconds +=
+        device_seconds(set_up) + device_seconds(rows_done) + device_seconds(bands_done);
   }
   return slots;
 }
 
-cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                                      const std::vector<cl_uint>& slots, const std::vector<int>& first_visited,
-                                      int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
+cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes,
+                                      const std::vector<size_t>& active,
+                                      const std::vector<cl_uint>& slots,
+                                      const std::vector<int>& first_visited, int first_frame,
+                                      int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
                                       cl::Buffer& tris, cl::Buffer& vflags) {
   std::vector<float> consts(active.size() * kProbeStride);
   std::vector<float> mats(active.size() * frames * 16);
@@ -262,7 +290,8 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes, const st
     std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
     const int start = first_visited[active[i]];
     for (int f = 0; f < frames; ++f) {
-      const Mat4f b = plane_matrix(scene_, pc, p.z + p.s, (start + first_frame + f) % scene_.frames);
+      const Mat4f b =
+          plane_matrix(scene_, pc, p.z + p.s, (start + first_frame + f) % scene_.frames);
       std::copy(b.begin(), b.end(), mats.begin() + (i * frames + f) * 16);
     }
     slot_and_start[2 * i] = slots[i];
@@ -286,14 +315,15 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
   const std::vector<cl_uint> slots = cache_plane_a(probes, all, ksecs, cache_launches);
   const int frames = scene_.frames;
   cl::Buffer probe_buf, slot_buf, tris, vflags;
-  setup_plane_b(probes, all, slots, std::vector<int>(probes.size(), 0), 0, frames, probe_buf, slot_buf, tris,
-                vflags);
+  setup_plane_b(probes, all, slots, std::vector<int>(probes.size(), 0), 0, frames, probe_buf,
+                slot_buf, tris, vflags);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const size_t items = probes.size() * frames * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
   cl::Kernel k(test_program(), "mts_coverage_audit");
-  set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0}, static_cast<cl_uint>(frames),
-           kw, kh, origin_x(), origin_y(), static_cast<cl_uint>(frames), out, static_cast<cl_uint>(items));
+  set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0},
+           static_cast<cl_uint>(frames), kw, kh, origin_x(), origin_y(),
+           static_cast<cl_uint>(frames), out, static_cast<cl_uint>(items));
   rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
   std::vector<uint32_t> words(items);
   rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, words.data());
@@ -339,8 +369,8 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
 }
 
 void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
-                             const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
-                             std::vector<bool>& decided) {
+                             const std::vector<int>& first_visited,
+                             std::vector<ProbeResult>& results, std::vector<bool>& decided) {
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const float ox = origin_x(), oy = origin_y();
   int done = 0;
@@ -355,42 +385,49 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     std::vector<int> cache_launches;
     const std::vector<cl_uint> slots = cache_plane_a(probes, active, ksecs, cache_launches);
     cl::Buffer probe_buf, slot_buf, tris, vflags;
-    const cl::Event setup_done =
-        setup_plane_b(probes, active, slots, first_visited, done, frames, probe_buf, slot_buf, tris, vflags);
+    const cl::Event setup_done = setup_plane_b(probes, active, slots, first_visited, done, frames,
+                                               probe_buf, slot_buf, tris, vflags);
     const size_t planes = active.size() * frames;
     const size_t items = planes * kh;
     const size_t band_items = planes * bands();
-    cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * band_items * decided_words_);
+    cl::Buffer decided_bands(rt_.context(), CL_MEM_READ_WRITE,
+                             sizeof(uint32_t) * band_items * decided_words_);
     cl::Event bounds_done;
     if (shortcuts_) {
-      set_args(bounds_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.bands, slot_buf, static_cast<cl_uint>(done),
-               static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy, static_cast<cl_uint>(frames), bands(),
-               kBandRows, decided_bands, static_cast<cl_uint>(band_items));
-      rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items), cl::NDRange(kLocal),
-                                       nullptr, &bounds_done);
+      set_args(bounds_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.bands, slot_buf,
+               static_cast<cl_uint>(done), static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
+               static_cast<cl_uint>(frames), bands(), kBandRows, decided_bands,
+               static_cast<cl_uint>(band_items));
+      rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items),
+                                       cl::NDRange(kLocal), nullptr, &bounds_done);
       ++launches_;
     } else {
-      rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0, sizeof(uint32_t) * band_items * decided_words_,
-                                    nullptr, &bounds_done);
+      rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0,
+                                    sizeof(uint32_t) * band_items * decided_words_, nullptr,
+                                    &bounds_done);
     }
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
     set_args(raster_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf,
-             static_cast<cl_uint>(done), a_.codes, static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
-             static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
+             static_cast<cl_uint>(done), a_.codes, static_cast<cl_uint>(scene_.frames), kw, kh, ox,
+             oy, static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
              static_cast<cl_uint>(shortcuts_), result);
     cl::Event raster_done;
-    rt_.queue().enqueueNDRangeKernel(raster_, cl::NullRange,
-                                     cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
-                                     cl::NDRange(kLocal, 1, 1), nullptr, &raster_done);
+    rt_.queue().enqueueNDRangeKernel(
+        raster_, cl::NullRange,
+        cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
+        cl::NDRange(kLocal, 1, 1), nullptr, &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     for (const uint32_t v : rows) {
-      if (v & kBounds) by_bounds_ += v >> kCountShift;
-      else if (v >> kCountShift) ++rows_rasterised_;
+      if (v & kBounds)
+        by_bounds_ += v >> kCountShift;
+      else if (v >> kCountShift)
+        ++rows_rasterised_;
       if (v & kReused) ++rows_reused_;
     }
     ++launches_;
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ksecs += device_seconds(setup_done) + device_seconds(bounds_done) + device_seconds(raster_done);
     wall_seconds_ += secs;
     kernel_seconds_ += ksecs;
@@ -398,13 +435,15 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     const std::vector<uint64_t> probe_pairs =
         fold_launch(rows, active, done, frames, kh, results, decided, after_decision_);
     for (const size_t i : active)
-      if (decided[i])  // a fight or a non-finite frame: the next probes of this distance start there
+      if (decided[i])  // a fight or a non-finite frame: the next probes of this distance start
+                       // there
         last_fight_frame_[probes[i].z] = (first_visited[i] + results[i].frames - 1) % scene_.frames;
     uint64_t launch_pairs = 0;
     for (const uint64_t n : probe_pairs) launch_pairs += n;
     for (size_t i = 0; i < active.size(); ++i) {
-      const double share = launch_pairs ? static_cast<double>(probe_pairs[i]) / static_cast<double>(launch_pairs)
-                                        : 1.0 / static_cast<double>(active.size());
+      const double share =
+          launch_pairs ? static_cast<double>(probe_pairs[i]) / static_cast<double>(launch_pairs)
+                       : 1.0 / static_cast<double>(active.size());
       results[active[i]].seconds += secs * share;
       results[active[i]].kernel_seconds += ksecs * share;
       // set-up, bounds and raster, and the plane-A cache's launches when this batch filled it
@@ -418,7 +457,8 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
 FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
   const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
   const auto packed = pc.packed();
-  const cl::Buffer probe_buf = buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));
+  const cl::Buffer probe_buf =
+      buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));
   std::vector<float> mats;
   for (const double d : {probe.z, probe.z + probe.s}) {
     const Mat4f m = plane_matrix(scene_, pc, d, frame);

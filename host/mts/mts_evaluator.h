@@ -1,6 +1,6 @@
 // Runs kernels/mts.cl for batches of probes (z, s) of one pair: each probe is rendered frame by
-// frame until its first fight (docs/spec.md 5.2: a probe stops at its first fighting frame), many probes and
-// frames per launch so independent distances share the device.
+// frame until its first fight (docs/spec.md 5.2: a probe stops at its first fighting frame), many
+// probes and frames per launch so independent distances share the device.
 #pragma once
 
 #include <array>
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "host/model/frame_setup.h"
+#include "host/model/scene.h"
 #include "host/runtime/kernel_variant.h"
 #include "host/runtime/opencl_runtime.h"
-#include "host/model/scene.h"
 
 namespace depthprec {
 
@@ -28,7 +28,7 @@ const char* to_string(Outcome o);
 
 struct ProbeResult {
   Outcome outcome = Outcome::clean;
-  int frames = 0;               // frames rendered up to and including the deciding one (all if clean)
+  int frames = 0;  // frames rendered up to and including the deciding one (all if clean)
   uint64_t fragment_pairs = 0;  // pairs the kernel evaluated for this probe
   bool any_clipped = false, any_non_finite = false, any_uncovered = false;
   double seconds = 0;         // share of the launches' wall time, by fragment pairs
@@ -60,12 +60,13 @@ int batch_frames(int done, int total);
 std::vector<size_t> undecided(const std::vector<bool>& decided);
 
 // One launch's row words (flags | fragment pairs << 8 per (active probe, frame, kernel row), the
-// layout of kernels/mts_layout.h, which kernels/mts.cl and kernels/mts_exact.cl write), folded frame by frame into the active
-// probes' results: a probe is decided at its first frame with a fight or a non-finite value.
-// Returns each active probe's fragment pairs (all frames); those of frames after a probe's
-// deciding one are also added to after_decision.
-std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows, const std::vector<size_t>& active,
-                                  int first_frame, int frames, size_t kernel_h, std::vector<ProbeResult>& results,
+// layout of kernels/mts_layout.h, which kernels/mts.cl and kernels/mts_exact.cl write), folded
+// frame by frame into the active probes' results: a probe is decided at its first frame with a
+// fight or a non-finite value. Returns each active probe's fragment pairs (all frames); those of
+// frames after a probe's deciding one are also added to after_decision.
+std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows,
+                                  const std::vector<size_t>& active, int first_frame, int frames,
+                                  size_t kernel_h, std::vector<ProbeResult>& results,
                                   std::vector<bool>& decided, uint64_t& after_decision);
 // After the last frame: an undecided probe that saw clipping is clipped, not clean.
 void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided);
@@ -120,23 +121,27 @@ class MtsEvaluator : public ProbeEvaluator {
   // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
   // tris and vflags from first_plane on; plane k uses the probe constants (consts) of
   // (first_plane + k) / per_probe. Returns its event.
-  cl::Event setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe, cl_uint first_plane,
-                  cl::Buffer& tris, cl::Buffer& vflags);
+  cl::Event setup(const cl::Buffer& consts, const std::vector<float>& mats, cl_uint per_probe,
+                  cl_uint first_plane, cl::Buffer& tris, cl::Buffer& vflags);
   // Plane A depends on the distance and frame only, so it is set up, its rows' coverage and codes
   // found and its code bounds per band computed once per distance, for all frames, and kept for
-  // every later probe of the distance (kernels/mts/plane_a.cl mts_a_rows, kernels/mts/bounds.cl mts_a_bands). Returns each active probe's
-  // slot, filling the slots of distances not held yet; adds their device time, and sets each
-  // active probe's launches to those that filled its slot now (0 when it was held).
-  std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes, const std::vector<size_t>& active,
-                                     double& kernel_seconds, std::vector<int>& launches);
+  // every later probe of the distance (kernels/mts/plane_a.cl mts_a_rows, kernels/mts/bounds.cl
+  // mts_a_bands). Returns each active probe's slot, filling the slots of distances not held yet;
+  // adds their device time, and sets each active probe's launches to those that filled its slot now
+  // (0 when it was held).
+  std::vector<cl_uint> cache_plane_a(const std::vector<Probe>& probes,
+                                     const std::vector<size_t>& active, double& kernel_seconds,
+                                     std::vector<int>& launches);
   // Sets up plane B of the active probes for their visits [first_frame, first_frame + frames) (a
   // probe's visit k renders frame (first_visited + k) mod frames), with their constants, plane-A
-  // slots and first frames (slot_buf: slot, first frame per probe); returns the set-up kernel's event.
+  // slots and first frames (slot_buf: slot, first frame per probe); returns the set-up kernel's
+  // event.
   cl::Event setup_plane_b(const std::vector<Probe>& probes, const std::vector<size_t>& active,
                           const std::vector<cl_uint>& slots, const std::vector<int>& first_visited,
                           int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
                           cl::Buffer& tris, cl::Buffer& vflags);
-  // Renders the probes of group (distances that fit in the cache together) frame batch by frame batch.
+  // Renders the probes of group (distances that fit in the cache together) frame batch by frame
+  // batch.
   void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
                  const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
                  std::vector<bool>& decided);
@@ -158,15 +163,16 @@ class MtsEvaluator : public ProbeEvaluator {
   cl::Program program_;
   bool with_tests_ = false;
   cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_;
-  const cl::Program& test_program() const;  // program_, or an internal error without the test kernels
-  size_t plane_floats_ = 0;  // floats per plane record (kernels/mts_layout.h MTS_PLANE_STRIDE)
-  size_t row_words_ = 0;     // words per cached row of plane A (ROW_WORDS)
-  size_t band_words_ = 0;    // words per band of plane A (BAND_WORDS)
-  size_t decided_words_ = 0; // words per band of mts_frame_bounds' verdicts (DECIDED_WORDS)
+  const cl::Program& test_program()
+      const;                  // program_, or an internal error without the test kernels
+  size_t plane_floats_ = 0;   // floats per plane record (kernels/mts_layout.h MTS_PLANE_STRIDE)
+  size_t row_words_ = 0;      // words per cached row of plane A (ROW_WORDS)
+  size_t band_words_ = 0;     // words per band of plane A (BAND_WORDS)
+  size_t decided_words_ = 0;  // words per band of mts_frame_bounds' verdicts (DECIDED_WORDS)
   size_t max_slots_ = 1;
   struct PlaneACache {
-    size_t capacity = 0;          // slots, each one distance with all its frames
-    std::vector<double> z;        // the distance in each slot (NaN: free)
+    size_t capacity = 0;    // slots, each one distance with all its frames
+    std::vector<double> z;  // the distance in each slot (NaN: free)
     std::vector<uint64_t> last_use;
     uint64_t clock = 0;
     cl::Buffer consts, tris, vflags, rows, bands, codes;
@@ -179,7 +185,8 @@ class MtsEvaluator : public ProbeEvaluator {
   // its frames decides it, and so its frames count and a non_finite or clipped seen before the
   // fight, does (docs/mts.md, frame order).
   std::map<double, int> last_fight_frame_;
-  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0, rows_rasterised_ = 0, rows_reused_ = 0;
+  uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0, rows_rasterised_ = 0,
+           rows_reused_ = 0;
   std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
 };

@@ -1,28 +1,25 @@
 #include "host/mts/mts_exact.h"
 
-#include <glm/gtc/constants.hpp>
-
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {
 
-namespace {
-
-
-}  // namespace
+namespace {}  // namespace
 
 ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair)
     : rt_(rt), scene_(scene), pair_(pair) {
   const Technique t = depth_path(scene, pair.technique);
   const TechniqueInfo& ti = info(t);
-  const std::string options =
-      fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}", base_build_options(false), static_cast<int>(info(t).map),
-                  ti.from == DepthFrom::fragment ? 1 : 0, ti.greater ? 1 : 0, scene.storage_format(pair).defines());
+  const std::string options = fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}",
+                                          base_build_options(false), static_cast<int>(info(t).map),
+                                          ti.from == DepthFrom::fragment ? 1 : 0,
+                                          ti.greater ? 1 : 0, scene.storage_format(pair).defines());
   kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options), "mts_exact");
 }
 
@@ -49,15 +46,17 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
           const auto M = model_matrix_f64(scene_, p == 0 ? pr.z : pr.z + pr.s, done + f);
           double* dst = planes.data() + ((i * frames + f) * 2 + p) * 16;
           for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 3; ++r) dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
+            for (int r = 0; r < 3; ++r)
+              dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
           dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
         }
     }
-    cl::Buffer plane_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(double) * planes.size(),
-                         planes.data());
+    cl::Buffer plane_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                         sizeof(double) * planes.size(), planes.data());
     const size_t items = active.size() * frames * kh;
     cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    set_args(kernel_, plane_buf, kw, kh, static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
+    set_args(kernel_, plane_buf, kw, kh,
+             static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
              static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
              static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
              aspect * tan_half, tan_half, scene_.params.log_k, out, static_cast<cl_uint>(items));
@@ -65,7 +64,8 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
                                      cl::NDRange(kWorkGroup));
     std::vector<uint32_t> rows(items);
     rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     uint64_t after_decision = 0;  // work the -v breakdown counts for the emulated pipeline only
     fold_launch(rows, active, done, frames, kh, results, decided, after_decision);
     for (const size_t i : active) {

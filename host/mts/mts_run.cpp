@@ -15,9 +15,9 @@
 
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
-#include "host/runtime/kernel_variant.h"
 #include "host/mts/mts_exact.h"
 #include "host/output/row_json.h"
+#include "host/runtime/kernel_variant.h"
 
 namespace depthprec {
 
@@ -47,8 +47,9 @@ namespace {
 // (kernels/mts_exact.cl) and the arithmetic-limited MTS from the same binary32 pipeline storing
 // in float32, which holds every binary32 depth exactly (a float32 pair is its own). The factor
 // searches skip the stiffness probes: they report a number, not a stability check.
-void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, std::vector<MtsRow>& rows,
-                    std::map<std::string, double>& arithmetic_cache, const std::function<bool()>& stop) {
+void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                    std::vector<MtsRow>& rows, std::map<std::string, double>& arithmetic_cache,
+                    const std::function<bool()>& stop) {
   Scene plain = scene;
   plain.stiffness_probes = 0;
   std::vector<double> zs;
@@ -65,7 +66,8 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
     if (!arithmetic_cache.count(row_key(raw, z))) missing.push_back(z);
   if (!missing.empty()) {
     MtsEvaluator ev(rt, plain, raw);
-    for (const auto& r : search_pair(ev, plain, raw, missing, {}, stop)) arithmetic_cache[row_key(raw, r.z)] = r.mts;
+    for (const auto& r : search_pair(ev, plain, raw, missing, {}, stop))
+      arithmetic_cache[row_key(raw, r.z)] = r.mts;
   }
   for (size_t i = 0; i < rows.size(); ++i) {
     rows[i].storage_mts = storage[i].beyond_far ? INFINITY : storage[i].mts;
@@ -84,7 +86,8 @@ std::string computation_key(const Scene& scene, const EvalPair& pair, double z, 
   const KernelVariant v = mts_variant(scene, pair);
   const ProbeConstants pc = probe_constants(scene, pair, z);
   const auto packed = pc.packed();
-  std::string key = v.program + "|" + v.options + "|" + (attribute ? info(pair.technique).name : "") + "|";
+  std::string key =
+      v.program + "|" + v.options + "|" + (attribute ? info(pair.technique).name : "") + "|";
   key.append(reinterpret_cast<const char*>(packed.data()), sizeof(float) * packed.size());
   key.append(reinterpret_cast<const char*>(pc.P_full.data()), sizeof(double) * pc.P_full.size());
   key.append(reinterpret_cast<const char*>(&z), sizeof z);
@@ -114,21 +117,24 @@ std::vector<PairWork> plan_pairs(const Scene& scene, const RunControl& control) 
     for (size_t d = 0; d < nd; ++d) {
       const size_t k = p * nd + d;
       const double z = scene.distances[d];
-      if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) != control.shard_index) continue;
+      if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) != control.shard_index)
+        continue;
       if (control.done.count(row_key(pair, z))) continue;
       const std::string key = computation_key(scene, pair, z, control.attribute);
       const auto [it, first] = owner.emplace(key, p);
       if (first) {
         work[p].fresh.push_back(z);
       } else if (it->second == p) {
-        // A pair cannot wait for itself; scenes list each distance once (load_scene refuses repeats).
+        // A pair cannot wait for itself; scenes list each distance once (load_scene refuses
+        // repeats).
         throw Error(ExitCode::internal, fmt::format("{} computes z = {} twice", pair.label(), z));
       } else {
         work[p].shared.push_back(key);
         work[p].owners.insert(it->second);
       }
     }
-    if (!work[p].fresh.empty()) work[p].logs_variant = variants.insert(mts_variant(scene, pair).label).second;
+    if (!work[p].fresh.empty())
+      work[p].logs_variant = variants.insert(mts_variant(scene, pair).label).second;
   }
   return work;
 }
@@ -174,9 +180,11 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     const EvalPair& pair = scene.evaluate[p];
     MtsEvaluator ev(rt, scene, pair);
     if (work[p].logs_variant)
-      pair_log[p].push_back(fmt::format("kernel variant {}: {} {}", ev.variant().label, ev.variant().program,
-                                        ev.variant().options));
-    auto rows = search_pair(ev, scene, pair, zs, control.attribute ? std::function<void(const MtsRow&)>() : on_row, stop);
+      pair_log[p].push_back(fmt::format("kernel variant {}: {} {}", ev.variant().label,
+                                        ev.variant().program, ev.variant().options));
+    auto rows =
+        search_pair(ev, scene, pair, zs,
+                    control.attribute ? std::function<void(const MtsRow&)>() : on_row, stop);
     if (control.attribute) {
       // The arithmetic cache makes a row's attribution depend on which pairs ran before it:
       // attribution runs one job (RunControl::jobs), so that order is the scene's.
@@ -188,10 +196,12 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     pair_log[p].push_back(fmt::format(
         "{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
         "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
-        "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without rasterising {:.0f} %; "
+        "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without rasterising "
+        "{:.0f} %; "
         "rasterised rows with plane B's coverage taken from A's {:.0f} %",
-        pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(), ev.kernel_seconds(),
-        100 * w[0] / all, 100 * w[1] / all, 100 * ev.pairs_after_decision() / all, 100 * (w[2] + w[3]) / all,
+        pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(),
+        ev.kernel_seconds(), 100 * w[0] / all, 100 * w[1] / all,
+        100 * ev.pairs_after_decision() / all, 100 * (w[2] + w[3]) / all,
         100 * ev.pairs_decided_by_bounds() / all,
         100.0 * static_cast<double>(ev.rows_with_coverage_of_a()) /
             std::max<double>(1.0, static_cast<double>(ev.rows_rasterised()))));
@@ -199,7 +209,8 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     run.info.launches += ev.launches();
     run.info.evaluated_pairs += ev.fragment_pairs();
     run.info.kernel_seconds += ev.kernel_seconds();
-    for (const auto& r : rows) computed.emplace(computation_key(scene, pair, r.z, control.attribute), r);
+    for (const auto& r : rows)
+      computed.emplace(computation_key(scene, pair, r.z, control.attribute), r);
     pair_rows[p].insert(pair_rows[p].end(), rows.begin(), rows.end());
   };
 
@@ -223,7 +234,8 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
       while (!pair_finished.wait_for(lock, std::chrono::milliseconds(100), owners_done)) {
         if (control.stop && control.stop()) throw Error(ExitCode::interrupted, "interrupted");
       }
-      // An owner that did not finish its rows failed, and so has the run; otherwise every key is there.
+      // An owner that did not finish its rows failed, and so has the run; otherwise every key is
+      // there.
       if (failed) return;
       for (const std::string& key : work[p].shared) {
         MtsRow r = computed.at(key);
@@ -233,9 +245,10 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
       }
       pair_rows[p].insert(pair_rows[p].begin(), taken.begin(), taken.end());
       if (!taken.empty())
-        pair_log[p].insert(pair_log[p].begin(),
-                           fmt::format("{}: {} distances computed exactly as by an earlier pair, rows taken over",
-                                       pair.label(), taken.size()));
+        pair_log[p].insert(
+            pair_log[p].begin(),
+            fmt::format("{}: {} distances computed exactly as by an earlier pair, rows taken over",
+                        pair.label(), taken.size()));
     }
     for (const auto& r : taken) on_row(r);
   };
@@ -260,7 +273,8 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
   };
   // Pairs are taken in scene order, so a pair waits only for earlier ones, each finished or in
   // progress on another job: no cycle. The calling thread is one of the jobs.
-  const int jobs = control.attribute ? 1 : static_cast<int>(std::min<size_t>(std::max(1, control.jobs), np));
+  const int jobs =
+      control.attribute ? 1 : static_cast<int>(std::min<size_t>(std::max(1, control.jobs), np));
   std::vector<std::thread> helpers;
   for (int j = 1; j < jobs; ++j) helpers.emplace_back(job);
   job();

@@ -4,8 +4,8 @@
 #include <functional>
 #include <set>
 
-#include "host/runtime/opencl_runtime.h"
 #include "host/output/report.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
 
@@ -37,7 +37,8 @@ std::vector<std::string> scene_variants(const Scene& scene);
 // log: where verbose lines go (variants built, pairs evaluated); null for silence. The rows
 // returned are the ones this run computed, in scene order.
 MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
-                 const std::function<void(const std::string&)>& log = {}, const RunControl& control = {});
+                 const std::function<void(const std::string&)>& log = {},
+                 const RunControl& control = {});
 
 // Rows in scene order (pairs as listed, distances as listed).
 void sort_rows(const Scene& scene, std::vector<MtsRow>& rows);

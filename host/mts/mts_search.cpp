@@ -15,8 +15,13 @@ namespace {
 constexpr int kMaxProbes = 2200;
 }  // namespace
 
-Bisection::Bisection(double z, double rel_precision, double max_separation_factor, double coincide_below)
-    : z_(z), rel_(rel_precision), limit_(max_separation_factor * z), coincide_(coincide_below), next_(z) {}
+Bisection::Bisection(double z, double rel_precision, double max_separation_factor,
+                     double coincide_below)
+    : z_(z),
+      rel_(rel_precision),
+      limit_(max_separation_factor * z),
+      coincide_(coincide_below),
+      next_(z) {}
 
 void Bisection::record(Outcome o) {
   history_.emplace_back(next_, o);
@@ -26,7 +31,8 @@ void Bisection::record(Outcome o) {
   if (o == Outcome::clipped) clipped_ = true;
   if (o == Outcome::uncovered) uncovered_ = true;
   const bool not_accepted = o == Outcome::clipped || o == Outcome::uncovered;
-  const bool fights = o == Outcome::fight || o == Outcome::non_finite || (not_accepted && resolved());
+  const bool fights =
+      o == Outcome::fight || o == Outcome::non_finite || (not_accepted && resolved());
   if (doubling_) {
     if (fights) {
       lo_ = s;
@@ -35,8 +41,10 @@ void Bisection::record(Outcome o) {
       return;
     }
     doubling_ = false;
-    if (o == Outcome::clean) hi_ = s;
-    else ceil_ = s;  // clipped or uncovered: too far
+    if (o == Outcome::clean)
+      hi_ = s;
+    else
+      ceil_ = s;  // clipped or uncovered: too far
   } else if (fights) {
     if (s > hi_) non_monotone_ = true;
     lo_ = s;
@@ -51,7 +59,8 @@ void Bisection::record(Outcome o) {
 
 void Bisection::advance() {
   const double upper = resolved() ? hi_ : ceil_;
-  if ((upper - lo_) / upper <= rel_ || probes_ >= kMaxProbes || (!resolved() && upper < coincide_)) {
+  if ((upper - lo_) / upper <= rel_ || probes_ >= kMaxProbes ||
+      (!resolved() && upper < coincide_)) {
     done_ = true;
     return;
   }
@@ -78,8 +87,10 @@ std::string MtsRow::flags() const {
 void MtsRow::set_dominant(double rel_precision) {
   const double v = vertex_bound * (1 + 2 * rel_precision);
   // unresolvable factors are +inf and dominate
-  if (storage_mts <= v && arithmetic_mts <= v) dominant = "vertex";
-  else dominant = storage_mts >= arithmetic_mts ? "storage" : "arithmetic";
+  if (storage_mts <= v && arithmetic_mts <= v)
+    dominant = "vertex";
+  else
+    dominant = storage_mts >= arithmetic_mts ? "storage" : "arithmetic";
 }
 
 bool MtsRow::factor_above_mts(double rel_precision) const {
@@ -90,14 +101,22 @@ bool MtsRow::factor_above_mts(double rel_precision) const {
 
 const char* to_string(Verdict v) {
   switch (v) {
-    case Verdict::resolved: return "resolved";
-    case Verdict::unresolvable: return "unresolvable";
-    case Verdict::non_finite: return "non_finite";
-    case Verdict::clipped: return "clipped";
-    case Verdict::uncovered: return "uncovered";
-    case Verdict::below_vertex_bound: return "below vertex bound";
-    case Verdict::beyond_far_plane: return "beyond far plane";
-    case Verdict::nearer_than_near_plane: return "nearer than near plane";
+    case Verdict::resolved:
+      return "resolved";
+    case Verdict::unresolvable:
+      return "unresolvable";
+    case Verdict::non_finite:
+      return "non_finite";
+    case Verdict::clipped:
+      return "clipped";
+    case Verdict::uncovered:
+      return "uncovered";
+    case Verdict::below_vertex_bound:
+      return "below vertex bound";
+    case Verdict::beyond_far_plane:
+      return "beyond far plane";
+    case Verdict::nearer_than_near_plane:
+      return "nearer than near plane";
   }
   return "?";
 }
@@ -145,7 +164,8 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
     rows[i].pair = pair;
     rows[i].z = distances[i];
     rows[i].vertex_bound = vertex_bound(distances[i]);
-    searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor, rows[i].vertex_bound);
+    searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor,
+                          rows[i].vertex_bound);
     if (has_far_plane(pair.technique) && distances[i] > scene.far) {
       rows[i].beyond_far = true;  // plane A itself is clipped: nothing to search
       phase[i] = 2;
@@ -168,12 +188,14 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       row.clipped = !b.resolved() && b.saw_clipped();
       if (b.resolved()) {
         const double width = code_interval_width(
-            mapping_at(pair.technique, scene.near, scene.far, scene.params, row.z), scene.storage_format(pair), row.z);
+            mapping_at(pair.technique, scene.near, scene.far, scene.params, row.z),
+            scene.storage_format(pair), row.z);
         row.below_one_code = row.mts_seen < width * (1 - 2 * scene.rel_precision);
         if (row.below_one_code) row.code_width = width;
       }
       auto note = [&row](double s, Outcome o) {
-        if (o == Outcome::fight || o == Outcome::non_finite) row.fight_max = std::max(row.fight_max, s);
+        if (o == Outcome::fight || o == Outcome::non_finite)
+          row.fight_max = std::max(row.fight_max, s);
         if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
         if (o == Outcome::non_finite) row.non_finite = true;
       };
@@ -197,8 +219,8 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
         owner.push_back({i, false});
         probes.push_back({distances[i], searches[i].next()});
       } else if (phase[i] == 1) {
-        for (double s : stiffness_separations(searches[i].lo(), searches[i].hi(), scene.rel_precision,
-                                               scene.stiffness_probes)) {
+        for (double s : stiffness_separations(searches[i].lo(), searches[i].hi(),
+                                              scene.rel_precision, scene.stiffness_probes)) {
           owner.push_back({i, true});
           probes.push_back({distances[i], s});
         }
@@ -211,7 +233,8 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
     // a row never counts more launches than the run made.
     std::vector<uint64_t> round_launches(rows.size(), 0);
     for (size_t k = 0; k < probes.size(); ++k)
-      round_launches[owner[k].first] = std::max(round_launches[owner[k].first], results[k].launches);
+      round_launches[owner[k].first] =
+          std::max(round_launches[owner[k].first], results[k].launches);
     for (size_t i = 0; i < rows.size(); ++i) rows[i].launches += round_launches[i];
     for (size_t k = 0; k < probes.size(); ++k) {
       const size_t i = owner[k].first;
@@ -224,9 +247,12 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       row.uncovered |= r.any_uncovered;
       row.clipped_probes += r.any_clipped ? 1 : 0;
       // Nothing was compared at an uncovered pixel: such a probe is never clean.
-      const Outcome o = r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
-      if (owner[k].second) extra[i].emplace_back(probes[k].s, o);
-      else searches[i].record(o);
+      const Outcome o =
+          r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
+      if (owner[k].second)
+        extra[i].emplace_back(probes[k].s, o);
+      else
+        searches[i].record(o);
     }
     for (size_t i = 0; i < searches.size(); ++i) {
       if (phase[i] == 1) {

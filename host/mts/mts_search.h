@@ -1,7 +1,7 @@
-// The MTS search of docs/spec.md 5.2, driven by the host: per distance, start at s = z, double while it
-// fights (giving up past max_separation_factor * z), treat s = 0 as fighting, then bisect at the
-// midpoint until (hi - lo) / hi <= rel_precision. Exactly this probe sequence, so results compare
-// with any other implementation of the measurement.
+// The MTS search of docs/spec.md 5.2, driven by the host: per distance, start at s = z, double
+// while it fights (giving up past max_separation_factor * z), treat s = 0 as fighting, then bisect
+// at the midpoint until (hi - lo) / hi <= rel_precision. Exactly this probe sequence, so results
+// compare with any other implementation of the measurement.
 //
 // Clipped probes (a fragment of either plane left the clip volume) and uncovered ones (a kernel
 // pixel that a plane does not cover, so nothing was compared there) are never accepted as MTS:
@@ -85,12 +85,13 @@ struct MtsRow {
   uint64_t launches = 0;
   double seconds = 0;         // attributed wall time of the launches (by fragment pairs)
   double kernel_seconds = 0;  // attributed device time of the launches (profiling events)
-  int clipped_probes = 0;  // probes in which some fragment left the clip volume
+  int clipped_probes = 0;     // probes in which some fragment left the clip volume
   // clipped: the row has no MTS because every separation that did not fight was clipped.
   bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,
        uncovered = false;
   bool beyond_far = false;  // z past the far plane of a technique that has one: not searched
-  bool before_near = false;  // z nearer than the near plane of a technique that clips there: not searched
+  bool before_near =
+      false;  // z nearer than the near plane of a technique that clips there: not searched
   // A resolved MTS (as seen, mts_seen) below the width of the code interval holding z (less the
   // bisection's precision twice over): the planes' depths in the kernel did not span one code,
   // so where z falls between two codes decided the answer, and a z nearby can need up to

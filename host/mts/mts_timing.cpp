@@ -13,8 +13,8 @@ const char* to_string(TimingRegime r) {
   return r == TimingRegime::far ? "far" : r == TimingRegime::near ? "near" : "at_mts";
 }
 
-Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime,
-                           int repeats) {
+Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           TimingRegime regime, int repeats) {
   std::vector<Probe> probes;
   for (int i = 1; i <= 16; ++i) {
     const double z = std::ldexp(1.0, i);

@@ -28,8 +28,8 @@ struct Throughput {
 
 // repeats > 1: the timed batch runs that many times and the fastest run counts (this VM's
 // timings vary by 10-20 % from run to run; the minimum is the stable figure).
-Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, TimingRegime regime,
-                           int repeats = 1);
+Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           TimingRegime regime, int repeats = 1);
 
 // The scalar host reference (host/mts/reference_pipeline.h) on the same pair: both planes' stored
 // codes at every kernel pixel of `frames` frames of one probe (z = 2^8, s = 16 vertex bounds),

@@ -31,7 +31,6 @@ struct Plane {
   bool non_finite = false;
 };
 
-
 Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, const Mat4f& M) {
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const bool gl = pair.depth_range == DepthRange::gl;
@@ -65,7 +64,8 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       vx.y = ndc[1] * hh + hh;
       vx.d = gl ? ndc[2] * 0.5f + 0.5f : ndc[2];
       vx.q = inv_w;
-      if (!std::isfinite(vx.x) || !std::isfinite(vx.y) || !std::isfinite(vx.q)) plane.non_finite = true;
+      if (!std::isfinite(vx.x) || !std::isfinite(vx.y) || !std::isfinite(vx.q))
+        plane.non_finite = true;
       if (ti.from != DepthFrom::fragment && !std::isfinite(vx.d)) plane.non_finite = true;
     }
   }
@@ -123,7 +123,8 @@ class PlaneRow {
  public:
   PlaneRow(const Plane& p, float py) : plane_(p) {
     for (size_t t = 0; t < p.tris.size(); ++t)
-      if (p.tris[t].valid && p.tris[t].ymin <= py && py <= p.tris[t].ymax) cand_.push_back(static_cast<int>(t));
+      if (p.tris[t].valid && p.tris[t].ymin <= py && py <= p.tris[t].ymax)
+        cand_.push_back(static_cast<int>(t));
   }
   // The lowest-index triangle whose edge tests pass (candidates are in index order).
   int find(float px, float py) const {
@@ -148,9 +149,15 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
     if (!std::isfinite(w)) return non_finite;
     if (w < pc.near || w > pc.far) return clipped;
     switch (ti.fragment) {
-      case FragmentDepth::linear: d = (w - pc.near) / pc.range; break;
-      case FragmentDepth::w_buffer: d = w / pc.far; break;
-      default: d = std::log(pc.log_k * w + 1.0f) / pc.log_L; break;
+      case FragmentDepth::linear:
+        d = (w - pc.near) / pc.range;
+        break;
+      case FragmentDepth::w_buffer:
+        d = w / pc.far;
+        break;
+      default:
+        d = std::log(pc.log_k * w + 1.0f) / pc.log_L;
+        break;
     }
     if (std::isnan(d)) return non_finite;
     d = std::fmin(std::fmax(d, 0.0f), 1.0f);

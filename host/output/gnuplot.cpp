@@ -44,7 +44,8 @@ void run_gnuplot(const std::string& script, const std::string& output) {
   std::remove(path);
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127)
     throw RuntimeError("plot: gnuplot did not run: install gnuplot-nox (scripts/setup.sh does)");
-  if (WEXITSTATUS(status) != 0) throw OutputError(fmt::format("plot: gnuplot failed writing '{}'", output));
+  if (WEXITSTATUS(status) != 0)
+    throw OutputError(fmt::format("plot: gnuplot failed writing '{}'", output));
 }
 
 }  // namespace depthprec

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "host/base/errors.h"
+#include "host/base/version.h"
 #include "host/output/row_json.h"
 #include "host/output/text_table.h"
-#include "host/base/version.h"
 
 namespace depthprec {
 
@@ -42,7 +42,8 @@ json header(const Scene& scene, const RunInfo& run) {
             {"kernel_variants", run.variants},
             {"fragment_pairs", run.fragment_pairs},
             {"kind", run.kind},
-            {"separation_reported", "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)"}};
+            {"separation_reported",
+             "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)"}};
   if (!run.shard.empty()) h["shard"] = run.shard;
   if (run.timing) {  // measured, and specific to this process (a resumed run does less)
     h["wall_seconds"] = run.wall_seconds;
@@ -52,30 +53,37 @@ json header(const Scene& scene, const RunInfo& run) {
   return h;
 }
 
-
 // A table cell: the MTS, or the verdict that replaces it (unresolvable stays "inf", Gilg's ∞).
 std::string table_cell(const MtsRow& r, bool full) {
   switch (r.verdict()) {
     case Verdict::resolved:
-    case Verdict::unresolvable: return full ? exact(r.mts) : human(r.mts);
-    case Verdict::non_finite: return "non-finite";
-    case Verdict::clipped: return "clipped";
-    case Verdict::uncovered: return "uncovered";
-    case Verdict::below_vertex_bound: return "<vb";
-    case Verdict::beyond_far_plane: return "beyond far";
-    case Verdict::nearer_than_near_plane: return "before near";
+    case Verdict::unresolvable:
+      return full ? exact(r.mts) : human(r.mts);
+    case Verdict::non_finite:
+      return "non-finite";
+    case Verdict::clipped:
+      return "clipped";
+    case Verdict::uncovered:
+      return "uncovered";
+    case Verdict::below_vertex_bound:
+      return "<vb";
+    case Verdict::beyond_far_plane:
+      return "beyond far";
+    case Verdict::nearer_than_near_plane:
+      return "before near";
   }
   return "?";
 }
 
 std::string footer(const RunInfo& run) {
-  std::string s = fmt::format("fragment pairs evaluated: {}, kernel variants: {}", run.fragment_pairs,
-                              run.variants.size());
+  std::string s = fmt::format("fragment pairs evaluated: {}, kernel variants: {}",
+                              run.fragment_pairs, run.variants.size());
   if (run.timing && run.wall_seconds > 0)
-    s += fmt::format(", kernel launches: {}, wall time: {:.2f} s (kernels {:.2f} s), {} evaluated by this run, "
-                     "{:.3g} fragment pairs/s",
-                     run.launches, run.wall_seconds, run.kernel_seconds, run.evaluated_pairs,
-                     static_cast<double>(run.evaluated_pairs) / run.wall_seconds);
+    s += fmt::format(
+        ", kernel launches: {}, wall time: {:.2f} s (kernels {:.2f} s), {} evaluated by this run, "
+        "{:.3g} fragment pairs/s",
+        run.launches, run.wall_seconds, run.kernel_seconds, run.evaluated_pairs,
+        static_cast<double>(run.evaluated_pairs) / run.wall_seconds);
   return s;
 }
 
@@ -91,10 +99,22 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   }
   const bool full = format == "csv";
   auto num = [full](double v) { return full ? exact(v) : human(v); };
-  std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true},
-                              {"z"}, {"mts"}, {"lo"}, {"hi"}, {"mts_seen"}, {"vertex_bound"},
-                              {"mts/vb"}, {"mts_upper"}, {"verdict", true}, {"probes"}, {"frames"},
-                              {"fragment_pairs"}, {"launches"}};
+  std::vector<Column> cols = {{"technique", true},
+                              {"format", true},
+                              {"depth_range", true},
+                              {"z"},
+                              {"mts"},
+                              {"lo"},
+                              {"hi"},
+                              {"mts_seen"},
+                              {"vertex_bound"},
+                              {"mts/vb"},
+                              {"mts_upper"},
+                              {"verdict", true},
+                              {"probes"},
+                              {"frames"},
+                              {"fragment_pairs"},
+                              {"launches"}};
   bool attributed = false;
   for (const auto& r : rows) attributed |= r.attributed();
   if (attributed)
@@ -107,13 +127,21 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   cols.push_back({"flags", true});
   std::vector<std::vector<std::string>> cells;
   for (const auto& r : rows) {
-    std::vector<std::string> c = {info(r.pair.technique).name, r.pair.format,
-                                  to_string(r.pair.depth_range), num(r.z), num(r.mts), num(r.lo),
-                                  num(r.hi), num(r.mts_seen), num(r.vertex_bound),
+    std::vector<std::string> c = {info(r.pair.technique).name,
+                                  r.pair.format,
+                                  to_string(r.pair.depth_range),
+                                  num(r.z),
+                                  num(r.mts),
+                                  num(r.lo),
+                                  num(r.hi),
+                                  num(r.mts_seen),
+                                  num(r.vertex_bound),
                                   num(r.mts / r.vertex_bound),
                                   r.non_monotone && r.fight_max > r.mts ? num(r.fight_max) : "-",
-                                  to_string(r.verdict()), std::to_string(r.probes),
-                                  std::to_string(r.frames), std::to_string(r.fragment_pairs),
+                                  to_string(r.verdict()),
+                                  std::to_string(r.probes),
+                                  std::to_string(r.frames),
+                                  std::to_string(r.fragment_pairs),
                                   std::to_string(r.launches)};
     if (attributed) {
       c.push_back(num(r.storage_mts));
@@ -152,7 +180,8 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   std::vector<std::vector<std::string>> cells;
   bool any_mark = false, any_below_code = false;
   for (double z : zs) {
-    std::vector<std::string> c = {full ? exact(z) : human(z), full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
+    std::vector<std::string> c = {full ? exact(z) : human(z),
+                                  full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
     for (const auto& l : labels) {
       const auto it = at.find({z, l});
       if (it == at.end()) {
@@ -161,7 +190,8 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
       }
       const MtsRow& r = *it->second;
       std::string v = table_cell(r, full);
-      if (r.attributed() && !full) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
+      if (r.attributed() && !full)
+        v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
       if (!full && r.below_one_code) {
         v += "~";
         any_below_code = true;
@@ -178,31 +208,41 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   const bool md = format == "markdown";
   std::string out;
   if (md) {
-    out += fmt::format("MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
-                       "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
-                       "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
-                       scene.name, human(scene.near), human(scene.far), scene.kernel_w,
-                       scene.kernel_h, scene.frames, human(scene.rel_precision));
+    out += fmt::format(
+        "MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
+        "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
+        "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
+        scene.name, human(scene.near), human(scene.far), scene.kernel_w, scene.kernel_h,
+        scene.frames, human(scene.rel_precision));
   }
   out += grid(cols, cells, md);
   if (any_mark) {
     out += md ? "\n" : "";
-    out += "* flagged (non_monotone, uncovered, or a probe was non-finite or clipped); see --format-out json\n";
+    out +=
+        "* flagged (non_monotone, uncovered, or a probe was non-finite or clipped); see "
+        "--format-out json\n";
   }
   if (any_below_code) {
     out += md ? "\n" : "";
-    out += "~ below one storage code at its z (flag below_one_code): the planes' depths in the kernel did not "
-           "span a code, so where z falls between codes decided it; a z nearby can need up to one code "
-           "(code_width in --format-out json)\n";
+    out +=
+        "~ below one storage code at its z (flag below_one_code): the planes' depths in the kernel "
+        "did not "
+        "span a code, so where z falls between codes decided it; a z nearby can need up to one "
+        "code "
+        "(code_width in --format-out json)\n";
   }
   bool attributed = false;
   for (const auto& r : rows) attributed |= r.attributed();
   if (attributed) {
     out += md ? "\n" : "\n";
-    out += "S / A / V: the dominant factor -- storage (the MTS of the binary64 pipeline stored in the format), "
-           "arithmetic (the binary32 pipeline without storage quantisation) or vertex (the vertex bound). "
-           "The factors:\n\n";
-    std::vector<Column> acols = {{"pair", true}, {"z"}, {"mts"}, {"storage"}, {"arithmetic"}, {"vertex_bound"},
+    out +=
+        "S / A / V: the dominant factor -- storage (the MTS of the binary64 pipeline stored in the "
+        "format), "
+        "arithmetic (the binary32 pipeline without storage quantisation) or vertex (the vertex "
+        "bound). "
+        "The factors:\n\n";
+    std::vector<Column> acols = {{"pair", true},     {"z"},          {"mts"},
+                                 {"storage"},        {"arithmetic"}, {"vertex_bound"},
                                  {"dominant", true}, {"note", true}};
     std::vector<std::vector<std::string>> acells;
     for (const auto& r : rows) {
@@ -221,7 +261,8 @@ void check_writable(const std::string& path) {
   if (path.empty()) return;
   const std::string tmp = path + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
-  if (!f) throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+  if (!f)
+    throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
   std::fclose(f);
   std::remove(tmp.c_str());
 }
@@ -234,7 +275,8 @@ void write_output(const std::string& path, const std::string& text) {
   }
   const std::string tmp = path + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
-  if (!f) throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+  if (!f)
+    throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
   if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), path.c_str()) != 0)
     throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));

@@ -1,13 +1,13 @@
-// Renders MTS results: the long form (one line per pair and distance, every field of docs/spec.md 5.4)
-// and the batch precision table (one row per distance, one column per pair), as aligned text,
-// CSV, JSON (with a header object) or Markdown.
+// Renders MTS results: the long form (one line per pair and distance, every field of
+// docs/spec.md 5.4) and the batch precision table (one row per distance, one column per pair), as
+// aligned text, CSV, JSON (with a header object) or Markdown.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "host/mts/mts_search.h"
 #include "host/model/scene.h"
+#include "host/mts/mts_search.h"
 
 namespace depthprec {
 
@@ -15,12 +15,13 @@ struct RunInfo {
   std::string device;
   std::vector<std::string> variants;  // kernel variants built, as labels
   uint64_t fragment_pairs = 0;  // the rows' work: what the measurement takes, however it was run
-  uint64_t evaluated_pairs = 0;  // what this process's kernels evaluated (rows taken over from an
-                                 // identical computation, or resumed, cost nothing): the rate's numerator
+  uint64_t evaluated_pairs =
+      0;  // what this process's kernels evaluated (rows taken over from an
+          // identical computation, or resumed, cost nothing): the rate's numerator
   uint64_t launches = 0;
   double wall_seconds = 0;
   double kernel_seconds = 0;
-  bool timing = true;  // false: leave every measured time out (--no-timing)
+  bool timing = true;        // false: leave every measured time out (--no-timing)
   std::string kind = "mts";  // "mts" (one line per row) or "table" (wide): what merge re-renders
   std::string shard;         // "i/N" when this output is one shard of a batch
 };

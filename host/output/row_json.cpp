@@ -14,7 +14,9 @@ using nlohmann::json;
 
 namespace {
 
-json number(double v) { return json_number(v); }
+json number(double v) {
+  return json_number(v);
+}
 
 double read_number(const json& j, const char* key) {
   if (!j.contains(key)) throw InputError(fmt::format("row is missing '{}'", key));
@@ -23,7 +25,9 @@ double read_number(const json& j, const char* key) {
 
 }  // namespace
 
-std::string row_key(const EvalPair& pair, double z) { return fmt::format("{}@{:.17g}", pair.label(), z); }
+std::string row_key(const EvalPair& pair, double z) {
+  return fmt::format("{}@{:.17g}", pair.label(), z);
+}
 
 json row_to_json(const MtsRow& r, bool timing) {
   json j = {{"technique", info(r.pair.technique).name},
@@ -73,15 +77,24 @@ MtsRow row_from_json(const json& j) {
     std::stringstream ss(flags);
     std::string f;
     while (std::getline(ss, f, ',')) {
-      if (f == "non_finite") r.non_finite = true;
-      else if (f == "clipped") r.clipped = true;
-      else if (f == "unresolvable") r.unresolvable = true;
-      else if (f == "non_monotone") r.non_monotone = true;
-      else if (f == "uncovered") r.uncovered = true;
-      else if (f == "beyond_far_plane") r.beyond_far = true;
-      else if (f == "nearer_than_near_plane") r.before_near = true;
-      else if (f == "below_one_code") r.below_one_code = true;
-      else throw InputError(fmt::format("unknown row flag '{}'", f));
+      if (f == "non_finite")
+        r.non_finite = true;
+      else if (f == "clipped")
+        r.clipped = true;
+      else if (f == "unresolvable")
+        r.unresolvable = true;
+      else if (f == "non_monotone")
+        r.non_monotone = true;
+      else if (f == "uncovered")
+        r.uncovered = true;
+      else if (f == "beyond_far_plane")
+        r.beyond_far = true;
+      else if (f == "nearer_than_near_plane")
+        r.before_near = true;
+      else if (f == "below_one_code")
+        r.below_one_code = true;
+      else
+        throw InputError(fmt::format("unknown row flag '{}'", f));
     }
   } catch (const json::exception& e) {
     throw InputError(fmt::format("malformed row {}: {}", j.dump(), e.what()));

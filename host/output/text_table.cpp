@@ -7,8 +7,7 @@
 namespace depthprec {
 
 // Aligned text or Markdown from a header and string cells.
-std::string grid(const std::vector<Column>& cols, const Cells& cells,
-                 bool markdown) {
+std::string grid(const std::vector<Column>& cols, const Cells& cells, bool markdown) {
   std::vector<size_t> w(cols.size());
   for (size_t c = 0; c < cols.size(); ++c) {
     w[c] = cols[c].name.size();
@@ -17,7 +16,8 @@ std::string grid(const std::vector<Column>& cols, const Cells& cells,
   auto line = [&](const std::vector<std::string>& v) {
     std::string s = markdown ? "|" : "";
     for (size_t c = 0; c < cols.size(); ++c) {
-      const std::string cell = cols[c].left ? fmt::format("{:<{}}", v[c], w[c]) : fmt::format("{:>{}}", v[c], w[c]);
+      const std::string cell =
+          cols[c].left ? fmt::format("{:<{}}", v[c], w[c]) : fmt::format("{:>{}}", v[c], w[c]);
       s += markdown ? " " + cell + " |" : (c ? "  " : "") + cell;
     }
     while (!markdown && !s.empty() && s.back() == ' ') s.pop_back();
@@ -29,7 +29,8 @@ std::string grid(const std::vector<Column>& cols, const Cells& cells,
   if (markdown) {
     std::string sep = "|";
     for (size_t c = 0; c < cols.size(); ++c)
-      sep += cols[c].left ? " :" + std::string(w[c] - 1, '-') + " |" : " " + std::string(w[c] - 1, '-') + ": |";
+      sep += cols[c].left ? " :" + std::string(w[c] - 1, '-') + " |"
+                          : " " + std::string(w[c] - 1, '-') + ": |";
     out += sep + "\n";
   }
   for (const auto& row : cells) out += line(row);
@@ -50,7 +51,8 @@ std::string csv(const std::vector<Column>& cols, const Cells& cells) {
   return out;
 }
 
-std::string render_cells(const std::vector<Column>& cols, const Cells& cells, const std::string& format) {
+std::string render_cells(const std::vector<Column>& cols, const Cells& cells,
+                         const std::string& format) {
   if (format == "csv") return csv(cols, cells);
   return grid(cols, cells, format == "markdown");
 }

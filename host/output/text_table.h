@@ -17,6 +17,7 @@ using Cells = std::vector<std::vector<std::string>>;
 std::string grid(const std::vector<Column>& cols, const Cells& cells, bool markdown);
 std::string csv(const std::vector<Column>& cols, const Cells& cells);
 // "text", "markdown" or "csv".
-std::string render_cells(const std::vector<Column>& cols, const Cells& cells, const std::string& format);
+std::string render_cells(const std::vector<Column>& cols, const Cells& cells,
+                         const std::string& format);
 
 }  // namespace depthprec

@@ -7,9 +7,9 @@ namespace depthprec {
 namespace {
 
 cl::Kernel encode_kernel(OpenClRuntime& rt, const StorageFormat& f) {
-  const auto program = rt.program(
-      "kernels/encode.cl",
-      base_build_options(f.denormals() == Denormals::flush) + " " + f.defines());
+  const auto program =
+      rt.program("kernels/encode.cl",
+                 base_build_options(f.denormals() == Denormals::flush) + " " + f.defines());
   return cl::Kernel(program, "encode_range");
 }
 
@@ -22,8 +22,8 @@ uint64_t device_encode_range(OpenClRuntime& rt, const StorageFormat& f, uint32_t
   auto kernel = encode_kernel(rt, f);
   const size_t local = 16;
   const size_t items = ((count + 15u) / 16u + local - 1) / local * local;
-  cl::Buffer codes(rt.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR,
-                   sizeof(uint32_t) * count, out.data());
+  cl::Buffer codes(rt.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, sizeof(uint32_t) * count,
+                   out.data());
   std::vector<uint32_t> differ(items);
   cl::Buffer differ_buf(rt.context(), CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR,
                         sizeof(uint32_t) * items, differ.data());
@@ -36,7 +36,8 @@ uint64_t device_encode_range(OpenClRuntime& rt, const StorageFormat& f, uint32_t
   void* p = rt.queue().enqueueMapBuffer(codes, CL_TRUE, CL_MAP_READ, 0, sizeof(uint32_t) * count);
   if (p != out.data()) std::memcpy(out.data(), p, sizeof(uint32_t) * count);
   rt.queue().enqueueUnmapMemObject(codes, p);
-  void* q = rt.queue().enqueueMapBuffer(differ_buf, CL_TRUE, CL_MAP_READ, 0, sizeof(uint32_t) * items);
+  void* q =
+      rt.queue().enqueueMapBuffer(differ_buf, CL_TRUE, CL_MAP_READ, 0, sizeof(uint32_t) * items);
   if (q != differ.data()) std::memcpy(differ.data(), q, sizeof(uint32_t) * items);
   rt.queue().enqueueUnmapMemObject(differ_buf, q);
   rt.queue().finish();

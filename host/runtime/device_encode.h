@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "host/runtime/opencl_runtime.h"
 #include "host/model/storage_format.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
 

@@ -4,8 +4,8 @@
 #include <set>
 #include <sstream>
 
-#include "host/runtime/embedded_sources.h"
 #include "host/base/errors.h"
+#include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
 
@@ -20,7 +20,8 @@ void expand_into(const std::string& path, std::set<std::string>& seen, std::stri
   // An include may end in a comment; any other #include left would reach the OpenCL compiler,
   // which resolves it against the working directory, if at all: refused.
   static const std::regex include_line(R"re(^\s*#\s*include\s+"([^"]+)"\s*(/\*.*\*/|//.*)?\s*$)re");
-  static const std::regex any_include(R"re(^\s*#\s*include\s*".*)re");  // <...> only in host-only branches
+  static const std::regex any_include(
+      R"re(^\s*#\s*include\s*".*)re");  // <...> only in host-only branches
   std::istringstream in(it->second);
   std::string line;
   int number = 0;
@@ -31,8 +32,8 @@ void expand_into(const std::string& path, std::set<std::string>& seen, std::stri
       expand_into(m[1], seen, out);
       out += fmt::format("#line {} \"{}\"\n", number + 1, path);
     } else if (std::regex_match(line, any_include)) {
-      throw RuntimeError(fmt::format("{}:{}: only #include \"embedded/path\" is allowed in kernel sources", path,
-                                     number));
+      throw RuntimeError(fmt::format(
+          "{}:{}: only #include \"embedded/path\" is allowed in kernel sources", path, number));
     } else {
       out += line;
       out += '\n';

@@ -6,8 +6,8 @@
 #include <cctype>
 #include <cstdlib>
 
-#include "host/runtime/embedded_sources.h"
 #include "host/base/errors.h"
+#include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
 
@@ -77,8 +77,9 @@ std::vector<Candidate> enumerate_devices() {
       continue;
     }
     for (size_t di = 0; di < devices.size(); ++di)
-      all.push_back({platforms[pi], devices[di],
-                     describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di))});
+      all.push_back(
+          {platforms[pi], devices[di],
+           describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di))});
   }
   return all;
 }
@@ -137,13 +138,14 @@ OpenClRuntime::OpenClRuntime(const std::string& selector_arg) {
     context_ = cl::Context(device_);
     (void)queue();  // the constructing thread's queue: a device that cannot make one fails here
   } catch (const cl::Error& e) {
-    throw RuntimeError(fmt::format("cannot open OpenCL device {}: {} ({})", description(), e.what(),
-                                   e.err()));
+    throw RuntimeError(
+        fmt::format("cannot open OpenCL device {}: {} ({})", description(), e.what(), e.err()));
   }
 }
 
 std::string OpenClRuntime::description() const {
-  return fmt::format("{} / {} ({})", info_.platform_name, info_.device_name, info_.opencl_c_version);
+  return fmt::format("{} / {} ({})", info_.platform_name, info_.device_name,
+                     info_.opencl_c_version);
 }
 
 cl::CommandQueue& OpenClRuntime::queue() {
@@ -151,7 +153,10 @@ cl::CommandQueue& OpenClRuntime::queue() {
   auto it = queues_.find(std::this_thread::get_id());
   // Profiling on: kernel time per launch is reported next to wall time.
   if (it == queues_.end())
-    it = queues_.emplace(std::this_thread::get_id(), cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE)).first;
+    it = queues_
+             .emplace(std::this_thread::get_id(),
+                      cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE))
+             .first;
   return it->second;
 }
 
@@ -177,9 +182,10 @@ cl::Program OpenClRuntime::program(const std::string& path, const std::string& o
     } catch (const cl::Error&) {
       log = "(no build log)";
     }
-    throw RuntimeError(fmt::format("building OpenCL program {} failed ({}) on {}\n  options: {}\n"
-                                   "  build log:\n{}",
-                                   path, e.err(), description(), options, log));
+    throw RuntimeError(
+        fmt::format("building OpenCL program {} failed ({}) on {}\n  options: {}\n"
+                    "  build log:\n{}",
+                    path, e.err(), description(), options, log));
   }
   cache_.emplace(key, program);
   return program;

@@ -70,7 +70,9 @@ class OpenClRuntime {
 // and letting it choose per launch (a new size for every batch shape) recompiles again and again.
 constexpr size_t kWorkGroup = 16;
 // n rounded up to a whole number of work-groups.
-inline size_t padded_size(size_t n) { return (n + kWorkGroup - 1) / kWorkGroup * kWorkGroup; }
+inline size_t padded_size(size_t n) {
+  return (n + kWorkGroup - 1) / kWorkGroup * kWorkGroup;
+}
 
 // Options every depthprec program is built with: OpenCL C 1.2, IEEE division (docs/spec.md's GPU
 // divides correctly rounded), denormals kept unless flush is asked for.

@@ -18,8 +18,8 @@ static inline int4 pixel_box(__global const float* R, int r0, int r1) {
   return (int4)(box.s0, box.s1, max(box.s2, r0), min(box.s3, r1 - 1));
 }
 
-static inline code_bounds_t plane_code_bounds(__global const float* T, __global const float* P, float ox,
-                                              float oy, int W, int r0, int r1) {
+static inline code_bounds_t plane_code_bounds(__global const float* T, __global const float* P,
+                                              float ox, float oy, int W, int r0, int r1) {
   code_bounds_t b;
   b.lo = 0xffffffffUL;
   b.hi = 0UL;
@@ -44,7 +44,11 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
     }
     if (n == 16 || (t == NT && n > 0)) {
       for (int k = n; k < 16; ++k) { /* pad with the first corner */
-        c0[k] = c0[0]; sl[k] = sl[0]; x0[k] = x0[0]; rt[k] = rt[0]; px[k] = px[0];
+        c0[k] = c0[0];
+        sl[k] = sl[0];
+        x0[k] = x0[0];
+        rt[k] = rt[0];
+        px[k] = px[0];
       }
       row_plane16_t rp;
       rp.c0 = vload16(0, c0);
@@ -112,16 +116,18 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 #if GAP_CERT
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 // The reference plane's exact value R at (px, py), binary64 scalars or vectors alike.
-#define REF_PLANE_AT(ref, px, py)                                                     \
-  (((double)(ref)[G_C0] + (double)(ref)[G_DX] * ((px) - (double)(ref)[T_X0])) +        \
+#define REF_PLANE_AT(ref, px, py)                                               \
+  (((double)(ref)[G_C0] + (double)(ref)[G_DX] * ((px) - (double)(ref)[T_X0])) + \
    (double)(ref)[G_DY] * ((py) - (double)(ref)[T_Y0]))
 
 // L - R, and E, of 16 corners: triangle planes in lanes (c0, s, x0, t, y0 of each) against the
 // reference plane ref (same fields).
-static inline void plane_minus_ref16(const float* f, __global const float* ref, double16 px, double16 py,
-                                     double16* l, double16* e) {
-  const double16 sx = convert_double16(vload16(0, f + 16)) * (px - convert_double16(vload16(0, f + 32)));
-  const double16 ty = convert_double16(vload16(0, f + 48)) * (py - convert_double16(vload16(0, f + 64)));
+static inline void plane_minus_ref16(const float* f, __global const float* ref, double16 px,
+                                     double16 py, double16* l, double16* e) {
+  const double16 sx =
+      convert_double16(vload16(0, f + 16)) * (px - convert_double16(vload16(0, f + 32)));
+  const double16 ty =
+      convert_double16(vload16(0, f + 48)) * (py - convert_double16(vload16(0, f + 64)));
   const double16 c0 = convert_double16(vload16(0, f));
   *l = ((c0 + sx) + ty) - REF_PLANE_AT(ref, px, py);
   *e = (4.01 * 0x1.0p-24) * ((fabs(c0) + fabs(sx)) + fabs(ty)) + 0x1.0p-140;
@@ -129,8 +135,8 @@ static inline void plane_minus_ref16(const float* f, __global const float* ref, 
 
 // lo (smallest L - E - R) and hi (largest L + E - R) of plane T over rows [r0, r1); NaN when any
 // corner is not finite.
-static inline double2 plane_gap_range(__global const float* T, __global const float* ref, float ox, float oy,
-                                      int W, int r0, int r1) {
+static inline double2 plane_gap_range(__global const float* T, __global const float* ref, float ox,
+                                      float oy, int W, int r0, int r1) {
   double lo = INFINITY, hi = -INFINITY;
   int bad = 0;
   float f[80], px[16], py[16];
@@ -158,7 +164,8 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
         py[k] = py[0];
       }
       double16 l, e;
-      plane_minus_ref16(f, ref, convert_double16(vload16(0, px)), convert_double16(vload16(0, py)), &l, &e);
+      plane_minus_ref16(f, ref, convert_double16(vload16(0, px)), convert_double16(vload16(0, py)),
+                        &l, &e);
       bad |= !all(isfinite(l) && isfinite(e));
       const double16 a = l - e, b = l + e;
       const double8 a8 = fmin(a.lo, a.hi), b8 = fmax(b.lo, b.hi);
@@ -179,7 +186,8 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
 //   linear   d = fl(fl(w - n) / range): 2.001 u h + 1.001 u w / range
 //   w_buffer d = fl(w / far):           2.001 u h
 //   log      d = fl(log(fl(fl(k w) + 1)) / L): x = k w + 1 within 3.0001 u of ln x after the log,
-//            the log itself within 3 ulp (the bound LOG_CODE_SLACK assumes), so 7.02 u h + 3.001 u / L
+//            the log itself within 3 ulp (the bound LOG_CODE_SLACK assumes), so 7.02 u h + 3.001 u
+//            / L
 static inline double frag_h(__global const float* P, double q) {
 #if FRAG_DEPTH == 1
   return (1.0 / q - (double)P[C_NEAR]) / (double)P[C_RANGE];
@@ -206,8 +214,8 @@ static inline double frag_err(__global const float* P, double h_max, double w_ma
 // R = r: q_A >= r + lo_A, q_B <= r + hi_B, so (h decreasing) d_B - d_A >= h(r + hi_B) - h(r + lo_A)
 // - 2 err, and for hi_B < lo_A that difference of a convex h falls with r: its least is at the
 // band's largest R. Clamping d to [0, 1] keeps B's code above A's while A's d stays below 1 - step.
-static inline int frag_gap_clear(__global const float* P, __global const float* ref, double2 a, double2 b,
-                                 float ox, float oy, int W, int r0, int r1) {
+static inline int frag_gap_clear(__global const float* P, __global const float* ref, double2 a,
+                                 double2 b, float ox, float oy, int W, int r0, int r1) {
   double r_min = INFINITY, r_max = -INFINITY;
   for (int q = 0; q < 4; ++q) {
     const double px = (double)(ox + (float)((q & 1) ? W - 1 : 0) + 0.5f);
@@ -227,11 +235,14 @@ static inline int frag_gap_clear(__global const float* P, __global const float* 
 
 // Per band of cached plane A: its code bounds lo, hi, bad, and the range of its gap certificate
 // (plane_gap_range against its own triangle 0; NaN where not computed). Global id:
-// plane * bands + band, planes from first_plane; the probe constants of plane p are those of p / per_probe.
-__kernel void mts_a_bands(__global const float* restrict probes, __global const float* restrict tris,
-                          __global const uint* restrict vflags, const uint first_plane, const uint per_probe,
-                          const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
-                          const uint bands, const uint band_rows, __global uint* restrict out, const uint items) {
+// plane * bands + band, planes from first_plane; the probe constants of plane p are those of p /
+// per_probe.
+__kernel void mts_a_bands(__global const float* restrict probes,
+                          __global const float* restrict tris, __global const uint* restrict vflags,
+                          const uint first_plane, const uint per_probe, const uint kernel_w,
+                          const uint kernel_h, const float origin_x, const float origin_y,
+                          const uint bands, const uint band_rows, __global uint* restrict out,
+                          const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint plane = first_plane + id / bands, band = id % bands;
@@ -242,8 +253,8 @@ __kernel void mts_a_bands(__global const float* restrict probes, __global const 
   if (!band_covered(vflags[plane], band)) return;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
   __global const float* T = tris + (size_t)plane * PLANE_STRIDE;
-  const code_bounds_t a = plane_code_bounds(T, probes + (plane / per_probe) * PROBE_STRIDE, origin_x, origin_y,
-                                            (int)kernel_w, r0, r1);
+  const code_bounds_t a = plane_code_bounds(T, probes + (plane / per_probe) * PROBE_STRIDE,
+                                            origin_x, origin_y, (int)kernel_w, r0, r1);
   o[0] = (uint)a.lo;
   o[1] = (uint)a.hi;
   o[2] = (uint)a.bad;
@@ -274,14 +285,14 @@ static inline uint a_plane(__global const uint* a_slots, uint probe, uint visit,
 // Most probes of a search's descent from s = z are decided here. A band that is not decided goes
 // through mts_raster row by row, so the answer never depends on this pass, only the work does.
 // Global id: (probe * frames + frame) * bands + band.
-__kernel void mts_frame_bounds(__global const float* restrict probes, __global const float* restrict tris,
-                               __global const uint* restrict vflags, __global const float* restrict a_tris,
-                               __global const uint* restrict a_vflags,
-                               __global const uint* restrict a_bands, __global const uint* restrict a_slots,
-                               const uint first_frame, const uint frames_total, const uint kernel_w,
-                               const uint kernel_h, const float origin_x, const float origin_y,
-                               const uint frames, const uint bands, const uint band_rows,
-                               __global uint* restrict decided, const uint items) {
+__kernel void mts_frame_bounds(
+    __global const float* restrict probes, __global const float* restrict tris,
+    __global const uint* restrict vflags, __global const float* restrict a_tris,
+    __global const uint* restrict a_vflags, __global const uint* restrict a_bands,
+    __global const uint* restrict a_slots, const uint first_frame, const uint frames_total,
+    const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
+    const uint frames, const uint bands, const uint band_rows, __global uint* restrict decided,
+    const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / bands, band = id - pf * bands;
@@ -326,6 +337,7 @@ __kernel void mts_frame_bounds(__global const float* restrict probes, __global c
    * (T = df_order_exact_from), every depth of A is at or above T, and the pixel loop can compare
    * depths instead of codes. */
   const uint from = df_order_exact_from(DF_FORMAT_FROM_DEFINES());
-  const int ordered = from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
+  const int ordered =
+      from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
   out[DW_VERDICT] = (clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE) | oriented;
 }

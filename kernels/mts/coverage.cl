@@ -78,17 +78,18 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
     const int16 negate = convert_int16((eb & (uint16)1u) != (uint16)0u);
     const int16 owns = convert_int16((eb & (uint16)2u) != (uint16)0u);
     const float16 c = dx * (py - ay);
-#define EDGE_PASS16(PX)                                                                      \
-  ({                                                                                         \
-    float16 E_ = c - dy * ((PX) - ax);                                                       \
-    E_ = negate ? -E_ : E_;                                                                  \
-    (E_ > 0.0f) || ((E_ == 0.0f) && owns);                                                   \
+#define EDGE_PASS16(PX)                    \
+  ({                                       \
+    float16 E_ = c - dy * ((PX)-ax);       \
+    E_ = negate ? -E_ : E_;                \
+    (E_ > 0.0f) || ((E_ == 0.0f) && owns); \
   })
     const int16 p0 = EDGE_PASS16((float16)px_first);
     const int16 p1 = EDGE_PASS16((float16)px_last);
     const float16 sdy = negate ? -dy : dy;
     const float16 cross = ax + (py - ay) * dxdy - ox - 0.5f;
-    const int16 gi = clamp(convert_int16(ceil(clamp(cross, -1.0f, (float)W + 1.0f))), 1, max(W - 1, 1));
+    const int16 gi =
+        clamp(convert_int16(ceil(clamp(cross, -1.0f, (float)W + 1.0f))), 1, max(W - 1, 1));
     const float16 pxg = (ox + convert_float16(gi)) + 0.5f;
     const int16 pg = EDGE_PASS16(pxg);
     const int16 pgm = EDGE_PASS16(pxg - 1.0f);
@@ -215,8 +216,8 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
 // E above twice that rounding bound plus the movement survives; the margin is the d at which the
 // movement would take half of what is left over, with 1 % slack for the margin's own rounding.
 // 0 when A leaves a pixel uncovered or a test sits at its rounding bound.
-static inline float coverage_margin(__global const float* T, float py, float ox, int n, const int* seg_x,
-                                    const int* seg_t) {
+static inline float coverage_margin(__global const float* T, float py, float ox, int n,
+                                    const int* seg_x, const int* seg_t) {
   __global const float* SA = T + NT * TRI_STRIDE;
   __global const uint* SB = (__global const uint*)SA + E_BITS * NE_PAD;
   const float eps = 0x1.0p-24f;
@@ -273,7 +274,8 @@ static inline int b_keeps_orientation(__global const float* TA, __global const f
 // loses only that pixel's row), B within A's coverage margin (coverage_margin: moved is
 // b_moved_from_a), and B's triangles keep A's orientation (oriented: b_keeps_orientation). The
 // last two are per frame: mts_frame_bounds finds them once.
-static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB, uint vflags_b, int row,
-                                  __global const uint* rec) {
-  return oriented && moved < ((__global const float*)rec)[RW_MARGIN] && row_covered(TB, vflags_b, row);
+static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB,
+                                  uint vflags_b, int row, __global const uint* rec) {
+  return oriented && moved < ((__global const float*)rec)[RW_MARGIN] &&
+         row_covered(TB, vflags_b, row);
 }

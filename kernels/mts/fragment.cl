@@ -1,6 +1,7 @@
 // Fragment depth and stored codes along a row, 16 pixels at a time, and the fight test.
 
-// A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term
+// A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) +
+// row_term
 typedef struct {
   float c0, slope, x0, row_term;
 } row_plane_t;
@@ -116,19 +117,18 @@ static inline int16 ordered_fights16(float16 da, float16 db) {
 
 #define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 
-
 // Walks the row in pieces where both planes' covering triangles stay the same.
-#define FOR_EACH_PIECE(...)                                                            \
-  {                                                                                    \
-    int ka = 0, kb = 0, x = 0;                                                         \
-    while (x < W) {                                                                    \
-      while (seg_xa[ka + 1] <= x) ++ka;                                                \
-      while (seg_xb[kb + 1] <= x) ++kb;                                                \
-      const int x_end = min(seg_xa[ka + 1], seg_xb[kb + 1]);                           \
-      const int ta = seg_ta[ka], tb = seg_tb[kb];                                      \
-      __VA_ARGS__                                                                      \
-      x = x_end;                                                                       \
-    }                                                                                  \
+#define FOR_EACH_PIECE(...)                                  \
+  {                                                          \
+    int ka = 0, kb = 0, x = 0;                               \
+    while (x < W) {                                          \
+      while (seg_xa[ka + 1] <= x) ++ka;                      \
+      while (seg_xb[kb + 1] <= x) ++kb;                      \
+      const int x_end = min(seg_xa[ka + 1], seg_xb[kb + 1]); \
+      const int ta = seg_ta[ka], tb = seg_tb[kb];            \
+      __VA_ARGS__                                            \
+      x = x_end;                                             \
+    }                                                        \
   }
 
 #define MAX_PIECES (2 * MAX_SEG)

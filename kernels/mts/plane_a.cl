@@ -2,10 +2,10 @@
 
 // Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane.
 __kernel void mts_a_rows(__global const float* restrict probes, __global const float* restrict tris,
-                         __global const uint* restrict vflags, const uint first_plane, const uint per_probe,
-                         const uint kernel_w, const uint kernel_h, const float origin_x,
-                         const float origin_y, __global uint* restrict rows, __global uint* restrict codes,
-                         const uint items) {
+                         __global const uint* restrict vflags, const uint first_plane,
+                         const uint per_probe, const uint kernel_w, const uint kernel_h,
+                         const float origin_x, const float origin_y, __global uint* restrict rows,
+                         __global uint* restrict codes, const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint plane = first_plane + id / kernel_h, row = id % kernel_h;

@@ -8,9 +8,10 @@
 // the lanes past its end off.
 // always_inline: with two call sites PoCL's compiler kept it out of line (its own symbol in perf),
 // and log_fragment's at_mts went from 1.8 to 2.2 ns/pair; inlined, 1.4.
-__attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t ra, row_plane16_t rb,
-                                                                  __global const float* P, float ox, int x,
-                                                                  int x_end, int ordered,
+__attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t ra,
+                                                                  row_plane16_t rb,
+                                                                  __global const float* P, float ox,
+                                                                  int x, int x_end, int ordered,
                                                                   __global const uint* ca) {
   /* pixel centres step by exactly 16: ox is an integer and coordinates stay below 2^15
    * (host/model/scene.cpp kMaxKernelSide), so (ox + idx) + 0.5f is exact for every idx */
@@ -21,7 +22,7 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
     int16 fight_ = (int16)0;                                                                   \
     const float16 px0_ = PX16(x);                                                              \
     float16 px_ = px0_;                                                                        \
-    for (int i0_ = x; i0_ < x_end - 16; i0_ += 16, px_ += 16.0f) fight_ |= FIGHT16(px_, i0_); \
+    for (int i0_ = x; i0_ < x_end - 16; i0_ += 16, px_ += 16.0f) fight_ |= FIGHT16(px_, i0_);  \
     return fight_ | FIGHT16(px0_ + (float)(x_end - 16 - x), x_end - 16); /* exact, as above */ \
   }
 #define CACHED_FIGHTS16(PX, I0) fights16(vload16(0, ca + (I0)), inside_code16(rb, P, (PX)))
@@ -30,8 +31,9 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 #if CACHE_A_CODES
   if (ca) PIECE_FIGHTS(CACHED_FIGHTS16)
 #endif
-  if (ordered) PIECE_FIGHTS(ORDERED_FIGHTS16) /* a loop of its own: a select inside one would
-                                                  compute both sides */
+  if (ordered)
+    PIECE_FIGHTS(ORDERED_FIGHTS16) /* a loop of its own: a select inside one would
+                                       compute both sides */
   PIECE_FIGHTS(CODE_FIGHTS16)
 #undef CODE_FIGHTS16
 #undef ORDERED_FIGHTS16
@@ -47,20 +49,22 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 // (LEQUAL: B's smaller end code above A's larger) is decided without touching its inside, and a
 // piece of one or two pixels is decided by its ends outright. Only the rest is evaluated pixel by
 // pixel, 16 at a time. Log depth is monotone only up to the library log's error (OpenCL 1.2
-// allows 3 ulp): its end codes must clear the bound by LOG_CODE_SLACK (host/runtime/kernel_variant.cpp),
-// the most codes that error can move a code either way at both ends of both planes.
-// Pieces are then taken left to right and the row stops after the first that fights. In a band
-// mts_frame_bounds certified inside (D_INSIDE, D_ORDERED) there is no end pass, and the whole row
-// is evaluated first with one reduction; only a row that fights is then taken piece by piece.
-// Global id: (row, visit, probe); results at (probe * frames + visit) * kernel_h + row.
-__kernel void mts_raster(__global const float* restrict probes, __global const float* restrict tris,
-                         __global const uint* restrict vflags, __global const float* restrict a_tris,
-                         __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
-                         __global const uint* restrict a_slots, const uint first_frame,
-                         __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
-                         const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
-                         __global const uint* restrict decided, const uint bands, const uint band_rows,
-                         const uint shortcuts, __global uint* restrict result) {
+// allows 3 ulp): its end codes must clear the bound by LOG_CODE_SLACK
+// (host/runtime/kernel_variant.cpp), the most codes that error can move a code either way at both
+// ends of both planes. Pieces are then taken left to right and the row stops after the first that
+// fights. In a band mts_frame_bounds certified inside (D_INSIDE, D_ORDERED) there is no end pass,
+// and the whole row is evaluated first with one reduction; only a row that fights is then taken
+// piece by piece. Global id: (row, visit, probe); results at (probe * frames + visit) * kernel_h +
+// row.
+__kernel void mts_raster(
+    __global const float* restrict probes, __global const float* restrict tris,
+    __global const uint* restrict vflags, __global const float* restrict a_tris,
+    __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
+    __global const uint* restrict a_slots, const uint first_frame,
+    __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
+    const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
+    __global const uint* restrict decided, const uint bands, const uint band_rows,
+    const uint shortcuts, __global uint* restrict result) {
   /* a 3-D range (row, visit, probe), so no work-item divides to find them */
   const uint row = get_global_id(0), visit = get_global_id(1), probe = get_global_id(2);
   if (row >= kernel_h) return;
@@ -85,12 +89,13 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
   __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
   const int cached = rec[RW_N] > 0u;
   const int b_is_a = shortcuts && cached &&
-                     b_coverage_is_a(((__global const float*)dec)[DW_MOVED], dec[DW_VERDICT] & DV_ORIENTED,
-                                     TBp, vflags[pf], (int)row, rec);
+                     b_coverage_is_a(((__global const float*)dec)[DW_MOVED],
+                                     dec[DW_VERDICT] & DV_ORIENTED, TBp, vflags[pf], (int)row, rec);
   const int inside = band_verdict == D_INSIDE || band_verdict == D_ORDERED;
   const int ordered = band_verdict == D_ORDERED;
 #if CACHE_A_CODES
-  __global const uint* ca = cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + CODE_ROW_PAD) : 0;
+  __global const uint* ca =
+      cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + CODE_ROW_PAD) : 0;
 #else
   __global const uint* ca = 0;
 #endif
@@ -102,8 +107,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
     int16 fight = (int16)0;
     for (int k = 0; k < n; ++k) {
       const int t = (int)rec[RW_T + k];
-      fight |= inside_piece16(broadcast16(row_plane(TA, t, py)), broadcast16(row_plane(TBp, t, py)), P,
-                              origin_x, (int)rec[RW_X + k], (int)rec[RW_X + k + 1], ordered, ca);
+      fight |= inside_piece16(broadcast16(row_plane(TA, t, py)), broadcast16(row_plane(TBp, t, py)),
+                              P, origin_x, (int)rec[RW_X + k], (int)rec[RW_X + k + 1], ordered, ca);
     }
     if (!any16(fight)) {
       result[id] = R_REUSED | ((rec[RW_X + n] - rec[RW_X]) << R_COUNT_SHIFT);
@@ -148,8 +153,8 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
       uint all = 0u;
       for (int i = 0; i < np; ++i) {
         fight |= inside_piece16(broadcast16(row_plane(TA, p_ta[i], py)),
-                                broadcast16(row_plane(TBp, p_tb[i], py)), P, origin_x, px_start[i], px_end[i],
-                                ordered, ca);
+                                broadcast16(row_plane(TBp, p_tb[i], py)), P, origin_x, px_start[i],
+                                px_end[i], ordered, ca);
         all += (uint)(px_end[i] - px_start[i]);
       }
       if (!any16(fight)) {
@@ -162,52 +167,64 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
       ends_ok[i] = 1;
     }
   } else
-  for (int g = 0; g < np; g += 16) {
-    float c0a[16], sla[16], x0a[16], rta[16], c0b[16], slb[16], x0b[16], rtb[16], e0[16], e1[16];
-    for (int k = 0; k < 16; ++k) {
-      const int i = min(g + k, np - 1);
-      const row_plane_t ra = row_plane(TA, max(p_ta[i], 0), py), rb = row_plane(TBp, max(p_tb[i], 0), py);
-      c0a[k] = ra.c0; sla[k] = ra.slope; x0a[k] = ra.x0; rta[k] = ra.row_term;
-      c0b[k] = rb.c0; slb[k] = rb.slope; x0b[k] = rb.x0; rtb[k] = rb.row_term;
-      e0[k] = origin_x + (float)px_start[i] + 0.5f;
-      e1[k] = origin_x + (float)(px_end[i] - 1) + 0.5f;
-    }
-    row_plane16_t ra, rb;
-    ra.c0 = vload16(0, c0a); ra.slope = vload16(0, sla); ra.x0 = vload16(0, x0a); ra.row_term = vload16(0, rta);
-    rb.c0 = vload16(0, c0b); rb.slope = vload16(0, slb); rb.x0 = vload16(0, x0b); rb.row_term = vload16(0, rtb);
-    const float16 p0 = vload16(0, e0), p1 = vload16(0, e1);
-    const frag16_t a0 = fragment16(ra, P, p0), a1 = fragment16(ra, P, p1);
-    const frag16_t b0 = fragment16(rb, P, p0), b1 = fragment16(rb, P, p1);
-    const int16 nf = a0.nonfinite | a1.nonfinite | b0.nonfinite | b1.nonfinite;
-    const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
-    const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
-    const ulong16 slack = (ulong16)LOG_SLACK_OR_0;
+    for (int g = 0; g < np; g += 16) {
+      float c0a[16], sla[16], x0a[16], rta[16], c0b[16], slb[16], x0b[16], rtb[16], e0[16], e1[16];
+      for (int k = 0; k < 16; ++k) {
+        const int i = min(g + k, np - 1);
+        const row_plane_t ra = row_plane(TA, max(p_ta[i], 0), py),
+                          rb = row_plane(TBp, max(p_tb[i], 0), py);
+        c0a[k] = ra.c0;
+        sla[k] = ra.slope;
+        x0a[k] = ra.x0;
+        rta[k] = ra.row_term;
+        c0b[k] = rb.c0;
+        slb[k] = rb.slope;
+        x0b[k] = rb.x0;
+        rtb[k] = rb.row_term;
+        e0[k] = origin_x + (float)px_start[i] + 0.5f;
+        e1[k] = origin_x + (float)(px_end[i] - 1) + 0.5f;
+      }
+      row_plane16_t ra, rb;
+      ra.c0 = vload16(0, c0a);
+      ra.slope = vload16(0, sla);
+      ra.x0 = vload16(0, x0a);
+      ra.row_term = vload16(0, rta);
+      rb.c0 = vload16(0, c0b);
+      rb.slope = vload16(0, slb);
+      rb.x0 = vload16(0, x0b);
+      rb.row_term = vload16(0, rtb);
+      const float16 p0 = vload16(0, e0), p1 = vload16(0, e1);
+      const frag16_t a0 = fragment16(ra, P, p0), a1 = fragment16(ra, P, p1);
+      const frag16_t b0 = fragment16(rb, P, p0), b1 = fragment16(rb, P, p1);
+      const int16 nf = a0.nonfinite | a1.nonfinite | b0.nonfinite | b1.nonfinite;
+      const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
+      const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
+      const ulong16 slack = (ulong16)LOG_SLACK_OR_0;
 #if COMPARE_GREATER
-    const int16 excluded =
-        convert_int16(convert_ulong16(max(b0.code, b1.code)) + slack < convert_ulong16(min(a0.code, a1.code)));
+      const int16 excluded = convert_int16(convert_ulong16(max(b0.code, b1.code)) + slack <
+                                           convert_ulong16(min(a0.code, a1.code)));
 #else
-    const int16 excluded =
-        convert_int16(convert_ulong16(min(b0.code, b1.code)) > convert_ulong16(max(a0.code, a1.code)) + slack);
+      const int16 excluded = convert_int16(convert_ulong16(min(b0.code, b1.code)) >
+                                           convert_ulong16(max(a0.code, a1.code)) + slack);
 #endif
-    int nfk[16], clk[16], fek[16], exk[16];
-    vstore16(nf, 0, nfk);
-    vstore16(cl, 0, clk);
-    vstore16(fight_ends, 0, fek);
-    vstore16(excluded, 0, exk);
-    for (int k = 0; k < 16 && g + k < np; ++k) {
-      const int i = g + k;
-      const int len = px_end[i] - px_start[i];
-      uint v = ~0u;
-      if (len <= 2) { /* the ends are the whole piece */
-        v = nfk[k] ? R_NONFINITE : clk[k] ? R_CLIPPED : fek[k] ? R_FIGHT : 0u;
+      int nfk[16], clk[16], fek[16], exk[16];
+      vstore16(nf, 0, nfk);
+      vstore16(cl, 0, clk);
+      vstore16(fight_ends, 0, fek);
+      vstore16(excluded, 0, exk);
+      for (int k = 0; k < 16 && g + k < np; ++k) {
+        const int i = g + k;
+        const int len = px_end[i] - px_start[i];
+        uint v = ~0u;
+        if (len <= 2) { /* the ends are the whole piece */
+          v = nfk[k] ? R_NONFINITE : clk[k] ? R_CLIPPED : fek[k] ? R_FIGHT : 0u;
+        } else if (!nfk[k] && !clk[k] && exk[k]) {
+          v = 0u;
+        }
+        verdict[i] = v;
+        ends_ok[i] = !nfk[k] && !clk[k];
       }
-      else if (!nfk[k] && !clk[k] && exk[k]) {
-        v = 0u;
-      }
-      verdict[i] = v;
-      ends_ok[i] = !nfk[k] && !clk[k];
     }
-  }
 
   uint flags = 0u, count = 0u;
   for (int i = 0; i < np; ++i) {
@@ -225,17 +242,17 @@ __kernel void mts_raster(__global const float* restrict probes, __global const f
       if (ends_ok[i]) { /* only the codes matter: one reduction per piece */
         piece = any16(inside_piece16(ra, rb, P, origin_x, x, x_end, ordered, ca)) ? R_FIGHT : 0u;
       } else
-      for (int i0 = x; i0 < x_end; i0 += 16) {
-        const int16 idx = i0 + LANES;
-        const int16 active = idx < x_end;
-        const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
-        const frag16_t fa = fragment16(ra, P, px), fb = fragment16(rb, P, px);
-        const int16 nf = active & (fa.nonfinite | fb.nonfinite);
-        const int16 cl = active & ~nf & (fa.clipped | fb.clipped);
-        const int16 ok = active & ~(fa.nonfinite | fb.nonfinite | fa.clipped | fb.clipped);
-        piece |= (any16(nf) ? R_NONFINITE : 0u) | (any16(cl) ? R_CLIPPED : 0u) |
-                 (any16(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
-      }
+        for (int i0 = x; i0 < x_end; i0 += 16) {
+          const int16 idx = i0 + LANES;
+          const int16 active = idx < x_end;
+          const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
+          const frag16_t fa = fragment16(ra, P, px), fb = fragment16(rb, P, px);
+          const int16 nf = active & (fa.nonfinite | fb.nonfinite);
+          const int16 cl = active & ~nf & (fa.clipped | fb.clipped);
+          const int16 ok = active & ~(fa.nonfinite | fb.nonfinite | fa.clipped | fb.clipped);
+          piece |= (any16(nf) ? R_NONFINITE : 0u) | (any16(cl) ? R_CLIPPED : 0u) |
+                   (any16(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
+        }
     }
     flags |= piece;
     if (piece & R_FIGHT) break;

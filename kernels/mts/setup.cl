@@ -15,8 +15,8 @@
 // bands are named in the flags (bit V_BAND_SHIFT + band, bands of band_rows rows, the first 24
 // bands; a vertex in a later one clears V_COVERS) and the rest stay certified; and the pixel's
 // row is written to bad_row[vertex] (-1 for a vertex near no pixel centre) for row_covered.
-static inline uint covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw, uint kh,
-                                 uint band_rows, int* bad_row) {
+static inline uint covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw,
+                                 uint kh, uint band_rows, int* bad_row) {
   uint bad_bands = 0u;
   const float x0 = ox, x1 = ox + (float)kw, y0 = oy, y1 = oy + (float)kh; /* pixel area */
   for (int v = 0; v < NV; ++v) bad_row[v] = -1;
@@ -41,8 +41,14 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
   for (int side = 0; side < 4; ++side) {
     for (int k = 0; k < GRID; ++k) {
       /* vertices along the side, in grid order: bottom row, right column, top row, left column */
-      const int va = side == 0 ? k : side == 1 ? k * (GRID + 1) + GRID : side == 2 ? GRID * (GRID + 1) + k : k * (GRID + 1);
-      const int vb = side == 0 ? k + 1 : side == 1 ? (k + 1) * (GRID + 1) + GRID : side == 2 ? GRID * (GRID + 1) + k + 1 : (k + 1) * (GRID + 1);
+      const int va = side == 0   ? k
+                     : side == 1 ? k * (GRID + 1) + GRID
+                     : side == 2 ? GRID * (GRID + 1) + k
+                                 : k * (GRID + 1);
+      const int vb = side == 0   ? k + 1
+                     : side == 1 ? (k + 1) * (GRID + 1) + GRID
+                     : side == 2 ? GRID * (GRID + 1) + k + 1
+                                 : (k + 1) * (GRID + 1);
       const int lo = min(va, vb), hi = max(va, vb);
       const float ax = xw[lo], ay = yw[lo], dx = xw[hi] - xw[lo], dy = yw[hi] - yw[lo];
       const float inner = dx * (ry - ay) - dy * (rx - ax);
@@ -106,8 +112,8 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
   for (int j = 0; j <= GRID; ++j) {
     for (int i = 0; i <= GRID; ++i) {
       const int v = j * (GRID + 1) + i;
-      const float4 obj = (float4)((float)i / (float)GRID - 0.5f, (float)j / (float)GRID - 0.5f,
-                                  0.0f, 1.0f);
+      const float4 obj =
+          (float4)((float)i / (float)GRID - 0.5f, (float)j / (float)GRID - 0.5f, 0.0f, 1.0f);
 #if COMPOSE_PREMULT
       float4 clip = mat_vec(M, obj);
 #else
@@ -178,14 +184,17 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
       const float dx = s * edx[e], dy = s * edy[e];
       if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
     }
-    if (valid) bits |= 64u;
-    else shapely = 0u;
+    if (valid)
+      bits |= 64u;
+    else
+      shapely = 0u;
     const float e1x = xw[i1] - xw[i0], e1y = yw[i1] - yw[i0];
     const float e2x = xw[i2] - xw[i0], e2y = yw[i2] - yw[i0];
     const float det = e1x * e2y - e2x * e1y;
     {
       const float e3x = xw[i2] - xw[i1], e3y = yw[i2] - yw[i1];
-      const float longest = fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
+      const float longest =
+          fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
       /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
       if (!(fabs(det) >= 0.1f * longest)) shapely = 0u;
     }
@@ -211,16 +220,20 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
       SA[E_DX * NE_PAD + k] = edx[e];
       SA[E_DY * NE_PAD + k] = edy[e];
       SA[E_DXDY * NE_PAD + k] = dxdy;
-      ((__global uint*)SA)[E_BITS * NE_PAD + k] = ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
+      ((__global uint*)SA)[E_BITS * NE_PAD + k] =
+          ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
     }
     ((__global uint*)R)[T_BITS] = bits;
-    vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0, (__global int*)R + T_BOX);
+    vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0,
+            (__global int*)R + T_BOX);
   }
   const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
-  vflags[id] = nonfinite |
-               (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h, band_rows, bad_row) : 0u);
-  for (int v = 0; v < NV_PAD; ++v) ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
+  vflags[id] = nonfinite | (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h,
+                                                    band_rows, bad_row)
+                                    : 0u);
+  for (int v = 0; v < NV_PAD; ++v)
+    ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
   for (int qj = 0; qj < GRID; ++qj) {
     float lo = INFINITY, hi = -INFINITY;
     for (int t = 2 * GRID * qj; t < 2 * GRID * (qj + 1); ++t) {

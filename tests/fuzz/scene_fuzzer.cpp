@@ -1,6 +1,6 @@
-// libFuzzer target: the scene parser and validator (host/model/scene.cpp) on arbitrary bytes. Bad input
-// must end in depthprec::InputError with a message; anything else (a crash, a sanitizer report,
-// another exception) is a bug. Built and run by scripts/fuzz.sh; see docs/fuzzing.md.
+// libFuzzer target: the scene parser and validator (host/model/scene.cpp) on arbitrary bytes. Bad
+// input must end in depthprec::InputError with a message; anything else (a crash, a sanitizer
+// report, another exception) is a bug. Built and run by scripts/fuzz.sh; see docs/fuzzing.md.
 #include <cstdint>
 #include <cstdlib>
 #include <string>
