@@ -8,6 +8,7 @@
 #include "host/base/errors.h"
 #include "host/base/interrupt.h"
 #include "host/base/version.h"
+#include "host/output/json_header.h"
 #include "host/output/progress.h"
 
 namespace depthprec {
@@ -130,8 +131,7 @@ std::vector<nlohmann::json> run_batch(
 
 nlohmann::json batch_header(const std::string& kind, const std::string& device,
                             const std::string& shard) {
-  nlohmann::json h = {
-      {"program", "depthprec"}, {"version", kVersion}, {"kind", kind}, {"device", device}};
+  nlohmann::json h = output_header(kind, device);
   if (!shard.empty()) h["shard"] = shard;
   return h;
 }

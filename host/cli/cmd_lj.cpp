@@ -1,4 +1,4 @@
-// lj, select, lj-table and resolve: the Lapidous-Jiao metric and code/distance queries.
+// lj, select and lj-table: the Lapidous-Jiao metric.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -16,6 +16,7 @@
 #include "host/lj/lj_pipeline.h"
 #include "host/model/resolve.h"
 #include "host/output/gnuplot.h"
+#include "host/output/json_header.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 
@@ -90,22 +91,20 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
   const bool timing = !o.out.no_timing;
   std::string text;
   if (o.out.format_out == "json") {
-    nlohmann::json j = {{"program", "depthprec"},
-                        {"version", kVersion},
-                        {"device", rt.description()},
-                        {"buffer", o.buffer},
-                        {"format", f.name()},
-                        {"near", c.near},
-                        {"far", c.far},
-                        {"samples", c.samples},
-                        {"sampling", o.sampling},
-                        {"ae_host", exact(host.ae)},
-                        {"ae_device", exact(dev.ae)},
-                        {"ae_pipeline", exact(pipe.ae)},
-                        {"vertex_limited_fraction", host.vertex_limited},
-                        {"infinite_samples", host.infinite_samples},
-                        {"pipeline_clipped_samples", pipe.clipped},
-                        {"pipeline_off_code_samples", pipe.off_code}};
+    nlohmann::json j = output_header("lj", rt.description());
+    j.update({{"buffer", o.buffer},
+              {"format", f.name()},
+              {"near", c.near},
+              {"far", c.far},
+              {"samples", c.samples},
+              {"sampling", o.sampling},
+              {"ae_host", exact(host.ae)},
+              {"ae_device", exact(dev.ae)},
+              {"ae_pipeline", exact(pipe.ae)},
+              {"vertex_limited_fraction", host.vertex_limited},
+              {"infinite_samples", host.infinite_samples},
+              {"pipeline_clipped_samples", pipe.clipped},
+              {"pipeline_off_code_samples", pipe.off_code}});
     if (timing) j["ms"] = {{"host", host_ms}, {"device", dev_ms}, {"pipeline", pipe_ms}};
     text = j.dump(2) + "\n";
   } else {
@@ -376,58 +375,6 @@ void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
   if (!o.plot.empty()) plot_lj_table(by_key(records), o.plot);
 }
 
-struct ResolveOptions {
-  std::string technique = "standard", format = "unorm24", rounding = "nearest_even";
-  double near = 1, far = 100, log_k = 1;
-  long long code = -1;
-  double distance = -1;
-  bool curve = false;
-  int points = 50;
-  OutputOptions out;
-};
-
-void run_resolve(const ResolveOptions& o) {
-  ResolveSetup s;
-  s.technique = parse_technique(o.technique);
-  s.near = o.near;
-  s.far = o.far;
-  s.params.log_k = o.log_k;
-  const StorageFormat f = StorageFormat::parse(o.format, parse_rounding(o.rounding));
-  const int modes = (o.code >= 0) + (o.distance >= 0) + (o.curve ? 1 : 0);
-  if (modes != 1)
-    throw Error(ExitCode::usage, "resolve: give exactly one of --code N, --distance w or --curve");
-  check_writable(o.out.output);
-  std::string text;
-  const auto digits = [](double v) { return fmt::format("{:.10g}", v); };
-  if (o.code >= 0) {
-    if (o.code > 0xffffffffLL) throw InputError(fmt::format("--code {} is beyond 32 bits", o.code));
-    const CodeInterval ci = resolve_code(s, f, static_cast<uint32_t>(o.code));
-    text = render_cells(
-        {{"code"}, {"depth"}, {"distance"}, {"distance_lo"}, {"distance_hi"}, {"width"}},
-        {{std::to_string(ci.code), digits(ci.depth), digits(ci.distance), digits(ci.distance_lo),
-          digits(ci.distance_hi), human(ci.distance_hi - ci.distance_lo)}},
-        o.out.format_out);
-  } else {
-    std::vector<DistanceResolution> rows;
-    if (o.curve)
-      rows = resolution_curve(s, f, o.points);
-    else
-      rows.push_back(resolve_distance(s, f, o.distance));
-    Cells cells;
-    for (const auto& r : rows)
-      cells.push_back({digits(r.distance), digits(r.depth), std::to_string(r.code),
-                       human(r.gap_below), human(r.gap_above), human(r.resolution)});
-    text = render_cells(
-        {{"distance"}, {"depth"}, {"code"}, {"gap_below"}, {"gap_above"}, {"resolution"}}, cells,
-        o.out.format_out);
-  }
-  if (o.out.format_out == "text")
-    text = fmt::format("{} in {} ({}), near {}, far {}:\n", o.technique, f.name(), o.rounding,
-                       human(s.near), human(s.far)) +
-           text;
-  write_output(o.out.output, text);
-}
-
 }  // namespace
 
 void add_lj_commands(CLI::App& app, GlobalOptions& global) {
@@ -473,34 +420,6 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
                    "Also plot ae against f/d per format, 16 bits (gnuplot), FILE.png or FILE.svg");
   tab->batch.add_to(*tcmd, "table rows (k in output order)");
   tcmd->callback([tab, &global]() { run_lj_table(*tab, global); });
-
-  auto res = std::make_shared<ResolveOptions>();
-  auto* rcmd = app.add_subcommand(
-      "resolve",
-      "Code <-> eye distance: which distances a stored code stands for (--code), which code a\n"
-      "distance gets and the gap to its neighbours (--distance), or the resolution across the\n"
-      "range (--curve). Exact mappings; no emulated arithmetic.\n"
-      "Examples:\n"
-      "  depthprec resolve --technique standard --format unorm16 --near 0.01 --far 1000 --code 1\n"
-      "  depthprec resolve --technique reversed --format float32 --near 0.1 --far 1e4 --distance "
-      "5000\n"
-      "  depthprec resolve --technique reversed_infinite --format float32 --near 0.1 --far 1e4 "
-      "--curve");
-  rcmd->add_option("-t,--technique", res->technique, "Technique: " + technique_names())
-      ->capture_default_str();
-  rcmd->add_option("-f,--format", res->format, "Storage format")->capture_default_str();
-  rcmd->add_option("--near", res->near, "Near plane")->capture_default_str();
-  rcmd->add_option("--far", res->far, "Far plane (inf for the infinite techniques)")
-      ->capture_default_str();
-  rcmd->add_option("--log-k", res->log_k, "k of the log techniques")->capture_default_str();
-  rcmd->add_option("--rounding", res->rounding, "nearest_even or truncate")->capture_default_str();
-  rcmd->add_option("--code", res->code, "A stored code");
-  rcmd->add_option("--distance", res->distance, "An eye distance");
-  rcmd->add_flag("--curve", res->curve,
-                 "Resolution at --points distances, geometric from near to far");
-  rcmd->add_option("--points", res->points, "Points of --curve")->capture_default_str();
-  res->out.add_to(*rcmd);
-  rcmd->callback([res]() { run_resolve(*res); });
 }
 
 }  // namespace depthprec::cli

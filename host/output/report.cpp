@@ -12,6 +12,7 @@
 
 #include "host/base/errors.h"
 #include "host/base/version.h"
+#include "host/output/json_header.h"
 #include "host/output/row_json.h"
 #include "host/output/text_table.h"
 
@@ -34,16 +35,12 @@ std::string exact(double v) {
 namespace {
 
 json header(const Scene& scene, const RunInfo& run) {
-  json h = {{"program", "depthprec"},
-            {"version", kVersion},
-            {"device", run.device},
-            {"scene_source", scene.source},
-            {"scene", scene.json},
-            {"kernel_variants", run.variants},
-            {"fragment_pairs", run.fragment_pairs},
-            {"kind", run.kind},
-            {"separation_reported",
-             "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)"}};
+  json h = output_header(run.kind, run.device);
+  h["scene_source"] = scene.source;
+  h["scene"] = scene.json;
+  h["kernel_variants"] = run.variants;
+  h["fragment_pairs"] = run.fragment_pairs;
+  h["separation_reported"] = "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)";
   if (!run.shard.empty()) h["shard"] = run.shard;
   if (run.timing) {  // measured, and specific to this process (a resumed run does less)
     h["wall_seconds"] = run.wall_seconds;
