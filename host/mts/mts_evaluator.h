@@ -11,46 +11,11 @@
 
 #include "host/model/frame_setup.h"
 #include "host/model/scene.h"
+#include "host/mts/probe.h"
 #include "host/runtime/kernel_variant.h"
 #include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
-
-struct Probe {
-  double z;  // requested distance of plane A
-  double s;  // requested separation: plane B at fl32(z + s)
-};
-
-// uncovered: no fight, but a kernel pixel that a plane does not cover (the search's reading of a
-// clean result with any_uncovered; the evaluator itself reports clean and the flag).
-enum class Outcome { clean, fight, clipped, non_finite, uncovered };
-const char* to_string(Outcome o);
-
-struct ProbeResult {
-  Outcome outcome = Outcome::clean;
-  int frames = 0;  // frames rendered up to and including the deciding one (all if clean)
-  uint64_t fragment_pairs = 0;  // pairs the kernel evaluated for this probe
-  bool any_clipped = false, any_non_finite = false, any_uncovered = false;
-  double seconds = 0;         // share of the launches' wall time, by fragment pairs
-  double kernel_seconds = 0;  // share of the launches' device time (profiling events), likewise
-  uint64_t launches = 0;      // kernel launches this probe took part in
-};
-
-// Stored codes and status (0 ok, 1 clipped, 2 non-finite, 3 uncovered) of both planes at every
-// kernel pixel of one frame, row-major from the kernel's bottom-left pixel.
-struct FrameCodes {
-  int width = 0, height = 0;
-  std::vector<uint32_t> code_a, code_b;
-  std::vector<uint8_t> status_a, status_b;
-};
-
-// Decides batches of probes: the emulated pipeline (MtsEvaluator) or the storage-limited one
-// (ExactEvaluator, host/mts/mts_exact.h), so one search drives both.
-class ProbeEvaluator {
- public:
-  virtual ~ProbeEvaluator() = default;
-  virtual std::vector<ProbeResult> run(const std::vector<Probe>& probes) = 0;
-};
 
 // Frames per launch: most fighting probes fight in their first frames, so start small; a clean
 // probe needs every frame, so grow.

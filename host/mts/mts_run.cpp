@@ -16,6 +16,7 @@
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
 #include "host/mts/mts_exact.h"
+#include "host/mts/mts_search.h"
 #include "host/output/row_json.h"
 #include "host/runtime/kernel_variant.h"
 

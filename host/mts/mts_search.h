@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "host/mts/mts_evaluator.h"
+#include "host/mts/mts_row.h"
 
 namespace depthprec {
 
@@ -54,71 +55,6 @@ class Bisection {
        non_monotone_ = false;
   int probes_ = 0;
   std::vector<std::pair<double, Outcome>> history_;
-};
-
-// What a row finally says: a number (resolved) or why there is none.
-enum class Verdict {
-  resolved,
-  unresolvable,
-  non_finite,
-  clipped,
-  uncovered,
-  below_vertex_bound,
-  beyond_far_plane,
-  nearer_than_near_plane,
-};
-const char* to_string(Verdict v);  // "resolved", ..., "below vertex bound", "beyond far plane"
-
-struct MtsRow {
-  EvalPair pair;
-  double z = 0;
-  double mts = 0;  // hi: the smallest separation seen that never fought; +inf if unresolvable
-  double lo = 0, hi = 0;
-  double mts_seen = 0;  // fl32(z + mts) - fl32(z)
-  double vertex_bound = 0;
-  int probes = 0;
-  uint64_t frames = 0;
-  uint64_t fragment_pairs = 0;
-  // Kernel launches its probes took part in. Launches render the probes of every distance of a
-  // pair at once, so rows share them: a row never counts more than the run made, and the rows of
-  // a run add up to more than its total (the footer's "kernel launches").
-  uint64_t launches = 0;
-  double seconds = 0;         // attributed wall time of the launches (by fragment pairs)
-  double kernel_seconds = 0;  // attributed device time of the launches (profiling events)
-  int clipped_probes = 0;     // probes in which some fragment left the clip volume
-  // clipped: the row has no MTS because every separation that did not fight was clipped.
-  bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,
-       uncovered = false;
-  bool beyond_far = false;  // z past the far plane of a technique that has one: not searched
-  bool before_near =
-      false;  // z nearer than the near plane of a technique that clips there: not searched
-  // A resolved MTS (as seen, mts_seen) below the width of the code interval holding z (less the
-  // bisection's precision twice over): the planes' depths in the kernel did not span one code,
-  // so where z falls between two codes decided the answer, and a z nearby can need up to
-  // code_width (docs/mts.md, "Below one code").
-  bool below_one_code = false;
-  double code_width = 0;  // that width, when below_one_code
-  // Over every probe (search and stiffness): the largest separation that fought and the
-  // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
-  // upper MTS (every clean answer lies above it). 0 / +inf when there is none.
-  double fight_max = 0, clean_min = std::numeric_limits<double>::infinity();
-  // MTS attribution (table --attribute; NaN when not computed): the MTS of the storage-limited
-  // pipeline (exact up to binary64, then stored) and of the arithmetic-limited one (the binary32
-  // pipeline, no storage quantisation); the vertex bound is the third factor.
-  double storage_mts = std::numeric_limits<double>::quiet_NaN();
-  double arithmetic_mts = std::numeric_limits<double>::quiet_NaN();
-  bool attributed() const { return !std::isnan(storage_mts); }
-  // The largest factor: "storage", "arithmetic" or "vertex" ("" when not attributed). The
-  // binary32 pipeline holds the vertex rounding too, so its factor never falls below the vertex
-  // bound: "vertex" is named when neither other factor exceeds it by more than the bisection's
-  // resolution (set_dominant).
-  std::string dominant;
-  void set_dominant(double rel_precision);
-  // A factor larger than the MTS itself (by more than the bisection's precision twice over):
-  // the factors interact, and rounding errors can cancel (docs/stability.md).
-  bool factor_above_mts(double rel_precision) const;
-  std::string flags() const;  // "non_finite,clipped" or "" when none
-  Verdict verdict() const;
 };
 
 // Searches every distance of one pair, all distances' probes batched into shared launches.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "host/model/frame_setup.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {

@@ -3,7 +3,8 @@
 // and slow. Tests compare its stored codes with the kernel's (mts_codes) bit for bit.
 #pragma once
 
-#include "host/mts/mts_evaluator.h"
+#include "host/model/scene.h"
+#include "host/mts/probe.h"
 
 namespace depthprec {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "host/model/scene.h"
-#include "host/mts/mts_search.h"
+#include "host/mts/mts_row.h"
 
 namespace depthprec {
 

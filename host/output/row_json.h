@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "host/mts/mts_search.h"
+#include "host/mts/mts_row.h"
 
 namespace depthprec {
 
