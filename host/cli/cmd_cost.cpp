@@ -6,6 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/analysis/cost.h"
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/base/version.h"
@@ -16,6 +17,7 @@
 #include "host/mts/mts_run.h"
 #include "host/mts/mts_timing.h"
 #include "host/output/gnuplot.h"
+#include "host/output/plots.h"
 #include "host/output/text_table.h"
 
 namespace depthprec::cli {
@@ -28,71 +30,6 @@ struct CostOptions {
   std::string plot;
   BatchOptions batch;
 };
-
-struct CostPoint {
-  std::string label;
-  double ns = 0, median = 0;
-};
-
-// Precision against cost: one labelled point per technique x format.
-void plot_cost(const std::vector<CostPoint>& points, const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                                   gnuplot_quote(output));
-  script +=
-      "set logscale y\nset grid\nset key off\nset xlabel 'kernel cost [ns per fragment pair]'\n"
-      "set ylabel 'median MTS / vertex bound (lower is more precise)'\n"
-      "set title 'Precision against cost per technique and format' noenhanced\n"
-      "set offsets graph 0.05, graph 0.25, graph 0.1, graph 0.1\n$pts << EOD\n";
-  for (const auto& p : points)
-    if (std::isfinite(p.median) && p.median > 0)
-      script += fmt::format("{:.6g} {:.6g} {}\n", p.ns, p.median, gnuplot_quote(p.label));
-  script +=
-      "EOD\nplot $pts using 1:2 with points pt 7 ps 1.5, $pts using 1:2:3 with labels offset 1,0.5 "
-      "left noenhanced\n";
-  run_gnuplot(script, output);
-}
-
-// What a real GPU pays for the technique beyond its arithmetic (the technique table's words; a
-// layered scene's layer count and mapping added).
-std::string structural_cost(const Scene& s, Technique t) {
-  if (t != Technique::layered) return info(t).gpu_cost;
-  return fmt::format("{} passes, depth cleared per layer; {} mapping per layer", s.params.layers,
-                     info(s.params.layer_mapping).name);
-}
-
-// One record per technique x format: its MTS run, LJ error and timing pass.
-nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                           bool timing) {
-  Scene one = scene;
-  one.evaluate = {pair};
-  const MtsRun mts = run_scene(rt, one);
-  std::vector<double> ratio;
-  int unresolved = 0;
-  for (const auto& r : mts.rows) {
-    if (r.unresolvable)
-      ++unresolved;
-    else
-      ratio.push_back(r.mts / r.vertex_bound);
-  }
-  std::sort(ratio.begin(), ratio.end());
-  const double median = ratio.empty() ? INFINITY : ratio[ratio.size() / 2];
-  nlohmann::json j = {{"technique", info(pair.technique).name},
-                      {"format", pair.format},
-                      {"depth_range", to_string(pair.depth_range)},
-                      {"median_mts_over_vertex_bound", json_number(median)},
-                      {"unresolvable_distances", unresolved},
-                      {"structural_cost", structural_cost(scene, pair.technique)}};
-  if (info(pair.technique).lj_buffer && std::isfinite(scene.far)) {
-    LjConfig c;
-    c.buffer = parse_lj_buffer(info(pair.technique).lj_buffer);
-    c.near = scene.near;
-    c.far = scene.far;
-    j["lj_ae"] = json_number(lj_average_error_device(rt, c, scene.storage_format(pair)).ae);
-  }
-  if (timing)
-    j["ns_per_fragment_pair"] = time_depth_path(rt, scene, pair, TimingRegime::near).ns_per_pair();
-  return j;
-}
 
 void run_cost(const CostOptions& o, const GlobalOptions& g) {
   const Scene scene = o.scene.load();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/analysis/pipelines.h"
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/cli/commands.h"
@@ -21,38 +22,11 @@ namespace depthprec::cli {
 
 namespace {
 
-struct Variant {
-  const char* name;
-  MatrixPrecision precision;
-  Compose compose;
-};
-const Variant kVariants[] = {
-    {"float/separate", MatrixPrecision::single, Compose::separate},
-    {"float/premultiplied", MatrixPrecision::single, Compose::premultiplied},
-    {"double/separate", MatrixPrecision::binary64, Compose::separate},
-    {"double/premultiplied", MatrixPrecision::binary64, Compose::premultiplied}};
-
 struct PipelinesOptions {
   SceneOptions scene;
   OutputOptions out;
   BatchOptions batch;
 };
-
-// One record per pair: the MTS at every distance under each variant.
-nlohmann::json pair_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair) {
-  nlohmann::json j = {{"pair", pair.label()}, {"variants", nlohmann::json::object()}};
-  for (const Variant& v : kVariants) {
-    Scene s = scene;
-    s.evaluate = {pair};
-    s.pipeline.matrix_precision = v.precision;
-    s.pipeline.compose = v.compose;
-    s.stiffness_probes = 0;
-    nlohmann::json mts = nlohmann::json::array();
-    for (const auto& r : run_scene(rt, s).rows) mts.push_back(json_number(r.mts));
-    j["variants"][v.name] = mts;
-  }
-  return j;
-}
 
 }  // namespace
 
@@ -61,7 +35,7 @@ std::string render_pipelines_output(const nlohmann::json& header,
                                     const OutputOptions& out) {
   if (out.format_out == "json") return records_json(header, records, !out.no_timing);
   std::vector<Column> cols = {{"pair", true}};
-  for (const Variant& v : kVariants)
+  for (const PipelineVariant& v : kPipelineVariants)
     if (v.precision != MatrixPrecision::single || v.compose != Compose::separate) {
       cols.push_back({fmt::format("{} median", v.name)});
       cols.push_back({fmt::format("{} max", v.name)});
@@ -70,8 +44,8 @@ std::string render_pipelines_output(const nlohmann::json& header,
   Cells cells;
   for (const auto& rec : records) {
     std::vector<std::string> row = {rec.at("pair").get<std::string>()};
-    const auto& base = rec.at("variants").at(kVariants[0].name);
-    for (const Variant& v : kVariants) {
+    const auto& base = rec.at("variants").at(kPipelineVariants[0].name);
+    for (const PipelineVariant& v : kPipelineVariants) {
       if (v.precision == MatrixPrecision::single && v.compose == Compose::separate) continue;
       const auto& other = rec.at("variants").at(v.name);
       std::vector<double> ratios;
@@ -99,7 +73,7 @@ std::string render_pipelines_output(const nlohmann::json& header,
              "{}: "
              "median and farthest-from-1 ratio over the distances; verdicts = distances whose "
              "resolvable/unresolvable verdict changed\n\n",
-             kVariants[0].name, header.value("scene_name", std::string("?"))) +
+             kPipelineVariants[0].name, header.value("scene_name", std::string("?"))) +
          render_cells(cols, cells, out.format_out);
 }
 

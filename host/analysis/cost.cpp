@@ -1,0 +1,54 @@
+#include "host/analysis/cost.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/base/json_number.h"
+#include "host/lj/lj_metric.h"
+#include "host/mts/mts_run.h"
+#include "host/mts/mts_timing.h"
+
+namespace depthprec {
+
+std::string structural_cost(const Scene& s, Technique t) {
+  if (t != Technique::layered) return info(t).gpu_cost;
+  return fmt::format("{} passes, depth cleared per layer; {} mapping per layer", s.params.layers,
+                     info(s.params.layer_mapping).name);
+}
+
+nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           bool timing) {
+  Scene one = scene;
+  one.evaluate = {pair};
+  const MtsRun mts = run_scene(rt, one);
+  std::vector<double> ratio;
+  int unresolved = 0;
+  for (const auto& r : mts.rows) {
+    if (r.unresolvable)
+      ++unresolved;
+    else
+      ratio.push_back(r.mts / r.vertex_bound);
+  }
+  std::sort(ratio.begin(), ratio.end());
+  const double median = ratio.empty() ? INFINITY : ratio[ratio.size() / 2];
+  nlohmann::json j = {{"technique", info(pair.technique).name},
+                      {"format", pair.format},
+                      {"depth_range", to_string(pair.depth_range)},
+                      {"median_mts_over_vertex_bound", json_number(median)},
+                      {"unresolvable_distances", unresolved},
+                      {"structural_cost", structural_cost(scene, pair.technique)}};
+  if (info(pair.technique).lj_buffer && std::isfinite(scene.far)) {
+    LjConfig c;
+    c.buffer = parse_lj_buffer(info(pair.technique).lj_buffer);
+    c.near = scene.near;
+    c.far = scene.far;
+    j["lj_ae"] = json_number(lj_average_error_device(rt, c, scene.storage_format(pair)).ae);
+  }
+  if (timing)
+    j["ns_per_fragment_pair"] = time_depth_path(rt, scene, pair, TimingRegime::near).ns_per_pair();
+  return j;
+}
+
+}  // namespace depthprec

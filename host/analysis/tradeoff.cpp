@@ -1,0 +1,94 @@
+#include "host/analysis/tradeoff.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/base/json_number.h"
+#include "host/mts/mts_run.h"
+#include "host/output/row_json.h"
+
+namespace depthprec {
+
+std::vector<Level> ladder() {
+  return {{"reference", 200, 100, 12},     {"kernel 100", 100, 100, 12},
+          {"kernel 50", 50, 100, 12},      {"kernel 25", 25, 100, 12},
+          {"frames 50", 200, 50, 12},      {"frames 25", 200, 25, 12},
+          {"frames 10", 200, 10, 12},      {"precision 2^-10", 200, 100, 10},
+          {"precision 2^-8", 200, 100, 8}, {"precision 2^-6", 200, 100, 6},
+          {"precision 2^-4", 200, 100, 4}, {"100/50/2^-8", 100, 50, 8},
+          {"50/25/2^-6", 50, 25, 6},       {"25/10/2^-4", 25, 10, 4}};
+}
+
+nlohmann::json level_record(OpenClRuntime& rt, const Scene& base, const Level& lv) {
+  Scene s = base;
+  s.kernel_w = s.kernel_h = s.viewport_w = s.viewport_h = lv.kernel;
+  s.frames = lv.frames;
+  s.rel_precision = std::ldexp(1.0, -lv.precision_log2);
+  const MtsRun run = run_scene(rt, s);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& r : run.rows)
+    rows.push_back({{"row", row_key(r.pair, r.z)},
+                    {"mts", json_number(r.mts)},
+                    {"unresolvable", r.unresolvable}});
+  return {{"level", lv.name},
+          {"kernel", lv.kernel},
+          {"frames", lv.frames},
+          {"precision_log2", lv.precision_log2},
+          {"fragment_pairs", run.info.fragment_pairs},
+          {"seconds", run.info.wall_seconds},
+          {"rows", rows}};
+}
+
+std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& records) {
+  const nlohmann::json* reference = nullptr;
+  for (const auto& r : records)
+    if (r.at("level") == ladder().front().name) reference = &r;
+  std::vector<LevelResult> results;
+  if (!reference) return results;
+  const auto& ref_rows = reference->at("rows");
+  for (const auto& rec : records) {
+    LevelResult r;
+    r.level = {rec.at("level").get<std::string>(), rec.at("kernel").get<int>(),
+               rec.at("frames").get<int>(), rec.at("precision_log2").get<int>()};
+    r.seconds = rec.value("seconds", 0.0);
+    r.pairs = rec.at("fragment_pairs").get<uint64_t>();
+    std::vector<double> errs;
+    const auto& rows = rec.at("rows");
+    for (size_t i = 0; i < rows.size() && i < ref_rows.size(); ++i) {
+      const bool unres = rows[i].at("unresolvable").get<bool>(),
+                 ref_unres = ref_rows[i].at("unresolvable").get<bool>();
+      if (unres != ref_unres) {
+        ++r.verdict_changes;
+        r.changed.push_back(rows[i].at("row").get<std::string>());
+      } else if (!unres) {
+        const double mts = number_from_json(rows[i].at("mts"), "mts"),
+                     ref = number_from_json(ref_rows[i].at("mts"), "mts");
+        errs.push_back(std::abs(mts - ref) / ref);
+      }
+    }
+    std::sort(errs.begin(), errs.end());
+    if (!errs.empty()) {
+      r.median_err = errs.size() % 2 ? errs[errs.size() / 2]
+                                     : 0.5 * (errs[errs.size() / 2 - 1] + errs[errs.size() / 2]);
+      r.max_err = errs.back();
+    }
+    results.push_back(r);
+  }
+  // Pareto front by work (fragment pairs: deterministic, proportional to time) against accuracy
+  // (verdict changes first, then the largest relative error): keep the levels no other level
+  // beats on both.
+  for (auto& a : results) {
+    a.pareto = true;
+    for (const auto& b : results) {
+      const bool cheaper_or_same = b.pairs <= a.pairs;
+      const bool better_or_same = std::make_pair(b.verdict_changes, b.max_err) <=
+                                  std::make_pair(a.verdict_changes, a.max_err);
+      const bool strictly = b.pairs < a.pairs || std::make_pair(b.verdict_changes, b.max_err) <
+                                                     std::make_pair(a.verdict_changes, a.max_err);
+      if (&a != &b && cheaper_or_same && better_or_same && strictly) a.pareto = false;
+    }
+  }
+  return results;
+}
+
+}  // namespace depthprec

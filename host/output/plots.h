@@ -1,0 +1,22 @@
+// The plots the batch commands draw with --plot, through gnuplot (host/output/gnuplot.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "host/analysis/tradeoff.h"
+
+namespace depthprec {
+
+struct CostPoint {
+  std::string label;
+  double ns = 0, median = 0;
+};
+
+// Precision against cost: one labelled point per technique x format.
+void plot_cost(const std::vector<CostPoint>& points, const std::string& output);
+
+// Error against cost: one point per level, the Pareto front joined. Errors of 0 sit on a floor.
+void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const std::string& output);
+
+}  // namespace depthprec
