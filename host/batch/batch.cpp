@@ -84,49 +84,59 @@ void throw_interrupted(const RowJournal& journal, size_t finished) {
 }
 
 std::vector<nlohmann::json> run_batch(
-    const std::vector<BatchUnit>& units, RowJournal& journal, const Shard& shard,
-    const std::string& what, bool progress,
+    const std::vector<std::string>& keys, const BulkCompute& compute, RowJournal& journal,
+    const Shard& shard, const std::string& what, bool progress,
     const std::function<void(const std::vector<nlohmann::json>&)>& on_partial) {
   std::map<std::string, nlohmann::json> have;
   for (const auto& r : journal.earlier())
     if (r.contains("key") && r["key"].is_string()) have[r["key"].get<std::string>()] = r;
-  size_t todo = 0;
-  for (size_t k = 0; k < units.size(); ++k)
-    if (shard.holds(k) && !have.count(units[k].key)) ++todo;
+  std::vector<size_t> todo;
+  for (size_t k = 0; k < keys.size(); ++k)
+    if (shard.holds(k) && !have.count(keys[k])) todo.push_back(k);
   install_interrupt_handlers();
   auto in_order = [&] {
     std::vector<nlohmann::json> out;
-    for (size_t k = 0; k < units.size(); ++k)
-      if (shard.holds(k) && have.count(units[k].key)) out.push_back(have[units[k].key]);
+    for (size_t k = 0; k < keys.size(); ++k)
+      if (shard.holds(k) && have.count(keys[k])) out.push_back(have[keys[k]]);
     return out;
   };
-  const auto stop_here = [&] {
-    const auto done = in_order();
-    if (!journal.active() && on_partial) on_partial(done);
-    throw_interrupted(journal, done.size());
-  };
   {
-    Progress bar(what, todo, progress);
-    for (size_t k = 0; k < units.size(); ++k) {
-      if (!shard.holds(k) || have.count(units[k].key)) continue;
-      if (interrupt_requested()) stop_here();
-      nlohmann::json record;
-      try {
-        record = units[k].compute();
-      } catch (...) {
-        // A signal can also break what the unit was doing (a kernel build inside PoCL's compiler
-        // fails when SIGINT lands in it): once a stop is requested, the failure is the
-        // interruption.
-        if (!interrupt_requested()) throw;
-        stop_here();
-      }
-      record["key"] = units[k].key;
+    Progress bar(what, todo.size(), progress);
+    const auto emit = [&](size_t k, nlohmann::json record) {
+      record["key"] = keys[k];
       journal.append(record);
-      have[units[k].key] = std::move(record);
+      have[keys[k]] = std::move(record);
       bar.advance();
+    };
+    try {
+      compute(todo, emit);
+    } catch (...) {
+      // A signal can also break what a unit was doing (a kernel build inside PoCL's compiler
+      // fails when SIGINT lands in it): once a stop is requested, any failure is the
+      // interruption, and the finished units are kept.
+      if (!interrupt_requested()) throw;
+      const auto done = in_order();
+      if (!journal.active() && on_partial) on_partial(done);
+      throw_interrupted(journal, done.size());
     }
   }
   return in_order();
+}
+
+std::vector<nlohmann::json> run_batch(
+    const std::vector<BatchUnit>& units, RowJournal& journal, const Shard& shard,
+    const std::string& what, bool progress,
+    const std::function<void(const std::vector<nlohmann::json>&)>& on_partial) {
+  std::vector<std::string> keys;
+  for (const auto& u : units) keys.push_back(u.key);
+  // One unit after another, the interrupt checked between them.
+  const BulkCompute one_by_one = [&units](const std::vector<size_t>& todo, const Emit& emit) {
+    for (size_t k : todo) {
+      if (interrupt_requested()) throw Error(ExitCode::interrupted, "interrupted");
+      emit(k, units[k].compute());
+    }
+  };
+  return run_batch(keys, one_by_one, journal, shard, what, progress, on_partial);
 }
 
 nlohmann::json batch_header(const std::string& kind, const std::string& device,

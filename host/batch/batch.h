@@ -49,6 +49,22 @@ struct BatchUnit {
   std::function<nlohmann::json()> compute;
 };
 
+// The batch loop every batch command runs: keys are the units in batch order (unique, stable
+// across runs); compute(todo, emit) computes the units whose indices are in todo -- this shard's,
+// not in the journal -- calling emit(index, record) as each finishes (emit journals it, with "key"
+// set, and advances the progress line; calls must not overlap), and checks interrupt_requested()
+// itself, ending in an Error when it stops. Returns the shard's records in unit order, earlier
+// ones included. On an interrupt every finished record is kept: with a journal it throws the
+// interrupted Error; without one it calls on_partial(finished records in unit order) first, so
+// they are shown. mts and table compute all their units together (run_scene shares launches
+// between distances); the record batches go through the overload below, one unit at a time.
+using Emit = std::function<void(size_t, nlohmann::json)>;
+using BulkCompute = std::function<void(const std::vector<size_t>& todo, const Emit& emit)>;
+std::vector<nlohmann::json> run_batch(
+    const std::vector<std::string>& keys, const BulkCompute& compute, RowJournal& journal,
+    const Shard& shard, const std::string& what, bool progress,
+    const std::function<void(const std::vector<nlohmann::json>&)>& on_partial);
+
 // Runs the shard's units not already in the journal, journaling each record (with "key" set)
 // as it finishes; returns the shard's records in unit order, earlier ones included. On an
 // interrupt request it stops between units: with a journal it throws the interrupted Error;

@@ -1,13 +1,14 @@
-// mts and table. Batch runs keep every finished row: with --output, each row is appended
-// to FILE.rows.jsonl (flushed) as it finishes; Ctrl-C or SIGTERM stops after the current launch
-// round; --resume continues from the journal; the final file replaces atomically and the journal
-// goes. --shard i/N computes a deterministic part; merge joins the parts' JSON outputs.
+// mts and table: the scene's rows through the batch loop every batch command shares
+// (host/batch/batch.h: journal, --resume, --shard, progress, interrupts), computed together by
+// run_scene, which shares launches between a pair's distances; Ctrl-C or SIGTERM stops after the
+// current launch round with every finished row kept.
 #include <fmt/format.h>
 
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "host/base/errors.h"
 #include "host/base/interrupt.h"
@@ -54,67 +55,60 @@ void add_attribute_flag(CLI::App* cmd, MtsOptions& o) {
 void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
-  RunControl control;
   const Shard shard = Shard::parse(o.batch.shard);
-  control.shard_index = shard.index;
-  control.shard_count = shard.count;
-  control.attribute = o.attribute;
-  control.jobs = o.jobs;
   RowJournal journal(o.out.output, o.batch.resume);
-  std::vector<MtsRow> earlier;
-  for (const auto& j : journal.earlier()) {
-    earlier.push_back(row_from_json(j));
-    control.done.insert(row_key(earlier.back().pair, earlier.back().z));
-  }
-  if (journal.active())
-    control.on_row = [&journal](const MtsRow& r) { journal.append(row_to_json(r, true)); };
-  std::vector<MtsRow> finished = earlier;
-  size_t total = 0;
-  for (size_t k = 0; k < scene.evaluate.size() * scene.distances.size(); ++k)
-    if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) == control.shard_index)
-      ++total;
-  Progress progress(wide ? "table" : "mts", total - std::min(total, earlier.size()),
-                    !global.quiet && stderr_is_terminal());
-  auto journal_write = control.on_row;
-  control.on_row = [journal_write, &finished, &progress](const MtsRow& r) {
-    if (journal_write) journal_write(r);
-    finished.push_back(r);
-    progress.advance();
-  };
-  control.stop = interrupt_requested;
-  install_interrupt_handlers();
-
+  const std::string kind = wide ? "table" : "mts";
+  // The units: rows k = pair index x distances + distance index, keyed by pair and distance.
+  std::vector<std::string> keys;
+  std::map<std::string, size_t> index_of;
+  for (const auto& pair : scene.evaluate)
+    for (double z : scene.distances) {
+      index_of[row_key(pair, z)] = keys.size();
+      keys.push_back(row_key(pair, z));
+    }
   OpenClRuntime rt(global.device);
-  auto log = [&global](const std::string& line) {
+  const auto log = [&global](const std::string& line) {
     if (global.verbose) fmt::print(stderr, "{}\n", line);
   };
-  MtsRun result;
-  try {
-    result = run_scene(rt, scene, log, control);
-  } catch (const Error& e) {
-    if (e.code() != ExitCode::interrupted) throw;
-    if (journal.active()) throw_interrupted(journal, finished.size());
-    sort_rows(scene, finished);
-    RunInfo partial;
-    partial.device = rt.description();
-    partial.variants = scene_variants(scene);
-    partial.timing = !o.out.no_timing;
-    partial.kind = wide ? "table" : "mts";
-    write_output("", wide ? render_table(scene, finished, partial, o.out.format_out)
-                          : render_rows(scene, finished, partial, o.out.format_out));
-    throw_interrupted(journal, finished.size());
-  }
-  std::vector<MtsRow> rows = earlier;
-  rows.insert(rows.end(), result.rows.begin(), result.rows.end());
-  sort_rows(scene, rows);
-  result.info.fragment_pairs = 0;
-  for (const auto& r : rows) result.info.fragment_pairs += r.fragment_pairs;
-  result.info.timing = !o.out.no_timing;
-  result.info.kind = wide ? "table" : "mts";
-  result.info.shard = o.batch.shard;
-  const std::string text = wide ? render_table(scene, rows, result.info, o.out.format_out)
-                                : render_rows(scene, rows, result.info, o.out.format_out);
-  write_output(o.out.output, text);
+  const auto render = [&](std::vector<MtsRow> rows, RunInfo info) {
+    sort_rows(scene, rows);
+    info.fragment_pairs = 0;
+    for (const auto& r : rows) info.fragment_pairs += r.fragment_pairs;
+    info.variants = scene_variants(scene);
+    info.timing = !o.out.no_timing;
+    info.kind = kind;
+    return wide ? render_table(scene, rows, info, o.out.format_out)
+                : render_rows(scene, rows, info, o.out.format_out);
+  };
+  const auto to_rows = [](const std::vector<nlohmann::json>& records) {
+    std::vector<MtsRow> rows;
+    for (const auto& r : records) rows.push_back(row_from_json(r));
+    return rows;
+  };
+  // All units of the batch are computed together: run_scene shares launches between a pair's
+  // distances and runs pairs side by side; it stops between launch rounds on an interrupt.
+  RunInfo info;
+  info.device = rt.description();
+  const BulkCompute compute = [&](const std::vector<size_t>& todo, const Emit& emit) {
+    RunControl control;
+    std::set<size_t> wanted(todo.begin(), todo.end());
+    for (size_t k = 0; k < keys.size(); ++k)
+      if (!wanted.count(k)) control.done.insert(keys[k]);
+    control.attribute = o.attribute;
+    control.jobs = o.jobs;
+    control.stop = interrupt_requested;
+    control.on_row = [&](const MtsRow& r) {
+      emit(index_of.at(row_key(r.pair, r.z)), row_to_json(r, true));
+    };
+    info = run_scene(rt, scene, log, control).info;
+  };
+  const auto records =
+      run_batch(keys, compute, journal, shard, kind, !global.quiet && stderr_is_terminal(),
+                [&](const std::vector<nlohmann::json>& done) {
+                  write_output("", render(to_rows(done), info));
+                });
+  info.shard = o.batch.shard;
+  write_output(o.out.output, render(to_rows(records), info));
   journal.remove();
 }
 
