@@ -6,6 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "host/analysis/lj_tables.h"
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/base/version.h"
@@ -17,6 +18,7 @@
 #include "host/model/resolve.h"
 #include "host/output/gnuplot.h"
 #include "host/output/json_header.h"
+#include "host/output/plots.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 
@@ -60,14 +62,6 @@ void add_lj_common(CLI::App* cmd, LjOptions& o, bool with_buffer) {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// The formats of a `bits`-bit buffer: E = 0 (integer) .. min(8, bits - 1).
-std::vector<std::string> split_formats(int bits) {
-  std::vector<std::string> out = {fmt::format("unorm{}", bits)};
-  for (int e = 1; e <= std::min(8, bits - 1); ++e)
-    out.push_back(fmt::format("e{}m{}", e, bits - e));
-  return out;
 }
 
 void run_lj(const LjOptions& o, const GlobalOptions& g) {
@@ -134,20 +128,6 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
   write_output(o.out.output, text);
 }
 
-struct Ranked {
-  std::string format;
-  int e = 0;
-  double ae = 0;
-};
-
-std::vector<Ranked> sweep(OpenClRuntime& rt, const LjConfig& c, int bits) {
-  std::vector<Ranked> out;
-  int e = 0;
-  for (const auto& name : split_formats(bits))
-    out.push_back({name, e++, lj_average_error_device(rt, c, StorageFormat::parse(name)).ae});
-  return out;
-}
-
 void run_select(const LjOptions& o, const GlobalOptions& g) {
   const LjConfig c = o.config();
   if (o.bits < 2 || o.bits > 32)
@@ -182,76 +162,6 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
                         o.out.format_out);
   }
   write_output(o.out.output, text);
-}
-
-// lj-table's batch: one unit per table row, so an interrupted run keeps every finished row.
-const std::vector<double> kLjRatios = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 1e4, 1e6};
-const char* const kLjSamplings[] = {"uniform", "increasing"};
-const int kLjBits[] = {16, 24};
-const LjBuffer kLjBuffers[] = {LjBuffer::z, LjBuffer::w, LjBuffer::inverse_w,
-                               LjBuffer::complementary_z};
-
-// LJ99 fig. 11: 32-bit buffers.
-struct LjPick {
-  LjBuffer buffer;
-  const char* format;
-};
-const LjPick kLjPicks[] = {{LjBuffer::z, "float32"},
-                           {LjBuffer::z, "unorm24"},
-                           {LjBuffer::z, "unorm32"},
-                           {LjBuffer::w, "unorm32"},
-                           {LjBuffer::inverse_w, "float32"},
-                           {LjBuffer::complementary_z, "float32"},
-                           {LjBuffer::complementary_z, "e4m24"}};
-
-LjConfig table_config(LjBuffer b, double ratio, long long samples, LjSampling sampling) {
-  LjConfig c;
-  c.buffer = b;
-  c.near = 1;
-  c.far = ratio;
-  c.samples = samples;
-  c.sampling = sampling;
-  return c;
-}
-
-std::string split_key(const char* sampling, int bits, LjBuffer b, double r) {
-  return fmt::format("{}/{}/{}/{:.17g}", sampling, bits, to_string(b), r);
-}
-std::string picks_key(double r) {
-  return fmt::format("32bit/{:.17g}", r);
-}
-
-std::vector<BatchUnit> lj_table_units(OpenClRuntime& rt, long long samples) {
-  std::vector<BatchUnit> units;
-  auto aes = [](const std::vector<double>& v) {
-    nlohmann::json a = nlohmann::json::array();
-    for (double x : v) a.push_back(json_number(x));
-    return nlohmann::json{{"ae", a}};
-  };
-  for (const char* sampling : kLjSamplings)
-    for (int bits : kLjBits)
-      for (const LjBuffer b : kLjBuffers)
-        for (double r : kLjRatios)
-          units.push_back(
-              {split_key(sampling, bits, b, r), [&rt, samples, sampling, bits, b, r, aes] {
-                 std::vector<double> v;
-                 for (const auto& x :
-                      sweep(rt, table_config(b, r, samples, parse_lj_sampling(sampling)), bits))
-                   v.push_back(x.ae);
-                 return aes(v);
-               }});
-  for (double r : kLjRatios)
-    units.push_back({picks_key(r), [&rt, samples, r, aes] {
-                       std::vector<double> v;
-                       for (const auto& p : kLjPicks)
-                         v.push_back(lj_average_error_device(
-                                         rt,
-                                         table_config(p.buffer, r, samples, LjSampling::uniform),
-                                         StorageFormat::parse(p.format))
-                                         .ae);
-                       return aes(v);
-                     }});
-  return units;
 }
 
 // The tables from whatever records there are (a shard or an interrupted run has some rows).
@@ -319,36 +229,6 @@ std::string render_lj_table(const std::map<std::string, nlohmann::json>& records
     text += render_cells(cols, cells, format);
   }
   return text;
-}
-
-// LJ error against f/d per format: one panel per buffer type, 16 bits, uniform sampling.
-void plot_lj_table(const std::map<std::string, nlohmann::json>& records,
-                   const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                                   gnuplot_quote(output));
-  script +=
-      "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform "
-      "sampling' noenhanced\n"
-      "set logscale xy\nset grid\nset key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
-  for (const LjBuffer b : kLjBuffers) {
-    script += fmt::format("set title {} noenhanced\nplot ",
-                          gnuplot_quote(std::string(to_string(b)) + " buffer"));
-    for (int e = 0; e <= 8; ++e)
-      script += fmt::format("'-' using 1:2 with linespoints title {}{}",
-                            gnuplot_quote(e == 0 ? "unorm16" : fmt::format("e{}m{}", e, 16 - e)),
-                            e < 8 ? ", " : "\n");
-    for (int e = 0; e <= 8; ++e) {
-      for (double r : kLjRatios) {
-        const auto it = records.find(split_key("uniform", 16, b, r));
-        if (it == records.end()) continue;
-        const double ae = number_from_json(it->second.at("ae").at(e), "ae");
-        if (std::isfinite(ae)) script += fmt::format("{:.6g} {:.6g}\n", r, ae);
-      }
-      script += "e\n";
-    }
-  }
-  script += "unset multiplot\n";
-  run_gnuplot(script, output);
 }
 
 }  // namespace

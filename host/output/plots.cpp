@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host/analysis/lj_tables.h"
+#include "host/base/json_number.h"
 #include "host/output/gnuplot.h"
 
 namespace depthprec {
@@ -53,6 +55,35 @@ void plot_tradeoff(const std::vector<LevelResult>& results, bool timing,
       "EOD\nplot $levels using 1:2 with points pt 7 ps 1.5 title 'level', "
       "$levels using 1:2:3 with labels offset 1,0.6 left noenhanced notitle, "
       "$front using 1:2 with lines lw 2 title 'Pareto front'\n";
+  run_gnuplot(script, output);
+}
+
+void plot_lj_table(const std::map<std::string, nlohmann::json>& records,
+                   const std::string& output) {
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
+                                   gnuplot_quote(output));
+  script +=
+      "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform "
+      "sampling' noenhanced\n"
+      "set logscale xy\nset grid\nset key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
+  for (const LjBuffer b : kLjBuffers) {
+    script += fmt::format("set title {} noenhanced\nplot ",
+                          gnuplot_quote(std::string(to_string(b)) + " buffer"));
+    for (int e = 0; e <= 8; ++e)
+      script += fmt::format("'-' using 1:2 with linespoints title {}{}",
+                            gnuplot_quote(e == 0 ? "unorm16" : fmt::format("e{}m{}", e, 16 - e)),
+                            e < 8 ? ", " : "\n");
+    for (int e = 0; e <= 8; ++e) {
+      for (double r : kLjRatios) {
+        const auto it = records.find(split_key("uniform", 16, b, r));
+        if (it == records.end()) continue;
+        const double ae = number_from_json(it->second.at("ae").at(e), "ae");
+        if (std::isfinite(ae)) script += fmt::format("{:.6g} {:.6g}\n", r, ae);
+      }
+      script += "e\n";
+    }
+  }
+  script += "unset multiplot\n";
   run_gnuplot(script, output);
 }
 

@@ -1,6 +1,8 @@
 // The plots the batch commands draw with --plot, through gnuplot (host/output/gnuplot.h).
 #pragma once
 
+#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -18,5 +20,9 @@ void plot_cost(const std::vector<CostPoint>& points, const std::string& output);
 
 // Error against cost: one point per level, the Pareto front joined. Errors of 0 sit on a floor.
 void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const std::string& output);
+
+// LJ error against f/d per format: one panel per buffer type, 16 bits, uniform sampling (the
+// records of lj-table by key).
+void plot_lj_table(const std::map<std::string, nlohmann::json>& records, const std::string& output);
 
 }  // namespace depthprec
