@@ -49,6 +49,25 @@ static inline void edge_range(__global const float* R, uint bits, int e, float p
 // The row's coverage by one plane as segments [seg_x[k], seg_x[k+1]) owned by triangle seg_t[k]
 // (-1: uncovered); where rounding lets two triangles claim a pixel, the lower index owns it.
 // Returns the number of segments; seg_x[n] == W.
+// Sorts key[0..n) ascending, stable, by insertion (n is small: the spans or boundaries of one
+// row), moving the payloads p1 and p2 along with the keys; either may be 0 (none), which the
+// compiler folds away where the call passes a constant.
+static inline void insertion_sort(int* key, int* p1, int* p2, int n) {
+  for (int i = 1; i < n; ++i) {
+    const int k = key[i], a = p1 ? p1[i] : 0, b = p2 ? p2[i] : 0;
+    int j = i - 1;
+    while (j >= 0 && key[j] > k) {
+      key[j + 1] = key[j];
+      if (p1) p1[j + 1] = p1[j];
+      if (p2) p2[j + 1] = p2[j];
+      --j;
+    }
+    key[j + 1] = k;
+    if (p1) p1[j + 1] = a;
+    if (p2) p2[j + 1] = b;
+  }
+}
+
 #define MAX_SEG (2 * NT + 2)
 static inline int row_segments(__global const float* T, float py, float ox, int W, int* seg_x,
                                int* seg_t) {
@@ -135,19 +154,7 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   }
   /* Usually the spans are disjoint (each pixel owned by one triangle): sorted by start they are
    * the segments, with uncovered gaps between. Otherwise fall through to the general sweep. */
-  for (int i = 1; i < n; ++i) {
-    const int l = lo[i], h = hi[i], t = tri[i];
-    int j = i - 1;
-    while (j >= 0 && lo[j] > l) {
-      lo[j + 1] = lo[j];
-      hi[j + 1] = hi[j];
-      tri[j + 1] = tri[j];
-      --j;
-    }
-    lo[j + 1] = l;
-    hi[j + 1] = h;
-    tri[j + 1] = t;
-  }
+  insertion_sort(lo, hi, tri, n);
   int disjoint = 1;
   for (int i = 1; i < n; ++i) disjoint &= hi[i - 1] <= lo[i];
   if (disjoint) {
@@ -176,15 +183,7 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
     bx[nb++] = lo[i];
     bx[nb++] = hi[i];
   }
-  for (int i = 1; i < nb; ++i) {
-    const int v = bx[i];
-    int j = i - 1;
-    while (j >= 0 && bx[j] > v) {
-      bx[j + 1] = bx[j];
-      --j;
-    }
-    bx[j + 1] = v;
-  }
+  insertion_sort(bx, 0, 0, nb);
   int ns = 0;
   for (int i = 0; i < nb; ++i) {
     const int x0 = bx[i];
