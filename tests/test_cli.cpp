@@ -50,12 +50,8 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
     std::ofstream("/tmp/depthprec_bad.json") << "{\n  \"near\": 1,\n  \"far\": [1,\n}\n";
     std::ofstream("/tmp/depthprec_unknown.json") << "{\n  \"kernal\": [10, 10]\n}\n";
   }
-  struct Case {
-    std::string args;
-    int code;
-    std::string says;
-  };
-  const std::vector<Case> cases = {
+  // One generated run per case, so a failure names its case.
+  const auto [args_in, code, says] = GENERATE(table<std::string, int, std::string>({
       {"mts /tmp/depthprec_bad.json", 3, "depthprec_bad.json:4:1: malformed JSON"},
       {"mts /tmp/depthprec_unknown.json", 3, "depthprec_unknown.json:2:3: unknown key 'kernal'"},
       {"mts /nonexistent/scene.json", 3, "cannot read scene file '/nonexistent/scene.json'"},
@@ -84,16 +80,14 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
       {"mts --kernel 20", 2, "--kernel '20': expected WxH"},
       {"formats unorm33", 3, "unorm takes 1 to 32 bits"},
       {"formats e9m60", 3, "E = 1..8"},
-  };
-  for (const auto& c : cases) {
-    std::string args = c.args;  // mts cases run small, where the case itself does not set it
-    if (args.rfind("mts", 0) == 0)
-      for (const char* opt : {"--distances 2", "--frames 2", "--kernel 8x8"})
-        if (args.find(std::string(opt).substr(0, std::string(opt).find(' '))) == std::string::npos)
-          args += std::string(" ") + opt;
-    const auto r = run_cli(args);
-    INFO(c.args << "\n" << r.output);
-    CHECK(r.exit_code == c.code);
-    CHECK_THAT(r.output, Contains(c.says));
-  }
+  }));
+  std::string args = args_in;  // mts cases run small, where the case itself does not set it
+  if (args.rfind("mts", 0) == 0)
+    for (const char* opt : {"--distances 2", "--frames 2", "--kernel 8x8"})
+      if (args.find(std::string(opt).substr(0, std::string(opt).find(' '))) == std::string::npos)
+        args += std::string(" ") + opt;
+  const auto r = run_cli(args);
+  INFO(args_in << "\n" << r.output);
+  CHECK(r.exit_code == code);
+  CHECK_THAT(r.output, Contains(says));
 }
