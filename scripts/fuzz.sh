@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer scene target with clang (ASan + UBSan) in build-fuzz/ and runs it for the
 # given number of seconds (default 600), seeded with the scenes in data/. Crashes are written to
-# build-fuzz/crashes/; each one becomes a regression test in tests/test_scene_fuzz_regressions.cpp.
+# build-fuzz/crashes/; each one becomes a case of "fuzzer regressions end in input errors" in tests/test_scene.cpp.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"
