@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "host/analysis/lj_tables.h"
 #include "host/lj/lj_metric.h"
 #include "host/lj/lj_pipeline.h"
 #include "host/model/resolve.h"
@@ -87,13 +88,7 @@ double reference_ae(const LjConfig& c, const StorageFormat& f) {
 }
 
 LjConfig cfg(LjBuffer b, double far, long long n = 1000000, LjSampling s = LjSampling::uniform) {
-  LjConfig c;
-  c.buffer = b;
-  c.near = 1;
-  c.far = far;
-  c.samples = n;
-  c.sampling = s;
-  return c;
+  return table_config(b, far, n, s);  // near 1, as every LJ table
 }
 
 double ae(LjBuffer b, const std::string& format, double far, LjSampling s = LjSampling::uniform) {
