@@ -164,3 +164,35 @@ TEST_CASE("a row never counts more launches than its run made", "[cli][mts]") {
   }
   CHECK(sum > j["kernel_launches"].get<uint64_t>());  // rows share launches
 }
+
+TEST_CASE("lj and select write their errors as JSON numbers, as mts does", "[cli]") {
+  const auto lj = run_cli(
+      "lj --buffer z --format unorm16 --far 100 --samples 1000 --no-timing --format-out json");
+  REQUIRE(lj.exit_code == 0);
+  const auto j = nlohmann::json::parse(lj.output);
+  for (const char* key : {"ae_host", "ae_device", "ae_pipeline"}) {
+    INFO(key);
+    REQUIRE(j.at(key).is_number());
+    CHECK(j.at(key).get<double>() > 0);
+  }
+  CHECK(j.at("format_version") == 1);
+  const auto sel =
+      run_cli("select --buffer inverse_w --bits 16 --far 500 --samples 1000 --format-out json");
+  REQUIRE(sel.exit_code == 0);
+  const auto ranking = nlohmann::json::parse(sel.output).at("ranking");
+  REQUIRE(ranking.size() == 9);
+  CHECK(ranking[0].at("ae").is_number());
+  CHECK(ranking[0].at("ae").get<double>() <= ranking[8].at("ae").get<double>());
+}
+
+TEST_CASE("resolve writes JSON when asked, with the OpenGL wiki's figure as a number", "[cli]") {
+  const auto r = run_cli(
+      "resolve -t standard -f unorm16 --near 0.01 --far 1000 --code 65534 --format-out json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  CHECK(j.at("kind") == "resolve");
+  REQUIRE(j.at("rows").size() == 1);
+  CHECK_THAT(j["rows"][0].at("distance").get<double>(),
+             Catch::Matchers::WithinRel(395.90054, 1e-7));
+  CHECK(j["rows"][0].at("code") == 65534);
+}

@@ -92,9 +92,9 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
               {"far", c.far},
               {"samples", c.samples},
               {"sampling", o.sampling},
-              {"ae_host", exact(host.ae)},
-              {"ae_device", exact(dev.ae)},
-              {"ae_pipeline", exact(pipe.ae)},
+              {"ae_host", json_number(host.ae)},
+              {"ae_device", json_number(dev.ae)},
+              {"ae_pipeline", json_number(pipe.ae)},
               {"vertex_limited_fraction", host.vertex_limited},
               {"infinite_samples", host.infinite_samples},
               {"pipeline_clipped_samples", pipe.clipped},
@@ -147,7 +147,7 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
                         {"sampling", o.sampling},
                         {"ranking", nlohmann::json::array()}};
     for (const auto& r : ranked)
-      j["ranking"].push_back({{"format", r.format}, {"E", r.e}, {"ae", exact(r.ae)}});
+      j["ranking"].push_back({{"format", r.format}, {"E", r.e}, {"ae", json_number(r.ae)}});
     text = j.dump(2) + "\n";
   } else {
     Cells cells;

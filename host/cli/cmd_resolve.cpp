@@ -2,10 +2,12 @@
 #include <fmt/format.h>
 
 #include "host/base/errors.h"
+#include "host/base/json_number.h"
 #include "host/cli/commands.h"
 #include "host/model/resolve.h"
 #include "host/model/storage_format.h"
 #include "host/model/technique.h"
+#include "host/output/json_header.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 
@@ -36,9 +38,24 @@ void run_resolve(const ResolveOptions& o) {
   check_writable(o.out.output);
   std::string text;
   const auto digits = [](double v) { return fmt::format("{:.10g}", v); };
+  // JSON: the set-up and the rows with every value a JSON number (json_number).
+  nlohmann::json j = output_header("resolve", "");
+  j.update({{"technique", o.technique},
+            {"format", f.name()},
+            {"rounding", o.rounding},
+            {"near", json_number(s.near)},
+            {"far", json_number(s.far)},
+            {"rows", nlohmann::json::array()}});
+  j.erase("device");  // exact mappings on the host: no device
   if (o.code >= 0) {
     if (o.code > 0xffffffffLL) throw InputError(fmt::format("--code {} is beyond 32 bits", o.code));
     const CodeInterval ci = resolve_code(s, f, static_cast<uint32_t>(o.code));
+    j["rows"].push_back({{"code", ci.code},
+                         {"depth", json_number(ci.depth)},
+                         {"distance", json_number(ci.distance)},
+                         {"distance_lo", json_number(ci.distance_lo)},
+                         {"distance_hi", json_number(ci.distance_hi)},
+                         {"width", json_number(ci.distance_hi - ci.distance_lo)}});
     text = render_cells(
         {{"code"}, {"depth"}, {"distance"}, {"distance_lo"}, {"distance_hi"}, {"width"}},
         {{std::to_string(ci.code), digits(ci.depth), digits(ci.distance), digits(ci.distance_lo),
@@ -52,12 +69,20 @@ void run_resolve(const ResolveOptions& o) {
       rows.push_back(resolve_distance(s, f, o.distance));
     Cells cells;
     for (const auto& r : rows)
+      j["rows"].push_back({{"distance", json_number(r.distance)},
+                           {"depth", json_number(r.depth)},
+                           {"code", r.code},
+                           {"gap_below", json_number(r.gap_below)},
+                           {"gap_above", json_number(r.gap_above)},
+                           {"resolution", json_number(r.resolution)}});
+    for (const auto& r : rows)
       cells.push_back({digits(r.distance), digits(r.depth), std::to_string(r.code),
                        human(r.gap_below), human(r.gap_above), human(r.resolution)});
     text = render_cells(
         {{"distance"}, {"depth"}, {"code"}, {"gap_below"}, {"gap_above"}, {"resolution"}}, cells,
         o.out.format_out);
   }
+  if (o.out.format_out == "json") text = j.dump(2) + "\n";
   if (o.out.format_out == "text")
     text = fmt::format("{} in {} ({}), near {}, far {}:\n", o.technique, f.name(), o.rounding,
                        human(s.near), human(s.far)) +
