@@ -196,3 +196,19 @@ TEST_CASE("resolve writes JSON when asked, with the OpenGL wiki's figure as a nu
              Catch::Matchers::WithinRel(395.90054, 1e-7));
   CHECK(j["rows"][0].at("code") == 65534);
 }
+
+TEST_CASE("on a terminal the progress line is erased before the output", "[cli]") {
+  // script(1) (bsdutils, part of every Debian) gives the command a terminal.
+  const std::string cmd = std::string("script -qfc \"'") + DEPTHPREC_EXE +
+                          "' mts -t standard -f unorm24 --distances 2,4 --kernel 8x8 --frames 2 "
+                          "--no-timing\" /dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  REQUIRE(pclose(p) == 0);
+  CHECK_THAT(out, Contains("mts: 2/2 rows"));              // the progress line was drawn
+  CHECK_THAT(out, Contains("\r\x1b[Ktechnique  format"));  // and erased before the header
+}

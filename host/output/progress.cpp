@@ -17,8 +17,13 @@ Progress::Progress(std::string what, size_t total, bool enabled)
       enabled_(enabled && total > 0),
       start_(std::chrono::steady_clock::now()) {}
 
+// Erases the line it drew (carriage return, then ANSI erase-to-end-of-line: it is only drawn on a
+// terminal), so what follows starts on a clean line instead of after the last ETA.
 Progress::~Progress() {
-  if (enabled_ && done_ > 0) std::fputc('\n', stderr);
+  if (enabled_ && done_ > 0) {
+    std::fputs("\r\033[K", stderr);
+    std::fflush(stderr);
+  }
 }
 
 void Progress::advance(size_t rows) {
