@@ -7,7 +7,7 @@ PACKAGES=(
   build-essential cmake
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers clinfo
   libglm-dev catch2 libcli11-dev nlohmann-json3-dev libfmt-dev
-  gnuplot-nox clang-format
+  gnuplot-nox clang-format parallel
 )
 
 missing=()

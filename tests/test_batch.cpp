@@ -8,6 +8,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -119,6 +120,24 @@ TEST_CASE("shards merge to the bytes of the whole batch", "[batch]") {
   const std::string merged = fresh("/tmp/depthprec_test_merged.json");
   REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o " + merged).exit_code == 0);
   CHECK(slurp(merged) == slurp(full));
+}
+
+// What docs/scale-out.md shows: the parts run by GNU parallel (Debian's `parallel`, installed by
+// scripts/setup.sh), merged to exactly what one run writes.
+TEST_CASE("a batch split by GNU parallel merges to the bytes of one run", "[batch]") {
+  const std::string whole = fresh("/tmp/depthprec_test_par_whole.json");
+  REQUIRE(run_cli(kBatch + " -o " + whole).exit_code == 0);
+  for (int i = 1; i <= 3; ++i) fresh("/tmp/depthprec_test_par" + std::to_string(i) + ".json");
+  const std::string cmd = "parallel --will-cite -j 2 \"'" + std::string(DEPTHPREC_EXE) + "' " +
+                          kBatch +
+                          " -q --shard {}/3 -o /tmp/depthprec_test_par{}.json\" ::: 1 2 3 2>&1";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  const std::string merged = fresh("/tmp/depthprec_test_par_merged.json");
+  REQUIRE(run_cli("merge /tmp/depthprec_test_par3.json /tmp/depthprec_test_par1.json "
+                  "/tmp/depthprec_test_par2.json --no-timing --format-out json -o " +
+                  merged)
+              .exit_code == 0);
+  CHECK(slurp(merged) == slurp(whole));
 }
 
 TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
