@@ -148,7 +148,8 @@ nlohmann::json batch_header(const std::string& kind, const std::string& device,
 
 namespace {
 // Fields holding measured times: left out with --no-timing.
-const char* const kTimingFields[] = {"seconds", "kernel_seconds", "ns_per_fragment_pair"};
+const char* const kTimingFields[] = {"seconds", "kernel_seconds", "ns_per_fragment_pair",
+                                     "frames_per_second"};
 
 void strip_timing(nlohmann::json& j) {
   if (j.is_object())

@@ -70,6 +70,7 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
   check_shards(o, docs);
   nlohmann::json scene_json;
   std::string kind, device, source;
+  RenderedWith rendered;
   std::map<std::string, MtsRow> rows;
   for (size_t k = 0; k < docs.size(); ++k) {
     const std::string& f = o.files[k];
@@ -82,6 +83,10 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
       kind = j.value("kind", "mts");
       device = j.value("device", "");
       source = j.value("scene_source", "merged shards");
+      if (j.contains("gl_renderer"))  // shards of `render`: what rendered them
+        rendered = {j["gl_renderer"].get<std::string>(), j.value("gl_version", ""),
+                    j.value("egl_platform", ""),
+                    j.value("depth_buffers", std::map<std::string, std::string>{})};
     } else if (j["scene"] != scene_json) {
       throw InputError(fmt::format("merge: '{}' ran another scene than '{}'", f, o.files.front()));
     }
@@ -99,7 +104,8 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
   sort_rows(scene, all);
   RunInfo info;
   info.device = device;
-  info.variants = scene_variants(scene);
+  info.rendered = rendered;
+  if (rendered.empty()) info.variants = scene_variants(scene);
   info.timing = !o.out.no_timing;
   info.kind = kind;
   for (const auto& r : all) info.fragment_pairs += r.fragment_pairs;
@@ -125,7 +131,9 @@ void merge_records(const MergeOptions& o, const std::string& kind,
   for (size_t k = 0; k < docs.size(); ++k) {
     const nlohmann::json& j = docs[k];
     nlohmann::json h = j;
-    for (const char* key : {"records", "shard", "levels", "device"}) h.erase(key);
+    // What the records derive (tradeoff's levels, compare's summaries) is derived again.
+    for (const char* key : {"records", "shard", "levels", "summary", "pairs", "device"})
+      h.erase(key);
     if (header.is_null()) {
       header = h;
       header["device"] = j.value("device", "");
@@ -155,6 +163,8 @@ void merge_records(const MergeOptions& o, const std::string& kind,
     text = render_tradeoff_output(header, records, o.out);
   else if (kind == "pipelines")
     text = render_pipelines_output(header, records, o.out);
+  else if (kind == "compare")
+    text = render_compare_output(header, records, o.out);
   else
     text = render_cost_output(header, records, o.out);
   write_output(o.out.output, text);
@@ -166,7 +176,8 @@ void run_merge(const MergeOptions& o) {
   std::vector<nlohmann::json> docs;
   for (const auto& f : o.files) docs.push_back(read_json(f));
   const std::string kind = docs.front().value("kind", "mts");
-  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines")
+  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines" ||
+      kind == "compare")
     merge_records(o, kind, docs);
   else
     merge_rows(o, docs);

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "host/base/errors.h"
@@ -18,6 +19,7 @@
 #include "host/mts/mts_run.h"
 #include "host/output/progress.h"
 #include "host/output/row_json.h"
+#include "host/render/render_run.h"
 
 namespace depthprec::cli {
 
@@ -31,6 +33,8 @@ struct MtsOptions {
   BatchOptions batch;
   bool attribute = false;
   int jobs = RunControl{}.jobs;
+  bool render = false;  // probes decided by the system's OpenGL, not the emulator
+  std::string gl_device = GlDeviceChoice{}.text;
 };
 
 void add_jobs_option(CLI::App* cmd, MtsOptions& o) {
@@ -66,7 +70,19 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
       index_of[row_key(pair, z)] = keys.size();
       keys.push_back(row_key(pair, z));
     }
-  OpenClRuntime rt(global.device);
+  // The backend: the emulator on the OpenCL device, or the system's OpenGL; a rendered run
+  // checks every pair's depth buffer before it starts.
+  std::optional<OpenClRuntime> rt;
+  std::optional<GlContext> gl;
+  RunInfo info;
+  if (o.render) {
+    gl.emplace(GlDeviceChoice::parse(o.gl_device));
+    info.device = gl->description();
+    info.rendered = {gl->renderer(), gl->version(), gl->platform(), check_scene_renders(scene)};
+  } else {
+    rt.emplace(global.device);
+    info.device = rt->description();
+  }
   const auto log = [&global](const std::string& line) {
     if (global.verbose) fmt::print(stderr, "{}\n", line);
   };
@@ -74,7 +90,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
     sort_rows(scene, rows);
     info.fragment_pairs = 0;
     for (const auto& r : rows) info.fragment_pairs += r.fragment_pairs;
-    info.variants = scene_variants(scene);
+    if (!o.render) info.variants = scene_variants(scene);
     info.timing = !o.out.no_timing;
     info.kind = kind;
     return wide ? render_table(scene, rows, info, o.out.format_out)
@@ -87,8 +103,6 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   };
   // All units of the batch are computed together: run_scene shares launches between a pair's
   // distances and runs pairs side by side; it stops between launch rounds on an interrupt.
-  RunInfo info;
-  info.device = rt.description();
   const BulkCompute compute = [&](const std::vector<size_t>& todo, const Emit& emit) {
     RunControl control;
     std::set<size_t> wanted(todo.begin(), todo.end());
@@ -100,7 +114,10 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
     control.on_row = [&](const MtsRow& r) {
       emit(index_of.at(row_key(r.pair, r.z)), row_to_json(r, true));
     };
-    info = run_scene(rt, scene, log, control).info;
+    const RenderedWith with = info.rendered;
+    info = o.render ? render_scene(*gl, scene, log, control).info
+                    : run_scene(*rt, scene, log, control).info;
+    info.rendered = with;
   };
   const auto records =
       run_batch(keys, compute, journal, shard, kind, !global.quiet && stderr_is_terminal(),
@@ -113,6 +130,14 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
 }
 
 }  // namespace
+
+void add_gl_device_option(CLI::App* cmd, std::string& choice) {
+  cmd->add_option("--gl-device", choice,
+                  "The EGL display to render on: auto (Mesa's surfaceless platform when the EGL "
+                  "client offers it, else the first EGL device), surfaceless, or device:N (the "
+                  "N-th EGL device, from 0, e.g. a GPU's)")
+      ->capture_default_str();
+}
 
 void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   auto mts = std::make_shared<MtsOptions>();
@@ -153,6 +178,27 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   add_attribute_flag(tcmd, *table);
   add_jobs_option(tcmd, *table);
   tcmd->callback([table, &global]() { run(*table, global, true); });
+
+  auto render = std::make_shared<MtsOptions>();
+  render->render = true;
+  auto* rcmd = app.add_subcommand(
+      "render",
+      "The MTS measurement done by rendering, as Gilg et al. did it: the same search, scene and\n"
+      "rows as `mts`, each probe decided by drawing plane A then plane B through the system's\n"
+      "OpenGL 4.5 (headless EGL) and reading the kernel back from the colour buffer. Ground\n"
+      "truth for the emulation on this machine's rasterizer (Mesa llvmpipe without a GPU);\n"
+      "`compare` puts both side by side. Storage: the driver's depth buffers (unorm16,\n"
+      "unorm24, unorm32, float32 where it stores them exactly); the divide, rounding,\n"
+      "denormals and contraction are the driver's (docs/validation.md).\n"
+      "Examples:\n"
+      "  depthprec render -t standard -f unorm24 --distances 16,1024 --frames 20\n"
+      "  depthprec render --format-out json -o rendered.json      (the default scene, minutes)\n"
+      "  LIBGL_ALWAYS_SOFTWARE=1 depthprec render ...             (llvmpipe on a GPU machine)");
+  render->scene.add_to(*rcmd, true);
+  render->out.add_to(*rcmd);
+  render->batch.add_to(*rcmd, kMtsUnits);
+  add_gl_device_option(rcmd, render->gl_device);
+  rcmd->callback([render, &global]() { run(*render, global, false); });
 }
 
 }  // namespace depthprec::cli

@@ -21,6 +21,8 @@ void add_devices_command(CLI::App& app, GlobalOptions& global);
 void add_formats_command(CLI::App& app, GlobalOptions& global);
 // mts and table.
 void add_mts_commands(CLI::App& app, GlobalOptions& global);
+// --gl-device, for the commands that render (render, compare).
+void add_gl_device_option(CLI::App* cmd, std::string& choice);
 void add_merge_command(CLI::App& app);
 // lj, select, lj-table.
 void add_lj_commands(CLI::App& app, GlobalOptions& global);
@@ -28,6 +30,7 @@ void add_resolve_command(CLI::App& app);
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global);
 void add_cost_command(CLI::App& app, GlobalOptions& global);
 void add_plot_command(CLI::App& app);
+void add_compare_command(CLI::App& app, GlobalOptions& global);
 void add_pipelines_command(CLI::App& app, GlobalOptions& global);
 
 // The record batches (lj-table, tradeoff, cost, pipelines) render their output from a header (what
@@ -42,6 +45,9 @@ std::string render_tradeoff_output(const nlohmann::json& header,
 std::string render_pipelines_output(const nlohmann::json& header,
                                     const std::vector<nlohmann::json>& records,
                                     const OutputOptions& out);
+std::string render_compare_output(const nlohmann::json& header,
+                                  const std::vector<nlohmann::json>& records,
+                                  const OutputOptions& out);
 std::string render_cost_output(const nlohmann::json& header,
                                const std::vector<nlohmann::json>& records,
                                const OutputOptions& out);

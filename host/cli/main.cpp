@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   cli::add_cost_command(app, global);
   cli::add_pipelines_command(app, global);
   cli::add_plot_command(app);
+  cli::add_compare_command(app, global);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "host/model/scene.h"
+#include "host/mts/probe.h"
 
 namespace depthprec {
 
@@ -24,8 +25,12 @@ enum class Verdict {
 };
 const char* to_string(Verdict v);  // "resolved", ..., "below vertex bound", "beyond far plane"
 
+const char* to_string(RowSource s);                // "emulated", "rendered"
+RowSource parse_row_source(const std::string& s);  // throws InputError
+
 struct MtsRow {
   EvalPair pair;
+  RowSource source = RowSource::emulated;
   double z = 0;
   double mts = 0;  // hi: the smallest separation seen that never fought; +inf if unresolvable
   double lo = 0, hi = 0;
@@ -38,9 +43,10 @@ struct MtsRow {
   // pair at once, so rows share them: a row never counts more than the run made, and the rows of
   // a run add up to more than its total (the footer's "kernel launches").
   uint64_t launches = 0;
-  double seconds = 0;         // attributed wall time of the launches (by fragment pairs)
-  double kernel_seconds = 0;  // attributed device time of the launches (profiling events)
-  int clipped_probes = 0;     // probes in which some fragment left the clip volume
+  double seconds = 0;            // attributed wall time of the launches (by fragment pairs)
+  double kernel_seconds = 0;     // attributed device time of the launches (profiling events)
+  double frames_per_second = 0;  // rendered rows: frames / seconds (a measured time)
+  int clipped_probes = 0;        // probes in which some fragment left the clip volume
   // clipped: the row has no MTS because every separation that did not fight was clipped.
   bool non_finite = false, clipped = false, unresolvable = false, non_monotone = false,
        uncovered = false;

@@ -99,6 +99,16 @@ bool MtsRow::factor_above_mts(double rel_precision) const {
   return storage_mts > limit || arithmetic_mts > limit;
 }
 
+const char* to_string(RowSource s) {
+  return s == RowSource::rendered ? "rendered" : "emulated";
+}
+
+RowSource parse_row_source(const std::string& s) {
+  if (s == "emulated") return RowSource::emulated;
+  if (s == "rendered") return RowSource::rendered;
+  throw InputError("row source '" + s + "': expected emulated or rendered");
+}
+
 const char* to_string(Verdict v) {
   switch (v) {
     case Verdict::resolved:
@@ -162,6 +172,7 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
   std::vector<std::vector<std::pair<double, Outcome>>> extra(distances.size());
   for (size_t i = 0; i < distances.size(); ++i) {
     rows[i].pair = pair;
+    rows[i].source = evaluator.source();
     rows[i].z = distances[i];
     rows[i].vertex_bound = vertex_bound(distances[i]);
     searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor,

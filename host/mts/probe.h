@@ -7,6 +7,10 @@
 
 namespace depthprec {
 
+// Where probes are decided: the emulated pipeline (kernels/mts.cl) or a real rasterizer through
+// OpenGL (`depthprec render`, host/render/).
+enum class RowSource { emulated, rendered };
+
 struct Probe {
   double z;  // requested distance of plane A
   double s;  // requested separation: plane B at fl32(z + s)
@@ -41,6 +45,7 @@ class ProbeEvaluator {
  public:
   virtual ~ProbeEvaluator() = default;
   virtual std::vector<ProbeResult> run(const std::vector<Probe>& probes) = 0;
+  virtual RowSource source() const { return RowSource::emulated; }
 };
 
 }  // namespace depthprec

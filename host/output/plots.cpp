@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "host/analysis/lj_tables.h"
@@ -83,6 +84,62 @@ void plot_lj_table(const std::map<std::string, nlohmann::json>& records,
       script += "e\n";
     }
   }
+  script += "unset multiplot\n";
+  run_gnuplot(script, output);
+}
+
+void plot_compare(const std::vector<nlohmann::json>& records, const std::string& output) {
+  struct Series {
+    std::vector<std::array<double, 3>> mts;    // z, emulated, rendered (NaN: no number)
+    std::vector<std::array<double, 2>> ratio;  // z, emulated / rendered
+  };
+  std::vector<std::string> order;
+  std::map<std::string, Series> series;
+  const auto finite_or_nan = [](const nlohmann::json& v) {
+    const double d = number_from_json(v, "compare record");
+    return std::isfinite(d) ? d : NAN;
+  };
+  for (const auto& r : records) {
+    const std::string label = r.at("technique").get<std::string>() + "/" +
+                              r.at("format").get<std::string>() + "/" +
+                              r.at("depth_range").get<std::string>();
+    if (!series.count(label)) order.push_back(label);
+    const double z = r.at("z").get<double>();
+    series[label].mts.push_back(
+        {z, finite_or_nan(r.at("emulated_mts")), finite_or_nan(r.at("rendered_mts"))});
+    if (r.contains("ratio")) series[label].ratio.push_back({z, r.at("ratio").get<double>()});
+  }
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
+                                   gnuplot_quote(output));
+  for (size_t i = 0; i < order.size(); ++i) {
+    script += fmt::format("$m{} << EOD\n", i);
+    for (const auto& p : series[order[i]].mts)
+      script += fmt::format("{:.17g} {:.17g} {:.17g}\n", p[0], p[1], p[2]);
+    script += fmt::format("EOD\n$r{} << EOD\n", i);
+    for (const auto& p : series[order[i]].ratio)
+      script += fmt::format("{:.17g} {:.17g}\n", p[0], p[1]);
+    script += "EOD\n";
+  }
+  script +=
+      "set multiplot layout 2,1\nset logscale x 2\nset format x '2^{%L}'\nset grid\n"
+      "set key outside right\nset logscale y 10\nset format y '10^{%L}'\n"
+      "set ylabel 'minimum triangle separation'\n"
+      "set title 'MTS: emulated (solid) and rendered (dashed)' noenhanced\nplot ";
+  for (size_t i = 0; i < order.size(); ++i)
+    script += fmt::format(
+        "$m{0} using 1:2 with linespoints lw 1.5 pt 7 ps 0.5 lc {1} title {2} noenhanced, "
+        "$m{0} using 1:3 with linespoints lw 1.5 dt 2 pt 6 ps 0.7 lc {1} notitle{3}",
+        i, i + 1, gnuplot_quote(order[i]), i + 1 < order.size() ? ", " : "\n");
+  script +=
+      "set title 'emulated / rendered (below 1: the emulation is optimistic)' noenhanced\n"
+      "set ylabel 'ratio'\nset format y '%g'\nset xlabel 'distance z of the front plane'\n"
+      "set offsets graph 0, graph 0, graph 0.05, graph 0.05\n"
+      "plot 1 with lines lc rgb '#000000' lw 1 notitle, ";
+  for (size_t i = 0; i < order.size(); ++i)
+    script += fmt::format(
+        "$r{} using 1:2 with linespoints lw 1.5 pt 7 ps 0.6 lc {} title {} "
+        "noenhanced{}",
+        i, i + 1, gnuplot_quote(order[i]), i + 1 < order.size() ? ", " : "\n");
   script += "unset multiplot\n";
   run_gnuplot(script, output);
 }

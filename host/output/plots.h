@@ -25,4 +25,8 @@ void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const s
 // records of lj-table by key).
 void plot_lj_table(const std::map<std::string, nlohmann::json>& records, const std::string& output);
 
+// Emulated and rendered MTS against distance (log-log, a solid and a dashed line per pair in
+// one colour) above their ratio emulated/rendered: the records of `compare`.
+void plot_compare(const std::vector<nlohmann::json>& records, const std::string& output);
+
 }  // namespace depthprec

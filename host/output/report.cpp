@@ -41,6 +41,12 @@ json header(const Scene& scene, const RunInfo& run) {
   h["scene"] = scene.json;
   h["kernel_variants"] = run.variants;
   h["fragment_pairs"] = run.fragment_pairs;
+  if (!run.rendered.empty()) {
+    h["gl_renderer"] = run.rendered.renderer;
+    h["gl_version"] = run.rendered.version;
+    h["egl_platform"] = run.rendered.platform;
+    h["depth_buffers"] = run.rendered.depth_buffers;
+  }
   h["separation_reported"] = "requested s (plane B at fl32(z+s)); mts_seen = fl32(z+mts) - fl32(z)";
   if (!run.shard.empty()) h["shard"] = run.shard;
   if (run.timing) {  // measured, and specific to this process (a resumed run does less)
@@ -74,6 +80,14 @@ std::string table_cell(const MtsRow& r, bool full) {
 }
 
 std::string footer(const RunInfo& run) {
+  if (!run.rendered.empty()) {
+    std::string s = fmt::format(
+        "rendered on {} (OpenGL {}, EGL {}); kernel pixel pairs compared: {}",
+        run.rendered.renderer, run.rendered.version, run.rendered.platform, run.fragment_pairs);
+    if (run.timing && run.wall_seconds > 0)
+      s += fmt::format(", wall time: {:.2f} s", run.wall_seconds);
+    return s;
+  }
   std::string s = fmt::format("fragment pairs evaluated: {}, kernel variants: {}",
                               run.fragment_pairs, run.variants.size());
   if (run.timing && run.wall_seconds > 0)
@@ -113,14 +127,20 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
                               {"frames"},
                               {"fragment_pairs"},
                               {"launches"}};
-  bool attributed = false;
-  for (const auto& r : rows) attributed |= r.attributed();
+  bool attributed = false, rendered = false;
+  for (const auto& r : rows) {
+    attributed |= r.attributed();
+    rendered |= r.source == RowSource::rendered;
+  }
+  // Emulated outputs keep their columns; a rendered row says so (JSON rows always carry it).
+  if (rendered) cols.insert(cols.begin(), {"source", true});
   if (attributed)
     for (const char* c : {"storage_mts", "arithmetic_mts"}) cols.push_back({c});
   if (attributed) cols.push_back({"dominant", true});
   if (run.timing) {
     cols.push_back({"seconds"});
     cols.push_back({"kernel_s"});
+    if (rendered) cols.push_back({"frames/s"});
   }
   cols.push_back({"flags", true});
   std::vector<std::vector<std::string>> cells;
@@ -141,6 +161,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
                                   std::to_string(r.frames),
                                   std::to_string(r.fragment_pairs),
                                   std::to_string(r.launches)};
+    if (rendered) c.insert(c.begin(), to_string(r.source));
     if (attributed) {
       c.push_back(num(r.storage_mts));
       c.push_back(num(r.arithmetic_mts));
@@ -149,6 +170,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
     if (run.timing) {
       c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
       c.push_back(full ? exact(r.kernel_seconds) : fmt::format("{:.3f}", r.kernel_seconds));
+      if (rendered) c.push_back(full ? exact(r.frames_per_second) : human(r.frames_per_second));
     }
     c.push_back(r.flags());
     cells.push_back(c);
@@ -229,8 +251,13 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         "code "
         "(code_width in --format-out json)\n";
   }
-  bool attributed = false;
-  for (const auto& r : rows) attributed |= r.attributed();
+  bool attributed = false, rendered = false;
+  for (const auto& r : rows) {
+    attributed |= r.attributed();
+    rendered |= r.source == RowSource::rendered;
+  }
+  // Emulated outputs keep their columns; a rendered row says so (JSON rows always carry it).
+  if (rendered) cols.insert(cols.begin(), {"source", true});
   if (attributed) {
     out += md ? "\n" : "\n";
     out +=

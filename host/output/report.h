@@ -3,6 +3,7 @@
 // aligned text, CSV, JSON (with a header object) or Markdown.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -11,8 +12,16 @@
 
 namespace depthprec {
 
+// What rendered rows were rendered with (`depthprec render`): empty for the emulator.
+struct RenderedWith {
+  std::string renderer, version, platform;           // GL_RENDERER, GL_VERSION, EGL platform
+  std::map<std::string, std::string> depth_buffers;  // format -> what the driver allocated
+  bool empty() const { return renderer.empty(); }
+};
+
 struct RunInfo {
   std::string device;
+  RenderedWith rendered;
   std::vector<std::string> variants;  // kernel variants built, as labels
   uint64_t fragment_pairs = 0;  // the rows' work: what the measurement takes, however it was run
   uint64_t evaluated_pairs =

@@ -30,7 +30,8 @@ std::string row_key(const EvalPair& pair, double z) {
 }
 
 json row_to_json(const MtsRow& r, bool timing) {
-  json j = {{"technique", info(r.pair.technique).name},
+  json j = {{"source", to_string(r.source)},
+            {"technique", info(r.pair.technique).name},
             {"format", r.pair.format},
             {"depth_range", to_string(r.pair.depth_range)},
             {"z", r.z},
@@ -57,6 +58,7 @@ json row_to_json(const MtsRow& r, bool timing) {
   if (timing) {
     j["seconds"] = r.seconds;
     j["kernel_seconds"] = r.kernel_seconds;
+    if (r.source == RowSource::rendered) j["frames_per_second"] = r.frames_per_second;
   }
   return j;
 }
@@ -65,6 +67,7 @@ MtsRow row_from_json(const json& j) {
   if (!j.is_object()) throw InputError("a row must be a JSON object");
   MtsRow r;
   try {
+    r.source = parse_row_source(j.value("source", "emulated"));
     r.pair.technique = parse_technique(j.at("technique").get<std::string>());
     r.pair.format = j.at("format").get<std::string>();
     r.pair.depth_range = parse_depth_range(j.at("depth_range").get<std::string>());
@@ -115,6 +118,7 @@ MtsRow row_from_json(const json& j) {
   if (r.below_one_code) r.code_width = read_number(j, "code_width");
   if (j.contains("seconds")) r.seconds = read_number(j, "seconds");
   if (j.contains("kernel_seconds")) r.kernel_seconds = read_number(j, "kernel_seconds");
+  if (j.contains("frames_per_second")) r.frames_per_second = read_number(j, "frames_per_second");
   return r;
 }
 

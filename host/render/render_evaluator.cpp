@@ -1,0 +1,365 @@
+#include "host/render/render_evaluator.h"
+
+#include <epoxy/gl.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "host/base/errors.h"
+#include "host/model/frame_setup.h"
+#include "host/mts/mts_evaluator.h"
+#include "host/runtime/embedded_sources.h"
+#include "host/runtime/kernel_variant.h"
+
+namespace depthprec {
+
+namespace {
+
+// Frames rendered before one round of read-backs: llvmpipe rasterises a frame when it is read,
+// switched away from or flushed, on its own threads, so several frames in flight keep every core
+// busy. Bounded by memory: one target is a colour and a depth buffer of the viewport.
+constexpr size_t kMaxTargets = 64;
+constexpr size_t kTargetBudgetBytes = size_t(256) << 20;
+
+enum PixelBits : uint8_t { a_covers = 1, b_covers = 2, b_shows = 4 };
+
+unsigned compile(GLenum stage, const std::string& path, const std::string& defines) {
+  const std::string text = "#version 450 core\n" + defines + "#line 1\n" + expand_embedded(path);
+  const GLuint sh = glCreateShader(stage);
+  const char* src = text.c_str();
+  glShaderSource(sh, 1, &src, nullptr);
+  glCompileShader(sh);
+  GLint ok = 0;
+  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
+    glGetShaderInfoLog(sh, len, nullptr, log.data());
+    glDeleteShader(sh);
+    throw RuntimeError(fmt::format("{} does not compile on this driver ({}): {}", path,
+                                   defines.empty() ? "no defines" : defines, log.c_str()));
+  }
+  return sh;
+}
+
+std::string shader_defines(const Scene& scene, const EvalPair& pair) {
+  const TechniqueInfo& ti = info(depth_path(scene, pair.technique));
+  return fmt::format(
+      "#define DEPTH_FROM {}\n#define FRAG_DEPTH {}\n#define DEPTH_RANGE_GL {}\n"
+      "#define COMPOSE_PREMULTIPLIED {}\n",
+      static_cast<int>(ti.from), static_cast<int>(ti.fragment),
+      pair.depth_range == DepthRange::gl ? 1 : 0,
+      scene.pipeline.compose == Compose::premultiplied ? 1 : 0);
+}
+
+void check_gl(const char* what) {
+  const GLenum e = glGetError();
+  if (e != GL_NO_ERROR) throw RuntimeError(fmt::format("OpenGL error 0x{:x} in {}", e, what));
+}
+
+}  // namespace
+
+void check_renderable(const Scene& scene) {
+  const Pipeline def;
+  const auto refuse = [](const std::string& option, const std::string& why) {
+    throw InputError(
+        fmt::format("pipeline.{}: {}; render takes the driver's (leave it at its "
+                    "default, or measure it with `depthprec mts`)",
+                    option, why));
+  };
+  if (scene.pipeline.divide != def.divide)
+    refuse("divide=exact", "the driver does the perspective divide itself");
+  if (scene.pipeline.rounding != def.rounding)
+    refuse("rounding=truncate", "the driver rounds binary32 arithmetic as its hardware does");
+  if (scene.pipeline.denormals != def.denormals)
+    refuse("denormals=flush", "the driver decides how its arithmetic treats denormals");
+  if (scene.pipeline.contraction != def.contraction)
+    refuse("contraction=true", "the driver's shader compiler decides contraction into FMA");
+  if (scene.kernel_w > scene.viewport_w || scene.kernel_h > scene.viewport_h)
+    throw InputError(fmt::format("kernel {}x{} is larger than the viewport {}x{}", scene.kernel_w,
+                                 scene.kernel_h, scene.viewport_w, scene.viewport_h));
+}
+
+RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair)
+    : gl_(gl), scene_(scene), pair_(pair), depth_(gl_depth_format(pair.format)) {
+  check_renderable(scene);
+  const std::string defines = shader_defines(scene, pair);
+  const unsigned vs = compile(GL_VERTEX_SHADER, "host/render/shaders/plane.vert", defines);
+  const unsigned fs = compile(GL_FRAGMENT_SHADER, "host/render/shaders/plane.frag", defines);
+  program_ = glCreateProgram();
+  glAttachShader(program_, vs);
+  glAttachShader(program_, fs);
+  glLinkProgram(program_);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint linked = 0;
+  glGetProgramiv(program_, GL_LINK_STATUS, &linked);
+  if (!linked) throw RuntimeError("the plane shaders do not link on this driver");
+  const auto loc = [this](const char* name) { return glGetUniformLocation(program_, name); };
+  loc_p_ = loc("P");
+  loc_mv_ = loc("MV");
+  loc_colour_ = loc("colour");
+  loc_near_ = loc("near_plane");
+  loc_far_ = loc("far_plane");
+  loc_range_ = loc("depth_range");
+  loc_vlogk_ = loc("log_k");
+  loc_vlogl_ = loc("log_L");
+
+  // The plane: a grid of g x g quads over [-0.5, 0.5]^2, each split along the diagonal from its
+  // lower-left corner, triangles (a, b, c) and (a, c, d) in this vertex order -- the emulator's
+  // (kernels/mts/setup.cl), since a rasterizer anchors its plane equation at a vertex.
+  const int g = scene.plane_subdivisions;
+  std::vector<float> xy;
+  for (int j = 0; j <= g; ++j)
+    for (int i = 0; i <= g; ++i) {
+      xy.push_back(static_cast<float>(i) / static_cast<float>(g) - 0.5f);
+      xy.push_back(static_cast<float>(j) / static_cast<float>(g) - 0.5f);
+    }
+  std::vector<GLuint> idx;
+  for (int qj = 0; qj < g; ++qj)
+    for (int qi = 0; qi < g; ++qi) {
+      const GLuint a = static_cast<GLuint>(qj * (g + 1) + qi), b = a + 1,
+                   c = a + static_cast<GLuint>(g) + 2, d = a + static_cast<GLuint>(g) + 1;
+      idx.insert(idx.end(), {a, b, c, a, c, d});
+    }
+  index_count_ = static_cast<int>(idx.size());
+  glCreateVertexArrays(1, &vao_);
+  glCreateBuffers(1, &vbo_);
+  glCreateBuffers(1, &ibo_);
+  glNamedBufferStorage(vbo_, static_cast<GLsizeiptr>(xy.size() * sizeof(float)), xy.data(), 0);
+  glNamedBufferStorage(ibo_, static_cast<GLsizeiptr>(idx.size() * sizeof(GLuint)), idx.data(), 0);
+  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 2 * sizeof(float));
+  glVertexArrayElementBuffer(vao_, ibo_);
+  glEnableVertexArrayAttrib(vao_, 0);
+  glVertexArrayAttribFormat(vao_, 0, 2, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao_, 0, 0);
+  check_gl("setting up the plane");
+}
+
+RenderEvaluator::~RenderEvaluator() {
+  for (auto& t : targets_) {
+    glDeleteFramebuffers(1, &t.fbo);
+    glDeleteRenderbuffers(1, &t.colour);
+    glDeleteRenderbuffers(1, &t.depth);
+  }
+  glDeleteBuffers(1, &vbo_);
+  glDeleteBuffers(1, &ibo_);
+  glDeleteVertexArrays(1, &vao_);
+  glDeleteProgram(program_);
+}
+
+void RenderEvaluator::grow_targets(size_t n) {
+  while (targets_.size() < n) {
+    Target t;
+    glCreateFramebuffers(1, &t.fbo);
+    glCreateRenderbuffers(1, &t.colour);
+    glCreateRenderbuffers(1, &t.depth);
+    glNamedRenderbufferStorage(t.colour, GL_RGBA8, scene_.viewport_w, scene_.viewport_h);
+    glNamedRenderbufferStorage(t.depth, depth_.internal, scene_.viewport_w, scene_.viewport_h);
+    glNamedFramebufferRenderbuffer(t.fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.colour);
+    glNamedFramebufferRenderbuffer(t.fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth);
+    if (glCheckNamedFramebufferStatus(t.fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw RuntimeError(fmt::format("a {}x{} framebuffer with {} is not complete on this driver",
+                                     scene_.viewport_w, scene_.viewport_h, depth_.gl_name));
+    targets_.push_back(t);
+  }
+  check_gl("creating framebuffers");
+}
+
+void RenderEvaluator::draw(const Probe& probe, int frame, const Target& t) {
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const Mat4f ma = plane_matrix(scene_, pc, probe.z, frame);
+  const Mat4f mb = plane_matrix(scene_, pc, probe.z + probe.s, frame);
+  const bool greater = info(depth_path(scene_, pair_.technique)).greater;
+  const int ox = (scene_.viewport_w - scene_.kernel_w) / 2;
+  const int oy = (scene_.viewport_h - scene_.kernel_h) / 2;
+
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+  glViewport(0, 0, scene_.viewport_w, scene_.viewport_h);
+  glDepthRange(0.0, 1.0);
+  glClipControl(GL_LOWER_LEFT,
+                pair_.depth_range == DepthRange::gl ? GL_NEGATIVE_ONE_TO_ONE : GL_ZERO_TO_ONE);
+  // Only the kernel is compared, so only the kernel is rasterised: the scissor changes which
+  // pixels are shaded, not the clipping, set-up or interpolation of the planes.
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(ox, oy, scene_.kernel_w, scene_.kernel_h);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_CLAMP);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glClearColor(0, 0, 0, 0);
+  glClearDepth(greater ? 0.0 : 1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+  glUseProgram(program_);
+  glBindVertexArray(vao_);
+  glUniformMatrix4fv(loc_p_, 1, GL_TRUE, pc.P.data());
+  glUniform4f(loc_colour_, 1, 1, 1, 1);
+  glUniform1f(loc_near_, pc.near);
+  glUniform1f(loc_far_, pc.far);
+  glUniform1f(loc_range_, pc.range);
+  glUniform1f(loc_vlogk_, pc.log_k);
+  glUniform1f(loc_vlogl_, pc.log_L);
+
+  // Plane A, with the depth test against the cleared buffer, writing depth.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(greater ? GL_GEQUAL : GL_LEQUAL);
+  glColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, ma.data());
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  // Plane B against A's depth: where it passes, it shows.
+  glDepthMask(GL_FALSE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_TRUE, GL_FALSE);
+  glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, mb.data());
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  // Plane B's coverage, whatever the depth test would say.
+  glDisable(GL_DEPTH_TEST);
+  glColorMask(GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glFlush();
+}
+
+std::vector<uint8_t> RenderEvaluator::read(const Target& t) {
+  const int ox = (scene_.viewport_w - scene_.kernel_w) / 2;
+  const int oy = (scene_.viewport_h - scene_.kernel_h) / 2;
+  const size_t n = static_cast<size_t>(scene_.kernel_w) * static_cast<size_t>(scene_.kernel_h);
+  std::vector<uint8_t> rgba(4 * n);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbo);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(ox, oy, scene_.kernel_w, scene_.kernel_h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  check_gl("reading the kernel back");
+  std::vector<uint8_t> bits(n);
+  for (size_t i = 0; i < n; ++i)
+    bits[i] = static_cast<uint8_t>((rgba[4 * i] ? a_covers : 0) | (rgba[4 * i + 1] ? b_covers : 0) |
+                                   (rgba[4 * i + 2] ? b_shows : 0));
+  return bits;
+}
+
+bool RenderEvaluator::leaves_depth_range(const Probe& probe, double D, int frame) const {
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const Mat4f m = plane_matrix(scene_, pc, D, frame);
+  const bool gl = pair_.depth_range == DepthRange::gl;
+  const bool log_vertex = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
+  const int g = scene_.plane_subdivisions;
+  for (int j = 0; j <= g; ++j)
+    for (int i = 0; i <= g; ++i) {
+      const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
+                            static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
+      float clip[4], eye[4];
+      for (int r = 0; r < 4; ++r) eye[r] = mat_row_dot(m, r, obj);
+      for (int r = 0; r < 4; ++r)
+        clip[r] =
+            scene_.pipeline.compose == Compose::premultiplied ? eye[r] : mat_row_dot(pc.P, r, eye);
+      if (log_vertex) {
+        const float t = std::log(pc.log_k * clip[3] + 1.0f);
+        clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];
+      }
+      if (!(clip[3] > 0) || clip[2] > clip[3] || clip[2] < (gl ? -clip[3] : 0.0f)) return true;
+    }
+  return false;
+}
+
+std::vector<ProbeResult> RenderEvaluator::run(const std::vector<Probe>& probes) {
+  const int frames = scene_.frames;
+  const uint64_t kernel_pixels =
+      static_cast<uint64_t>(scene_.kernel_w) * static_cast<uint64_t>(scene_.kernel_h);
+  std::vector<ProbeResult> results(probes.size());
+  std::vector<bool> decided(probes.size(), false);
+  std::vector<int> done(probes.size(), 0), first(probes.size(), 0);
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const auto it = last_fight_frame_.find(probes[i].z);
+    if (it != last_fight_frame_.end()) first[i] = it->second;
+  }
+  const size_t target_bytes =
+      static_cast<size_t>(scene_.viewport_w) * static_cast<size_t>(scene_.viewport_h) * 8;
+  const size_t max_targets =
+      std::max<size_t>(1, std::min(kMaxTargets, kTargetBudgetBytes / target_bytes));
+
+  while (true) {
+    // This round: the next frames of every undecided probe, in growing batches as the emulator
+    // takes them, so a fighting probe costs few frames.
+    struct Job {
+      size_t probe;
+      int visit;
+    };
+    std::vector<Job> jobs;
+    for (size_t i : undecided(decided)) {
+      const int step = batch_frames(done[i], frames);
+      for (int v = done[i]; v < done[i] + step; ++v) jobs.push_back({i, v});
+    }
+    if (jobs.empty()) break;
+    std::vector<std::vector<uint8_t>> seen(jobs.size());
+    for (size_t c = 0; c < jobs.size(); c += max_targets) {
+      const size_t n = std::min(max_targets, jobs.size() - c);
+      grow_targets(n);
+      const auto t0 = std::chrono::steady_clock::now();
+      for (size_t k = 0; k < n; ++k) {
+        const Job& j = jobs[c + k];
+        draw(probes[j.probe], (first[j.probe] + j.visit) % frames, targets_[k]);
+      }
+      for (size_t k = 0; k < n; ++k) seen[c + k] = read(targets_[k]);
+      const double secs =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      seconds_ += secs;
+      frames_ += n;
+      for (size_t k = 0; k < n; ++k) {
+        ProbeResult& r = results[jobs[c + k].probe];
+        r.seconds += secs / static_cast<double>(n);
+        r.kernel_seconds = r.seconds;
+      }
+      std::vector<bool> counted(probes.size(), false);
+      for (size_t k = 0; k < n; ++k)
+        if (!counted[jobs[c + k].probe]) {
+          counted[jobs[c + k].probe] = true;
+          ++results[jobs[c + k].probe].launches;
+        }
+    }
+    // Fold frame by frame in visiting order: a probe is decided at its first fighting frame.
+    for (size_t k = 0; k < jobs.size(); ++k) {
+      const size_t i = jobs[k].probe;
+      if (decided[i]) continue;
+      const int frame = (first[i] + jobs[k].visit) % frames;
+      ProbeResult& r = results[i];
+      ++r.frames;
+      r.fragment_pairs += kernel_pixels;
+      bool fight = false, uncovered = false;
+      for (uint8_t b : seen[k]) {
+        if ((b & a_covers) && (b & b_shows)) fight = true;
+        if ((b & (a_covers | b_covers)) != (a_covers | b_covers)) uncovered = true;
+      }
+      if (uncovered) {
+        if (leaves_depth_range(probes[i], probes[i].z, frame) ||
+            leaves_depth_range(probes[i], probes[i].z + probes[i].s, frame))
+          r.any_clipped = true;
+        else
+          r.any_uncovered = true;
+      }
+      if (fight) {
+        r.outcome = Outcome::fight;
+        decided[i] = true;
+        last_fight_frame_[probes[i].z] = frame;
+      }
+    }
+    for (size_t i = 0; i < probes.size(); ++i) {
+      if (decided[i]) continue;
+      done[i] += batch_frames(done[i], frames);
+      if (done[i] >= frames) decided[i] = true;  // every frame clean
+    }
+  }
+  for (auto& r : results)
+    if (r.outcome != Outcome::fight && r.any_clipped) r.outcome = Outcome::clipped;
+  return results;
+}
+
+std::vector<uint8_t> RenderEvaluator::pixels(const Probe& probe, int frame) {
+  grow_targets(1);
+  draw(probe, frame, targets_[0]);
+  return read(targets_[0]);
+}
+
+}  // namespace depthprec

@@ -1,0 +1,78 @@
+// Decides probes by rendering them through the system's OpenGL (Gilg et al.'s own measurement):
+// per frame, plane A drawn with the technique's depth test, then plane B, and the kernel's pixels
+// read back from the colour buffer. The same ProbeEvaluator the emulator is, so the MTS search
+// (host/mts/mts_search.h) drives both with one probe sequence.
+//
+// One colour target, one channel per question, so a pixel tells all three at once:
+//   red   plane A covers the pixel (drawn with the depth test, writing depth),
+//   blue  plane B passes the depth test there: it shows, the pair fights,
+//   green plane B covers the pixel (B again, depth test off, nothing written to depth).
+// A fight counts where red and blue are set; a pixel without red or green is uncovered, and the
+// probe is then never clean (clipped when a plane's vertices leave the depth range of the clip
+// volume, uncovered otherwise), as in the emulator.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "host/model/scene.h"
+#include "host/mts/probe.h"
+#include "host/render/gl_context.h"
+#include "host/render/gl_depth_format.h"
+
+namespace depthprec {
+
+// Throws InputError when the scene asks for arithmetic only the emulator has: the driver does
+// its own divide, rounding, denormals and contraction, so those pipeline options must keep their
+// defaults; a kernel larger than the viewport is refused too.
+void check_renderable(const Scene& scene);
+
+class RenderEvaluator : public ProbeEvaluator {
+ public:
+  // Throws InputError when the driver cannot store the pair's format (listing what it can).
+  RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair);
+  ~RenderEvaluator() override;
+  RenderEvaluator(const RenderEvaluator&) = delete;
+  RenderEvaluator& operator=(const RenderEvaluator&) = delete;
+
+  std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
+  RowSource source() const override { return RowSource::rendered; }
+
+  // Kernel pixels of both planes of one frame, for tests and diagnosis: per pixel (row-major from
+  // the kernel's bottom-left) bit 0 A covers, bit 1 B covers, bit 2 B passes the depth test.
+  std::vector<uint8_t> pixels(const Probe& probe, int frame);
+
+  const GlDepthFormat& depth_format() const { return depth_; }
+  uint64_t frames_rendered() const { return frames_; }
+  double seconds() const { return seconds_; }
+
+ private:
+  struct Target {
+    unsigned fbo = 0, colour = 0, depth = 0;
+  };
+  // Draws frame `frame` of the probe into target t (nothing read back yet).
+  void draw(const Probe& probe, int frame, const Target& t);
+  // Reads the kernel back from target t: bits as in pixels().
+  std::vector<uint8_t> read(const Target& t);
+  // Whether a vertex of the plane at D leaves the clip volume's depth range in this frame (the
+  // reason a kernel pixel can be uncovered other than the planes' extent).
+  bool leaves_depth_range(const Probe& probe, double D, int frame) const;
+  void grow_targets(size_t n);
+
+  GlContext& gl_;
+  const Scene& scene_;
+  EvalPair pair_;
+  GlDepthFormat depth_;
+  unsigned program_ = 0, vao_ = 0, vbo_ = 0, ibo_ = 0;
+  int index_count_ = 0;
+  int loc_p_ = -1, loc_mv_ = -1, loc_colour_ = -1, loc_vlogk_ = -1, loc_vlogl_ = -1, loc_near_ = -1,
+      loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1;
+  std::vector<Target> targets_;
+  std::map<double, int> last_fight_frame_;  // frame order as in the emulator (MtsEvaluator)
+  uint64_t frames_ = 0;
+  double seconds_ = 0;
+};
+
+}  // namespace depthprec

@@ -1,0 +1,71 @@
+#include "host/render/render_run.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "host/mts/mts_search.h"
+#include "host/output/row_json.h"
+#include "host/render/gl_depth_format.h"
+#include "host/render/render_evaluator.h"
+
+namespace depthprec {
+
+std::map<std::string, std::string> check_scene_renders(const Scene& scene) {
+  check_renderable(scene);
+  std::map<std::string, std::string> out;
+  for (const auto& pair : scene.evaluate) {
+    const GlDepthFormat f = gl_depth_format(pair.format);
+    out[pair.format] = fmt::format("{} ({})", f.given(), f.gl_name);
+  }
+  return out;
+}
+
+MtsRun render_scene(GlContext& gl, const Scene& scene,
+                    const std::function<void(const std::string&)>& log, const RunControl& control) {
+  MtsRun run;
+  run.info.device = gl.description();
+  const auto t0 = std::chrono::steady_clock::now();
+  const size_t nd = scene.distances.size();
+  for (size_t p = 0; p < scene.evaluate.size(); ++p) {
+    const EvalPair& pair = scene.evaluate[p];
+    std::vector<double> zs;
+    for (size_t d = 0; d < nd; ++d) {
+      const size_t k = p * nd + d;
+      if (static_cast<int>(k % static_cast<size_t>(control.shard_count)) != control.shard_index)
+        continue;
+      if (!control.done.count(row_key(pair, scene.distances[d]))) zs.push_back(scene.distances[d]);
+    }
+    if (zs.empty()) continue;
+    RenderEvaluator ev(gl, scene, pair);
+    const auto mark = [](MtsRow r) {
+      r.frames_per_second = r.seconds > 0 ? static_cast<double>(r.frames) / r.seconds : 0;
+      return r;
+    };
+    auto rows = search_pair(
+        ev, scene, pair, zs,
+        [&](const MtsRow& r) {
+          if (control.on_row) control.on_row(mark(r));
+        },
+        control.stop);
+    for (auto& r : rows) {
+      r = mark(r);
+      run.info.fragment_pairs += r.fragment_pairs;
+      run.info.evaluated_pairs += r.fragment_pairs;
+    }
+    if (log)
+      log(fmt::format(
+          "{}: {} distances, {} frames rendered in {:.2f} s ({:.0f} frames/s), depth "
+          "buffer {}",
+          pair.label(), rows.size(), ev.frames_rendered(), ev.seconds(),
+          ev.seconds() > 0 ? static_cast<double>(ev.frames_rendered()) / ev.seconds() : 0.0,
+          ev.depth_format().given()));
+    run.rows.insert(run.rows.end(), rows.begin(), rows.end());
+  }
+  sort_rows(scene, run.rows);
+  run.info.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return run;
+}
+
+}  // namespace depthprec

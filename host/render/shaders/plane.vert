@@ -1,0 +1,28 @@
+// The planes' vertex stage for `depthprec render`: object position to clip space with the host's
+// binary32 matrices, as an application's shader would; log_vertex rewrites z_clip here (Gilg
+// eq. 5). The host prepends #version and the defines DEPTH_FROM (host/model/technique.h
+// DepthFrom), DEPTH_RANGE_GL and COMPOSE_PREMULTIPLIED; the arithmetic is the driver's.
+layout(location = 0) in vec2 obj_xy;
+
+uniform mat4 P;
+uniform mat4 MV;  // P * MV when COMPOSE_PREMULTIPLIED
+uniform float log_k;
+uniform float log_L;
+
+void main() {
+  vec4 obj = vec4(obj_xy, 0.0, 1.0);
+#if COMPOSE_PREMULTIPLIED
+  vec4 clip = MV * obj;
+#else
+  vec4 clip = P * (MV * obj);
+#endif
+#if DEPTH_FROM == 1
+  float t = log(log_k * clip.w + 1.0);
+#if DEPTH_RANGE_GL
+  clip.z = ((2.0 * t) / log_L - 1.0) * clip.w;
+#else
+  clip.z = (t / log_L) * clip.w;
+#endif
+#endif
+  gl_Position = clip;
+}
