@@ -152,7 +152,8 @@ TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
   CHECK_THAT(merge.output, Contains("cannot read"));
 }
 
-// lj-table, tradeoff and cost are record batches (host/batch/batch.h): the same guarantees.
+// lj-table, tradeoff, cost, render and compare are batches (host/batch/batch.h): the same
+// guarantees.
 TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "[batch]") {
   const std::vector<std::pair<std::string, std::string>> batches = {
       {"lj-table", "lj-table --samples 20000 --no-timing --format-out json"},
@@ -162,7 +163,14 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
        "--frames 20 --no-timing --format-out json"},
       {"tradeoff",
        "tradeoff -t reversed -f float32 --depth-range zero_to_one --distances 2,1024 --no-timing "
-       "--format-out json"}};
+       "--format-out json"},
+      // The rendered batches (llvmpipe here): rows of `render`, records of `compare`.
+      {"render",
+       "render -t standard,reversed,linear -f unorm24 --distances 2,1024,1048576 --kernel 64x64 "
+       "--frames 20 --no-timing --format-out json"},
+      {"compare",
+       "compare -t standard,reversed,linear -f unorm24 --distances 2,1024,1048576 --kernel 64x64 "
+       "--frames 20 --no-timing --format-out json"}};
   for (const auto& [name, args] : batches) {
     INFO(name);
     const std::string base = "/tmp/depthprec_test_" + name;

@@ -72,6 +72,10 @@ TEST_CASE("compare pairs the rows of an mts and a render output", "[compare][ren
     const CliResult alone = run_cli("compare --emulated " + e);
     CHECK(alone.exit_code == 2);
     CHECK_THAT(alone.output, Contains("--emulated and --rendered go together"));
+    const CliResult with_scene =
+        run_cli("compare --emulated " + e + " --rendered " + d + " -t linear");
+    CHECK(with_scene.exit_code == 2);
+    CHECK_THAT(with_scene.output, Contains("drop the scene options"));
   }
 }
 

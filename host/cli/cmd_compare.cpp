@@ -4,6 +4,7 @@
 // --shard, merge); from two JSON outputs it pairs their rows.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -92,12 +93,19 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
     control.stop = interrupt_requested;
     std::map<std::string, MtsRow> emulated;
     control.on_row = [&](const MtsRow& r) { emulated[row_key(r.pair, r.z)] = r; };
+    // Both sides timed in this one run (wall time of each phase): how much faster the emulator
+    // measures what rendering measures, on this machine.
+    const auto t0 = std::chrono::steady_clock::now();
     run_scene(rt, scene, log, control);
+    const auto t1 = std::chrono::steady_clock::now();
+    header["emulated_seconds"] = std::chrono::duration<double>(t1 - t0).count();
     control.on_row = [&](const MtsRow& r) {
       const std::string key = row_key(r.pair, r.z);
       emit(index_of.at(key), compare_record(emulated.at(key), r));
     };
     render_scene(gl, scene, log, control);
+    header["rendered_seconds"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   };
   const auto records =
       run_batch(keys, compute, journal, shard, "compare", !global.quiet && stderr_is_terminal(),
@@ -188,7 +196,10 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
       p["pair"] = label;
       derived["pairs"].push_back(p);
     }
-    return records_json(header, records, timing, derived);
+    json h = header;
+    if (!timing)
+      for (const char* k : {"emulated_seconds", "rendered_seconds"}) h.erase(k);
+    return records_json(h, records, timing, derived);
   }
   const bool full = out.format_out == "csv";
   std::vector<Column> cols = {
@@ -253,6 +264,10 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
                         {"verdicts differ"}},
                        per_pair, out.format_out);
   text += "\n" + summary_line(all) + "\n";
+  if (timing && header.contains("rendered_seconds"))
+    text += fmt::format("wall time: emulated {:.1f} s, rendered {:.1f} s\n",
+                        header["emulated_seconds"].get<double>(),
+                        header["rendered_seconds"].get<double>());
   return text;
 }
 
@@ -287,6 +302,10 @@ void add_compare_command(CLI::App& app, GlobalOptions& global) {
   cmd->callback([o, &global]() {
     if (o->emulated_file.empty() != o->rendered_file.empty())
       throw Error(ExitCode::usage, "compare: --emulated and --rendered go together");
+    if (!o->emulated_file.empty() && (o->scene.any() || !o->batch.shard.empty() || o->batch.resume))
+      throw Error(ExitCode::usage,
+                  "compare: --emulated and --rendered pair the rows of two outputs, whose scene is "
+                  "in their headers; drop the scene options (and --shard, --resume)");
     if (o->emulated_file.empty())
       run_from_scene(*o, global);
     else

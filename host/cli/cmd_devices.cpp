@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include "host/cli/commands.h"
+#include "host/render/gl_context.h"
 #include "host/runtime/opencl_runtime.h"
 
 namespace depthprec::cli {
@@ -8,7 +9,8 @@ namespace depthprec::cli {
 void add_devices_command(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand(
       "devices",
-      "List OpenCL platforms and devices (the one depthprec would use is marked *).\n"
+      "List OpenCL platforms and devices (the one depthprec would use is marked *), and the\n"
+      "OpenGL displays render and compare can use (--gl-device).\n"
       "Example: depthprec devices");
   cmd->callback([&global]() {
     const auto devices = list_devices();
@@ -31,6 +33,11 @@ void add_devices_command(CLI::App& app, GlobalOptions& global) {
           static_cast<double>(d.global_mem_bytes) / (1024.0 * 1024.0 * 1024.0));
       fmt::print("      platform: {} ({})\n", d.platform_name, d.platform_version);
     }
+    // The displays `render` and `compare` can use (--gl-device), with what each renders on.
+    fmt::print(
+        "\nOpenGL through EGL, for render and compare (--gl-device; auto takes the first):\n");
+    for (const auto& d : list_gl_displays())
+      fmt::print("  {:<12} {}{}\n", d.choice, d.usable ? "" : "unavailable: ", d.what);
   });
 }
 

@@ -131,9 +131,13 @@ void merge_records(const MergeOptions& o, const std::string& kind,
   for (size_t k = 0; k < docs.size(); ++k) {
     const nlohmann::json& j = docs[k];
     nlohmann::json h = j;
-    // What the records derive (tradeoff's levels, compare's summaries) is derived again.
-    for (const char* key : {"records", "shard", "levels", "summary", "pairs", "device"})
-      h.erase(key);
+    // What the records derive (tradeoff's levels, compare's summaries) is derived again; times
+    // measured by one shard's process do not describe the merged batch.
+    std::vector<std::string> drop = {"records", "shard", "device"};
+    if (kind == "tradeoff") drop.push_back("levels");
+    if (kind == "compare")
+      drop.insert(drop.end(), {"summary", "pairs", "emulated_seconds", "rendered_seconds"});
+    for (const auto& key : drop) h.erase(key);
     if (header.is_null()) {
       header = h;
       header["device"] = j.value("device", "");

@@ -80,6 +80,15 @@ std::string whole_number_text(const std::string& option, const std::string& v) {
 
 }  // namespace
 
+bool SceneOptions::any() const {
+  for (const std::string* v :
+       {&scene_file, &near, &far, &kernel, &frames, &rel_precision, &matrix_precision, &compose,
+        &divide, &rounding, &denormals, &log_k, &fov})
+    if (!v->empty()) return true;
+  return !sets.empty() || !techniques.empty() || !formats.empty() || !depth_ranges.empty() ||
+         !distances.empty();
+}
+
 Scene SceneOptions::load() const {
   // Every named option is a --set in disguise; `origins` lets the scene's errors name the option
   // the user typed, and a key set twice (--near 0.1 --set near=5) is refused rather than one

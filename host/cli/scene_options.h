@@ -20,6 +20,7 @@ struct SceneOptions {
   std::vector<std::string> distances;
 
   void add_to(CLI::App& cmd, bool with_pairs);
+  bool any() const;  // whether the command line names a scene or sets anything in one
   // Loads the scene with every override applied; --technique/--format/--depth-range replace the
   // scene's pair list with their cross product.
   Scene load() const;

@@ -99,6 +99,7 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
     const double d = number_from_json(v, "compare record");
     return std::isfinite(d) ? d : NAN;
   };
+  double lo = 1, hi = 1;  // the ratios' range
   for (const auto& r : records) {
     const std::string label = r.at("technique").get<std::string>() + "/" +
                               r.at("format").get<std::string>() + "/" +
@@ -107,7 +108,12 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
     const double z = r.at("z").get<double>();
     series[label].mts.push_back(
         {z, finite_or_nan(r.at("emulated_mts")), finite_or_nan(r.at("rendered_mts"))});
-    if (r.contains("ratio")) series[label].ratio.push_back({z, r.at("ratio").get<double>()});
+    if (r.contains("ratio")) {
+      const double q = r.at("ratio").get<double>();
+      series[label].ratio.push_back({z, q});
+      lo = std::min(lo, q);
+      hi = std::max(hi, q);
+    }
   }
   std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
                                    gnuplot_quote(output));
@@ -120,26 +126,33 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
       script += fmt::format("{:.17g} {:.17g}\n", p[0], p[1]);
     script += "EOD\n";
   }
+  // One colour per pair from a list of distinct hues, point shapes changing every 12 pairs; the
+  // ratio panel shares the MTS panel's key and margins.
+  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                                         "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+                                         "#bcbd22", "#17becf", "#000000", "#aec7e8"};
+  const auto style = [](size_t i) {
+    return fmt::format("lc rgb '{}' pt {}", kColours[i % 12], 4 + 2 * (i / 12));
+  };
   script +=
-      "set multiplot layout 2,1\nset logscale x 2\nset format x '2^{%L}'\nset grid\n"
-      "set key outside right\nset logscale y 10\nset format y '10^{%L}'\n"
-      "set ylabel 'minimum triangle separation'\n"
+      "set multiplot layout 2,1\nset lmargin 12\nset rmargin at screen 0.62\n"
+      "set logscale x 2\nset format x '2^{%L}'\nset grid\nset key outside right top\n"
+      "set logscale y 10\nset format y '10^{%L}'\nset ylabel 'minimum triangle separation'\n"
       "set title 'MTS: emulated (solid) and rendered (dashed)' noenhanced\nplot ";
   for (size_t i = 0; i < order.size(); ++i)
     script += fmt::format(
-        "$m{0} using 1:2 with linespoints lw 1.5 pt 7 ps 0.5 lc {1} title {2} noenhanced, "
-        "$m{0} using 1:3 with linespoints lw 1.5 dt 2 pt 6 ps 0.7 lc {1} notitle{3}",
-        i, i + 1, gnuplot_quote(order[i]), i + 1 < order.size() ? ", " : "\n");
-  script +=
+        "$m{0} using 1:2 with linespoints lw 1.5 ps 0.6 {1} title {2} noenhanced, "
+        "$m{0} using 1:3 with linespoints lw 1.5 dt 2 ps 0.6 {1} notitle{3}",
+        i, style(i), gnuplot_quote(order[i]), i + 1 < order.size() ? ", " : "\n");
+  script += fmt::format(
       "set title 'emulated / rendered (below 1: the emulation is optimistic)' noenhanced\n"
       "set ylabel 'ratio'\nset format y '%g'\nset xlabel 'distance z of the front plane'\n"
-      "set offsets graph 0, graph 0, graph 0.05, graph 0.05\n"
-      "plot 1 with lines lc rgb '#000000' lw 1 notitle, ";
+      "set key off\nset yrange [{:.6g}:{:.6g}]\n"
+      "plot 1 with lines lc rgb '#000000' lw 1 notitle, ",
+      lo / 1.25, hi * 1.25);
   for (size_t i = 0; i < order.size(); ++i)
-    script += fmt::format(
-        "$r{} using 1:2 with linespoints lw 1.5 pt 7 ps 0.6 lc {} title {} "
-        "noenhanced{}",
-        i, i + 1, gnuplot_quote(order[i]), i + 1 < order.size() ? ", " : "\n");
+    script += fmt::format("$r{} using 1:2 with linespoints lw 1.5 ps 0.6 {} notitle{}", i, style(i),
+                          i + 1 < order.size() ? ", " : "\n");
   script += "unset multiplot\n";
   run_gnuplot(script, output);
 }

@@ -116,6 +116,28 @@ GlContext::~GlContext() {
   if (display_) eglTerminate(display_);
 }
 
+std::vector<GlDisplay> list_gl_displays() {
+  std::vector<GlDisplay> out;
+  const auto probe = [&out](const std::string& choice) {
+    try {
+      GlContext gl(GlDeviceChoice::parse(choice));
+      out.push_back({choice, true, gl.description()});
+    } catch (const std::exception& e) {
+      out.push_back({choice, false, e.what()});
+    }
+  };
+  if (!dlopen("libEGL.so.1", RTLD_LAZY | RTLD_GLOBAL)) {
+    out.push_back({"auto", false, "libEGL.so.1 is not installed"});
+    return out;
+  }
+  const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (has_extension(client, "EGL_MESA_platform_surfaceless")) probe("surfaceless");
+  EGLint count = 0;
+  if (has_extension(client, "EGL_EXT_device_enumeration")) eglQueryDevicesEXT(0, nullptr, &count);
+  for (EGLint i = 0; i < count; ++i) probe(fmt::format("device:{}", i));
+  return out;
+}
+
 std::string GlContext::description() const {
   return fmt::format("{}; OpenGL {}", renderer_, version_);
 }

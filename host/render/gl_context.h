@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace depthprec {
 
@@ -32,5 +33,14 @@ class GlContext {
   void* context_ = nullptr;
   std::string renderer_, version_, platform_;
 };
+
+// Every display --gl-device can name (surfaceless, device:0, ...) with what it renders on, or
+// why it cannot: what `depthprec devices` lists.
+struct GlDisplay {
+  std::string choice;  // "surfaceless", "device:0"
+  bool usable = false;
+  std::string what;  // GlContext::description(), or the error
+};
+std::vector<GlDisplay> list_gl_displays();
 
 }  // namespace depthprec

@@ -362,4 +362,16 @@ std::vector<uint8_t> RenderEvaluator::pixels(const Probe& probe, int frame) {
   return read(targets_[0]);
 }
 
+std::vector<float> RenderEvaluator::depths_a(const Probe& probe, int frame) {
+  grow_targets(1);
+  draw(probe, frame, targets_[0]);
+  std::vector<float> d(static_cast<size_t>(scene_.kernel_w) * static_cast<size_t>(scene_.kernel_h));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, targets_[0].fbo);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels((scene_.viewport_w - scene_.kernel_w) / 2, (scene_.viewport_h - scene_.kernel_h) / 2,
+               scene_.kernel_w, scene_.kernel_h, GL_DEPTH_COMPONENT, GL_FLOAT, d.data());
+  check_gl("reading plane A's depth back");
+  return d;
+}
+
 }  // namespace depthprec

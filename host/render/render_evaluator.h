@@ -43,6 +43,9 @@ class RenderEvaluator : public ProbeEvaluator {
   // Kernel pixels of both planes of one frame, for tests and diagnosis: per pixel (row-major from
   // the kernel's bottom-left) bit 0 A covers, bit 1 B covers, bit 2 B passes the depth test.
   std::vector<uint8_t> pixels(const Probe& probe, int frame);
+  // The depth the driver stored for plane A at every kernel pixel (same order), read back as
+  // binary32: exact for a float32 buffer, the stored code's value for the unorm ones.
+  std::vector<float> depths_a(const Probe& probe, int frame);
 
   const GlDepthFormat& depth_format() const { return depth_; }
   uint64_t frames_rendered() const { return frames_; }
