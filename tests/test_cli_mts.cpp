@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -187,4 +188,42 @@ TEST_CASE("table --attribute marks each cell with its dominant factor", "[cli][t
     CHECK(row.contains("arithmetic_mts"));
     CHECK(row.contains("dominant"));
   }
+}
+
+// A terminal is 80-120 columns: text wider than 120 wraps every line. Wide tables split into
+// blocks that repeat the columns naming a row; prose folds.
+TEST_CASE("text output fits 120 columns and keeps every column", "[cli][text]") {
+  const auto widest = [](const std::string& text) {
+    size_t w = 0, start = 0;
+    while (start < text.size()) {
+      size_t end = text.find('\n', start);
+      if (end == std::string::npos) end = text.size();
+      w = std::max(w, end - start);
+      start = end + 1;
+    }
+    return w;
+  };
+  const std::string small = "--distances 2,1024 --frames 2 --kernel 40x40";
+  const auto table = run_cli("table -q " + small);
+  REQUIRE(table.exit_code == 0);
+  CHECK(widest(table.output) <= 120);
+  for (const char* label :
+       {"standard/float32/gl", "reversed_infinite/unorm24/zero_to_one", "layered/unorm24/gl"})
+    CHECK_THAT(table.output, Contains(label));
+  const auto mts = run_cli("mts -q -t standard,linear -f unorm24 --attribute " + small);
+  REQUIRE(mts.exit_code == 0);
+  CHECK(widest(mts.output) <= 120);
+  for (const char* column : {"mts_seen", "verdict", "storage_mts", "dominant", "flags"})
+    CHECK_THAT(mts.output, Contains(column));
+  for (const std::string& args : {"cost -q -t standard,log_fragment -f unorm24 " + small,
+                                  "pipelines -q -t standard -f unorm24 " + small,
+                                  "compare -q -t standard -f unorm24 " + small}) {
+    INFO(args);
+    const auto r = run_cli(args);
+    REQUIRE(r.exit_code == 0);
+    CHECK(widest(r.output) <= 120);
+  }
+  // The full width stays in Markdown, for pasting into a page that scrolls.
+  const auto md = run_cli("table -q --format-out markdown " + small);
+  CHECK(widest(md.output) > 120);
 }

@@ -54,7 +54,8 @@ double rel_precision_of(const json& header) {
 }
 
 void finish(const CompareOptions& o, const json& header, const std::vector<json>& records) {
-  write_output(o.out.output, render_compare_output(header, records, o.out));
+  write_output(o.out.output,
+               for_terminal(render_compare_output(header, records, o.out), o.out.format_out));
   if (!o.plot.empty()) plot_compare(records, o.plot);
 }
 
@@ -107,11 +108,12 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
     header["rendered_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   };
-  const auto records =
-      run_batch(keys, compute, journal, shard, "compare", !global.quiet && stderr_is_terminal(),
-                [&](const std::vector<json>& done) {
-                  write_output("", render_compare_output(header, done, o.out));
-                });
+  const auto records = run_batch(
+      keys, compute, journal, shard, "compare", !global.quiet && stderr_is_terminal(),
+      [&](const std::vector<json>& done) {
+        write_output("",
+                     for_terminal(render_compare_output(header, done, o.out), o.out.format_out));
+      });
   finish(o, header, records);
   journal.remove();
 }

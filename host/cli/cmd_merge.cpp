@@ -12,6 +12,7 @@
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
 #include "host/output/row_json.h"
+#include "host/output/text_table.h"
 
 namespace depthprec::cli {
 
@@ -171,7 +172,7 @@ void merge_records(const MergeOptions& o, const std::string& kind,
     text = render_compare_output(header, records, o.out);
   else
     text = render_cost_output(header, records, o.out);
-  write_output(o.out.output, text);
+  write_output(o.out.output, for_terminal(text, o.out.format_out));
 }
 
 void run_merge(const MergeOptions& o) {

@@ -2,6 +2,7 @@
 
 #include "host/output/progress.h"
 #include "host/output/report.h"
+#include "host/output/text_table.h"
 
 namespace depthprec::cli {
 
@@ -15,11 +16,12 @@ std::vector<nlohmann::json> run_record_batch(
   OpenClRuntime rt(global.device);
   nlohmann::json header = batch_header(kind, rt.description(), batch.shard);
   const std::vector<BatchUnit> units = prepare(rt, header);
-  const auto records = run_batch(units, journal, shard, kind, !global.quiet && stderr_is_terminal(),
-                                 [&](const std::vector<nlohmann::json>& done) {
-                                   write_output("", render(header, done, out));
-                                 });
-  write_output(out.output, render(header, records, out));
+  const auto records =
+      run_batch(units, journal, shard, kind, !global.quiet && stderr_is_terminal(),
+                [&](const std::vector<nlohmann::json>& done) {
+                  write_output("", for_terminal(render(header, done, out), out.format_out));
+                });
+  write_output(out.output, for_terminal(render(header, records, out), out.format_out));
   journal.remove();
   return records;
 }

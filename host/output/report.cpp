@@ -178,7 +178,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   if (format == "csv") return csv(cols, cells);
   std::string out = grid(cols, cells, format == "markdown");
   out += (format == "markdown" ? "\n" : "") + footer(run) + "\n";
-  return out;
+  return format == "markdown" ? out : wrap_text(out);
 }
 
 std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
@@ -227,7 +227,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   if (format == "csv") return csv(cols, cells);
   const bool md = format == "markdown";
   std::string out;
-  if (md) {
+  {
     out += fmt::format(
         "MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
         "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
@@ -251,15 +251,10 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         "code "
         "(code_width in --format-out json)\n";
   }
-  bool attributed = false, rendered = false;
-  for (const auto& r : rows) {
-    attributed |= r.attributed();
-    rendered |= r.source == RowSource::rendered;
-  }
-  // Emulated outputs keep their columns; a rendered row says so (JSON rows always carry it).
-  if (rendered) cols.insert(cols.begin(), {"source", true});
+  bool attributed = false;
+  for (const auto& r : rows) attributed |= r.attributed();
   if (attributed) {
-    out += md ? "\n" : "\n";
+    out += "\n";
     out +=
         "S / A / V: the dominant factor -- storage (the MTS of the binary64 pipeline stored in the "
         "format), "
@@ -279,7 +274,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
     out += grid(acols, acells, md);
   }
   out += (md ? "\n" : "") + footer(run) + "\n";
-  return out;
+  return md ? out : wrap_text(out);
 }
 
 void check_writable(const std::string& path) {

@@ -7,7 +7,83 @@
 namespace depthprec {
 
 // Aligned text or Markdown from a header and string cells.
+namespace {
+
+// Aligned text wider than a terminal wraps every line and cannot be read: text (not Markdown,
+// whose readers scroll) is split into blocks of columns no wider than this, each block repeating
+// the key columns that name a row.
+constexpr size_t kTextWidth = 120;
+
+// The columns that name a row: the leading names (left-aligned), and a distance `z` right after
+// them; the first column when there are no names.
+size_t key_columns(const std::vector<Column>& cols) {
+  size_t k = 0;
+  while (k < cols.size() && cols[k].left) ++k;
+  if (k < cols.size() && cols[k].name == "z") ++k;
+  return std::max<size_t>(k, 1);
+}
+
+std::string one_grid(const std::vector<Column>& cols, const Cells& cells, bool markdown);
+
+std::string text_blocks(const std::vector<Column>& cols, const Cells& cells) {
+  std::vector<size_t> w(cols.size());
+  for (size_t c = 0; c < cols.size(); ++c) {
+    w[c] = cols[c].name.size();
+    for (const auto& row : cells) w[c] = std::max(w[c], row[c].size());
+  }
+  size_t total = 0;
+  for (size_t c = 0; c < cols.size(); ++c) total += w[c] + (c ? 2 : 0);
+  const size_t key = key_columns(cols);
+  if (total <= kTextWidth || key >= cols.size()) return one_grid(cols, cells, false);
+  size_t key_width = 0;
+  for (size_t c = 0; c < key; ++c) key_width += w[c] + (c ? 2 : 0);
+  std::string out;
+  for (size_t first = key; first < cols.size();) {
+    size_t last = first, width = key_width + 2 + w[first];
+    while (last + 1 < cols.size() && width + 2 + w[last + 1] <= kTextWidth) width += 2 + w[++last];
+    std::vector<Column> bc(cols.begin(), cols.begin() + key);
+    bc.insert(bc.end(), cols.begin() + first, cols.begin() + last + 1);
+    Cells bcells;
+    for (const auto& row : cells) {
+      std::vector<std::string> r(row.begin(), row.begin() + key);
+      r.insert(r.end(), row.begin() + first, row.begin() + last + 1);
+      bcells.push_back(r);
+    }
+    out += (out.empty() ? "" : "\n") + one_grid(bc, bcells, false);
+    first = last + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string wrap_text(const std::string& text) {
+  std::string out;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    while (line.size() > kTextWidth) {
+      const size_t cut = line.rfind(' ', kTextWidth);
+      if (cut == std::string::npos || cut == 0) break;
+      out += line.substr(0, cut) + "\n";
+      line = "  " + line.substr(line.find_first_not_of(' ', cut));
+    }
+    out += line;
+    if (end < text.size()) out += "\n";
+    start = end + 1;
+  }
+  return out;
+}
+
 std::string grid(const std::vector<Column>& cols, const Cells& cells, bool markdown) {
+  return markdown ? one_grid(cols, cells, true) : text_blocks(cols, cells);
+}
+
+namespace {
+
+std::string one_grid(const std::vector<Column>& cols, const Cells& cells, bool markdown) {
   std::vector<size_t> w(cols.size());
   for (size_t c = 0; c < cols.size(); ++c) {
     w[c] = cols[c].name.size();
@@ -36,6 +112,8 @@ std::string grid(const std::vector<Column>& cols, const Cells& cells, bool markd
   for (const auto& row : cells) out += line(row);
   return out;
 }
+
+}  // namespace
 
 std::string csv(const std::vector<Column>& cols, const Cells& cells) {
   std::string out;

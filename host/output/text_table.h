@@ -14,8 +14,17 @@ struct Column {
 
 using Cells = std::vector<std::vector<std::string>>;
 
+// Aligned text or Markdown. Text wider than 120 columns is split into blocks of columns, each
+// repeating the columns that name a row (the leading names and a following `z`).
 std::string grid(const std::vector<Column>& cols, const Cells& cells, bool markdown);
 std::string csv(const std::vector<Column>& cols, const Cells& cells);
+// Prose lines of text output folded at spaces to the same 120 columns (lines that fit, and
+// words longer than the width, are left as they are).
+std::string wrap_text(const std::string& text);
+// wrap_text for the text format, other formats unchanged.
+inline std::string for_terminal(const std::string& out, const std::string& format) {
+  return format == "text" ? wrap_text(out) : out;
+}
 // "text", "markdown" or "csv".
 std::string render_cells(const std::vector<Column>& cols, const Cells& cells,
                          const std::string& format);
