@@ -27,9 +27,12 @@ const std::string kBatch =
     "table -t standard,linear,reversed -f unorm24 --distances 2,64,2048,65536,2097152,67108864 "
     "--kernel 120x120 --frames 40 --no-timing --format-out json";
 
-size_t lines_in(const std::string& path) {
-  const std::string s = slurp(path);
-  return static_cast<size_t>(std::count(s.begin(), s.end(), '\n'));
+// Finished rows in a journal: its lines with a row key (the first line names the run).
+size_t rows_in(const std::string& path) {
+  std::istringstream in(slurp(path));
+  size_t n = 0;
+  for (std::string line; std::getline(in, line);) n += line.find("\"key\"") != std::string::npos;
+  return n;
 }
 
 std::vector<std::string> words(const std::string& s) {
@@ -56,7 +59,7 @@ int run_and_interrupt(const std::string& args, const std::string& journal, int s
     execv(exe.c_str(), argv.data());
     _exit(127);
   }
-  for (int i = 0; i < 2000 && lines_in(journal) == 0; ++i)
+  for (int i = 0; i < 2000 && rows_in(journal) == 0; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   kill(pid, sig);
   int status = 0;
@@ -78,7 +81,7 @@ TEST_CASE("an interrupted table keeps its finished rows and resumes to identical
     const int code = run_and_interrupt(kBatch + " -o " + cut, cut + ".rows.jsonl", sig);
     INFO("signal " << sig);
     CHECK(code == 130);
-    const size_t kept = lines_in(cut + ".rows.jsonl");
+    const size_t kept = rows_in(cut + ".rows.jsonl");
     CHECK(kept >= 1);
     CHECK(kept < 18);                        // stopped before the end
     CHECK_FALSE(std::ifstream(cut).good());  // no half-written final file
@@ -86,6 +89,10 @@ TEST_CASE("an interrupted table keeps its finished rows and resumes to identical
     const auto again = run_cli(kBatch + " -o " + cut);
     CHECK(again.exit_code == 5);
     CHECK_THAT(again.output, Contains("--resume"));
+    // Rows of another scene (here: another near plane) must not be mixed in: refused, naming it.
+    const auto other = run_cli(kBatch + " --near 2 -o " + cut + " --resume");
+    CHECK(other.exit_code == 3);
+    CHECK_THAT(other.output, Contains("written by another run") && Contains("scene.near"));
     REQUIRE(run_cli(kBatch + " -o " + cut + " --resume").exit_code == 0);
     CHECK(slurp(cut) == slurp(full));
     CHECK_FALSE(std::ifstream(cut + ".rows.jsonl").good());  // journal gone once complete
@@ -104,7 +111,7 @@ TEST_CASE("an interrupt stops a run whose pairs are waiting for each other", "[b
           cut,
       cut + ".rows.jsonl", SIGINT);
   CHECK(code == 130);
-  CHECK(lines_in(cut + ".rows.jsonl") >= 1);
+  CHECK(rows_in(cut + ".rows.jsonl") >= 1);
   CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 30);
 }
 
@@ -178,7 +185,7 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
     for (const auto& f : {full, cut, cut + ".rows.jsonl"}) std::remove(f.c_str());
     REQUIRE(run_cli(args + " -o " + full).exit_code == 0);
     CHECK(run_and_interrupt(args + " -o " + cut, cut + ".rows.jsonl", SIGINT) == 130);
-    CHECK(lines_in(cut + ".rows.jsonl") >= 1);
+    CHECK(rows_in(cut + ".rows.jsonl") >= 1);
     CHECK_FALSE(std::ifstream(cut).good());
     CHECK(run_cli(args + " -o " + cut).exit_code == 5);  // would lose the kept rows
     REQUIRE(run_cli(args + " -o " + cut + " --resume").exit_code == 0);

@@ -31,16 +31,21 @@ TEST_CASE("a shard holds every N-th unit from its index", "[batch][unit]") {
 TEST_CASE("the journal keeps finished records, refuses to be overwritten and resumes",
           "[batch][unit]") {
   const std::string out = test::fresh("/tmp/depthprec_test_pieces.json");
+  const nlohmann::json run = {{"kind", "test"}, {"scene", {{"frames", 10}}}};
   {
-    RowJournal j(out, false);
+    RowJournal j(out, false, run);
     REQUIRE(j.active());
     j.append({{"key", "a"}, {"v", 1}});
     j.append({{"key", "b"}, {"v", 2}});
   }
   std::ofstream(out + ".rows.jsonl", std::ios::app)
       << "{\"key\": \"c\", \"v\"";  // a line cut by a crash
-  CHECK_THROWS_WITH(RowJournal(out, false), Contains("--resume"));
-  RowJournal resumed(out, true);
+  CHECK_THROWS_WITH(RowJournal(out, false, run), Contains("--resume"));
+  // Another run's journal is refused, naming what differs.
+  const nlohmann::json other = {{"kind", "test"}, {"scene", {{"frames", 100}}}};
+  CHECK_THROWS_WITH(RowJournal(out, true, other),
+                    Contains("written by another run") && Contains("scene.frames: 10 against 100"));
+  RowJournal resumed(out, true, run);
   REQUIRE(resumed.earlier().size() == 2);  // the incomplete line is not a record
   CHECK(resumed.earlier()[1]["v"] == 2);
   // run_batch computes only what the journal lacks and returns every record in unit order
@@ -57,7 +62,25 @@ TEST_CASE("the journal keeps finished records, refuses to be overwritten and res
   CHECK(records[2]["key"] == "c");
   resumed.remove();
   CHECK_FALSE(std::ifstream(out + ".rows.jsonl").good());
-  CHECK_FALSE(RowJournal("", false).active());
+  CHECK_FALSE(RowJournal("", false, run).active());
+  // A file that does not start by naming its run is no journal of this program.
+  std::ofstream(out + ".rows.jsonl") << "{\"key\": \"a\", \"v\": 1}\n";
+  CHECK_THROWS_WITH(RowJournal(out, true, run), Contains("not a journal this depthprec wrote"));
+  std::remove((out + ".rows.jsonl").c_str());
+}
+
+TEST_CASE("first_difference names the first field two JSON values differ in", "[batch][unit]") {
+  const nlohmann::json a = {{"scene", {{"near", 1}, {"far", 1e9}}}, {"shard", ""}};
+  CHECK(first_difference(a, a).empty());
+  nlohmann::json b = a;
+  b["scene"]["far"] = 1e4;
+  CHECK(first_difference(a, b) == "scene.far: 1000000000.0 against 10000.0");
+  b = a;
+  b.erase("shard");
+  CHECK(first_difference(a, b) == "shard: \"\" against nothing");
+  b = a;
+  b["extra"] = true;
+  CHECK(first_difference(a, b) == "extra: nothing against true");
 }
 
 TEST_CASE("a launch's row words fold into each probe's first deciding frame", "[batch][unit]") {

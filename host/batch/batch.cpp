@@ -26,7 +26,26 @@ Shard Shard::parse(const std::string& text) {
   return s;
 }
 
-RowJournal::RowJournal(const std::string& output, bool resume) {
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,
+                             const std::string& path) {
+  if (a.is_object() && b.is_object()) {
+    for (const auto& [k, v] : a.items()) {
+      const std::string at = path.empty() ? k : path + "." + k;
+      if (!b.contains(k)) return fmt::format("{}: {} against nothing", at, v.dump());
+      const std::string d = first_difference(v, b.at(k), at);
+      if (!d.empty()) return d;
+    }
+    for (const auto& [k, v] : b.items())
+      if (!a.contains(k))
+        return fmt::format("{}: nothing against {}", path.empty() ? k : path + "." + k, v.dump());
+    return "";
+  }
+  if (a == b) return "";
+  return fmt::format("{}: {} against {}", path.empty() ? "(the whole value)" : path, a.dump(),
+                     b.dump());
+}
+
+RowJournal::RowJournal(const std::string& output, bool resume, const nlohmann::json& identity) {
   if (output.empty()) {
     if (resume)
       throw Error(ExitCode::usage,
@@ -35,6 +54,7 @@ RowJournal::RowJournal(const std::string& output, bool resume) {
   }
   path_ = output + ".rows.jsonl";
   std::ifstream in(path_);
+  const bool fresh_journal = !in.good();
   if (in.good() && !resume)
     throw Error(ExitCode::output,
                 fmt::format("{} holds the finished rows of an interrupted run: continue it "
@@ -42,6 +62,23 @@ RowJournal::RowJournal(const std::string& output, bool resume) {
                             path_));
   std::string line;
   int number = 0;
+  if (resume && in.good()) {
+    // The first line says which run wrote the journal.
+    ++number;
+    const auto head =
+        std::getline(in, line) ? nlohmann::json::parse(line, nullptr, false) : nlohmann::json();
+    if (!head.is_object() || !head.contains("journal_of"))
+      throw InputError(fmt::format(
+          "{}: not a journal this depthprec wrote (its first line does not say which run it "
+          "belongs to); delete it to start over",
+          path_));
+    const std::string diff = first_difference(head["journal_of"], identity);
+    if (!diff.empty())
+      throw InputError(fmt::format(
+          "{} was written by another run ({}: the journal's value, then this run's); run the "
+          "same command to resume it, or delete it to start over",
+          path_, diff));
+  }
   while (resume && std::getline(in, line)) {
     ++number;
     if (line.empty()) continue;
@@ -57,6 +94,7 @@ RowJournal::RowJournal(const std::string& output, bool resume) {
   in.close();
   out_ = std::make_unique<std::ofstream>(path_, std::ios::app);
   if (!*out_) throw OutputError(fmt::format("cannot write the row journal '{}'", path_));
+  if (fresh_journal) append({{"journal_of", identity}});
 }
 
 void RowJournal::append(const nlohmann::json& record) {
@@ -137,6 +175,14 @@ std::vector<nlohmann::json> run_batch(
     }
   };
   return run_batch(keys, one_by_one, journal, shard, what, progress, on_partial);
+}
+
+nlohmann::json journal_identity(const nlohmann::json& header) {
+  nlohmann::json id = header;
+  for (const char* k : {"device", "wall_seconds", "kernel_seconds", "kernel_launches",
+                        "emulated_seconds", "rendered_seconds"})
+    id.erase(k);
+  return id;
 }
 
 nlohmann::json batch_header(const std::string& kind, const std::string& device,

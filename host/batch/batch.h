@@ -26,7 +26,11 @@ class RowJournal {
  public:
   // output "": no journal (then resume is a usage error). Without resume, an existing journal
   // is refused (it holds an interrupted run's rows); with it, its complete lines are read.
-  RowJournal(const std::string& output, bool resume);
+  // identity: what makes this run's rows what they are (program version, command, scene,
+  // options that change a row, shard). A new journal starts with it; a resumed one must start
+  // with the same, else it is refused naming the first field that differs -- rows of another
+  // scene or version must not be mixed into this run's output.
+  RowJournal(const std::string& output, bool resume, const nlohmann::json& identity);
   bool active() const { return out_ != nullptr; }
   const std::string& path() const { return path_; }
   const std::vector<nlohmann::json>& earlier() const { return earlier_; }
@@ -38,6 +42,10 @@ class RowJournal {
   std::vector<nlohmann::json> earlier_;
   std::unique_ptr<std::ofstream> out_;
 };
+
+// The first place two JSON values differ, as "scene.frames: 10 against 100" ("" when equal).
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,
+                             const std::string& path = "");
 
 // The Error a stopped batch ends with: where the finished rows are and how to continue.
 [[noreturn]] void throw_interrupted(const RowJournal& journal, size_t finished);
@@ -73,6 +81,10 @@ std::vector<nlohmann::json> run_batch(
     const std::vector<BatchUnit>& units, RowJournal& journal, const Shard& shard,
     const std::string& what, bool progress,
     const std::function<void(const std::vector<nlohmann::json>&)>& on_partial);
+
+// What a batch's journal is keyed to (RowJournal): its output header without the device (a
+// resumed run may run elsewhere) and without measured times.
+nlohmann::json journal_identity(const nlohmann::json& header);
 
 // The header of a record batch's JSON output: program, version, kind, device, and the shard.
 nlohmann::json batch_header(const std::string& kind, const std::string& device,

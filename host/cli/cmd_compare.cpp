@@ -64,7 +64,7 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
   check_writable(o.out.output);
   check_plot_output(o.plot);
   const Shard shard = Shard::parse(o.batch.shard);
-  RowJournal journal(o.out.output, o.batch.resume);
+  if (o.batch.resume && o.out.output.empty()) RowJournal(o.out.output, true, {});  // usage error
   GlContext gl(GlDeviceChoice::parse(o.gl_device));
   const RenderedWith with{gl.renderer(), gl.version(), gl.platform(), check_scene_renders(scene)};
   OpenClRuntime rt(global.device);
@@ -72,6 +72,7 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
   header["scene_source"] = scene.source;
   header["scene"] = scene.json;
   add_rendered_with(header, with);
+  RowJournal journal(o.out.output, o.batch.resume, journal_identity(header));
 
   std::vector<std::string> keys;
   std::map<std::string, size_t> index_of;

@@ -17,6 +17,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
+#include "host/output/json_header.h"
 #include "host/output/progress.h"
 #include "host/output/row_json.h"
 #include "host/render/render_run.h"
@@ -60,8 +61,14 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
   const Shard shard = Shard::parse(o.batch.shard);
-  RowJournal journal(o.out.output, o.batch.resume);
   const std::string kind = wide ? "table" : "mts";
+  // The journal belongs to this command, scene, version and shard: rows of another run must not
+  // be resumed into this one.
+  nlohmann::json identity = journal_identity(output_header(o.render ? "render" : kind, ""));
+  identity["scene"] = scene.json;
+  identity["attribute"] = o.attribute;
+  identity["shard"] = o.batch.shard;
+  RowJournal journal(o.out.output, o.batch.resume, identity);
   // The units: rows k = pair index x distances + distance index, keyed by pair and distance.
   std::vector<std::string> keys;
   std::map<std::string, size_t> index_of;

@@ -12,10 +12,11 @@ std::vector<nlohmann::json> run_record_batch(
     const std::function<std::vector<BatchUnit>(OpenClRuntime& rt, nlohmann::json& header)>& prepare,
     const RecordRenderer& render) {
   const Shard shard = Shard::parse(batch.shard);
-  RowJournal journal(out.output, batch.resume);
+  if (batch.resume && out.output.empty()) RowJournal(out.output, true, {});  // the usage error
   OpenClRuntime rt(global.device);
   nlohmann::json header = batch_header(kind, rt.description(), batch.shard);
   const std::vector<BatchUnit> units = prepare(rt, header);
+  RowJournal journal(out.output, batch.resume, journal_identity(header));
   const auto records =
       run_batch(units, journal, shard, kind, !global.quiet && stderr_is_terminal(),
                 [&](const std::vector<nlohmann::json>& done) {
