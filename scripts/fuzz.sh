@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer scene target with clang (ASan + UBSan) in build-fuzz/ and runs it for the
-# given number of seconds (default 600), seeded with the scenes in data/. Crashes are written to
-# build-fuzz/crashes/; each one becomes a case of "fuzzer regressions end in input errors" in tests/test_scene.cpp.
+# Builds a libFuzzer target with clang (ASan + UBSan) in build-fuzz/ and runs it for the given
+# number of seconds (default 600): scene (scene files, seeded with data/), journal (row journals
+# as --resume reads them) or shard (JSON outputs as merge and compare read them), each seeded from
+# tests/fuzz/seeds/. Crashes are written to build-fuzz/crashes/TARGET/; each one becomes a
+# regression test (tests/test_scene.cpp, tests/test_fuzz_regressions.cpp). docs/fuzzing.md.
+# Usage: scripts/fuzz.sh [scene|journal|shard] [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+target=scene
+if [ $# -gt 0 ] && [[ ! "$1" =~ ^[0-9]+$ ]]; then target="$1"; shift; fi
 seconds="${1:-600}"
+case "$target" in scene | journal | shard) ;; *)
+  echo "fuzz.sh: unknown target '$target' (scene, journal or shard)" >&2; exit 2 ;;
+esac
 scripts/setup.sh
 missing=()
 for p in clang libclang-rt-14-dev; do
@@ -15,8 +23,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 CXX=clang++ CC=clang cmake -S . -B build-fuzz -DDEPTHPREC_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build build-fuzz -j "$(nproc)" --target scene_fuzzer
-mkdir -p build-fuzz/corpus build-fuzz/crashes
-cp -n data/*.json build-fuzz/corpus/ 2>/dev/null || true
-build-fuzz/tests/fuzz/scene_fuzzer build-fuzz/corpus -max_total_time="$seconds" -max_len=8192 \
-  -artifact_prefix=build-fuzz/crashes/ -print_final_stats=1
+cmake --build build-fuzz -j "$(nproc)" --target "${target}_fuzzer"
+corpus=build-fuzz/corpus/$target crashes=build-fuzz/crashes/$target
+mkdir -p "$corpus" "$crashes"
+if [ "$target" = scene ]; then seeds=data; else seeds=tests/fuzz/seeds/$target; fi
+cp -n "$seeds"/* "$corpus"/ 2>/dev/null || true
+"build-fuzz/tests/fuzz/${target}_fuzzer" "$corpus" -max_total_time="$seconds" -max_len=16384 \
+  -artifact_prefix="$crashes/" -print_final_stats=1

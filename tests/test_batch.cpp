@@ -127,6 +127,16 @@ TEST_CASE("shards merge to the bytes of the whole batch", "[batch]") {
   const std::string merged = fresh("/tmp/depthprec_test_merged.json");
   REQUIRE(run_cli("merge" + parts + " --no-timing --format-out json -o " + merged).exit_code == 0);
   CHECK(slurp(merged) == slurp(full));
+  // A part of another batch (another far plane) is refused, naming the field.
+  const std::string stray = fresh("/tmp/depthprec_test_stray.json");
+  REQUIRE(run_cli(kBatch + " --far 1e6 --shard 3/3 -o " + stray).exit_code == 0);
+  const auto mixed =
+      run_cli("merge /tmp/depthprec_test_part1.json /tmp/depthprec_test_part2.json " + stray);
+  CHECK(mixed.exit_code == 3);
+  CHECK_THAT(mixed.output, Contains("is not a shard of the batch") && Contains("scene.far"));
+  // A damaged part (a field of the wrong type) is bad input, not an internal error.
+  std::ofstream(stray) << "{\"rows\": [], \"scene\": {}, \"kind\": 7}";
+  CHECK(run_cli("merge " + stray).exit_code == 3);
 }
 
 // What docs/scale-out.md shows: the parts run by GNU parallel (Debian's `parallel`, installed by

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "host/output/text_table.h"
 #include "run_cli.h"
 
 using Catch::Matchers::Contains;
@@ -226,4 +227,21 @@ TEST_CASE("text output fits 120 columns and keeps every column", "[cli][text]") 
   // The full width stays in Markdown, for pasting into a page that scrolls.
   const auto md = run_cli("table -q --format-out markdown " + small);
   CHECK(widest(md.output) > 120);
+}
+
+// Found by the shard fuzzer: a word longer than a line (here a 130-character format name in a
+// merged shard) made the folding loop forever, growing its output until memory ran out.
+TEST_CASE("folding text leaves a word longer than a line whole and terminates", "[text][fuzz]") {
+  const std::string word(130, 'x');
+  CHECK(depthprec::wrap_text(word) == word);
+  CHECK(depthprec::wrap_text("a " + word) == "a\n  " + word);
+  const std::string indented = "   " + word + " tail";
+  CHECK(depthprec::wrap_text(indented) ==
+        indented);  // only the indent and one space before the tail fit
+  const std::string prose = std::string(100, 'a') + " " + std::string(30, 'b');
+  CHECK(depthprec::wrap_text(prose) == std::string(100, 'a') + "\n  " + std::string(30, 'b'));
+  const auto r =
+      run_cli("merge '" + std::string(DEPTHPREC_SOURCE_DIR) +
+              "/tests/fuzz/regressions/shard-with-a-format-name-longer-than-a-line.json'");
+  CHECK(r.exit_code == 3);  // the format does not exist; no endless folding on the way
 }

@@ -103,8 +103,12 @@ TEST_CASE("the summary counts ratios against 1.1x, 2x and the bisection's precis
               {"format", "float32"},
               {"depth_range", "gl"},
               {"z", z},
+              {"emulated_mts", ratio},
+              {"rendered_mts", 1.0},
               {"emulated_verdict", "resolved"},
-              {"rendered_verdict", "resolved"}};
+              {"rendered_verdict", "resolved"},
+              {"emulated", json::object()},
+              {"rendered", json::object()}};
     r["ratio"] = ratio;
     return r;
   };
@@ -124,4 +128,40 @@ TEST_CASE("the summary counts ratios against 1.1x, 2x and the bisection's precis
   CHECK(s.verdicts_differ == 1);
   CHECK(s.worst_ratio == 3.0);
   CHECK(s.median_ratio == 1.0);
+}
+
+// Found by the shard fuzzer (tests/fuzz/shard_fuzzer.cpp): a compare shard whose record lacks a
+// field, and a shard whose "shard" is a number, made merge end in an internal error (exit 1); a
+// row count of 4.8e58 was undefined behaviour.
+TEST_CASE("fuzzer regressions: damaged shards are input errors naming what is wrong",
+          "[compare][fuzz]") {
+  const auto number = run_cli("merge '" + std::string(DEPTHPREC_SOURCE_DIR) +
+                              "/tests/fuzz/regressions/shard-with-a-number-for-its-shard.json'");
+  CHECK(number.exit_code == 3);
+  CHECK_THAT(number.output, Contains("not a JSON output it can merge"));
+  // A count of 4.8e58 was converted to an integer with undefined behaviour (UBSan).
+  const auto huge = run_cli("merge '" + std::string(DEPTHPREC_SOURCE_DIR) +
+                            "/tests/fuzz/regressions/shard-with-a-count-of-4.8e58.json'");
+  CHECK(huge.exit_code == 3);
+  CHECK_THAT(huge.output, Contains("must be a count"));
+  const auto r = run_cli("merge '" + std::string(DEPTHPREC_SOURCE_DIR) +
+                         "/tests/fuzz/regressions/shard-compare-record-without-verdict.json'");
+  CHECK(r.exit_code == 3);
+  CHECK_THAT(r.output, Contains("compare record") && Contains("is missing or not a string"));
+  json record = {{"technique", "standard"},
+                 {"format", "unorm24"},
+                 {"depth_range", "gl"},
+                 {"z", 2},
+                 {"emulated_mts", 1},
+                 {"rendered_mts", 2},
+                 {"emulated_verdict", "resolved"},
+                 {"rendered_verdict", "resolved"},
+                 {"emulated", json::object()},
+                 {"rendered", json::object()}};
+  CHECK_NOTHROW(check_compare_record(record));
+  record["ratio"] = "0.5";
+  CHECK_THROWS_WITH(check_compare_record(record), Contains("'ratio' is not a number"));
+  record.erase("ratio");
+  record["z"] = "2";
+  CHECK_THROWS_WITH(check_compare_record(record), Contains("'z' is missing or not a number"));
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/output/row_json.h"
 
@@ -29,6 +30,29 @@ json compare_record(const MtsRow& emulated, const MtsRow& rendered) {
   return j;
 }
 
+void check_compare_record(const json& r) {
+  const auto fail = [&r](const std::string& what) {
+    const std::string name = r.is_object() && r.contains("key") && r["key"].is_string()
+                                 ? r["key"].get<std::string>()
+                                 : r.dump().substr(0, 80) + "...";
+    throw InputError(fmt::format("compare record {}: {}", name, what));
+  };
+  if (!r.is_object()) fail("not a JSON object");
+  for (const char* k :
+       {"technique", "format", "depth_range", "emulated_verdict", "rendered_verdict"})
+    if (!r.contains(k) || !r[k].is_string())
+      fail(fmt::format("'{}' is missing or not a string", k));
+  if (!r.contains("z") || !r["z"].is_number()) fail("'z' is missing or not a number");
+  for (const char* k : {"emulated_mts", "rendered_mts"}) {
+    if (!r.contains(k)) fail(fmt::format("'{}' is missing", k));
+    (void)number_from_json(r[k], k);
+  }
+  if (r.contains("ratio") && !r["ratio"].is_number()) fail("'ratio' is not a number");
+  for (const char* side : {"emulated", "rendered"})
+    if (!r.contains(side) || !r[side].is_object())
+      fail(fmt::format("'{}' is missing or not a row object", side));
+}
+
 namespace {
 
 std::string label_of(const json& r) {
@@ -39,6 +63,7 @@ std::string label_of(const json& r) {
 }  // namespace
 
 CompareSummary summarise(const std::vector<json>& records, double rel_precision) {
+  for (const auto& r : records) check_compare_record(r);
   CompareSummary s;
   std::vector<double> ratios;
   double worst_log = -1;
@@ -97,6 +122,7 @@ std::string summary_line(const CompareSummary& s) {
 
 std::vector<std::pair<std::string, CompareSummary>> summarise_by_pair(
     const std::vector<json>& records, double rel_precision) {
+  for (const auto& r : records) check_compare_record(r);
   std::vector<std::string> order;
   std::map<std::string, std::vector<json>> groups;
   for (const auto& r : records) {

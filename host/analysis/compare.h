@@ -16,6 +16,10 @@ namespace depthprec {
 // under "emulated" and "rendered", so any output can be re-rendered from the record.
 nlohmann::json compare_record(const MtsRow& emulated, const MtsRow& rendered);
 
+// Checks a record read back from a file (a journal, a shard to merge): every field the
+// summaries and outputs read, with its type. Throws InputError naming the field.
+void check_compare_record(const nlohmann::json& record);
+
 struct CompareSummary {
   size_t rows = 0;
   size_t both_resolved = 0;

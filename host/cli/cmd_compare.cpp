@@ -233,10 +233,12 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
     if (timing) {
       const json& e = r.at("emulated");
       const json& d = r.at("rendered");
-      row.push_back(e.contains("seconds") ? fmt::format("{:.3f}", e["seconds"].get<double>())
-                                          : "-");
-      row.push_back(d.contains("seconds") ? fmt::format("{:.3f}", d["seconds"].get<double>())
-                                          : "-");
+      row.push_back(e.contains("seconds")
+                        ? fmt::format("{:.3f}", number_from_json(e["seconds"], "seconds"))
+                        : "-");
+      row.push_back(d.contains("seconds")
+                        ? fmt::format("{:.3f}", number_from_json(d["seconds"], "seconds"))
+                        : "-");
       row.push_back(d.contains("frames_per_second") ? cell(d["frames_per_second"]) : "-");
     }
     cells.push_back(row);
@@ -309,10 +311,16 @@ void add_compare_command(CLI::App& app, GlobalOptions& global) {
       throw Error(ExitCode::usage,
                   "compare: --emulated and --rendered pair the rows of two outputs, whose scene is "
                   "in their headers; drop the scene options (and --shard, --resume)");
-    if (o->emulated_file.empty())
+    if (o->emulated_file.empty()) {
       run_from_scene(*o, global);
-    else
+      return;
+    }
+    // The files may hold any JSON: a field of the wrong type is bad input, as for merge.
+    try {
       run_from_files(*o);
+    } catch (const json::exception& e) {
+      throw InputError(fmt::format("compare: a file is not an output it can pair: {}", e.what()));
+    }
   });
 }
 

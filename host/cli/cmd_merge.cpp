@@ -88,8 +88,21 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
         rendered = {j["gl_renderer"].get<std::string>(), j.value("gl_version", ""),
                     j.value("egl_platform", ""),
                     j.value("depth_buffers", std::map<std::string, std::string>{})};
-    } else if (j["scene"] != scene_json) {
-      throw InputError(fmt::format("merge: '{}' ran another scene than '{}'", f, o.files.front()));
+    }
+    // Shards of one batch: the same program version, command, scene and renderer.
+    const auto identity = [](const nlohmann::json& d) {
+      nlohmann::json id = {{"version", d.value("version", "")},
+                           {"kind", d.value("kind", "mts")},
+                           {"scene", d["scene"]}};
+      if (d.contains("gl_renderer")) id["gl_renderer"] = d["gl_renderer"];
+      return id;
+    };
+    const std::string diff = first_difference(identity(docs.front()), identity(j));
+    if (!diff.empty()) {
+      throw InputError(
+          fmt::format("merge: '{}' is not a shard of the batch '{}' is ({}: the "
+                      "first file's value, then this one's)",
+                      f, o.files.front(), diff));
     }
     for (const auto& r : j["rows"]) {
       MtsRow row = row_from_json(r);
@@ -146,8 +159,10 @@ void merge_records(const MergeOptions& o, const std::string& kind,
       nlohmann::json mine = header;
       mine.erase("device");
       if (h != mine)
-        throw InputError(
-            fmt::format("merge: '{}' ran another batch than '{}'", o.files[k], o.files.front()));
+        throw InputError(fmt::format(
+            "merge: '{}' is not a shard of the batch '{}' is ({}: the first file's value, then "
+            "this one's)",
+            o.files[k], o.files.front(), first_difference(mine, h)));
     }
     parts[index[k]] = j["records"].get<std::vector<nlohmann::json>>();
   }
@@ -201,7 +216,16 @@ void add_merge_command(CLI::App& app) {
       "  depthprec merge part1.json part2.json part3.json part4.json --format-out markdown");
   mcmd->add_option("files", merge->files, "JSON outputs of the shards")->required();
   merge->out.add_to(*mcmd);
-  mcmd->callback([merge]() { run_merge(*merge); });
+  mcmd->callback([merge]() {
+    // Files a user or a crashed run hands merge may hold any JSON: a field of the wrong type is
+    // bad input, never an internal error.
+    try {
+      run_merge(*merge);
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(
+          fmt::format("merge: a file is not a JSON output it can merge: {}", e.what()));
+    }
+  });
 }
 
 }  // namespace depthprec::cli

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 
 #include "host/base/errors.h"
@@ -21,6 +23,24 @@ json number(double v) {
 double read_number(const json& j, const char* key) {
   if (!j.contains(key)) throw InputError(fmt::format("row is missing '{}'", key));
   return number_from_json(j.at(key), std::string("row field ") + key);
+}
+
+// A count read back from a file: an integer in T's range, else an InputError (a float such as
+// 4.8e58 would otherwise be converted with undefined behaviour).
+template <class T>
+T read_count(const json& j, const char* key) {
+  if (!j.contains(key)) throw InputError(fmt::format("row is missing '{}'", key));
+  const json& v = j.at(key);
+  const bool fits = v.is_number_unsigned()
+                        ? v.get<uint64_t>() <= static_cast<uint64_t>(std::numeric_limits<T>::max())
+                        : v.is_number_integer() && v.get<int64_t>() >= 0 &&
+                              static_cast<uint64_t>(v.get<int64_t>()) <=
+                                  static_cast<uint64_t>(std::numeric_limits<T>::max());
+  if (!fits)
+    throw InputError(fmt::format("row field {} must be a count (a non-negative integer), not {}",
+                                 key, v.dump()));
+  return static_cast<T>(v.is_number_unsigned() ? v.get<uint64_t>()
+                                               : static_cast<uint64_t>(v.get<int64_t>()));
 }
 
 }  // namespace
@@ -71,11 +91,11 @@ MtsRow row_from_json(const json& j) {
     r.pair.technique = parse_technique(j.at("technique").get<std::string>());
     r.pair.format = j.at("format").get<std::string>();
     r.pair.depth_range = parse_depth_range(j.at("depth_range").get<std::string>());
-    r.probes = j.at("probes").get<int>();
-    r.clipped_probes = j.at("clipped_probes").get<int>();
-    r.frames = j.at("frames").get<uint64_t>();
-    r.fragment_pairs = j.at("fragment_pairs").get<uint64_t>();
-    r.launches = j.at("kernel_launches").get<uint64_t>();
+    r.probes = read_count<int>(j, "probes");
+    r.clipped_probes = read_count<int>(j, "clipped_probes");
+    r.frames = read_count<uint64_t>(j, "frames");
+    r.fragment_pairs = read_count<uint64_t>(j, "fragment_pairs");
+    r.launches = read_count<uint64_t>(j, "kernel_launches");
     const std::string flags = j.at("flags").get<std::string>();
     std::stringstream ss(flags);
     std::string f;

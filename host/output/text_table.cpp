@@ -65,8 +65,11 @@ std::string wrap_text(const std::string& text) {
     if (end == std::string::npos) end = text.size();
     std::string line = text.substr(start, end - start);
     while (line.size() > kTextWidth) {
+      // Fold at the last space that follows text; a line whose only spaces are its indent (a
+      // word longer than the width) stays as it is. Each fold leaves less text after the indent.
+      const size_t lead = line.find_first_not_of(' ');
       const size_t cut = line.rfind(' ', kTextWidth);
-      if (cut == std::string::npos || cut == 0) break;
+      if (cut == std::string::npos || lead == std::string::npos || cut <= lead) break;
       out += line.substr(0, cut) + "\n";
       line = "  " + line.substr(line.find_first_not_of(' ', cut));
     }
