@@ -74,25 +74,15 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
   add_rendered_with(header, with);
   RowJournal journal(o.out.output, o.batch.resume, journal_identity(header));
 
-  std::vector<std::string> keys;
-  std::map<std::string, size_t> index_of;
-  for (const auto& pair : scene.evaluate)
-    for (double z : scene.distances) {
-      index_of[row_key(pair, z)] = keys.size();
-      keys.push_back(row_key(pair, z));
-    }
+  const SceneRows units = scene_rows(scene);
   const auto log = [&global](const std::string& line) {
     if (global.verbose) fmt::print(stderr, "{}\n", line);
   };
   // The emulation first (seconds for a whole scene), then the rendering, whose rows are the
   // records: each is journaled as its rendered row finishes.
   const BulkCompute compute = [&](const std::vector<size_t>& todo, const Emit& emit) {
-    RunControl control;
-    std::set<size_t> wanted(todo.begin(), todo.end());
-    for (size_t k = 0; k < keys.size(); ++k)
-      if (!wanted.count(k)) control.done.insert(keys[k]);
+    RunControl control = control_for(units, todo, interrupt_requested);
     control.jobs = o.jobs;
-    control.stop = interrupt_requested;
     std::map<std::string, MtsRow> emulated;
     control.on_row = [&](const MtsRow& r) { emulated[row_key(r.pair, r.z)] = r; };
     // Both sides timed in this one run (wall time of each phase): how much faster the emulator
@@ -103,14 +93,14 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
     header["emulated_seconds"] = std::chrono::duration<double>(t1 - t0).count();
     control.on_row = [&](const MtsRow& r) {
       const std::string key = row_key(r.pair, r.z);
-      emit(index_of.at(key), compare_record(emulated.at(key), r));
+      emit(units.index_of.at(key), compare_record(emulated.at(key), r));
     };
     render_scene(gl, scene, log, control);
     header["rendered_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   };
   const auto records = run_batch(
-      keys, compute, journal, shard, "compare", !global.quiet && stderr_is_terminal(),
+      units.keys, compute, journal, shard, "compare", !global.quiet && stderr_is_terminal(),
       [&](const std::vector<json>& done) {
         write_output("",
                      for_terminal(render_compare_output(header, done, o.out), o.out.format_out));

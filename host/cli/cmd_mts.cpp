@@ -69,14 +69,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   identity["attribute"] = o.attribute;
   identity["shard"] = o.batch.shard;
   RowJournal journal(o.out.output, o.batch.resume, identity);
-  // The units: rows k = pair index x distances + distance index, keyed by pair and distance.
-  std::vector<std::string> keys;
-  std::map<std::string, size_t> index_of;
-  for (const auto& pair : scene.evaluate)
-    for (double z : scene.distances) {
-      index_of[row_key(pair, z)] = keys.size();
-      keys.push_back(row_key(pair, z));
-    }
+  const SceneRows units = scene_rows(scene);
   // The backend: the emulator on the OpenCL device, or the system's OpenGL; a rendered run
   // checks every pair's depth buffer before it starts.
   std::optional<OpenClRuntime> rt;
@@ -111,15 +104,11 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   // All units of the batch are computed together: run_scene shares launches between a pair's
   // distances and runs pairs side by side; it stops between launch rounds on an interrupt.
   const BulkCompute compute = [&](const std::vector<size_t>& todo, const Emit& emit) {
-    RunControl control;
-    std::set<size_t> wanted(todo.begin(), todo.end());
-    for (size_t k = 0; k < keys.size(); ++k)
-      if (!wanted.count(k)) control.done.insert(keys[k]);
+    RunControl control = control_for(units, todo, interrupt_requested);
     control.attribute = o.attribute;
     control.jobs = o.jobs;
-    control.stop = interrupt_requested;
     control.on_row = [&](const MtsRow& r) {
-      emit(index_of.at(row_key(r.pair, r.z)), row_to_json(r, true));
+      emit(units.index_of.at(row_key(r.pair, r.z)), row_to_json(r, true));
     };
     const RenderedWith with = info.rendered;
     info = o.render ? render_scene(*gl, scene, log, control).info
@@ -127,7 +116,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
     info.rendered = with;
   };
   const auto records =
-      run_batch(keys, compute, journal, shard, kind, !global.quiet && stderr_is_terminal(),
+      run_batch(units.keys, compute, journal, shard, kind, !global.quiet && stderr_is_terminal(),
                 [&](const std::vector<nlohmann::json>& done) {
                   write_output("", render(to_rows(done), info));
                 });

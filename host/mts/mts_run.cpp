@@ -32,6 +32,26 @@ std::vector<std::string> scene_variants(const Scene& scene) {
   return out;
 }
 
+SceneRows scene_rows(const Scene& scene) {
+  SceneRows out;
+  for (const auto& pair : scene.evaluate)
+    for (double z : scene.distances) {
+      out.index_of[row_key(pair, z)] = out.keys.size();
+      out.keys.push_back(row_key(pair, z));
+    }
+  return out;
+}
+
+RunControl control_for(const SceneRows& rows, const std::vector<size_t>& todo,
+                       const std::function<bool()>& stop) {
+  RunControl control;
+  const std::set<size_t> wanted(todo.begin(), todo.end());
+  for (size_t k = 0; k < rows.keys.size(); ++k)
+    if (!wanted.count(k)) control.done.insert(rows.keys[k]);
+  control.stop = stop;
+  return control;
+}
+
 void sort_rows(const Scene& scene, std::vector<MtsRow>& rows) {
   std::map<std::string, size_t> order;
   size_t k = 0;

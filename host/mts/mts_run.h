@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <set>
 
 #include "host/output/report.h"
@@ -29,6 +30,17 @@ struct RunControl {
   // better with 4 or 6 and 1.7x the memory (docs/performance.md, session 6).
   int jobs = 3;
 };
+
+// The units of an MTS batch (mts, table, render, compare): a row key per (pair, distance), in
+// scene order, k = pair index x distances + distance index.
+struct SceneRows {
+  std::vector<std::string> keys;
+  std::map<std::string, size_t> index_of;  // key -> k
+};
+SceneRows scene_rows(const Scene& scene);
+// The control that computes only the rows todo (indices into rows.keys), stopping on stop.
+RunControl control_for(const SceneRows& rows, const std::vector<size_t>& todo,
+                       const std::function<bool()>& stop);
 
 // The kernel variants the scene needs, in pair order (labels): deterministic, whatever a run
 // actually had to build.
