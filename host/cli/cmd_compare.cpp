@@ -247,13 +247,15 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
                         std::isnan(s.median_ratio) ? "-" : fmt::format("{:.3f}", s.median_ratio),
                         s.both_resolved ? fmt::format("{:.3f}", s.worst_ratio) : "-",
                         std::to_string(s.optimistic), std::to_string(s.verdicts_differ)});
-  text += "\n";
+  text +=
+      "\nPer pair: rows resolved by both, within 1.1x and 2x of each other, median and worst "
+      "emu/rend, rows on which the emulation is optimistic, verdicts that differ\n\n";
   text += render_cells({{"pair", true},
                         {"rows"},
-                        {"both resolved"},
-                        {"within 1.1x"},
-                        {"within 2x"},
-                        {"median emu/rend"},
+                        {"resolved"},
+                        {"in 1.1x"},
+                        {"in 2x"},
+                        {"median"},
                         {"worst"},
                         {"optimistic"},
                         {"verdicts differ"}},
