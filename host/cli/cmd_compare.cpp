@@ -195,10 +195,11 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
     return records_json(h, records, timing, derived);
   }
   const bool full = out.format_out == "csv";
+  // Column names are unique, so CSV readers keep every column.
   std::vector<Column> cols = {
-      {"technique", true}, {"format", true}, {"depth_range", true}, {"z"},
-      {"emulated"},        {"rendered"},     {"emu/rend"},          {"emulated", true},
-      {"rendered", true}};
+      {"technique", true},   {"format", true}, {"depth_range", true}, {"z"},
+      {"emulated"},          {"rendered"},     {"emu/rend"},          {"emu verdict", true},
+      {"rend verdict", true}};
   if (timing)
     for (const char* c : {"emulated s", "rendered s", "frames/s"}) cols.push_back({c});
   Cells cells;
