@@ -57,7 +57,11 @@ TEST_CASE("table in every output format", "[cli][table]") {
   CHECK_THAT(md.output, Contains("linear/unorm16/gl"));
   const auto csv = run_cli(args + "--format-out csv");
   REQUIRE(csv.exit_code == 0);
-  CHECK_THAT(csv.output, Contains("z,vertex_bound,linear/unorm16/gl,w_buffer/unorm16/gl"));
+  // The header is the first line; each pair's flags are a column beside its MTS.
+  CHECK(csv.output.rfind("z,vertex_bound,linear/unorm16/gl,linear/unorm16/gl flags,"
+                         "w_buffer/unorm16/gl,w_buffer/unorm16/gl flags\n",
+                         0) == 0);
+  CHECK_THAT(csv.output, Contains(",below_one_code,"));
   const auto js = run_cli(args + "--format-out json");
   REQUIRE(js.exit_code == 0);
   const auto j = nlohmann::json::parse(js.output);
@@ -167,7 +171,8 @@ TEST_CASE("pipelines compares matrix precision and composition per pair", "[cli]
       header = line;
     else if (line.find("/float32/") != std::string::npos)
       rows.push_back(line);
-  CHECK_THAT(header, Contains("double/premultiplied max"));
+  CHECK(r.output.rfind("pair,", 0) == 0);  // CSV starts with its header, no caption
+  CHECK_THAT(header, Contains("double/premultiplied farthest"));
   REQUIRE(rows.size() == 2);
   // reversed_infinite's third row of P is (0, 0, 0, n): the same in binary32 and binary64, and
   // its premultiplied product rounds the same way at n = 1, so every ratio is 1

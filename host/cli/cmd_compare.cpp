@@ -69,6 +69,7 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
   const RenderedWith with{gl.renderer(), gl.version(), gl.platform(), check_scene_renders(scene)};
   OpenClRuntime rt(global.device);
   json header = batch_header("compare", rt.description(), o.batch.shard);
+  header["scene_name"] = scene.name;
   header["scene_source"] = scene.source;
   header["scene"] = scene.json;
   add_rendered_with(header, with);
@@ -160,6 +161,7 @@ void run_from_files(const CompareOptions& o) {
   if (unmatched > 0)
     fmt::print(stderr, "compare: {} rows are in only one of the two files, left out\n", unmatched);
   json header = batch_header("compare", e.value("device", ""), "");
+  header["scene_name"] = e.at("scene").value("name", std::string());
   header["scene_source"] = e.value("scene_source", "");
   header["scene"] = e.at("scene");
   add_rendered_with(
@@ -202,10 +204,11 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
       {"rend verdict", true}};
   if (timing)
     for (const char* c : {"emulated s", "rendered s", "frames/s"}) cols.push_back({c});
+  const std::string none = full ? "" : "-";
   Cells cells;
   for (const auto& r : records) {
     const auto num = [full](const json& v) {
-      return v.is_null() ? std::string("-")
+      return v.is_null() ? std::string(full ? "" : "-")
              : full      ? exact(number_from_json(v, "compare"))
                          : cell(v);
     };
@@ -218,19 +221,20 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
                                     r.contains("ratio")
                                         ? (full ? exact(r["ratio"].get<double>())
                                                 : fmt::format("{:.3f}", r["ratio"].get<double>()))
-                                        : "-",
+                                        : none,
                                     r.at("emulated_verdict").get<std::string>(),
                                     r.at("rendered_verdict").get<std::string>()};
     if (timing) {
       const json& e = r.at("emulated");
       const json& d = r.at("rendered");
-      row.push_back(e.contains("seconds")
-                        ? fmt::format("{:.3f}", number_from_json(e["seconds"], "seconds"))
-                        : "-");
-      row.push_back(d.contains("seconds")
-                        ? fmt::format("{:.3f}", number_from_json(d["seconds"], "seconds"))
-                        : "-");
-      row.push_back(d.contains("frames_per_second") ? cell(d["frames_per_second"]) : "-");
+      const auto seconds = [full, &none](const json& side) {
+        if (!side.contains("seconds")) return none;
+        const double v = number_from_json(side["seconds"], "seconds");
+        return full ? exact(v) : fmt::format("{:.3f}", v);
+      };
+      row.push_back(seconds(e));
+      row.push_back(seconds(d));
+      row.push_back(d.contains("frames_per_second") ? num(d["frames_per_second"]) : none);
     }
     cells.push_back(row);
   }
@@ -239,7 +243,7 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
       "Emulated against rendered on {} (OpenGL {}), scene {}: MTS per (pair, z); emu/rend below 1 "
       "is a separation the emulation calls safe that fights on the rasterizer\n\n",
       header.value("gl_renderer", "?"), header.value("gl_version", "?"),
-      header.value("scene_source", "?"));
+      header.value("scene_name", "?"));
   text += render_cells(cols, cells, out.format_out);
   Cells per_pair;
   for (const auto& [label, s] : pairs)

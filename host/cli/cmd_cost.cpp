@@ -75,16 +75,19 @@ std::string render_cost_output(const nlohmann::json& header,
     std::vector<std::string> row = {r["technique"].get<std::string>(),
                                     r["format"].get<std::string>(),
                                     r["depth_range"].get<std::string>()};
+    const bool csv = out.format_out == "csv";
+    const std::string none = csv ? "" : "-";
     if (timing)
-      row.push_back(r.contains("ns_per_fragment_pair")
-                        ? fmt::format("{:.2f}", r["ns_per_fragment_pair"].get<double>())
-                        : "-");
-    const double median =
-        number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound");
-    row.push_back(std::isinf(median) ? "inf" : fmt::format("{:.3g}", median));
+      row.push_back(!r.contains("ns_per_fragment_pair") ? none
+                    : csv ? exact(r["ns_per_fragment_pair"].get<double>())
+                          : fmt::format("{:.2f}", r["ns_per_fragment_pair"].get<double>()));
+    row.push_back(number_cell(
+        number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound"),
+        out.format_out));
     row.push_back(std::to_string(r["unresolvable_distances"].get<int>()));
-    row.push_back(r.contains("lj_ae") ? fmt::format("{:.3g}", number_from_json(r["lj_ae"], "lj_ae"))
-                                      : "-");
+    row.push_back(r.contains("lj_ae")
+                      ? number_cell(number_from_json(r["lj_ae"], "lj_ae"), out.format_out)
+                      : none);
     row.push_back(r["structural_cost"].get<std::string>());
     cells.push_back(row);
   }
@@ -92,16 +95,15 @@ std::string render_cost_output(const nlohmann::json& header,
   if (timing) cols.push_back({"ns/pair"});
   for (const char* c : {"median mts/vb", "unresolvable", "lj ae"}) cols.push_back({c});
   cols.push_back({"structural cost on a GPU", true});
-  return fmt::format(
-             "Cost and precision per technique (scene {}): {}median MTS over the vertex bound "
-             "across "
-             "the scene's distances, Lapidous-Jiao ae where the technique is one of its "
-             "buffers\n\n",
-             header.value("scene_name", std::string("?")),
-             timing ? "ns per fragment pair of the kernel's depth path (timing pass, near-MTS "
-                      "probes), "
-                    : "") +
-         render_cells(cols, cells, out.format_out);
+  return captioned(
+      fmt::format("Cost and precision per technique (scene {}): {}median MTS over the vertex bound "
+                  "across the scene's distances, Lapidous-Jiao ae where the technique is one of "
+                  "its buffers",
+                  header.value("scene_name", std::string("?")),
+                  timing ? "ns per fragment pair of the kernel's depth path (timing pass, "
+                           "near-MTS probes), "
+                         : ""),
+      cols, cells, out.format_out);
 }
 
 void add_cost_command(CLI::App& app, GlobalOptions& global) {

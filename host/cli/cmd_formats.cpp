@@ -1,11 +1,16 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "host/base/errors.h"
+#include "host/base/json_number.h"
 #include "host/cli/commands.h"
 #include "host/model/storage_format.h"
+#include "host/output/json_header.h"
+#include "host/output/report.h"
+#include "host/output/text_table.h"
 #include "host/runtime/device_encode.h"
 #include "host/runtime/opencl_runtime.h"
 
@@ -20,6 +25,7 @@ struct FormatsOptions {
   std::string denormals = "keep";
   std::vector<double> values;
   bool on_device = false;
+  OutputOptions out;
 };
 
 void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
@@ -33,21 +39,34 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
     if (!(v >= 0.0 && v <= 1.0))
       throw InputError(fmt::format("--value {}: depth values are in [0, 1]", v));
 
-  fmt::print("storage formats (rounding {}, denormals {})\n", o.rounding, o.denormals);
-  fmt::print("{:<9} {:>4} {:>14} {:>14} {:>14} {:>14}\n", "format", "bits", "smallest>0", "largest",
-             "spacing@0.5", "codes");
-  for (const auto& f : formats)
-    fmt::print("{:<9} {:>4} {:>14.7g} {:>14.10g} {:>14.7g} {:>14}\n", f.name(), f.bits(),
-               f.smallest_positive(), f.largest(), f.spacing_at(0.5),
-               static_cast<unsigned long long>(f.max_code()) + 1);
+  check_writable(o.out.output);
+  const std::string& out = o.out.format_out;
+  const auto g7 = [&out](double v) { return out == "csv" ? exact(v) : fmt::format("{:.7g}", v); };
+  nlohmann::json j = output_header("formats", "");
+  j.erase("device");  // described on the host; --on-device adds the device below
+  j.update({{"rounding", o.rounding}, {"denormals", o.denormals}});
+  Cells fcells;
+  for (const auto& f : formats) {
+    const unsigned long long codes = static_cast<unsigned long long>(f.max_code()) + 1;
+    fcells.push_back({f.name(), std::to_string(f.bits()), g7(f.smallest_positive()),
+                      out == "csv" ? exact(f.largest()) : fmt::format("{:.10g}", f.largest()),
+                      g7(f.spacing_at(0.5)), std::to_string(codes)});
+    j["formats"].push_back({{"format", f.name()},
+                            {"bits", f.bits()},
+                            {"smallest_positive", json_number(f.smallest_positive())},
+                            {"largest", json_number(f.largest())},
+                            {"spacing_at_half", json_number(f.spacing_at(0.5))},
+                            {"codes", codes}});
+  }
+  const std::vector<Column> fcols = {{"format", true}, {"bits"},        {"smallest>0"},
+                                     {"largest"},      {"spacing@0.5"}, {"codes"}};
 
-  if (o.values.empty()) return;
   std::unique_ptr<OpenClRuntime> rt;
-  if (o.on_device) rt = std::make_unique<OpenClRuntime>(global.device);
-  fmt::print("\nround trip: value -> binary32 depth d -> code -> stored value{}\n",
-             o.on_device ? " (code also computed by the OpenCL kernel)" : "");
-  fmt::print("{:<9} {:>24} {:>12} {:>12} {:>24} {:>12}{}\n", "format", "d (binary32)", "code",
-             "code (hex)", "stored value", "rel. error", o.on_device ? "  device" : "");
+  if (o.on_device && !o.values.empty()) {
+    rt = std::make_unique<OpenClRuntime>(global.device);
+    j["device"] = rt->description();
+  }
+  Cells rcells;
   for (double v : o.values) {
     const float d = static_cast<float>(v);
     for (const auto& f : formats) {
@@ -55,19 +74,51 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
       const double stored = f.decode(code);
       const double rel =
           d != 0.0f ? (stored - static_cast<double>(d)) / static_cast<double>(d) : 0.0;
-      std::string device_col;
+      std::vector<std::string> row = {f.name(),
+                                      out == "csv" ? exact(v) : fmt::format("{:.17g}", v),
+                                      fmt::format("{:.17g}", d),
+                                      std::to_string(code),
+                                      fmt::format("{:#x}", code),
+                                      fmt::format("{:.17g}", stored),
+                                      out == "csv" ? exact(rel) : fmt::format("{:.3e}", rel)};
+      nlohmann::json t = {
+          {"format", f.name()}, {"value", json_number(v)},       {"depth", json_number(d)},
+          {"code", code},       {"stored", json_number(stored)}, {"rel_error", json_number(rel)}};
       if (rt) {
         const uint32_t dev = device_encode(*rt, f, std::vector<float>{d}).front();
-        device_col = dev == code ? "  agrees" : fmt::format("  DIFFERS: {}", dev);
         if (dev != code)
           throw Error(ExitCode::internal,
                       fmt::format("{} encodes {} as {} on the host but {} on the device", f.name(),
                                   d, code, dev));
+        row.push_back("agrees");
+        t["device_code"] = dev;
       }
-      fmt::print("{:<9} {:>24.17g} {:>12} {:>#12x} {:>24.17g} {:>12.3e}{}\n", f.name(), d, code,
-                 code, stored, rel, device_col);
+      rcells.push_back(row);
+      j["round_trips"].push_back(t);
     }
   }
+  std::vector<Column> rcols = {{"format", true}, {"value"},  {"d (binary32)"}, {"code"},
+                               {"code (hex)"},   {"stored"}, {"rel. error"}};
+  if (rt) rcols.push_back({"device", true});
+
+  std::string text;
+  if (out == "json") {
+    text = j.dump(2) + "\n";
+  } else if (out == "csv") {
+    // One table per CSV: the round trips when values are given, else the formats.
+    text = rcells.empty() ? csv(fcols, fcells) : csv(rcols, rcells);
+  } else {
+    text = captioned(
+        fmt::format("storage formats (rounding {}, denormals {})", o.rounding, o.denormals), fcols,
+        fcells, out);
+    if (!rcells.empty())
+      text +=
+          "\n" + captioned(fmt::format("round trip: value -> binary32 depth d -> code -> stored "
+                                       "value{}",
+                                       rt ? " (code also computed by the OpenCL kernel)" : ""),
+                           rcols, rcells, out);
+  }
+  write_output(o.out.output, text);
 }
 
 }  // namespace
@@ -89,6 +140,7 @@ void add_formats_command(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--denormals", opts->denormals, "keep (default) or flush");
   cmd->add_flag("--on-device", opts->on_device,
                 "Also encode on the OpenCL device and check it agrees with the host");
+  opts->out.add_to(*cmd);
   cmd->callback([opts, &global]() { run_formats(*opts, global); });
 }
 

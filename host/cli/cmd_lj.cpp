@@ -16,6 +16,7 @@
 #include "host/lj/lj_metric.h"
 #include "host/lj/lj_pipeline.h"
 #include "host/model/resolve.h"
+#include "host/model/storage_format.h"
 #include "host/output/gnuplot.h"
 #include "host/output/json_header.h"
 #include "host/output/plots.h"
@@ -102,28 +103,33 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
     if (timing) j["ms"] = {{"host", host_ms}, {"device", dev_ms}, {"pipeline", pipe_ms}};
     text = j.dump(2) + "\n";
   } else {
+    const std::string& fmt_out = o.out.format_out;
+    const auto num = [&fmt_out](double v) { return number_cell(v, fmt_out); };
+    const auto ms = [&fmt_out](double v) {
+      return fmt_out == "csv" ? exact(v) : fmt::format("{:.1f}", v);
+    };
     std::vector<Column> cols = {{"metric", true}, {"ae"}};
     if (timing) cols.push_back({"ms"});
     cols.push_back({"notes", true});
     Cells cells = {
-        {"analytic, host binary64", human(host.ae), fmt::format("{:.1f}", host_ms),
+        {"analytic, host binary64", num(host.ae), ms(host_ms),
          fmt::format("per-vertex term limits {:.1f} % of samples{}", 100 * host.vertex_limited,
                      host.infinite_samples
                          ? fmt::format("; {} samples past the Z pole", host.infinite_samples)
                          : "")},
-        {"analytic, device binary64", human(dev.ae), fmt::format("{:.1f}", dev_ms),
-         rt.info().device_name},
-        {"pipeline-measured", human(pipe.ae), fmt::format("{:.1f}", pipe_ms),
+        {"analytic, device binary64", num(dev.ae), ms(dev_ms), rt.info().device_name},
+        {"pipeline-measured", num(pipe.ae), ms(pipe_ms),
          fmt::format("{} samples stored off the exact code, {} clipped", pipe.off_code,
                      pipe.clipped)}};
     if (!timing)
       for (auto& row : cells) row.erase(row.begin() + 2);
-    text = fmt::format(
-               "Lapidous-Jiao average error: {} buffer, {}, near {}, far {} (f/d {}), N = {}, {} "
-               "sampling\n\n",
-               o.buffer, f.name(), human(c.near), human(c.far), human(c.far / c.near), c.samples,
-               o.sampling) +
-           render_cells(cols, cells, o.out.format_out);
+    text = captioned(
+        fmt::format(
+            "Lapidous-Jiao average error: {} buffer, {}, near {}, far {} (f/d {}), N = {}, {} "
+            "sampling",
+            o.buffer, f.name(), human(c.near), human(c.far), human(c.far / c.near), c.samples,
+            o.sampling),
+        cols, cells, fmt_out);
   }
   write_output(o.out.output, text);
 }
@@ -138,40 +144,109 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const Ranked& a, const Ranked& b) { return a.ae < b.ae; });
   std::string text;
+  const double best = ranked.front().ae;
   if (o.out.format_out == "json") {
-    nlohmann::json j = {{"buffer", o.buffer},
-                        {"bits", o.bits},
-                        {"near", c.near},
-                        {"far", c.far},
-                        {"samples", c.samples},
-                        {"sampling", o.sampling},
-                        {"ranking", nlohmann::json::array()}};
+    nlohmann::json j = output_header("select", rt.description());
+    j.update({{"buffer", o.buffer},
+              {"bits", o.bits},
+              {"near", c.near},
+              {"far", c.far},
+              {"samples", c.samples},
+              {"sampling", o.sampling},
+              {"ranking", nlohmann::json::array()}});
+    int rank = 1;
     for (const auto& r : ranked)
-      j["ranking"].push_back({{"format", r.format}, {"E", r.e}, {"ae", json_number(r.ae)}});
+      j["ranking"].push_back({{"rank", rank++},
+                              {"format", r.format},
+                              {"E", r.e},
+                              {"M", o.bits - r.e},
+                              {"ae", json_number(r.ae)},
+                              {"x_best", json_number(r.ae / best)}});
     text = j.dump(2) + "\n";
   } else {
     Cells cells;
     int rank = 1;
     for (const auto& r : ranked)
       cells.push_back({std::to_string(rank++), r.format, std::to_string(r.e),
-                       std::to_string(o.bits - r.e), human(r.ae), human(r.ae / ranked.front().ae)});
-    text = fmt::format(
-               "Best {}-bit storage for the {} buffer, near {}, far {} ({} sampling, N = {}):\n\n",
-               o.bits, o.buffer, human(c.near), human(c.far), o.sampling, c.samples) +
-           render_cells({{"rank"}, {"format", true}, {"E"}, {"M"}, {"ae"}, {"x best"}}, cells,
-                        o.out.format_out);
+                       std::to_string(o.bits - r.e), number_cell(r.ae, o.out.format_out),
+                       number_cell(r.ae / best, o.out.format_out)});
+    text = captioned(
+        fmt::format("Best {}-bit storage for the {} buffer, near {}, far {} ({} sampling, N = {}):",
+                    o.bits, o.buffer, human(c.near), human(c.far), o.sampling, c.samples),
+        {{"rank"}, {"format", true}, {"E"}, {"M"}, {"ae"}, {"x best"}}, cells, o.out.format_out);
   }
   write_output(o.out.output, text);
+}
+
+// The index of the best exponent width of an ae row, and whether E = 0 and E = 1 tie: LJ99 eq. 2
+// makes them one integer format, and unorm's 1/(2^b - 1) spacing differs from e1's 2^-b by 2^-b
+// relative.
+struct BestE {
+  size_t e = 0;
+  bool integer_tie = false;
+};
+BestE best_exponent(const std::vector<double>& ae, int bits) {
+  BestE b;
+  for (size_t k = 0; k < ae.size(); ++k)
+    if (ae[k] < ae[b.e]) b.e = k;
+  b.integer_tie = b.e <= 1 && std::abs(ae[0] - ae[1]) <= std::ldexp(2.0, -bits) * ae[1];
+  return b;
+}
+
+std::vector<double> ae_of(const std::map<std::string, nlohmann::json>& records,
+                          const std::string& key) {
+  std::vector<double> v;
+  for (const auto& x : records.at(key).at("ae")) v.push_back(number_from_json(x, key + " ae"));
+  return v;
+}
+
+// CSV: one line per (table, sampling, buffer, f/d, format), exact values, so the tables that text
+// and Markdown print side by side are one relation a reader can filter.
+std::string lj_table_csv(const std::map<std::string, nlohmann::json>& records) {
+  Cells cells;
+  for (const char* sampling : kLjSamplings)
+    for (int bits : kLjBits)
+      for (const LjBuffer b : kLjBuffers)
+        for (double r : kLjRatios) {
+          const std::string key = split_key(sampling, bits, b, r);
+          if (!records.count(key)) continue;
+          const auto ae = ae_of(records, key);
+          const BestE best = best_exponent(ae, bits);
+          for (size_t e = 0; e < ae.size(); ++e) {
+            const bool is_best =
+                !std::isinf(ae[best.e]) && (e == best.e || (best.integer_tie && e <= 1));
+            cells.push_back({"exponent_sweep", sampling, to_string(b), exact(r),
+                             e == 0 ? fmt::format("unorm{}", bits)
+                                    : fmt::format("e{}m{}", e, bits - static_cast<int>(e)),
+                             std::to_string(bits), std::to_string(e), exact(ae[e]),
+                             is_best ? "yes" : ""});
+          }
+        }
+  for (double r : kLjRatios) {
+    if (!records.count(picks_key(r))) continue;
+    const auto ae = ae_of(records, picks_key(r));
+    for (size_t k = 0; k < ae.size(); ++k) {
+      const StorageFormat f = StorageFormat::parse(kLjPicks[k].format);
+      cells.push_back({"32bit_comparison", "uniform", to_string(kLjPicks[k].buffer), exact(r),
+                       f.name(), std::to_string(f.bits()), "", exact(ae[k]), ""});
+    }
+  }
+  return csv({{"table"},
+              {"sampling"},
+              {"buffer"},
+              {"f/d"},
+              {"format"},
+              {"bits"},
+              {"E"},
+              {"ae"},
+              {"best_E"}},
+             cells);
 }
 
 // The tables from whatever records there are (a shard or an interrupted run has some rows).
 std::string render_lj_table(const std::map<std::string, nlohmann::json>& records, long long samples,
                             const std::string& format) {
-  auto ae_of = [&records](const std::string& key) {
-    std::vector<double> v;
-    for (const auto& x : records.at(key).at("ae")) v.push_back(number_from_json(x, key + " ae"));
-    return v;
-  };
+  if (format == "csv") return lj_table_csv(records);
   const bool md = format == "markdown";
   std::string text = md ? "# Lapidous-Jiao average depth error: the paper's experiments\n\n" : "";
   text += fmt::format(
@@ -190,18 +265,13 @@ std::string render_lj_table(const std::map<std::string, nlohmann::json>& records
         for (double r : kLjRatios) {
           const std::string key = split_key(sampling, bits, b, r);
           if (!records.count(key)) continue;
-          const auto ae = ae_of(key);
+          const auto ae = ae_of(records, key);
           std::vector<std::string> row = {human(r)};
-          size_t best = 0;
-          for (size_t k = 0; k < ae.size(); ++k) {
-            row.push_back(human(ae[k]));
-            if (ae[k] < ae[best]) best = k;
-          }
-          // LJ99 eq. 2 makes E = 0 and E = 1 one integer format; unorm's 1/(2^b - 1) spacing
-          // differs from e1's 2^-b by 2^-b relative, so call that a tie.
-          const bool integer_tie =
-              best <= 1 && std::abs(ae[0] - ae[1]) <= std::ldexp(2.0, -bits) * ae[1];
-          row.push_back(std::isinf(ae[best]) ? "-" : integer_tie ? "0/1" : std::to_string(best));
+          for (double v : ae) row.push_back(human(v));
+          const BestE best = best_exponent(ae, bits);
+          row.push_back(std::isinf(ae[best.e]) ? "-"
+                        : best.integer_tie     ? "0/1"
+                                               : std::to_string(best.e));
           cells.push_back(row);
         }
         if (cells.empty()) continue;
@@ -218,7 +288,7 @@ std::string render_lj_table(const std::map<std::string, nlohmann::json>& records
   for (double r : kLjRatios) {
     if (!records.count(picks_key(r))) continue;
     std::vector<std::string> row = {human(r)};
-    for (double ae : ae_of(picks_key(r))) row.push_back(human(ae));
+    for (double ae : ae_of(records, picks_key(r))) row.push_back(human(ae));
     cells.push_back(row);
   }
   if (!cells.empty()) {

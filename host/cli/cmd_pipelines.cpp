@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "host/analysis/pipelines.h"
@@ -30,51 +31,87 @@ struct PipelinesOptions {
 
 }  // namespace
 
+namespace {
+
+// How one pipeline variant's MTS compare with the first variant's over a pair's distances.
+struct VariantSummary {
+  std::string variant;
+  double median = 0, farthest = 0;  // of the ratios where both resolve; NaN when none do
+  int verdict_changes = 0;
+};
+
+std::vector<VariantSummary> summarise(const nlohmann::json& rec) {
+  std::vector<VariantSummary> out;
+  const auto& base = rec.at("variants").at(kPipelineVariants[0].name);
+  for (const PipelineVariant& v : kPipelineVariants) {
+    if (v.precision == MatrixPrecision::single && v.compose == Compose::separate) continue;
+    const auto& other = rec.at("variants").at(v.name);
+    VariantSummary sum{v.name};
+    std::vector<double> ratios;
+    for (size_t i = 0; i < base.size(); ++i) {
+      const double a = number_from_json(base[i], "mts"), b = number_from_json(other[i], "mts");
+      if (std::isinf(a) != std::isinf(b))
+        ++sum.verdict_changes;
+      else if (!std::isinf(a))
+        ratios.push_back(b / a);
+    }
+    std::sort(ratios.begin(), ratios.end());
+    sum.median = sum.farthest = std::numeric_limits<double>::quiet_NaN();
+    if (!ratios.empty()) {
+      sum.median = ratios[ratios.size() / 2];
+      sum.farthest = 1;  // the ratio farthest from 1, either way
+      for (double r : ratios)
+        if (std::abs(std::log(r)) > std::abs(std::log(sum.farthest))) sum.farthest = r;
+    }
+    out.push_back(sum);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string render_pipelines_output(const nlohmann::json& header,
                                     const std::vector<nlohmann::json>& records,
                                     const OutputOptions& out) {
-  if (out.format_out == "json") return records_json(header, records, !out.no_timing);
+  if (out.format_out == "json") {
+    nlohmann::json summary = nlohmann::json::array();
+    for (const auto& rec : records)
+      for (const auto& v : summarise(rec))
+        summary.push_back({{"pair", rec.at("pair")},
+                           {"variant", v.variant},
+                           {"median_ratio", json_number(v.median)},
+                           {"farthest_ratio", json_number(v.farthest)},
+                           {"verdict_changes", v.verdict_changes}});
+    return records_json(header, records, !out.no_timing, {{"summary", summary}});
+  }
+  const bool csv = out.format_out == "csv";
   std::vector<Column> cols = {{"pair", true}};
   for (const PipelineVariant& v : kPipelineVariants)
     if (v.precision != MatrixPrecision::single || v.compose != Compose::separate) {
       cols.push_back({fmt::format("{} median", v.name)});
-      cols.push_back({fmt::format("{} max", v.name)});
+      cols.push_back({fmt::format("{} farthest", v.name)});
       cols.push_back({fmt::format("{} verdicts", v.name)});
     }
   Cells cells;
   for (const auto& rec : records) {
     std::vector<std::string> row = {rec.at("pair").get<std::string>()};
-    const auto& base = rec.at("variants").at(kPipelineVariants[0].name);
-    for (const PipelineVariant& v : kPipelineVariants) {
-      if (v.precision == MatrixPrecision::single && v.compose == Compose::separate) continue;
-      const auto& other = rec.at("variants").at(v.name);
-      std::vector<double> ratios;
-      int changes = 0;
-      for (size_t i = 0; i < base.size(); ++i) {
-        const double a = number_from_json(base[i], "mts"), b = number_from_json(other[i], "mts");
-        if (std::isinf(a) != std::isinf(b))
-          ++changes;
-        else if (!std::isinf(a))
-          ratios.push_back(b / a);
-      }
-      std::sort(ratios.begin(), ratios.end());
-      // the ratio farthest from 1, either way
-      double worst = 1;
-      for (double r : ratios)
-        if (std::abs(std::log(r)) > std::abs(std::log(worst))) worst = r;
-      row.push_back(ratios.empty() ? "-" : fmt::format("{:.4g}", ratios[ratios.size() / 2]));
-      row.push_back(ratios.empty() ? "-" : fmt::format("{:.4g}", worst));
-      row.push_back(std::to_string(changes));
+    for (const auto& v : summarise(rec)) {
+      const auto num = [csv](double x) {
+        return std::isnan(x) ? (csv ? "" : "-") : csv ? exact(x) : fmt::format("{:.4g}", x);
+      };
+      row.push_back(num(v.median));
+      row.push_back(num(v.farthest));
+      row.push_back(std::to_string(v.verdict_changes));
     }
     cells.push_back(row);
   }
-  return fmt::format(
-             "MTS under other host pipelines, relative to {} (matrix_precision/compose) on scene "
-             "{}: "
-             "median and farthest-from-1 ratio over the distances; verdicts = distances whose "
-             "resolvable/unresolvable verdict changed\n\n",
-             kPipelineVariants[0].name, header.value("scene_name", std::string("?"))) +
-         render_cells(cols, cells, out.format_out);
+  return captioned(
+      fmt::format("MTS under other host pipelines, relative to {} (matrix_precision/compose) on "
+                  "scene {}: median ratio, the ratio farthest from 1 (either way) over the "
+                  "distances where both resolve, and verdicts = distances whose "
+                  "resolvable/unresolvable verdict changed",
+                  kPipelineVariants[0].name, header.value("scene_name", std::string("?"))),
+      cols, cells, out.format_out);
 }
 
 namespace {

@@ -37,7 +37,9 @@ void run_resolve(const ResolveOptions& o) {
     throw Error(ExitCode::usage, "resolve: give exactly one of --code N, --distance w or --curve");
   check_writable(o.out.output);
   std::string text;
-  const auto digits = [](double v) { return fmt::format("{:.10g}", v); };
+  const bool csv = o.out.format_out == "csv";
+  const auto digits = [csv](double v) { return csv ? exact(v) : fmt::format("{:.10g}", v); };
+  const auto gap = [&o](double v) { return number_cell(v, o.out.format_out); };
   // JSON: the set-up and the rows with every value a JSON number (json_number).
   nlohmann::json j = output_header("resolve", "");
   j.update({{"technique", o.technique},
@@ -59,7 +61,7 @@ void run_resolve(const ResolveOptions& o) {
     text = render_cells(
         {{"code"}, {"depth"}, {"distance"}, {"distance_lo"}, {"distance_hi"}, {"width"}},
         {{std::to_string(ci.code), digits(ci.depth), digits(ci.distance), digits(ci.distance_lo),
-          digits(ci.distance_hi), human(ci.distance_hi - ci.distance_lo)}},
+          digits(ci.distance_hi), gap(ci.distance_hi - ci.distance_lo)}},
         o.out.format_out);
   } else {
     std::vector<DistanceResolution> rows;
@@ -77,7 +79,7 @@ void run_resolve(const ResolveOptions& o) {
                            {"resolution", json_number(r.resolution)}});
     for (const auto& r : rows)
       cells.push_back({digits(r.distance), digits(r.depth), std::to_string(r.code),
-                       human(r.gap_below), human(r.gap_above), human(r.resolution)});
+                       gap(r.gap_below), gap(r.gap_above), gap(r.resolution)});
     text = render_cells(
         {{"distance"}, {"depth"}, {"code"}, {"gap_below"}, {"gap_above"}, {"resolution"}}, cells,
         o.out.format_out);

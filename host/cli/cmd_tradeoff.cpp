@@ -82,15 +82,18 @@ std::string render_tradeoff_output(const nlohmann::json& header,
   if (timing) cols.push_back({"seconds"});
   for (const char* c : {"median_rel_err", "max_rel_err", "verdict_changes"}) cols.push_back({c});
   cols.push_back({"pareto", true});
+  const bool csv = out.format_out == "csv";
   Cells cells;
   for (const auto& r : results) {
-    std::vector<std::string> row = {
-        r.level.name, fmt::format("{}x{}", r.level.kernel, r.level.kernel),
-        std::to_string(r.level.frames), fmt::format("2^-{}", r.level.precision_log2),
-        std::to_string(r.pairs)};
-    if (timing) row.push_back(fmt::format("{:.2f}", r.seconds));
-    row.push_back(fmt::format("{:.3g}", r.median_err));
-    row.push_back(fmt::format("{:.3g}", r.max_err));
+    std::vector<std::string> row = {r.level.name,
+                                    fmt::format("{}x{}", r.level.kernel, r.level.kernel),
+                                    std::to_string(r.level.frames),
+                                    csv ? exact(std::ldexp(1.0, -r.level.precision_log2))
+                                        : fmt::format("2^-{}", r.level.precision_log2),
+                                    std::to_string(r.pairs)};
+    if (timing) row.push_back(csv ? exact(r.seconds) : fmt::format("{:.2f}", r.seconds));
+    row.push_back(csv ? exact(r.median_err) : fmt::format("{:.3g}", r.median_err));
+    row.push_back(csv ? exact(r.max_err) : fmt::format("{:.3g}", r.max_err));
     row.push_back(std::to_string(r.verdict_changes));
     row.push_back(r.pareto ? "yes" : "");
     cells.push_back(row);
@@ -99,13 +102,13 @@ std::string render_tradeoff_output(const nlohmann::json& header,
   for (const auto& r : results)
     for (const auto& c : r.changed)
       changed += fmt::format("{}: verdict changed at {}\n", r.level.name, c);
-  return fmt::format(
-             "Fidelity trade-off on scene {} ({} pairs x {} distances); errors relative to the "
-             "reference level; Pareto front by fragment pairs vs (verdict changes, max error)\n\n",
-             header.value("scene_name", std::string("?")), header.value("pairs", 0),
-             header.value("distances", 0)) +
-         render_cells(cols, cells, out.format_out) +
-         (changed.empty() || out.format_out == "csv" ? "" : "\n" + changed);
+  return captioned(fmt::format("Fidelity trade-off on scene {} ({} pairs x {} distances); errors "
+                               "relative to the reference level; Pareto front by fragment pairs "
+                               "vs (verdict changes, max error)",
+                               header.value("scene_name", std::string("?")),
+                               header.value("pairs", 0), header.value("distances", 0)),
+                   cols, cells, out.format_out) +
+         (changed.empty() || csv ? "" : "\n" + changed);
 }
 
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -323,6 +324,9 @@ Scene load_scene_text(const std::string& text, const std::string& path,
     source = path;
     const json user = parse_text(text, path);
     check_user_keys(user, path, text);
+    // A scene file that does not name itself is called after its file, never after the default
+    // scene it starts from: outputs and plots must not label a user's scene "gilg2021".
+    if (!user.contains("name")) merged["name"] = std::filesystem::path(path).stem().string();
     // A scene that lists its own pairs replaces the default list, not merges into it.
     merged.merge_patch(user);
     if (user.contains("evaluate")) merged["evaluate"] = user["evaluate"];
@@ -335,6 +339,9 @@ Scene load_scene_text(const std::string& text, const std::string& path,
       blame.emplace(o.substr(0, o.find('=')), "--set " + o);
     }
     check_user_keys(patch, "--set", "");
+    // A scene changed on the command line is no longer the one its name stands for.
+    if (!patch.contains("name") && merged["name"].is_string())
+      patch["name"] = merged["name"].get<std::string>() + "+set";
     merged.merge_patch(patch);
     if (patch.contains("evaluate")) merged["evaluate"] = patch["evaluate"];
     if (!overrides.empty()) source += " (with --set overrides)";

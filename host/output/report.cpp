@@ -37,6 +37,7 @@ namespace {
 
 json header(const Scene& scene, const RunInfo& run) {
   json h = output_header(run.kind, run.device);
+  h["scene_name"] = scene.name;
   h["scene_source"] = scene.source;
   h["scene"] = scene.json;
   h["kernel_variants"] = run.variants;
@@ -155,7 +156,9 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
                                   num(r.mts_seen),
                                   num(r.vertex_bound),
                                   num(r.mts / r.vertex_bound),
-                                  r.non_monotone && r.fight_max > r.mts ? num(r.fight_max) : "-",
+                                  r.non_monotone && r.fight_max > r.mts ? num(r.fight_max)
+                                  : full                                ? ""
+                                                                        : "-",
                                   to_string(r.verdict()),
                                   std::to_string(r.probes),
                                   std::to_string(r.frames),
@@ -195,10 +198,18 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   std::map<std::pair<double, std::string>, const MtsRow*> at;
   for (const auto& r : rows) at[{r.z, r.pair.label()}] = &r;
   const bool full = format == "csv";
+  bool attributed = false;
+  for (const auto& r : rows) attributed |= r.attributed();
+  // CSV keeps what text marks with ~, * and S/A/V as columns of their own beside each pair's.
   std::vector<Column> cols = {{"z"}, {"vertex_bound"}};
-  for (const auto& l : labels) cols.push_back({l});
+  for (const auto& l : labels) {
+    cols.push_back({l});
+    if (full) cols.push_back({l + " flags"});
+    if (full && attributed) cols.push_back({l + " dominant"});
+  }
   std::vector<std::vector<std::string>> cells;
-  bool any_mark = false, any_below_code = false;
+  std::vector<const MtsRow*> marked;  // cells marked *, in table order
+  bool any_below_code = false;
   for (double z : zs) {
     std::vector<std::string> c = {full ? exact(z) : human(z),
                                   full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
@@ -206,19 +217,26 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
       const auto it = at.find({z, l});
       if (it == at.end()) {
         c.push_back("");
+        if (full) c.push_back("");
+        if (full && attributed) c.push_back("");
         continue;
       }
       const MtsRow& r = *it->second;
       std::string v = table_cell(r, full);
-      if (r.attributed() && !full)
-        v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
-      if (!full && r.below_one_code) {
+      if (full) {
+        c.push_back(v);
+        c.push_back(r.flags());
+        if (attributed) c.push_back(r.dominant);
+        continue;
+      }
+      if (r.attributed()) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
+      if (r.below_one_code) {
         v += "~";
         any_below_code = true;
       }
-      if (!full && (r.non_monotone || r.non_finite || r.clipped || r.uncovered)) {
+      if (r.non_monotone || r.non_finite || r.clipped || r.uncovered) {
         v += "*";
-        any_mark = true;
+        marked.push_back(&r);
       }
       c.push_back(v);
     }
@@ -236,11 +254,12 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         scene.frames, human(scene.rel_precision));
   }
   out += grid(cols, cells, md);
-  if (any_mark) {
-    out += md ? "\n" : "";
-    out +=
-        "* flagged (non_monotone, uncovered, or a probe was non-finite or clipped); see "
-        "--format-out json\n";
+  if (!marked.empty()) {
+    out += "\n";
+    out += "* flagged: the cells and their flags (docs/mts.md says what each means)\n\n";
+    Cells fcells;
+    for (const MtsRow* r : marked) fcells.push_back({r->pair.label(), human(r->z), r->flags()});
+    out += grid({{"pair", true}, {"z"}, {"flags", true}}, fcells, md);
   }
   if (any_below_code) {
     out += md ? "\n" : "";
@@ -251,8 +270,6 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         "code "
         "(code_width in --format-out json)\n";
   }
-  bool attributed = false;
-  for (const auto& r : rows) attributed |= r.attributed();
   if (attributed) {
     out += "\n";
     out +=

@@ -37,6 +37,10 @@ struct RunInfo {
 
 std::string human(double v);  // 4 significant digits, "inf", "0"
 std::string exact(double v);  // round-trippable binary64
+// A number as `format` prints it: exact in CSV (a data format), human in text and Markdown.
+inline std::string number_cell(double v, const std::string& format) {
+  return format == "csv" ? exact(v) : human(v);
+}
 
 std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
                         const std::string& format);

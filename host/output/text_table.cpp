@@ -118,17 +118,29 @@ std::string one_grid(const std::vector<Column>& cols, const Cells& cells, bool m
 
 }  // namespace
 
-std::string csv(const std::vector<Column>& cols, const Cells& cells) {
+namespace {
+
+// RFC 4180: a field holding a comma, a quote or a line break is quoted, its quotes doubled.
+std::string csv_field(const std::string& f) {
+  if (f.find_first_of(",\"\n\r") == std::string::npos) return f;
+  std::string q = "\"";
+  for (char c : f) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string csv_line(const std::vector<std::string>& fields) {
   std::string out;
-  for (size_t c = 0; c < cols.size(); ++c) out += (c ? "," : "") + cols[c].name;
-  out += "\n";
-  for (const auto& row : cells) {
-    for (size_t c = 0; c < row.size(); ++c) {
-      const bool quote = row[c].find(',') != std::string::npos;
-      out += (c ? "," : "") + (quote ? "\"" + row[c] + "\"" : row[c]);
-    }
-    out += "\n";
-  }
+  for (size_t c = 0; c < fields.size(); ++c) out += (c ? "," : "") + csv_field(fields[c]);
+  return out + "\n";
+}
+
+}  // namespace
+
+std::string csv(const std::vector<Column>& cols, const Cells& cells) {
+  std::vector<std::string> names;
+  for (const auto& c : cols) names.push_back(c.name);
+  std::string out = csv_line(names);
+  for (const auto& row : cells) out += csv_line(row);
   return out;
 }
 
@@ -136,6 +148,16 @@ std::string render_cells(const std::vector<Column>& cols, const Cells& cells,
                          const std::string& format) {
   if (format == "csv") return csv(cols, cells);
   return grid(cols, cells, format == "markdown");
+}
+
+}  // namespace depthprec
+
+namespace depthprec {
+
+std::string captioned(const std::string& caption, const std::vector<Column>& cols,
+                      const Cells& cells, const std::string& format) {
+  if (format == "csv") return csv(cols, cells);
+  return caption + "\n\n" + grid(cols, cells, format == "markdown");
 }
 
 }  // namespace depthprec

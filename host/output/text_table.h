@@ -25,6 +25,10 @@ std::string wrap_text(const std::string& text);
 inline std::string for_terminal(const std::string& out, const std::string& format) {
   return format == "text" ? wrap_text(out) : out;
 }
+// A table under a caption in text and Markdown. CSV is the header line and the rows alone, so
+// a CSV reader gets the table as it is; what the caption says is in the columns or in the JSON.
+std::string captioned(const std::string& caption, const std::vector<Column>& cols,
+                      const Cells& cells, const std::string& format);
 // "text", "markdown" or "csv".
 std::string render_cells(const std::vector<Column>& cols, const Cells& cells,
                          const std::string& format);
