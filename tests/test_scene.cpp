@@ -42,6 +42,18 @@ TEST_CASE("a scene file overrides only what it names", "[scene]") {
   CHECK(s.evaluate[0].depth_range == DepthRange::zero_to_one);
 }
 
+TEST_CASE("a scene is named by its own name key, else its file; --set marks it changed",
+          "[scene]") {
+  CHECK(load_scene("").name == "gilg2021");
+  CHECK(load_scene("", {"near=2"}).name == "gilg2021+set");
+  const auto unnamed = write_temp("harbour_flyover.json", R"({"near": 0.5})");
+  CHECK(load_scene(unnamed).name == "depthprec_test_harbour_flyover");  // the file stem
+  CHECK(load_scene(unnamed, {"far=1e4"}).name == "depthprec_test_harbour_flyover+set");
+  const auto named = write_temp("named.json", R"({"name": "decals", "near": 0.5})");
+  CHECK(load_scene(named).name == "decals");
+  CHECK(load_scene(named, {"name=\"decals_v2\"", "far=1e4"}).name == "decals_v2");
+}
+
 TEST_CASE("overrides take JSON values and dotted keys", "[scene]") {
   const Scene s = load_scene(
       "", {"near=0.25", "kernel=[64,32]", "viewport=[64,32]", "pipeline.depth_range=zero_to_one",
