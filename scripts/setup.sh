@@ -7,7 +7,7 @@ PACKAGES=(
   build-essential cmake
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers clinfo
   libglm-dev catch2 libcli11-dev nlohmann-json3-dev libfmt-dev
-  gnuplot-nox clang-format parallel python3
+  gnuplot-nox clang-format parallel python3 chromium
   pkg-config libepoxy-dev libegl1 libgl1 libegl-mesa0 libgl1-mesa-dri dpkg-dev
 )
 

@@ -142,15 +142,37 @@ TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
   CHECK(notjson.exit_code == 3);
 }
 
+TEST_CASE("the MTS plot names the user's scene and marks distances without an MTS", "[cli][plot]") {
+  const std::string scene = fresh("/tmp/depthprec_test_harbour.json"),
+                    json = fresh("/tmp/depthprec_test_harbour_rows.json"),
+                    svg = fresh("/tmp/depthprec_test_harbour.svg");
+  std::ofstream(scene) << R"({"far": 1000, "distances": [2, 64, 4096]})";
+  REQUIRE(run_cli("mts " + scene + " -t standard -f unorm24 --kernel 16x16 --frames 4 " +
+                  "--no-timing --format-out json -o " + json)
+              .exit_code == 0);
+  REQUIRE(run_cli("plot " + json + " -o " + svg).exit_code == 0);
+  const std::string text = slurp(svg);
+  // the scene is named after its file (with +set: the command line changed it), not gilg2021
+  CHECK_THAT(text, Contains("scene depthprec_test_harbour+set"));
+  CHECK_THAT(text, !Contains("gilg2021"));
+  // z = 4096 is beyond the far plane: marked, in the key and as a point
+  CHECK_THAT(text, Contains("no MTS at this z"));
+}
+
 TEST_CASE("tradeoff, cost and lj-table plot through gnuplot with --plot", "[cli][plot]") {
   const std::string a = fresh("/tmp/depthprec_test_tradeoff.svg"),
                     b = fresh("/tmp/depthprec_test_lj.png");
   std::remove(a.c_str());
   std::remove(b.c_str());
   REQUIRE(run_cli("tradeoff -t linear -f unorm16 --distances 4096 --plot " + a).exit_code == 0);
-  CHECK_THAT(slurp(a), Contains("<svg") && Contains("Pareto front"));
+  // the front is drawn on the axis it is computed on
+  CHECK_THAT(slurp(a),
+             Contains("<svg") && Contains("Pareto front") && Contains("fragment pairs evaluated"));
   REQUIRE(run_cli("lj-table --samples 2000 --plot " + b).exit_code == 0);
   CHECK(slurp(b).substr(1, 3) == "PNG");
+  const std::string c = fresh("/tmp/depthprec_test_lj.svg");
+  REQUIRE(run_cli("lj-table --samples 2000 --plot " + c).exit_code == 0);
+  CHECK_THAT(slurp(c), !Contains("0.0000"));  // powers of ten, not 0.000010
   const auto no_time = run_cli(
       "cost -t standard -f unorm24 --distances 64 --kernel 16x16 --frames 4 --no-timing --plot "
       "/tmp/x.png");

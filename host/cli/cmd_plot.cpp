@@ -12,6 +12,7 @@
 #include "host/base/errors.h"
 #include "host/cli/commands.h"
 #include "host/output/gnuplot.h"
+#include "host/output/plots.h"
 #include "host/output/row_json.h"
 
 namespace depthprec::cli {
@@ -32,53 +33,14 @@ void run_plot(const PlotOptions& o) {
     throw InputError(fmt::format(
         "plot: '{}' is not a JSON output of mts, table or merge (--format-out json)", o.input));
   check_plot_output(o.output);
-  const std::string terminal = gnuplot_terminal(o.output);
-
-  std::map<std::string, std::vector<std::pair<double, double>>> series;  // label -> (z, mts)
-  std::vector<std::string> order;
-  std::map<double, double> bound;
-  for (const auto& rj : j["rows"]) {
-    const MtsRow r = row_from_json(rj);
-    const std::string label = r.pair.label();
-    if (!series.count(label)) order.push_back(label);
-    if (!r.unresolvable && std::isfinite(r.mts))
-      series[label].push_back({r.z, r.mts});
-    else
-      series[label];
-    bound[r.z] = r.vertex_bound;
-  }
-  std::string script =
-      fmt::format("set terminal {}\nset output {}\n", terminal, gnuplot_quote(o.output));
-  double lowest = INFINITY;
-  for (const auto& [z, vb] : bound) lowest = std::min(lowest, vb);
-  for (const auto& [label, pts] : series)
-    for (const auto& [z, m] : pts) lowest = std::min(lowest, m);
-  const double floor = std::isfinite(lowest) && lowest > 0 ? lowest / 10 : 1e-12;
-  script +=
-      "set logscale x 2\nset logscale y 10\nset format x '2^{%L}'\nset format y '10^{%L}'\n"
-      "set key outside right\nset grid\nset xlabel 'distance z of the front plane'\n"
-      "set ylabel 'minimum triangle separation'\n";
-  script += fmt::format("set yrange [{:.6g}:*]\n", floor);
-  const std::string title =
-      o.title.empty() ? fmt::format("MTS by distance ({})", j.value("scene_source", "")) : o.title;
-  script += fmt::format("set title {} noenhanced\n", gnuplot_quote(title));
-  script += "$bound << EOD\n";
-  for (const auto& [z, vb] : bound) script += fmt::format("{:.17g} {:.17g}\n", z, vb);
-  script += "EOD\n";
-  for (size_t i = 0; i < order.size(); ++i) {
-    script += fmt::format("$s{} << EOD\n", i);
-    for (const auto& [z, m] : series[order[i]]) script += fmt::format("{:.17g} {:.17g}\n", z, m);
-    script += "EOD\n";
-  }
-  script += fmt::format(
-      "plot $bound using 1:2:({:.6g}) with filledcurves fs pattern 4 lc rgb '#888888' "
-      "title 'below the binary32 vertex bound', \\\n",
-      floor);
-  for (size_t i = 0; i < order.size(); ++i)
-    script +=
-        fmt::format("  $s{} using 1:2 with linespoints lw 1.5 pt {} title {} noenhanced{}\n", i,
-                    1 + i % 12, gnuplot_quote(order[i]), i + 1 < order.size() ? ", \\" : "");
-  run_gnuplot(script, o.output);
+  std::vector<MtsRow> rows;
+  for (const auto& rj : j["rows"]) rows.push_back(row_from_json(rj));
+  const std::string scene =
+      j.contains("scene") && j["scene"].is_object() ? j["scene"].value("name", "") : "";
+  plot_mts(rows,
+           o.title.empty() ? fmt::format("MTS by distance, scene {}", scene.empty() ? "?" : scene)
+                           : o.title,
+           o.output);
 }
 
 }  // namespace

@@ -52,7 +52,7 @@ void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
         return units;
       },
       render_tradeoff_output);
-  if (!o.plot.empty()) plot_tradeoff(evaluate_levels(records), !o.out.no_timing, o.plot);
+  if (!o.plot.empty()) plot_tradeoff(evaluate_levels(records), o.plot);
 }
 
 }  // namespace

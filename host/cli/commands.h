@@ -14,7 +14,8 @@ namespace depthprec::cli {
 struct GlobalOptions {
   std::string device;  // --device, else $DEPTHPREC_DEVICE
   bool verbose = false;
-  bool quiet = false;  // no progress line
+  bool quiet = false;        // no progress line
+  std::string command_line;  // as typed, for outputs that say how they were made
 };
 
 void add_devices_command(CLI::App& app, GlobalOptions& global);
@@ -32,6 +33,7 @@ void add_cost_command(CLI::App& app, GlobalOptions& global);
 void add_plot_command(CLI::App& app);
 void add_compare_command(CLI::App& app, GlobalOptions& global);
 void add_pipelines_command(CLI::App& app, GlobalOptions& global);
+void add_report_command(CLI::App& app, GlobalOptions& global);
 
 // The record batches (lj-table, tradeoff, cost, pipelines) render their output from a header (what
 // their JSON output carries besides the records) and the records, so `merge` renders joined shards

@@ -41,6 +41,9 @@ int main(int argc, char** argv) {
   cli::add_pipelines_command(app, global);
   cli::add_plot_command(app);
   cli::add_compare_command(app, global);
+  cli::add_report_command(app, global);
+  global.command_line = "depthprec";
+  for (int i = 1; i < argc; ++i) global.command_line += std::string(" ") + argv[i];
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -12,50 +12,145 @@
 
 namespace depthprec {
 
-void plot_cost(const std::vector<CostPoint>& points, const std::string& output) {
+namespace {
+
+// One colour per series from a list of distinct hues, point shapes changing every 12 series.
+const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+                                "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#aec7e8"};
+std::string series_style(size_t i) {
+  return fmt::format("lc rgb '{}' pt {}", kColours[i % 12], 4 + 2 * (i / 12));
+}
+
+// Log axes labelled as powers of ten (gnuplot's enhanced text), never as 0.000010.
+constexpr const char* kLogTenY = "set logscale y 10\nset format y '10^{%L}'\n";
+
+}  // namespace
+
+void plot_mts(const std::vector<MtsRow>& rows, const std::string& title,
+              const std::string& output) {
+  struct Series {
+    std::vector<std::pair<double, double>> mts;  // z, mts
+    std::vector<double> none;                    // z where the pair has no MTS
+  };
+  std::map<std::string, Series> series;
+  std::vector<std::string> order;
+  std::map<double, double> bound;
+  for (const MtsRow& r : rows) {
+    const std::string label = r.pair.label();
+    if (!series.count(label)) order.push_back(label);
+    if (r.verdict() == Verdict::resolved)
+      series[label].mts.push_back({r.z, r.mts});
+    else
+      series[label].none.push_back(r.z);
+    bound[r.z] = r.vertex_bound;
+  }
+  double lowest = INFINITY, highest = 0;
+  for (const auto& [z, vb] : bound) lowest = std::min(lowest, vb);
+  for (const auto& [label, s] : series)
+    for (const auto& [z, m] : s.mts) {
+      lowest = std::min(lowest, m);
+      highest = std::max(highest, m);
+    }
+  const double floor = std::isfinite(lowest) && lowest > 0 ? lowest / 10 : 1e-12;
+  // Distances without an MTS are drawn as crosses along a band above every number, so a pair's
+  // missing points are seen, not silently absent.
+  const double top = std::max(highest, floor * 10) * 100;
   std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
                                    gnuplot_quote(output));
+  script += "set logscale x 2\nset format x '2^{%L}'\n";
+  script += kLogTenY;
   script +=
-      "set logscale y\nset grid\nset key off\nset xlabel 'kernel cost [ns per fragment pair]'\n"
-      "set ylabel 'median MTS / vertex bound (lower is more precise)'\n"
-      "set title 'Precision against cost per technique and format' noenhanced\n"
-      "set offsets graph 0.05, graph 0.25, graph 0.1, graph 0.1\n$pts << EOD\n";
-  for (const auto& p : points)
-    if (std::isfinite(p.median) && p.median > 0)
-      script += fmt::format("{:.6g} {:.6g} {}\n", p.ns, p.median, gnuplot_quote(p.label));
-  script +=
-      "EOD\nplot $pts using 1:2 with points pt 7 ps 1.5, $pts using 1:2:3 with labels offset 1,0.5 "
-      "left noenhanced\n";
+      "set key outside right\nset grid\nset xlabel 'distance z of the front plane'\n"
+      "set ylabel 'minimum triangle separation'\n";
+  script += fmt::format("set yrange [{:.6g}:{:.6g}]\n", floor, top * 3);
+  script += fmt::format("set title {} noenhanced\n", gnuplot_quote(title));
+  script += "$bound << EOD\n";
+  for (const auto& [z, vb] : bound) script += fmt::format("{:.17g} {:.17g}\n", z, vb);
+  script += "EOD\n";
+  bool any_none = false;
+  for (size_t i = 0; i < order.size(); ++i) {
+    script += fmt::format("$s{} << EOD\n", i);
+    for (const auto& [z, m] : series[order[i]].mts)
+      script += fmt::format("{:.17g} {:.17g}\n", z, m);
+    script += fmt::format("EOD\n$n{} << EOD\n", i);
+    for (double z : series[order[i]].none) script += fmt::format("{:.17g} {:.17g}\n", z, top);
+    any_none |= !series[order[i]].none.empty();
+    script += "EOD\n";
+  }
+  script += fmt::format(
+      "plot $bound using 1:2:({:.6g}) with filledcurves fs pattern 4 lc rgb '#888888' "
+      "title 'below the binary32 vertex bound'",
+      floor);
+  if (any_none)
+    script += fmt::format(
+        ", {:.6g} with lines dt 3 lc rgb '#888888' title 'x: no MTS at this z (see the table)'",
+        top);
+  for (size_t i = 0; i < order.size(); ++i) {
+    script += fmt::format(", $s{} using 1:2 with linespoints lw 1.5 {} title {} noenhanced", i,
+                          series_style(i), gnuplot_quote(order[i]));
+    if (!series[order[i]].none.empty())
+      script += fmt::format(", $n{} using 1:2 with points pt 2 ps 1.2 lc rgb '{}' notitle", i,
+                            kColours[i % 12]);
+  }
+  script += "\n";
   run_gnuplot(script, output);
 }
 
-void plot_tradeoff(const std::vector<LevelResult>& results, bool timing,
-                   const std::string& output) {
+void plot_cost(const std::vector<CostPoint>& points, const std::string& output) {
   std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
                                    gnuplot_quote(output));
-  script += fmt::format("set logscale xy\nset grid\nset key top right\nset xlabel '{}'\n",
-                        timing ? "run time [s]" : "fragment pairs evaluated");
+  // Each point its own key entry: labels written beside points overlap where pairs cost alike.
   script +=
-      "set ylabel 'max relative MTS error vs the reference (0 plotted at 1e-6)'\n"
-      "set title 'Fidelity trade-off' noenhanced\nset offsets graph 0.05, graph 0.05, graph 0.05, "
-      "graph 0.05\n";
-  script += "$levels << EOD\n";
-  for (const auto& r : results)
-    script += fmt::format("{:.6g} {:.6g} {}\n", timing ? r.seconds : static_cast<double>(r.pairs),
-                          std::max(r.max_err, 1e-6), gnuplot_quote(r.level.name));
-  script += "EOD\n$front << EOD\n";
+      "set grid\nset key outside right\nset xlabel 'kernel cost [ns per fragment pair]'\n"
+      "set ylabel 'median MTS / vertex bound (lower is more precise)'\n"
+      "set title 'Precision against cost per technique and format' noenhanced\n"
+      "set offsets graph 0.05, graph 0.05, graph 0.1, graph 0.1\n";
+  script += kLogTenY;
+  std::string plot;
+  size_t i = 0;
+  for (const auto& p : points) {
+    if (!std::isfinite(p.median) || p.median <= 0) continue;
+    script += fmt::format("$p{} << EOD\n{:.6g} {:.6g}\nEOD\n", i, p.ns, p.median);
+    plot += fmt::format("{}$p{} using 1:2 with points ps 1.5 {} title {} noenhanced",
+                        plot.empty() ? "plot " : ", ", i, series_style(i), gnuplot_quote(p.label));
+    ++i;
+  }
+  script += (plot.empty() ? "plot NaN notitle" : plot) + "\n";
+  run_gnuplot(script, output);
+}
+
+void plot_tradeoff(const std::vector<LevelResult>& results, const std::string& output) {
+  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
+                                   gnuplot_quote(output));
+  // Drawn on the axis the Pareto front is computed on (fragment pairs, which a run repeats
+  // exactly), and each level its own key entry, so no label covers another.
+  script +=
+      "set logscale x 10\nset format x '10^{%L}'\nset grid\nset key outside right\n"
+      "set xlabel 'fragment pairs evaluated'\n"
+      "set ylabel 'max relative MTS error vs the reference (0 drawn at 10^{-6})'\n"
+      "set title 'Fidelity trade-off: error against work, Pareto front joined' noenhanced\n"
+      "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";
+  script += kLogTenY;
   std::vector<const LevelResult*> front;
-  for (const auto& r : results)
+  std::string plot;
+  for (size_t i = 0; i < results.size(); ++i) {
+    const auto& r = results[i];
+    script += fmt::format("$l{} << EOD\n{:.6g} {:.6g}\nEOD\n", i, static_cast<double>(r.pairs),
+                          std::max(r.max_err, 1e-6));
+    plot += fmt::format("{}$l{} using 1:2 with points ps 1.5 {} title {} noenhanced",
+                        plot.empty() ? "plot " : ", ", i, series_style(i),
+                        gnuplot_quote(r.level.name + (r.pareto ? " (front)" : "")));
     if (r.pareto) front.push_back(&r);
+  }
   std::sort(front.begin(), front.end(),
             [](const LevelResult* a, const LevelResult* b) { return a->pairs < b->pairs; });
+  script += "$front << EOD\n";
   for (const auto* r : front)
-    script += fmt::format("{:.6g} {:.6g}\n", timing ? r->seconds : static_cast<double>(r->pairs),
-                          std::max(r->max_err, 1e-6));
-  script +=
-      "EOD\nplot $levels using 1:2 with points pt 7 ps 1.5 title 'level', "
-      "$levels using 1:2:3 with labels offset 1,0.6 left noenhanced notitle, "
-      "$front using 1:2 with lines lw 2 title 'Pareto front'\n";
+    script +=
+        fmt::format("{:.6g} {:.6g}\n", static_cast<double>(r->pairs), std::max(r->max_err, 1e-6));
+  script += "EOD\n";
+  script += (plot.empty() ? "plot NaN notitle" : plot) +
+            ", $front using 1:2 with lines lw 2 lc rgb '#444444' title 'Pareto front'\n";
   run_gnuplot(script, output);
 }
 
@@ -66,7 +161,8 @@ void plot_lj_table(const std::map<std::string, nlohmann::json>& records,
   script +=
       "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform "
       "sampling' noenhanced\n"
-      "set logscale xy\nset grid\nset key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
+      "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset grid\n"
+      "set key top left font ',8'\nset xlabel 'f/d'\nset ylabel 'ae'\n";
   for (const LjBuffer b : kLjBuffers) {
     script += fmt::format("set title {} noenhanced\nplot ",
                           gnuplot_quote(std::string(to_string(b)) + " buffer"));
@@ -126,14 +222,8 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
       script += fmt::format("{:.17g} {:.17g}\n", p[0], p[1]);
     script += "EOD\n";
   }
-  // One colour per pair from a list of distinct hues, point shapes changing every 12 pairs; the
-  // ratio panel shares the MTS panel's key and margins.
-  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
-                                         "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
-                                         "#bcbd22", "#17becf", "#000000", "#aec7e8"};
-  const auto style = [](size_t i) {
-    return fmt::format("lc rgb '{}' pt {}", kColours[i % 12], 4 + 2 * (i / 12));
-  };
+  // The ratio panel shares the MTS panel's key and margins.
+  const auto style = series_style;
   script +=
       "set multiplot layout 2,1\nset lmargin 12\nset rmargin at screen 0.62\n"
       "set logscale x 2\nset format x '2^{%L}'\nset grid\nset key outside right top\n"

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "host/analysis/tradeoff.h"
+#include "host/mts/mts_row.h"
 
 namespace depthprec {
 
@@ -18,8 +19,13 @@ struct CostPoint {
 // Precision against cost: one labelled point per technique x format.
 void plot_cost(const std::vector<CostPoint>& points, const std::string& output);
 
-// Error against cost: one point per level, the Pareto front joined. Errors of 0 sit on a floor.
-void plot_tradeoff(const std::vector<LevelResult>& results, bool timing, const std::string& output);
+// Error against work (fragment pairs): one point per level, the Pareto front joined. Errors of 0
+// sit on a floor.
+void plot_tradeoff(const std::vector<LevelResult>& results, const std::string& output);
+
+// MTS against distance, log-log, one line per pair, the binary32 vertex bound shaded beneath (as
+// Gilg et al.'s fig. 6); distances without an MTS marked x on a line above the numbers.
+void plot_mts(const std::vector<MtsRow>& rows, const std::string& title, const std::string& output);
 
 // LJ error against f/d per format: one panel per buffer type, 16 bits, uniform sampling (the
 // records of lj-table by key).

@@ -58,7 +58,8 @@ json header(const Scene& scene, const RunInfo& run) {
   return h;
 }
 
-// A table cell: the MTS, or the verdict that replaces it (unresolvable stays "inf", Gilg's ∞).
+}  // namespace
+
 std::string table_cell(const MtsRow& r, bool full) {
   switch (r.verdict()) {
     case Verdict::resolved:
@@ -99,8 +100,6 @@ std::string footer(const RunInfo& run) {
         static_cast<double>(run.evaluated_pairs) / run.wall_seconds);
   return s;
 }
-
-}  // namespace
 
 std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
                         const std::string& format) {
@@ -229,7 +228,9 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         if (attributed) c.push_back(r.dominant);
         continue;
       }
-      if (r.attributed()) v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
+      if (r.attributed() &&
+          (r.verdict() == Verdict::resolved || r.verdict() == Verdict::unresolvable))
+        v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
       if (r.below_one_code) {
         v += "~";
         any_below_code = true;

@@ -42,6 +42,12 @@ inline std::string number_cell(double v, const std::string& format) {
   return format == "csv" ? exact(v) : human(v);
 }
 
+// A table cell: the MTS, or the verdict that replaces it (unresolvable stays "inf", Gilg's ∞);
+// exact digits when full, else 4 significant ones.
+std::string table_cell(const MtsRow& r, bool full);
+// The line under a table: the work done, and the time it took when measured.
+std::string footer(const RunInfo& run);
+
 std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
                         const std::string& format);
 std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,

@@ -1,0 +1,144 @@
+// report: the page an engineer attaches to a design review -- a scene measured (or a measurement
+// read back from JSON) written as one self-contained HTML file (host/output/html_report.h).
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "host/base/errors.h"
+#include "host/base/interrupt.h"
+#include "host/cli/commands.h"
+#include "host/cli/scene_options.h"
+#include "host/lj/lj_metric.h"
+#include "host/mts/mts_run.h"
+#include "host/output/html_report.h"
+#include "host/output/plots.h"
+#include "host/output/row_json.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct ReportOptions {
+  SceneOptions scene;
+  std::string output = "report.html";
+  std::string from;
+  bool no_timing = false;
+};
+
+// The Lapidous-Jiao figure of every pair whose technique is one of LJ99's buffers, over the
+// scene's [near, far] (none for an infinite far plane: the metric normalises by f - d).
+std::vector<LjFigure> lj_figures(const Scene& scene) {
+  std::vector<LjFigure> out;
+  if (!std::isfinite(scene.far)) return out;
+  for (const auto& pair : scene.evaluate) {
+    const char* buffer = info(pair.technique).lj_buffer;
+    if (!buffer) continue;
+    LjConfig c;
+    c.buffer = parse_lj_buffer(buffer);
+    c.near = scene.near;
+    c.far = scene.far;
+    out.push_back(
+        {pair.label(), buffer, pair.format, lj_average_error(c, scene.storage_format(pair)).ae});
+  }
+  return out;
+}
+
+// The plot as SVG text: gnuplot writes a temporary file, which is read back and removed.
+std::string plot_svg(const std::vector<MtsRow>& rows, const std::string& scene_name) {
+  const std::filesystem::path tmp =
+      std::filesystem::temp_directory_path() / fmt::format("depthprec-report-{}.svg", ::getpid());
+  plot_mts(rows, "MTS by distance, scene " + scene_name, tmp.string());
+  std::ifstream in(tmp);
+  std::stringstream svg;
+  svg << in.rdbuf();
+  std::filesystem::remove(tmp);
+  return svg.str();
+}
+
+void run_report(const ReportOptions& o, const GlobalOptions& global) {
+  if (!o.from.empty() && o.scene.any())
+    throw Error(ExitCode::usage,
+                "report: --from takes the scene and rows from its file; give no scene or scene "
+                "option with it");
+  check_writable(o.output);
+  std::optional<Scene> scene;
+  ReportPage page;
+  if (!o.from.empty()) {
+    std::ifstream in(o.from);
+    if (!in) throw InputError(fmt::format("report: cannot read '{}'", o.from));
+    const auto j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("rows") || !j.contains("scene"))
+      throw InputError(fmt::format(
+          "report: '{}' is not a JSON output of mts, table, render or merge (--format-out json)",
+          o.from));
+    scene = scene_from_json(j.at("scene"), o.from);
+    for (const auto& r : j.at("rows")) page.rows.push_back(row_from_json(r));
+    page.run.device = j.value("device", "");
+    if (j.contains("gl_renderer"))
+      page.run.rendered = {
+          j.value("gl_renderer", ""), j.value("gl_version", ""), j.value("egl_platform", ""), {}};
+    page.run.timing = false;  // the file's times belong to the run that wrote it
+  } else {
+    scene = o.scene.load();
+    install_interrupt_handlers();
+    OpenClRuntime rt(global.device);
+    RunControl control;
+    control.attribute = true;  // the report shows what limits each number
+    control.jobs = 1;
+    control.stop = interrupt_requested;
+    const auto log = [&global](const std::string& line) {
+      if (global.verbose) fmt::print(stderr, "{}\n", line);
+    };
+    MtsRun run = run_scene(rt, *scene, log, control);
+    if (interrupt_requested())
+      throw Error(ExitCode::interrupted, "report: interrupted; no report written");
+    page.rows = std::move(run.rows);
+    page.run = run.info;
+    page.run.device = rt.description();
+    page.run.variants = scene_variants(*scene);
+    page.run.timing = !o.no_timing;
+  }
+  sort_rows(*scene, page.rows);
+  page.run.fragment_pairs = 0;
+  for (const auto& r : page.rows) page.run.fragment_pairs += r.fragment_pairs;
+  page.scene = &*scene;
+  page.lj = lj_figures(*scene);
+  page.plot_svg = plot_svg(page.rows, scene->name);
+  page.command = global.command_line;
+  write_output(o.output, html_report(page));
+  if (!global.quiet) fmt::print(stderr, "depthprec: report written to {}\n", o.output);
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, GlobalOptions& global) {
+  auto o = std::make_shared<ReportOptions>();
+  auto* cmd = app.add_subcommand(
+      "report",
+      "One self-contained HTML page to share: the scene, the MTS table with the dominant factor\n"
+      "of each cell, the plot with the vertex bound (inline SVG), the attribution and the\n"
+      "Lapidous-Jiao figures where they apply. No network, no other files: attach it to a\n"
+      "review or open it in any browser. Runs the scene (as `table --attribute`), or reads an\n"
+      "mts/table/render/merge JSON output with --from.\n"
+      "Examples:\n"
+      "  depthprec report -o report.html\n"
+      "  depthprec report my_scene.json -t reversed,standard -f float32 -o decals.html\n"
+      "  depthprec report --from table.json -o table.html");
+  o->scene.add_to(*cmd, true);
+  cmd->add_option("-o,--output", o->output, "The HTML file to write")->capture_default_str();
+  cmd->add_option("--from", o->from,
+                  "Build the page from this JSON output of mts, table, render or merge instead "
+                  "of running the scene");
+  cmd->add_flag("--no-timing", o->no_timing,
+                "Leave measured times out, so two reports compare byte for byte");
+  cmd->callback([o, &global]() { run_report(*o, global); });
+}
+
+}  // namespace depthprec::cli

@@ -1,0 +1,215 @@
+#include "host/output/html_report.h"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <set>
+
+#include "host/base/version.h"
+#include "host/model/frame_setup.h"
+
+namespace depthprec {
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
+    }
+  return out;
+}
+
+namespace {
+
+// Print-friendly and readable on a laptop: system fonts, numbers right-aligned in tabular
+// figures, the plot scaled to the page.
+constexpr const char* kStyle = R"(
+body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 75em; color: #222;
+       padding: 0 1em; line-height: 1.4; }
+h1 { font-size: 1.6em; margin-bottom: 0.2em; }
+h2 { font-size: 1.25em; margin-top: 1.8em; border-bottom: 1px solid #ccc; }
+table { border-collapse: collapse; font-size: 0.85em; margin: 0.6em 0; }
+th, td { border: 1px solid #ccc; padding: 0.2em 0.5em; }
+th { background: #f2f2f2; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.none { color: #a33; text-align: right; }
+td.flag { background: #fff4d6; }
+.wide { overflow-x: auto; }
+.plot svg { max-width: 100%; height: auto; }
+.meta { color: #555; font-size: 0.9em; }
+code { font-size: 0.95em; }
+)";
+
+std::string cell(const std::string& text, const std::string& cls = "num",
+                 const std::string& title = "") {
+  return fmt::format("<td class=\"{}\"{}>{}</td>", cls,
+                     title.empty() ? "" : " title=\"" + html_escape(title) + "\"",
+                     html_escape(text));
+}
+
+std::string table(const std::vector<std::string>& head, const std::vector<std::string>& rows) {
+  std::string out = "<div class=\"wide\"><table>\n<tr>";
+  for (const auto& h : head) out += "<th>" + html_escape(h) + "</th>";
+  out += "</tr>\n";
+  for (const auto& r : rows) out += "<tr>" + r + "</tr>\n";
+  return out + "</table></div>\n";
+}
+
+std::string scene_section(const Scene& s, size_t pairs) {
+  std::vector<std::string> rows;
+  const auto add = [&rows](const std::string& k, const std::string& v) {
+    rows.push_back("<th>" + html_escape(k) + "</th>" + cell(v, "left"));
+  };
+  add("near, far", fmt::format("{}, {}", human(s.near), human(s.far)));
+  add("viewport, kernel",
+      fmt::format("{}x{}, {}x{}", s.viewport_w, s.viewport_h, s.kernel_w, s.kernel_h));
+  add("field of view (y)", fmt::format("{} deg", human(s.fov_y_deg)));
+  add("frames", std::to_string(s.frames));
+  add("relative precision of the search", human(s.rel_precision));
+  add("distances", fmt::format("{}, from {} to {}", s.distances.size(), human(s.distances.front()),
+                               human(s.distances.back())));
+  add("pairs (technique/format/depth range)", std::to_string(pairs));
+  if (s.json.contains("pipeline"))
+    for (const auto& [k, v] : s.json["pipeline"].items())
+      add("pipeline." + k, v.is_string() ? v.get<std::string>() : v.dump());
+  add("source", s.source);
+  std::string out = "<h2>Scene</h2>\n";
+  if (!s.description.empty()) out += "<p>" + html_escape(s.description) + "</p>\n";
+  out += "<div class=\"wide\"><table>\n";
+  for (const auto& r : rows) out += "<tr>" + r + "</tr>\n";
+  return out + "</table></div>\n";
+}
+
+std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
+  std::vector<std::string> labels;
+  std::set<std::string> seen;
+  for (const auto& p : scene.evaluate)
+    if (seen.insert(p.label()).second) labels.push_back(p.label());
+  std::map<std::pair<double, std::string>, const MtsRow*> at;
+  std::set<double> zs;
+  for (const auto& r : rows) {
+    at[{r.z, r.pair.label()}] = &r;
+    zs.insert(r.z);
+  }
+  std::vector<std::string> head = {"z", "vertex bound"};
+  head.insert(head.end(), labels.begin(), labels.end());
+  std::vector<std::string> body;
+  std::vector<std::string> flagged;
+  for (double z : zs) {
+    std::string tr = cell(human(z)) + cell(human(vertex_bound(z)));
+    for (const auto& l : labels) {
+      const auto it = at.find({z, l});
+      if (it == at.end()) {
+        tr += cell("");
+        continue;
+      }
+      const MtsRow& r = *it->second;
+      std::string text = table_cell(r, false);
+      const bool resolved = r.verdict() == Verdict::resolved;
+      if (r.attributed() && (resolved || r.verdict() == Verdict::unresolvable))
+        text += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
+      const std::string flags = r.flags();
+      tr += cell(text, !resolved ? "none" : flags.empty() ? "num" : "num flag", flags);
+      // A cell without a number shows its verdict already; the list names what a number hides.
+      if (resolved && !flags.empty())
+        flagged.push_back(cell(l, "left") + cell(human(z)) + cell(flags, "left"));
+    }
+    body.push_back(tr);
+  }
+  std::string out =
+      "<h2>Minimum triangle separation</h2>\n<p>The smallest separation of two planes at eye "
+      "distance z (in the scene's units) for which the farther plane never wins the depth test, "
+      "per technique, storage format and depth range. <code>inf</code>: no separation up to the "
+      "search's limit resolves; other words name the verdict where there is no number. Shaded "
+      "cells carry flags (hover for them, or see the list below).";
+  bool attributed = false;
+  for (const auto& r : rows) attributed |= r.attributed();
+  if (attributed)
+    out +=
+        " S, A, V: the dominant factor -- storage quantisation, binary32 arithmetic or the "
+        "binary32 vertex bound.";
+  out += "</p>\n" + table(head, body);
+  if (!flagged.empty())
+    out += "<p>Flagged cells (docs/mts.md says what each flag means):</p>\n" +
+           table({"pair", "z", "flags"}, flagged);
+  return out;
+}
+
+std::string attribution_section(const Scene& scene, const std::vector<MtsRow>& rows) {
+  std::vector<std::string> body;
+  for (const auto& r : rows) {
+    if (!r.attributed()) continue;
+    body.push_back(
+        cell(r.pair.label(), "left") + cell(human(r.z)) + cell(table_cell(r, false)) +
+        cell(human(r.storage_mts)) + cell(human(r.arithmetic_mts)) + cell(human(r.vertex_bound)) +
+        cell(r.dominant, "left") +
+        cell(r.factor_above_mts(scene.rel_precision) ? "a factor exceeds the MTS" : "", "left"));
+  }
+  if (body.empty()) return "";
+  return "<h2>Attribution</h2>\n<p>What limits each MTS: the storage-limited MTS (the binary64 "
+         "pipeline, stored in the format), the arithmetic-limited MTS (the binary32 pipeline "
+         "without storage quantisation) and the vertex bound; the largest dominates.</p>\n" +
+         table({"pair", "z", "mts", "storage", "arithmetic", "vertex bound", "dominant", "note"},
+               body);
+}
+
+std::string lj_section(const std::vector<LjFigure>& lj, const Scene& scene) {
+  if (lj.empty()) return "";
+  std::vector<std::string> body;
+  for (const auto& f : lj)
+    body.push_back(cell(f.pair, "left") + cell(f.buffer, "left") + cell(f.format, "left") +
+                   cell(human(f.ae)));
+  return fmt::format(
+             "<h2>Lapidous-Jiao average depth error</h2>\n<p>For the pairs whose technique is one "
+             "of Lapidous and Jiao's buffers: the average eye-distance error over [near, far] = "
+             "[{}, {}], normalised by (far - near), uniform sampling, 10<sup>6</sup> samples, "
+             "analytic in binary64.</p>\n",
+             html_escape(human(scene.near)), html_escape(human(scene.far))) +
+         table({"pair", "buffer", "format", "ae"}, body);
+}
+
+// gnuplot's SVG without its XML prolog and doctype, which are not allowed inside HTML.
+std::string inline_svg(const std::string& svg) {
+  const size_t start = svg.find("<svg");
+  return start == std::string::npos ? "" : svg.substr(start);
+}
+
+}  // namespace
+
+std::string html_report(const ReportPage& page) {
+  const Scene& scene = *page.scene;
+  std::string out = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  out += "<title>depthprec report: " + html_escape(scene.name) + "</title>\n";
+  out += std::string("<style>") + kStyle + "</style>\n</head>\n<body>\n";
+  out += "<h1>Depth precision report: " + html_escape(scene.name) + "</h1>\n";
+  out += fmt::format("<p class=\"meta\">depthprec {}, {} on {}. Made by <code>{}</code>.</p>\n",
+                     html_escape(kVersion), page.run.rendered.empty() ? "emulated" : "rendered",
+                     html_escape(page.run.device), html_escape(page.command));
+  out += scene_section(scene, scene.evaluate.size());
+  out += mts_section(scene, page.rows);
+  if (!page.plot_svg.empty())
+    out +=
+        "<h2>MTS by distance</h2>\n<div class=\"plot\">\n" + inline_svg(page.plot_svg) + "</div>\n";
+  out += attribution_section(scene, page.rows);
+  out += lj_section(page.lj, scene);
+  out += "<p class=\"meta\">" + html_escape(footer(page.run)) + "</p>\n</body>\n</html>\n";
+  return out;
+}
+
+}  // namespace depthprec
