@@ -109,7 +109,10 @@ std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   std::vector<std::string> head = {"z", "vertex bound"};
   head.insert(head.end(), labels.begin(), labels.end());
   std::vector<std::string> body;
-  std::vector<std::string> flagged;
+  // Flagged cells grouped by pair and flags, the distances listed: a pair is often flagged alike
+  // over a run of distances.
+  std::vector<std::pair<std::string, std::string>> flag_groups;  // (pair, flags), first seen
+  std::map<std::pair<std::string, std::string>, std::string> flagged_at;
   for (double z : zs) {
     std::string tr = cell(human(z)) + cell(human(vertex_bound(z)));
     for (const auto& l : labels) {
@@ -126,8 +129,11 @@ std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
       const std::string flags = r.flags();
       tr += cell(text, !resolved ? "none" : flags.empty() ? "num" : "num flag", flags);
       // A cell without a number shows its verdict already; the list names what a number hides.
-      if (resolved && !flags.empty())
-        flagged.push_back(cell(l, "left") + cell(human(z)) + cell(flags, "left"));
+      if (resolved && !flags.empty()) {
+        std::string& at_z = flagged_at[{l, flags}];
+        if (at_z.empty()) flag_groups.push_back({l, flags});
+        at_z += (at_z.empty() ? "" : ", ") + human(z);
+      }
     }
     body.push_back(tr);
   }
@@ -144,9 +150,13 @@ std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
         " S, A, V: the dominant factor -- storage quantisation, binary32 arithmetic or the "
         "binary32 vertex bound.";
   out += "</p>\n" + table(head, body);
+  std::vector<std::string> flagged;
+  for (const auto& g : flag_groups)
+    flagged.push_back(cell(g.first, "left") + cell(g.second, "left") +
+                      cell(flagged_at.at(g), "left"));
   if (!flagged.empty())
     out += "<p>Flagged cells (docs/mts.md says what each flag means):</p>\n" +
-           table({"pair", "z", "flags"}, flagged);
+           table({"pair", "flags", "at z"}, flagged);
   return out;
 }
 
