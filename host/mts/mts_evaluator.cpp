@@ -23,8 +23,11 @@ constexpr uint32_t kVertexNonFinite = V_NONFINITE;
 constexpr cl_uint kBandRows = 32;
 
 // The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
-// this (all frames of each) and at most kMaxSlots; a run with more goes through them in groups.
-constexpr size_t kPlaneACacheBytes = size_t{1} << 30;
+// this (all frames of each) and at most kMaxSlots. The search keeps no more distances in flight
+// than that (distances_at_once), so none is evicted while it is still probed: memory stays
+// within the budget whatever the frames or distances, at the default table's speed (12.4 s with
+// 1 GiB, 11.9 s with 192 MiB; docs/performance.md).
+constexpr size_t kPlaneACacheBytes = size_t{192} << 20;
 constexpr size_t kMaxSlots = 64;
 
 constexpr size_t kLocal = kWorkGroup;  // host/runtime/opencl_runtime.h

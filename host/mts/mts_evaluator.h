@@ -59,6 +59,7 @@ class MtsEvaluator : public ProbeEvaluator {
                Kernels kernels = Kernels::production);
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
+  size_t distances_at_once() const override { return max_slots_; }
   FrameCodes codes(const Probe& probe, int frame);  // needs Kernels::with_tests
   // For the tests: checks the coverage shortcut of mts_raster against plane B's own coverage on
   // every cached row of every frame of the probes (at most max_plane_a_slots() of them). Needs

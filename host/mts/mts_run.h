@@ -26,9 +26,10 @@ struct RunControl {
   // Pairs evaluated side by side, each by its own host thread and queue: the device's cores stay
   // busy while one pair's launch drains or its host waits. Rows are the same for any number;
   // measured times then include the other pairs' share of the device. Attribution runs one.
-  // 3 on this 2-core machine: the default table 30.5 s with 1, 28.7 with 2, 27.2 with 3, no
-  // better with 4 or 6 and 1.7x the memory (docs/performance.md, session 6).
-  int jobs = 3;
+  // 1: since the kernels decide most probes from code bounds, PoCL keeps both cores busy from
+  // one queue -- the default table takes 12.1 s with 1 job and 12.1 s with 3, which double the
+  // memory (docs/performance.md).
+  int jobs = 1;
 };
 
 // The units of an MTS batch (mts, table, render, compare): a row key per (pair, distance), in

@@ -221,11 +221,16 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
   };
   for (size_t i = 0; i < distances.size(); ++i)
     if (phase[i] == 2) finish(i);
+  const size_t window = std::max<size_t>(1, evaluator.distances_at_once());
   for (;;) {
     if (stop && stop()) throw Error(ExitCode::interrupted, "interrupted");
     std::vector<std::pair<size_t, bool>> owner;  // (distance, is a stiffness probe)
     std::vector<Probe> probes;
+    // The first `window` unfinished distances, in order: a distance joins as one finishes. Each
+    // distance's probe sequence is its own, so the window changes rounds, not rows.
+    size_t in_flight = 0;
     for (size_t i = 0; i < searches.size(); ++i) {
+      if (phase[i] != 2 && in_flight++ == window) break;
       if (phase[i] == 0) {
         owner.push_back({i, false});
         probes.push_back({distances[i], searches[i].next()});

@@ -46,6 +46,10 @@ class ProbeEvaluator {
   virtual ~ProbeEvaluator() = default;
   virtual std::vector<ProbeResult> run(const std::vector<Probe>& probes) = 0;
   virtual RowSource source() const { return RowSource::emulated; }
+  // How many distances a launch round should hold at most: an evaluator that keeps per-distance
+  // state (the emulator's plane-A cache) names what fits its memory budget, so the search runs a
+  // window of distances and never evicts one it will probe again.
+  virtual size_t distances_at_once() const { return SIZE_MAX; }
 };
 
 }  // namespace depthprec
