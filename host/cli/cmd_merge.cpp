@@ -145,10 +145,11 @@ void merge_records(const MergeOptions& o, const std::string& kind,
   for (size_t k = 0; k < docs.size(); ++k) {
     const nlohmann::json& j = docs[k];
     nlohmann::json h = j;
-    // What the records derive (tradeoff's levels, compare's summaries) is derived again; times
-    // measured by one shard's process do not describe the merged batch.
+    // What the records derive (tradeoff's levels, compare's summaries, advise's ranking) is
+    // derived again; times measured by one shard's process do not describe the merged batch.
     std::vector<std::string> drop = {"records", "shard", "device"};
     if (kind == "tradeoff") drop.push_back("levels");
+    if (kind == "advise") drop.push_back("ranking");
     if (kind == "compare")
       drop.insert(drop.end(), {"summary", "pairs", "emulated_seconds", "rendered_seconds"});
     for (const auto& key : drop) h.erase(key);
@@ -185,6 +186,8 @@ void merge_records(const MergeOptions& o, const std::string& kind,
     text = render_pipelines_output(header, records, o.out);
   else if (kind == "compare")
     text = render_compare_output(header, records, o.out);
+  else if (kind == "advise")
+    text = render_advise_output(header, records, o.out);
   else
     text = render_cost_output(header, records, o.out);
   write_output(o.out.output, for_terminal(text, o.out.format_out));
@@ -197,7 +200,7 @@ void run_merge(const MergeOptions& o) {
   for (const auto& f : o.files) docs.push_back(read_json(f));
   const std::string kind = docs.front().value("kind", "mts");
   if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines" ||
-      kind == "compare")
+      kind == "compare" || kind == "advise")
     merge_records(o, kind, docs);
   else
     merge_rows(o, docs);
@@ -210,7 +213,8 @@ void add_merge_command(CLI::App& app) {
   auto* mcmd = app.add_subcommand(
       "merge",
       "Join the JSON outputs of the shards of a batch (`mts`, `table`, `lj-table`, `tradeoff`,\n"
-      "`cost`, `pipelines` with --shard i/N --format-out json) into the output one whole run\n"
+      "`cost`, `pipelines`, `compare`, `advise` with --shard i/N --format-out json) into the "
+      "output one whole run\n"
       "would write.\n"
       "Example:\n"
       "  depthprec merge part1.json part2.json part3.json part4.json --format-out markdown");

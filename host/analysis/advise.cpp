@@ -1,0 +1,141 @@
+#include "host/analysis/advise.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+#include "host/mts/mts_evaluator.h"
+#include "host/mts/mts_search.h"
+
+namespace depthprec {
+
+// The largest near plane tried is the nearest content's distance over this: the scene's planes
+// are tilted and span more than the view, so at z_min they reach a little nearer than z_min.
+constexpr double kNearestContentMargin = 1.01;
+
+void validate(const AdviseRequest& r, const Scene& scene) {
+  if (!(r.z_min > 0) || !std::isfinite(r.z_max) || !(r.z_max >= r.z_min))
+    throw InputError(
+        fmt::format("--range {},{}: the content's distances must be 0 < nearest <= farthest < inf",
+                    r.z_min, r.z_max));
+  if (!(r.separation > 0) || !std::isfinite(r.separation))
+    throw InputError(
+        fmt::format("the separation needed must be positive and finite, not {}", r.separation));
+  for (const auto& pair : scene.evaluate)
+    if (has_far_plane(pair.technique) && !(scene.far > r.z_max))
+      throw InputError(
+          fmt::format("{}: the far plane ({}) must lie beyond the farthest content ({}); set --far",
+                      pair.label(), scene.far, r.z_max));
+}
+
+std::vector<double> advise_distances(const AdviseRequest& r) {
+  std::vector<double> zs;
+  for (double z = r.z_min; z < r.z_max; z *= 2) zs.push_back(z);
+  zs.push_back(r.z_max);
+  return zs;
+}
+
+Scene with_near(const Scene& scene, double n) {
+  nlohmann::json j = scene.json;
+  j["near"] = n;
+  Scene s = scene_from_json(j, scene.source);
+  s.name = scene.name;
+  return s;
+}
+
+bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
+                double n, double* worst) {
+  const Scene s = with_near(scene, n);
+  MtsEvaluator ev(rt, s, pair);
+  std::vector<Probe> probes;
+  for (double z : advise_distances(r)) probes.push_back({z, r.separation_at(z)});
+  const auto results = ev.run(probes);
+  for (size_t k = 0; k < results.size(); ++k) {
+    const ProbeResult& p = results[k];
+    if (p.outcome != Outcome::clean || p.any_uncovered || p.any_clipped || p.any_non_finite) {
+      if (worst) *worst = probes[k].z;
+      return false;
+    }
+  }
+  return true;
+}
+
+bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
+                double n) {
+  const Scene s = with_near(scene, n);
+  MtsEvaluator ev(rt, s, pair);
+  for (const MtsRow& row : search_pair(ev, s, pair, advise_distances(r)))
+    if (row.verdict() != Verdict::resolved || row.mts > r.separation_at(row.z)) return false;
+  return true;
+}
+
+nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                             const AdviseRequest& r) {
+  nlohmann::json j = {{"technique", info(pair.technique).name},
+                      {"format", pair.format},
+                      {"depth_range", to_string(pair.depth_range)}};
+  int steps = 0;
+  double fails_at = 0;
+  const auto holds = [&](double n, double* where) {
+    ++steps;
+    return near_holds(rt, scene, pair, r, n, where);
+  };
+  // A larger near plane never costs precision at a given z (it only clips what is nearer), so
+  // each set-up holds from some near plane up: the answer is the smallest. The largest tried
+  // keeps the nearest content's tilted planes clear of the near plane.
+  double lo = r.z_min * r.near_floor_ratio, hi = r.z_min / kNearestContentMargin;
+  if (holds(lo, &fails_at)) {
+    j["smallest_near"] = lo;
+    j["holds_from_floor"] = true;
+  } else if (!holds(hi, &fails_at)) {
+    j["holds_from_floor"] = false;  // not even next to the content: the set-up cannot meet it
+    j["fails_at"] = fails_at;
+  } else {
+    // lo fails, hi holds: bisect in log(near), keeping a distance where lo failed.
+    while (hi / lo > 1 + r.near_precision) {
+      const double mid = std::sqrt(lo * hi);
+      double where = 0;
+      if (holds(mid, &where))
+        hi = mid;
+      else {
+        lo = mid;
+        fails_at = where;
+      }
+    }
+    j["smallest_near"] = hi;
+    j["next_near"] = lo;
+    j["fails_at"] = fails_at;
+    j["holds_from_floor"] = false;
+  }
+  // The probe at exactly the separation can be clean while a larger one fights (near the MTS,
+  // where fights depend on how z + s rounds), so the answer is confirmed by the MTS search itself,
+  // as `mts` would run it at that near plane: every checked distance's MTS within the separation.
+  // Where one is not, the near plane moves up a step until it is.
+  if (j.contains("smallest_near")) {
+    double n = j["smallest_near"].get<double>();
+    const double top = r.z_min / kNearestContentMargin;
+    int raised = 0;
+    while (!mts_within(rt, scene, pair, r, n) && n < top) {
+      n = std::min(top, n * (1 + r.near_precision));
+      ++raised;
+    }
+    if (mts_within(rt, scene, pair, r, n)) {
+      if (raised) {
+        j["next_near"] = n / (1 + r.near_precision);
+        j["holds_from_floor"] = false;
+      }
+      j["smallest_near"] = n;
+    } else {
+      j.erase("smallest_near");  // the probes held but the MTS search says otherwise up to z_min
+      j.erase("next_near");
+    }
+    j["raised_by_mts_check"] = raised;
+  }
+  j["near_steps"] = steps;
+  j["distances_checked"] = advise_distances(r).size();
+  return j;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,57 @@
+// advise: the inverse of the MTS question. Given the distances a scene has content at and the
+// separation its content needs there, how close can each set-up's near plane come? For each
+// pair, a host-driven bisection over the near plane (log scale) in which a near value holds when
+// a probe at the required separation is clean at every checked distance: plane B behind plane A
+// by that separation never wins the depth test, on the emulated pipeline, in any frame. A larger
+// near plane only helps precision, so the answer is the smallest near that holds.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "host/model/scene.h"
+#include "host/runtime/opencl_runtime.h"
+
+namespace depthprec {
+
+struct AdviseRequest {
+  double z_min = 0, z_max = 0;  // the content's distances (eye space, scene units)
+  double separation = 0;        // needed there: absolute, or relative to z
+  bool relative = false;
+  double near_floor_ratio = 1e-6;  // the smallest near tried, as a fraction of z_min
+  // The bisection stops when the holding near is within this factor of the failing one.
+  double near_precision = 1.0 / 128;
+
+  double separation_at(double z) const { return relative ? separation * z : separation; }
+};
+
+// Throws InputError naming what is wrong (an empty or negative range, a separation of 0, a far
+// plane nearer than the content for a technique that clips there).
+void validate(const AdviseRequest& r, const Scene& scene);
+
+// The distances checked: z_min, z_min * 2, z_min * 4, ... below z_max, and z_max.
+std::vector<double> advise_distances(const AdviseRequest& r);
+
+// The scene with its near plane at n.
+Scene with_near(const Scene& scene, double n);
+
+// Whether near n holds for the pair: every checked distance's probe at the required separation is
+// clean (no fight, nothing clipped, uncovered or non-finite). worst: a distance that failed.
+bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
+                double n, double* worst = nullptr);
+
+// Whether the MTS search (as `mts` runs it) at near n gives every checked distance an MTS within
+// the separation.
+bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
+                double n);
+
+// One pair's answer: technique, format, depth_range, smallest_near (absent when not even a near
+// plane next to the content holds), next_near (the largest near found to fail, absent when the
+// floor holds), fails_at (a distance where it fails), holds_from_floor, near_steps, and
+// raised_by_mts_check: the steps the near plane rose until mts_within held (the probe at the
+// separation alone can be clean where a larger separation fights).
+nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                             const AdviseRequest& r);
+
+}  // namespace depthprec

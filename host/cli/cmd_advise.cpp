@@ -1,0 +1,157 @@
+// advise: which set-ups meet the separation a scene's content needs, and the largest near plane
+// each affords (host/analysis/advise.h). A record batch: one record per pair, so it journals,
+// resumes, shards and merges as cost does.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "host/analysis/advise.h"
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+#include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
+#include "host/cli/scene_options.h"
+#include "host/output/report.h"
+#include "host/output/text_table.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct AdviseOptions {
+  SceneOptions scene;
+  OutputOptions out;
+  BatchOptions batch;
+  std::vector<double> range;
+  double separation = 0, relative = 0;
+};
+
+AdviseRequest request_of(const AdviseOptions& o) {
+  if (o.range.size() != 2)
+    throw Error(ExitCode::usage, "advise: --range takes the nearest and farthest content: A,B");
+  if ((o.separation > 0) == (o.relative > 0) || o.separation < 0 || o.relative < 0)
+    throw InputError(
+        "advise: give the separation the content needs as --separation S (scene units, > 0) or "
+        "--relative R (S = R * z, > 0), exactly one");
+  AdviseRequest r;
+  r.z_min = o.range[0];
+  r.z_max = o.range[1];
+  r.relative = o.relative > 0;
+  r.separation = r.relative ? o.relative : o.separation;
+  return r;
+}
+
+void run_advise(const AdviseOptions& o, const GlobalOptions& g) {
+  const AdviseRequest r = request_of(o);
+  const Scene scene = o.scene.load();
+  validate(r, scene);
+  check_planes_cover_kernel(scene);
+  check_writable(o.out.output);
+  run_record_batch(
+      "advise", o.out, o.batch, g,
+      [&scene, &r](OpenClRuntime& rt, nlohmann::json& header) {
+        header["scene"] = scene.json;
+        header["scene_name"] = scene.name;
+        header["content_near"] = r.z_min;
+        header["content_far"] = r.z_max;
+        header["separation"] = r.separation;
+        header["separation_is_relative"] = r.relative;
+        header["distances_checked"] = advise_distances(r);
+        std::vector<BatchUnit> units;
+        for (const EvalPair& pair : scene.evaluate)
+          units.push_back({pair.label(),
+                           [&rt, &scene, &r, pair] { return advise_record(rt, scene, pair, r); }});
+        return units;
+      },
+      render_advise_output);
+}
+
+}  // namespace
+
+std::string render_advise_output(const nlohmann::json& header,
+                                 const std::vector<nlohmann::json>& records,
+                                 const OutputOptions& out) {
+  // Ranked: the nearest affordable near plane first; set-ups that cannot meet it last.
+  std::vector<const nlohmann::json*> ranked;
+  for (const auto& r : records) ranked.push_back(&r);
+  const auto near_of = [](const nlohmann::json* r) {
+    return r->contains("smallest_near") ? r->at("smallest_near").get<double>() : INFINITY;
+  };
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [&](const auto* a, const auto* b) { return near_of(a) < near_of(b); });
+  if (out.format_out == "json") {
+    nlohmann::json ranking = nlohmann::json::array();
+    for (const auto* r : ranked)
+      ranking.push_back(fmt::format("{}/{}/{}", r->at("technique").get<std::string>(),
+                                    r->at("format").get<std::string>(),
+                                    r->at("depth_range").get<std::string>()));
+    return records_json(header, records, !out.no_timing, {{"ranking", ranking}});
+  }
+  const bool csv = out.format_out == "csv";
+  const std::string none = csv ? "" : "-";
+  const auto num = [&](const nlohmann::json& r, const char* k) {
+    return r.contains(k) ? number_cell(r.at(k).get<double>(), out.format_out) : none;
+  };
+  Cells cells;
+  int rank = 1;
+  for (const auto* r : ranked)
+    cells.push_back(
+        {r->contains("smallest_near") ? std::to_string(rank++) : none,
+         r->at("technique").get<std::string>(), r->at("format").get<std::string>(),
+         r->at("depth_range").get<std::string>(), num(*r, "smallest_near"),
+         r->at("holds_from_floor").get<bool>() ? (csv ? "" : "(floor)") : num(*r, "next_near"),
+         num(*r, "fails_at"), std::to_string(r->at("near_steps").get<int>())});
+  const bool rel = header.value("separation_is_relative", false);
+  const double s = header.value("separation", 0.0);
+  return captioned(
+      fmt::format("Set-ups for content at z from {} to {} that needs a separation of {} (scene "
+                  "{}): the smallest near plane each affords -- from it up, planes that far apart "
+                  "never fight at any of the {} distances checked (z, 2z, 4z, ..., the farthest); "
+                  "the next near down fails at the distance named. (floor): even near = {} x the "
+                  "nearest content holds; '-': not even a near plane next to the content does",
+                  human(header.value("content_near", 0.0)), human(header.value("content_far", 0.0)),
+                  rel ? fmt::format("{} x z", human(s)) : human(s),
+                  header.value("scene_name", std::string("?")),
+                  header.value("distances_checked", nlohmann::json::array()).size(),
+                  human(AdviseRequest{}.near_floor_ratio)),
+      {{"rank"},
+       {"technique", true},
+       {"format", true},
+       {"depth_range", true},
+       {"smallest near"},
+       {"next near down (fails)"},
+       {"fails at z"},
+       {"near steps"}},
+      cells, out.format_out);
+}
+
+void add_advise_command(CLI::App& app, GlobalOptions& global) {
+  auto o = std::make_shared<AdviseOptions>();
+  auto* cmd = app.add_subcommand(
+      "advise",
+      "Which set-up meets the separation your content needs, and how close its near plane can\n"
+      "come: for every pair of the scene (technique x format x depth range), a bisection over\n"
+      "the near plane in which a near value holds when two planes the needed separation apart\n"
+      "never fight on the emulated pipeline at any distance checked (the range's nearest z,\n"
+      "doubling up to its farthest). Ranked by the smallest near plane that holds.\n"
+      "Examples:\n"
+      "  depthprec advise --range 1,10000 --separation 0.01\n"
+      "  depthprec advise --range 10,1e5 --relative 1e-4 -t reversed,standard,log_fragment -f "
+      "float32,unorm24");
+  o->scene.add_to(*cmd, true);
+  cmd->add_option("--range", o->range,
+                  "Nearest and farthest distance the content is at: A,B (scene units)")
+      ->delimiter(',')
+      ->required();
+  cmd->add_option("--separation", o->separation,
+                  "The separation the content needs, in scene units (e.g. 0.01 for 1 cm in m)");
+  cmd->add_option("--relative", o->relative,
+                  "The separation as a fraction of the distance instead: S = R * z");
+  o->out.add_to(*cmd);
+  o->batch.add_to(*cmd, "pairs (k in scene order)");
+  cmd->callback([o, &global]() { run_advise(*o, global); });
+}
+
+}  // namespace depthprec::cli

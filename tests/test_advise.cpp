@@ -1,0 +1,104 @@
+// advise: the smallest near plane that holds is found by bisection, the next one down fails, and
+// the emulator's MTS agrees: at the near plane found the MTS is within the separation, below it
+// a distance needs more.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "host/analysis/advise.h"
+#include "mts_fixture.h"
+#include "run_cli.h"
+
+using namespace depthprec;
+using Catch::Matchers::Contains;
+using depthprec::test::fresh;
+using depthprec::test::run_cli;
+
+namespace {
+
+const std::string kSmallScene = "--kernel 24x24 --frames 4 --no-timing -q ";
+
+Scene small_scene(const std::string& pairs) {
+  return load_scene("", {"kernel=[24,24]", "frames=4", "evaluate=" + pairs});
+}
+
+}  // namespace
+
+TEST_CASE("advise finds the smallest near plane that holds; the next one down fails", "[advise]") {
+  const Scene scene =
+      small_scene(R"([{"technique": "standard", "format": "unorm24", "depth_range": "gl"}])");
+  AdviseRequest r;
+  r.z_min = 10;
+  r.z_max = 1000;
+  r.separation = 0.05;
+  validate(r, scene);
+  const EvalPair pair = scene.evaluate[0];
+  const auto rec = advise_record(test::runtime(), scene, pair, r);
+  REQUIRE(rec.contains("smallest_near"));
+  REQUIRE(rec.contains("next_near"));
+  const double n = rec["smallest_near"], below = rec["next_near"];
+  CHECK(below < n);
+  CHECK(n / below <= 1 + r.near_precision);
+  CHECK(near_holds(test::runtime(), scene, pair, r, n));
+  CHECK(mts_within(test::runtime(), scene, pair, r, n));
+  // the next near plane down fails: a probe at the separation fights, or the MTS exceeds it
+  CHECK_FALSE((near_holds(test::runtime(), scene, pair, r, below) &&
+               mts_within(test::runtime(), scene, pair, r, below)));
+  // standard projection's error grows as z^2 / near: the farthest content decides
+  CHECK(rec["fails_at"] == 1000.0);
+
+  // The MTS search on the same pipeline, run as `mts` runs it, agrees at n: every checked
+  // distance resolves within the separation.
+  const auto at_n = test::mts_rows(with_near(scene, n), pair.technique, pair.format,
+                                   pair.depth_range, advise_distances(r));
+  for (const auto& row : at_n) CHECK(row.mts <= r.separation);
+  // and, standard's error growing as z^2 / near, a near plane a tenth of n is far from enough
+  const auto at_tenth = test::mts_rows(with_near(scene, n / 10), pair.technique, pair.format,
+                                       pair.depth_range, {1000.0});
+  CHECK(at_tenth.front().mts > 5 * r.separation);
+}
+
+TEST_CASE("advise ranks set-ups and says which cannot meet the separation", "[advise][cli]") {
+  const auto r = run_cli("advise --range 10,1000 --separation 0.05 " + kSmallScene +
+                         "-t standard,reversed,linear -f float32,unorm24 --format-out json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  CHECK(j["kind"] == "advise");
+  REQUIRE(j["records"].size() == 6);
+  REQUIRE(j["ranking"].size() == 6);
+  // reversed float32 in [0,1] holds from the floor; linear unorm24 with far = 1e9 has codes of
+  // 60 units and never resolves 0.05
+  CHECK(j["ranking"][0] == "reversed/float32/zero_to_one");
+  CHECK(j["ranking"][5] == "linear/unorm24/gl");
+  for (const auto& rec : j["records"])
+    if (rec["technique"] == "linear" && rec["format"] == "unorm24")
+      CHECK_FALSE(rec.contains("smallest_near"));
+}
+
+TEST_CASE("advise refuses what it cannot answer", "[advise][cli][errors]") {
+  const std::string base = "advise -t standard -f unorm24 " + kSmallScene;
+  CHECK(run_cli(base + "--range 10,1000 --separation 0").exit_code == 3);
+  CHECK(run_cli(base + "--range -1,1000 --separation 1").exit_code == 3);
+  CHECK(run_cli(base + "--range 1000,10 --separation 1").exit_code == 3);
+  const auto both = run_cli(base + "--range 10,1000 --separation 1 --relative 1e-3");
+  CHECK(both.exit_code == 3);
+  CHECK_THAT(both.output, Contains("exactly one"));
+  const auto far = run_cli(base + "--range 10,1000 --separation 1 --far 500");
+  CHECK(far.exit_code == 3);
+  CHECK_THAT(far.output, Contains("far plane"));
+}
+
+TEST_CASE("advise shards merge to the bytes of one run", "[advise][cli][batch]") {
+  const std::string args =
+      "advise --range 10,1000 --relative 1e-4 -t standard,reversed -f "
+      "float32 " +
+      kSmallScene;
+  const std::string one = fresh("/tmp/depthprec_test_advise_one.json"),
+                    a = fresh("/tmp/depthprec_test_advise_1.json"),
+                    b = fresh("/tmp/depthprec_test_advise_2.json");
+  REQUIRE(run_cli(args + "--format-out json -o " + one).exit_code == 0);
+  REQUIRE(run_cli(args + "--shard 1/2 --format-out json -o " + a).exit_code == 0);
+  REQUIRE(run_cli(args + "--shard 2/2 --format-out json -o " + b).exit_code == 0);
+  const auto merged = run_cli("merge " + b + " " + a + " --no-timing --format-out json");
+  REQUIRE(merged.exit_code == 0);
+  CHECK(merged.output == test::slurp(one));
+}
