@@ -10,7 +10,9 @@
 namespace depthprec::test {
 
 inline OpenClRuntime& runtime() {
-  static OpenClRuntime rt;
+  // Never destroyed: a runtime closing at process exit would talk to PoCL after its compiler's
+  // statics are gone (storing program binaries asks PoCL to compile).
+  static OpenClRuntime& rt = *new OpenClRuntime;
   return rt;
 }
 

@@ -14,7 +14,9 @@ using namespace depthprec;
 
 namespace {
 OpenClRuntime& runtime() {
-  static OpenClRuntime rt;
+  // Never destroyed: a runtime closing at process exit would talk to PoCL after its compiler's
+  // statics are gone (storing program binaries asks PoCL to compile).
+  static OpenClRuntime& rt = *new OpenClRuntime;
   return rt;
 }
 }  // namespace

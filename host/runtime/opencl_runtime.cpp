@@ -92,7 +92,8 @@ std::vector<DeviceInfo> list_devices() {
   return out;
 }
 
-OpenClRuntime::OpenClRuntime(const std::string& selector_arg) {
+OpenClRuntime::OpenClRuntime(const std::string& selector_arg)
+    : binaries_(ProgramBinaryCache::from_environment()) {
   std::string selector = selector_arg;
   if (selector.empty()) {
     if (const char* env = std::getenv(kDeviceEnvVar)) selector = env;
@@ -170,25 +171,56 @@ cl::Program OpenClRuntime::program(const std::string& path, const std::string& o
   std::lock_guard<std::mutex> lock(programs_mutex_);
   const auto key = std::make_pair(path, options);
   const auto it = cache_.find(key);
-  if (it != cache_.end()) return it->second;
+  if (it != cache_.end()) return it->second.program;
   const std::string source = expand_embedded(path);
-  cl::Program program(context_, source);
-  try {
-    program.build({device_}, options.c_str());
-  } catch (const cl::Error& e) {
-    std::string log;
+  BuiltProgram built;
+  // Everything a binary depends on: a driver upgrade or an edited kernel is another key.
+  built.key =
+      fmt::format("{}\n{}\n{}\n{}\n{}\n{}\n{}", info_.platform_name, info_.platform_version,
+                  info_.device_name, device_.getInfo<CL_DRIVER_VERSION>(), path, options, source);
+  if (const auto binary = binaries_.load(built.key)) {
     try {
-      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+      cl::Program from_binary(context_, {device_}, cl::Program::Binaries{*binary});
+      from_binary.build({device_}, options.c_str());
+      built.program = from_binary;
+      built.loaded_bytes = binary->size();
     } catch (const cl::Error&) {
-      log = "(no build log)";
+      binaries_.forget(built.key);  // not loadable here after all: compiled again below
     }
-    throw RuntimeError(
-        fmt::format("building OpenCL program {} failed ({}) on {}\n  options: {}\n"
-                    "  build log:\n{}",
-                    path, e.err(), description(), options, log));
   }
-  cache_.emplace(key, program);
-  return program;
+  if (built.loaded_bytes == 0) {
+    built.program = cl::Program(context_, source);
+    try {
+      built.program.build({device_}, options.c_str());
+    } catch (const cl::Error& e) {
+      std::string log;
+      try {
+        log = built.program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+      } catch (const cl::Error&) {
+        log = "(no build log)";
+      }
+      throw RuntimeError(
+          fmt::format("building OpenCL program {} failed ({}) on {}\n  options: {}\n"
+                      "  build log:\n{}",
+                      path, e.err(), description(), options, log));
+    }
+  }
+  cache_.emplace(key, built);
+  return built.program;
+}
+
+OpenClRuntime::~OpenClRuntime() {
+  // Programs whose binary grew here (compiled from source, or new work-group functions) are
+  // kept for the next run; nothing a cache write does may fail the run that is ending.
+  if (!binaries_.writable()) return;  // exporting a binary compiles: only when it is kept
+  for (const auto& [name, built] : cache_) {
+    try {
+      const auto binaries = built.program.getInfo<CL_PROGRAM_BINARIES>();
+      if (!binaries.empty() && binaries.front().size() != built.loaded_bytes)
+        binaries_.store(built.key, binaries.front());
+    } catch (...) {
+    }
+  }
 }
 
 }  // namespace depthprec

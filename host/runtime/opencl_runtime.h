@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/runtime/cl.h"
+#include "host/runtime/program_cache.h"
 
 namespace depthprec {
 
@@ -54,7 +55,13 @@ class OpenClRuntime {
   // The program built from an embedded source (path relative to the project root) with the
   // given options; built once per (path, options) and kept. Throws RuntimeError with the build
   // log and the options on failure.
+  // A program compiled by an earlier run is loaded from the program binary cache
+  // (host/runtime/program_cache.h) instead; programs built here are stored there when the
+  // runtime closes, with the work-group functions their kernels' launches compiled.
   cl::Program program(const std::string& path, const std::string& options);
+  ~OpenClRuntime();
+  OpenClRuntime(const OpenClRuntime&) = delete;
+  OpenClRuntime& operator=(const OpenClRuntime&) = delete;
 
  private:
   DeviceInfo info_;
@@ -63,7 +70,13 @@ class OpenClRuntime {
   std::mutex queues_mutex_;
   std::map<std::thread::id, cl::CommandQueue> queues_;
   std::mutex programs_mutex_;
-  std::map<std::pair<std::string, std::string>, cl::Program> cache_;
+  struct BuiltProgram {
+    cl::Program program;
+    std::string key;          // its program binary cache key
+    size_t loaded_bytes = 0;  // the binary it was loaded from (0: compiled from source)
+  };
+  std::map<std::pair<std::string, std::string>, BuiltProgram> cache_;
+  ProgramBinaryCache binaries_;
 };
 
 // Work-group size of every 1-D launch: fixed, because PoCL compiles a kernel once per local size,
