@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "host/analysis/lj_tables.h"
+#include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/output/gnuplot.h"
 
@@ -28,6 +29,7 @@ constexpr const char* kLogTenY = "set logscale y 10\nset format y '10^{%L}'\n";
 
 void plot_mts(const std::vector<MtsRow>& rows, const std::string& title,
               const std::string& output) {
+  if (rows.empty()) throw InputError("plot: there are no MTS rows to plot");
   struct Series {
     std::vector<std::pair<double, double>> mts;  // z, mts
     std::vector<double> none;                    // z where the pair has no MTS
