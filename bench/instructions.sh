@@ -1,6 +1,6 @@
 #!/bin/sh
 # Instructions per timed repeat of mts_throughput's at_mts probes, per kernel, counted by callgrind:
-# exact and repeatable, where this VM's timings drift by +-15 % (docs/performance.md, session 8).
+# exact and repeatable, where this VM's timings drift by +-15 % (docs/performance.md).
 # PoCL under valgrind compiles its kernels for the CPU valgrind reports (AVX2, no AVX-512), so the
 # counts are of AVX2 code. The search that places the probes and the plane-A cache filling run
 # before the timed repeats; they cancel in the difference of a run with 3 repeats and one with 1.

@@ -114,16 +114,19 @@ nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPa
   // as `mts` would run it at that near plane: every checked distance's MTS within the separation.
   // Where one is not, the near plane moves up a step until it is.
   if (j.contains("smallest_near")) {
-    double n = j["smallest_near"].get<double>();
+    double n = j["smallest_near"].get<double>(), below = 0;
     const double top = r.z_min / kNearestContentMargin;
     int raised = 0;
-    while (!mts_within(rt, scene, pair, r, n) && n < top) {
+    bool within = mts_within(rt, scene, pair, r, n);
+    while (!within && n < top) {
+      below = n;
       n = std::min(top, n * (1 + r.near_precision));
       ++raised;
+      within = mts_within(rt, scene, pair, r, n);
     }
-    if (mts_within(rt, scene, pair, r, n)) {
+    if (within) {
       if (raised) {
-        j["next_near"] = n / (1 + r.near_precision);
+        j["next_near"] = below;
         j["holds_from_floor"] = false;
       }
       j["smallest_near"] = n;

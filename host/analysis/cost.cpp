@@ -39,13 +39,8 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
                       {"median_mts_over_vertex_bound", json_number(median)},
                       {"unresolvable_distances", unresolved},
                       {"structural_cost", structural_cost(scene, pair.technique)}};
-  if (info(pair.technique).lj_buffer && std::isfinite(scene.far)) {
-    LjConfig c;
-    c.buffer = parse_lj_buffer(info(pair.technique).lj_buffer);
-    c.near = scene.near;
-    c.far = scene.far;
-    j["lj_ae"] = json_number(lj_average_error_device(rt, c, scene.storage_format(pair)).ae);
-  }
+  if (const auto c = lj_config_for(pair.technique, scene.near, scene.far))
+    j["lj_ae"] = json_number(lj_average_error_device(rt, *c, scene.storage_format(pair)).ae);
   if (timing)
     j["ns_per_fragment_pair"] = time_depth_path(rt, scene, pair, TimingRegime::near).ns_per_pair();
   return j;

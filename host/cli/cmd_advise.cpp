@@ -1,4 +1,4 @@
-// advise: which set-ups meet the separation a scene's content needs, and the largest near plane
+// advise: which set-ups meet the separation a scene's content needs, and the smallest near plane
 // each affords (host/analysis/advise.h). A record batch: one record per pair, so it journals,
 // resumes, shards and merges as cost does.
 #include <fmt/format.h>

@@ -207,30 +207,27 @@ std::string render_compare_output(const json& header, const std::vector<json>& r
   const std::string none = full ? "" : "-";
   Cells cells;
   for (const auto& r : records) {
-    const auto num = [full](const json& v) {
-      return v.is_null() ? std::string(full ? "" : "-")
-             : full      ? exact(number_from_json(v, "compare"))
-                         : cell(v);
+    const auto num = [full, &none](const json& v) {
+      return v.is_null() ? none : full ? exact(number_from_json(v, "compare")) : cell(v);
     };
-    std::vector<std::string> row = {r.at("technique").get<std::string>(),
-                                    r.at("format").get<std::string>(),
-                                    r.at("depth_range").get<std::string>(),
-                                    num(r.at("z")),
-                                    num(r.at("emulated_mts")),
-                                    num(r.at("rendered_mts")),
-                                    r.contains("ratio")
-                                        ? (full ? exact(r["ratio"].get<double>())
-                                                : fmt::format("{:.3f}", r["ratio"].get<double>()))
-                                        : none,
-                                    r.at("emulated_verdict").get<std::string>(),
-                                    r.at("rendered_verdict").get<std::string>()};
+    std::vector<std::string> row = {
+        r.at("technique").get<std::string>(),
+        r.at("format").get<std::string>(),
+        r.at("depth_range").get<std::string>(),
+        num(r.at("z")),
+        num(r.at("emulated_mts")),
+        num(r.at("rendered_mts")),
+        r.contains("ratio") ? number_cell(r["ratio"].get<double>(), out.format_out, "{:.3f}")
+                            : none,
+        r.at("emulated_verdict").get<std::string>(),
+        r.at("rendered_verdict").get<std::string>()};
     if (timing) {
       const json& e = r.at("emulated");
       const json& d = r.at("rendered");
-      const auto seconds = [full, &none](const json& side) {
+      const auto seconds = [&out, &none](const json& side) {
         if (!side.contains("seconds")) return none;
         const double v = number_from_json(side["seconds"], "seconds");
-        return full ? exact(v) : fmt::format("{:.3f}", v);
+        return number_cell(v, out.format_out, "{:.3f}");
       };
       row.push_back(seconds(e));
       row.push_back(seconds(d));

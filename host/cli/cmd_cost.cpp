@@ -75,12 +75,12 @@ std::string render_cost_output(const nlohmann::json& header,
     std::vector<std::string> row = {r["technique"].get<std::string>(),
                                     r["format"].get<std::string>(),
                                     r["depth_range"].get<std::string>()};
-    const bool csv = out.format_out == "csv";
-    const std::string none = csv ? "" : "-";
+    const std::string none = out.format_out == "csv" ? "" : "-";
     if (timing)
-      row.push_back(!r.contains("ns_per_fragment_pair") ? none
-                    : csv ? exact(r["ns_per_fragment_pair"].get<double>())
-                          : fmt::format("{:.2f}", r["ns_per_fragment_pair"].get<double>()));
+      row.push_back(
+          r.contains("ns_per_fragment_pair")
+              ? number_cell(r["ns_per_fragment_pair"].get<double>(), out.format_out, "{:.2f}")
+              : none);
     row.push_back(number_cell(
         number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound"),
         out.format_out));

@@ -41,7 +41,7 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
 
   check_writable(o.out.output);
   const std::string& out = o.out.format_out;
-  const auto g7 = [&out](double v) { return out == "csv" ? exact(v) : fmt::format("{:.7g}", v); };
+  const auto g7 = [&out](double v) { return number_cell(v, out, "{:.7g}"); };
   nlohmann::json j = output_header("formats", "");
   j.erase("device");  // described on the host; --on-device adds the device below
   j.update({{"rounding", o.rounding}, {"denormals", o.denormals}});
@@ -49,8 +49,8 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
   for (const auto& f : formats) {
     const unsigned long long codes = static_cast<unsigned long long>(f.max_code()) + 1;
     fcells.push_back({f.name(), std::to_string(f.bits()), g7(f.smallest_positive()),
-                      out == "csv" ? exact(f.largest()) : fmt::format("{:.10g}", f.largest()),
-                      g7(f.spacing_at(0.5)), std::to_string(codes)});
+                      number_cell(f.largest(), out, "{:.10g}"), g7(f.spacing_at(0.5)),
+                      std::to_string(codes)});
     j["formats"].push_back({{"format", f.name()},
                             {"bits", f.bits()},
                             {"smallest_positive", json_number(f.smallest_positive())},
@@ -75,12 +75,12 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
       const double rel =
           d != 0.0f ? (stored - static_cast<double>(d)) / static_cast<double>(d) : 0.0;
       std::vector<std::string> row = {f.name(),
-                                      out == "csv" ? exact(v) : fmt::format("{:.17g}", v),
+                                      number_cell(v, out, "{:.17g}"),
                                       fmt::format("{:.17g}", d),
                                       std::to_string(code),
                                       fmt::format("{:#x}", code),
                                       fmt::format("{:.17g}", stored),
-                                      out == "csv" ? exact(rel) : fmt::format("{:.3e}", rel)};
+                                      number_cell(rel, out, "{:.3e}")};
       nlohmann::json t = {
           {"format", f.name()}, {"value", json_number(v)},       {"depth", json_number(d)},
           {"code", code},       {"stored", json_number(stored)}, {"rel_error", json_number(rel)}};

@@ -105,9 +105,7 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
   } else {
     const std::string& fmt_out = o.out.format_out;
     const auto num = [&fmt_out](double v) { return number_cell(v, fmt_out); };
-    const auto ms = [&fmt_out](double v) {
-      return fmt_out == "csv" ? exact(v) : fmt::format("{:.1f}", v);
-    };
+    const auto ms = [&fmt_out](double v) { return number_cell(v, fmt_out, "{:.1f}"); };
     std::vector<Column> cols = {{"metric", true}, {"ae"}};
     if (timing) cols.push_back({"ms"});
     cols.push_back({"notes", true});

@@ -96,8 +96,8 @@ std::string render_pipelines_output(const nlohmann::json& header,
   for (const auto& rec : records) {
     std::vector<std::string> row = {rec.at("pair").get<std::string>()};
     for (const auto& v : summarise(rec)) {
-      const auto num = [csv](double x) {
-        return std::isnan(x) ? (csv ? "" : "-") : csv ? exact(x) : fmt::format("{:.4g}", x);
+      const auto num = [csv, &out](double x) {
+        return std::isnan(x) ? (csv ? "" : "-") : number_cell(x, out.format_out, "{:.4g}");
       };
       row.push_back(num(v.median));
       row.push_back(num(v.farthest));

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -34,20 +33,13 @@ struct ReportOptions {
 };
 
 // The Lapidous-Jiao figure of every pair whose technique is one of LJ99's buffers, over the
-// scene's [near, far] (none for an infinite far plane: the metric normalises by f - d).
+// scene's [near, far].
 std::vector<LjFigure> lj_figures(const Scene& scene) {
   std::vector<LjFigure> out;
-  if (!std::isfinite(scene.far)) return out;
-  for (const auto& pair : scene.evaluate) {
-    const char* buffer = info(pair.technique).lj_buffer;
-    if (!buffer) continue;
-    LjConfig c;
-    c.buffer = parse_lj_buffer(buffer);
-    c.near = scene.near;
-    c.far = scene.far;
-    out.push_back(
-        {pair.label(), buffer, pair.format, lj_average_error(c, scene.storage_format(pair)).ae});
-  }
+  for (const auto& pair : scene.evaluate)
+    if (const auto c = lj_config_for(pair.technique, scene.near, scene.far))
+      out.push_back({pair.label(), info(pair.technique).lj_buffer, pair.format,
+                     lj_average_error(*c, scene.storage_format(pair)).ae});
   return out;
 }
 

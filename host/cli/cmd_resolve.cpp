@@ -37,8 +37,7 @@ void run_resolve(const ResolveOptions& o) {
     throw Error(ExitCode::usage, "resolve: give exactly one of --code N, --distance w or --curve");
   check_writable(o.out.output);
   std::string text;
-  const bool csv = o.out.format_out == "csv";
-  const auto digits = [csv](double v) { return csv ? exact(v) : fmt::format("{:.10g}", v); };
+  const auto digits = [&o](double v) { return number_cell(v, o.out.format_out, "{:.10g}"); };
   const auto gap = [&o](double v) { return number_cell(v, o.out.format_out); };
   // JSON: the set-up and the rows with every value a JSON number (json_number).
   nlohmann::json j = output_header("resolve", "");

@@ -91,9 +91,9 @@ std::string render_tradeoff_output(const nlohmann::json& header,
                                     csv ? exact(std::ldexp(1.0, -r.level.precision_log2))
                                         : fmt::format("2^-{}", r.level.precision_log2),
                                     std::to_string(r.pairs)};
-    if (timing) row.push_back(csv ? exact(r.seconds) : fmt::format("{:.2f}", r.seconds));
-    row.push_back(csv ? exact(r.median_err) : fmt::format("{:.3g}", r.median_err));
-    row.push_back(csv ? exact(r.max_err) : fmt::format("{:.3g}", r.max_err));
+    if (timing) row.push_back(number_cell(r.seconds, out.format_out, "{:.2f}"));
+    row.push_back(number_cell(r.median_err, out.format_out, "{:.3g}"));
+    row.push_back(number_cell(r.max_err, out.format_out, "{:.3g}"));
     row.push_back(std::to_string(r.verdict_changes));
     row.push_back(r.pareto ? "yes" : "");
     cells.push_back(row);

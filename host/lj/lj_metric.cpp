@@ -10,6 +10,15 @@
 
 namespace depthprec {
 
+std::optional<LjConfig> lj_config_for(Technique t, double near, double far) {
+  if (!info(t).lj_buffer || !std::isfinite(far)) return std::nullopt;
+  LjConfig c;
+  c.buffer = parse_lj_buffer(info(t).lj_buffer);
+  c.near = near;
+  c.far = far;
+  return c;
+}
+
 const char* to_string(LjBuffer b) {
   switch (b) {
     case LjBuffer::z:

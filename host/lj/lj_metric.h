@@ -3,6 +3,7 @@
 // parses the user's words, validates, and sums.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "host/model/storage_format.h"
@@ -49,6 +50,11 @@ struct LjResult {
 
 // From partial sums (in order): the shared finishing step of host and device.
 LjResult lj_finish(const LjConfig& c, const lj_partial* partials, size_t count);
+
+// The Lapidous-Jiao set-up a depth technique stands for over [near, far] (uniform sampling, the
+// default N): none when the technique is not one of LJ99's buffers, or far is infinite (the
+// metric normalises by f - d).
+std::optional<LjConfig> lj_config_for(Technique t, double near, double far);
 
 // Binary64 on the host.
 LjResult lj_average_error(const LjConfig& c, const StorageFormat& f);

@@ -122,10 +122,8 @@ std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
         continue;
       }
       const MtsRow& r = *it->second;
-      std::string text = table_cell(r, false);
+      const std::string text = table_cell(r, false) + dominant_mark(r);
       const bool resolved = r.verdict() == Verdict::resolved;
-      if (r.attributed() && (resolved || r.verdict() == Verdict::unresolvable))
-        text += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
       const std::string flags = r.flags();
       tr += cell(text, !resolved ? "none" : flags.empty() ? "num" : "num flag", flags);
       // A cell without a number shows its verdict already; the list names what a number hides.

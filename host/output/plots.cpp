@@ -22,6 +22,12 @@ std::string series_style(size_t i) {
   return fmt::format("lc rgb '{}' pt {}", kColours[i % 12], 4 + 2 * (i / 12));
 }
 
+// The first lines of every plot's script: the terminal the output's name asks for, and the output.
+std::string script_start(const std::string& output) {
+  return fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
+                     gnuplot_quote(output));
+}
+
 // Log axes labelled as powers of ten (gnuplot's enhanced text), never as 0.000010.
 constexpr const char* kLogTenY = "set logscale y 10\nset format y '10^{%L}'\n";
 
@@ -57,8 +63,7 @@ void plot_mts(const std::vector<MtsRow>& rows, const std::string& title,
   // Distances without an MTS are drawn as crosses along a band above every number, so a pair's
   // missing points are seen, not silently absent.
   const double top = std::max(highest, floor * 10) * 100;
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                                   gnuplot_quote(output));
+  std::string script = script_start(output);
   script += "set logscale x 2\nset format x '2^{%L}'\n";
   script += kLogTenY;
   script +=
@@ -99,8 +104,7 @@ void plot_mts(const std::vector<MtsRow>& rows, const std::string& title,
 }
 
 void plot_cost(const std::vector<CostPoint>& points, const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                                   gnuplot_quote(output));
+  std::string script = script_start(output);
   // Each point its own key entry: labels written beside points overlap where pairs cost alike.
   script +=
       "set grid\nset key outside right\nset xlabel 'kernel cost [ns per fragment pair]'\n"
@@ -122,8 +126,7 @@ void plot_cost(const std::vector<CostPoint>& points, const std::string& output) 
 }
 
 void plot_tradeoff(const std::vector<LevelResult>& results, const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                                   gnuplot_quote(output));
+  std::string script = script_start(output);
   // Drawn on the axis the Pareto front is computed on (fragment pairs, which a run repeats
   // exactly), and each level its own key entry, so no label covers another.
   script +=
@@ -158,8 +161,7 @@ void plot_tradeoff(const std::vector<LevelResult>& results, const std::string& o
 
 void plot_lj_table(const std::map<std::string, nlohmann::json>& records,
                    const std::string& output) {
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                                   gnuplot_quote(output));
+  std::string script = script_start(output);
   script +=
       "set multiplot layout 2,2 title 'Lapidous-Jiao average error, 16-bit buffers, uniform "
       "sampling' noenhanced\n"
@@ -213,8 +215,7 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
       hi = std::max(hi, q);
     }
   }
-  std::string script = fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                                   gnuplot_quote(output));
+  std::string script = script_start(output);
   for (size_t i = 0; i < order.size(); ++i) {
     script += fmt::format("$m{} << EOD\n", i);
     for (const auto& p : series[order[i]].mts)

@@ -33,6 +33,10 @@ std::string exact(double v) {
   return fmt::format("{:.17g}", v);
 }
 
+std::string number_cell(double v, const std::string& format, const char* text) {
+  return format == "csv" ? exact(v) : fmt::format(fmt::runtime(text), v);
+}
+
 namespace {
 
 json header(const Scene& scene, const RunInfo& run) {
@@ -79,6 +83,12 @@ std::string table_cell(const MtsRow& r, bool full) {
       return "before near";
   }
   return "?";
+}
+
+std::string dominant_mark(const MtsRow& r) {
+  const bool has_number = r.verdict() == Verdict::resolved || r.verdict() == Verdict::unresolvable;
+  if (!r.attributed() || !has_number) return "";
+  return " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
 }
 
 std::string footer(const RunInfo& run) {
@@ -170,8 +180,8 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
       c.push_back(r.dominant + (r.factor_above_mts(scene.rel_precision) ? " (factor > mts)" : ""));
     }
     if (run.timing) {
-      c.push_back(full ? exact(r.seconds) : fmt::format("{:.3f}", r.seconds));
-      c.push_back(full ? exact(r.kernel_seconds) : fmt::format("{:.3f}", r.kernel_seconds));
+      c.push_back(number_cell(r.seconds, format, "{:.3f}"));
+      c.push_back(number_cell(r.kernel_seconds, format, "{:.3f}"));
       if (rendered) c.push_back(full ? exact(r.frames_per_second) : human(r.frames_per_second));
     }
     c.push_back(r.flags());
@@ -228,9 +238,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         if (attributed) c.push_back(r.dominant);
         continue;
       }
-      if (r.attributed() &&
-          (r.verdict() == Verdict::resolved || r.verdict() == Verdict::unresolvable))
-        v += " " + std::string(1, static_cast<char>(std::toupper(r.dominant[0])));
+      v += dominant_mark(r);
       if (r.below_one_code) {
         v += "~";
         any_below_code = true;

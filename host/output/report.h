@@ -37,14 +37,19 @@ struct RunInfo {
 
 std::string human(double v);  // 4 significant digits, "inf", "0"
 std::string exact(double v);  // round-trippable binary64
-// A number as `format` prints it: exact in CSV (a data format), human in text and Markdown.
+// A number as `format` prints it: exact in CSV (a data format), in text and Markdown as human()
+// does or as the fmt spec `text` says ("{:.3f}").
 inline std::string number_cell(double v, const std::string& format) {
   return format == "csv" ? exact(v) : human(v);
 }
+std::string number_cell(double v, const std::string& format, const char* text);
 
 // A table cell: the MTS, or the verdict that replaces it (unresolvable stays "inf", Gilg's ∞);
 // exact digits when full, else 4 significant ones.
 std::string table_cell(const MtsRow& r, bool full);
+// " S", " A" or " V" after a table cell: the dominant factor of an attributed row whose cell is
+// its MTS or inf ("" otherwise: a verdict such as clipped has no factor to name).
+std::string dominant_mark(const MtsRow& r);
 // The line under a table: the work done, and the time it took when measured.
 std::string footer(const RunInfo& run);
 

@@ -116,10 +116,6 @@ std::string one_grid(const std::vector<Column>& cols, const Cells& cells, bool m
   return out;
 }
 
-}  // namespace
-
-namespace {
-
 // RFC 4180: a field holding a comma, a quote or a line break is quoted, its quotes doubled.
 std::string csv_field(const std::string& f) {
   if (f.find_first_of(",\"\n\r") == std::string::npos) return f;
@@ -150,14 +146,9 @@ std::string render_cells(const std::vector<Column>& cols, const Cells& cells,
   return grid(cols, cells, format == "markdown");
 }
 
-}  // namespace depthprec
-
-namespace depthprec {
-
 std::string captioned(const std::string& caption, const std::vector<Column>& cols,
                       const Cells& cells, const std::string& format) {
-  if (format == "csv") return csv(cols, cells);
-  return caption + "\n\n" + grid(cols, cells, format == "markdown");
+  return (format == "csv" ? "" : caption + "\n\n") + render_cells(cols, cells, format);
 }
 
 }  // namespace depthprec
