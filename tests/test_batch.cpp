@@ -181,6 +181,9 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
       {"tradeoff",
        "tradeoff -t reversed -f float32 --depth-range zero_to_one --distances 2,1024 --no-timing "
        "--format-out json"},
+      {"pipelines",
+       "pipelines -t standard,reversed,linear,log_fragment -f unorm24 --distances 2,1024,1048576 "
+       "--kernel 60x60 --frames 20 --no-timing --format-out json"},
       // The rendered batches (llvmpipe here): rows of `render`, records of `compare`.
       {"render",
        "render -t standard,reversed,linear -f unorm24 --distances 2,1024,1048576 --kernel 64x64 "

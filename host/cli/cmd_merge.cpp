@@ -9,6 +9,7 @@
 #include "host/base/errors.h"
 #include "host/batch/batch.h"
 #include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
 #include "host/output/row_json.h"
@@ -128,10 +129,28 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
   write_output(o.out.output, text);
 }
 
-// lj-table, tradeoff, cost, pipelines: shard i/N holds the units k = i - 1, i - 1 + N, ... in
-// order, so the whole batch's records interleave the shards'.
+// The record batches merge joins: how each renders, and what its JSON derives from the records
+// (records_json's `derived`), which merge derives again rather than compares between shards.
+struct RecordKind {
+  RecordRenderer render;
+  std::vector<std::string> derived;
+};
+const std::map<std::string, RecordKind>& record_kinds() {
+  static const std::map<std::string, RecordKind> kinds = {
+      {"lj-table", {render_lj_table_output, {}}},
+      {"tradeoff", {render_tradeoff_output, {"levels"}}},
+      {"cost", {render_cost_output, {}}},
+      {"pipelines", {render_pipelines_output, {"summary"}}},
+      {"compare", {render_compare_output, {"summary", "pairs"}}},
+      {"advise", {render_advise_output, {"ranking"}}}};
+  return kinds;
+}
+
+// Shard i/N holds the units k = i - 1, i - 1 + N, ... in order, so the whole batch's records
+// interleave the shards'.
 void merge_records(const MergeOptions& o, const std::string& kind,
                    const std::vector<nlohmann::json>& docs) {
+  const RecordKind& batch = record_kinds().at(kind);
   std::map<int, std::vector<nlohmann::json>> parts;  // shard index -> records
   nlohmann::json header;
   for (size_t k = 0; k < docs.size(); ++k) {
@@ -145,13 +164,11 @@ void merge_records(const MergeOptions& o, const std::string& kind,
   for (size_t k = 0; k < docs.size(); ++k) {
     const nlohmann::json& j = docs[k];
     nlohmann::json h = j;
-    // What the records derive (tradeoff's levels, compare's summaries, advise's ranking) is
-    // derived again; times measured by one shard's process do not describe the merged batch.
-    std::vector<std::string> drop = {"records", "shard", "device"};
-    if (kind == "tradeoff") drop.push_back("levels");
-    if (kind == "advise") drop.push_back("ranking");
-    if (kind == "compare")
-      drop.insert(drop.end(), {"summary", "pairs", "emulated_seconds", "rendered_seconds"});
+    // What the records derive is derived again; times measured by one shard's process do not
+    // describe the merged batch.
+    std::vector<std::string> drop = {"records", "shard", "device", "emulated_seconds",
+                                     "rendered_seconds"};
+    drop.insert(drop.end(), batch.derived.begin(), batch.derived.end());
     for (const auto& key : drop) h.erase(key);
     if (header.is_null()) {
       header = h;
@@ -177,20 +194,7 @@ void merge_records(const MergeOptions& o, const std::string& kind,
       }
     if (!any) break;
   }
-  std::string text;
-  if (kind == "lj-table")
-    text = render_lj_table_output(header, records, o.out);
-  else if (kind == "tradeoff")
-    text = render_tradeoff_output(header, records, o.out);
-  else if (kind == "pipelines")
-    text = render_pipelines_output(header, records, o.out);
-  else if (kind == "compare")
-    text = render_compare_output(header, records, o.out);
-  else if (kind == "advise")
-    text = render_advise_output(header, records, o.out);
-  else
-    text = render_cost_output(header, records, o.out);
-  write_output(o.out.output, for_terminal(text, o.out.format_out));
+  write_output(o.out.output, for_terminal(batch.render(header, records, o.out), o.out.format_out));
 }
 
 void run_merge(const MergeOptions& o) {
@@ -199,8 +203,7 @@ void run_merge(const MergeOptions& o) {
   std::vector<nlohmann::json> docs;
   for (const auto& f : o.files) docs.push_back(read_json(f));
   const std::string kind = docs.front().value("kind", "mts");
-  if (kind == "lj-table" || kind == "tradeoff" || kind == "cost" || kind == "pipelines" ||
-      kind == "compare" || kind == "advise")
+  if (record_kinds().count(kind))
     merge_records(o, kind, docs);
   else
     merge_rows(o, docs);
