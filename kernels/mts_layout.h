@@ -49,6 +49,7 @@
 #define T_YMIN 21
 #define T_YMAX 22
 #define T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
+#define T_BIAS 26 /* the triangle's depth bias (kernels/bias.cl only) */
 #define T_BOX 28  /* int4: the kernel pixels the triangle may own (kernel_pixel_box) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
@@ -58,6 +59,11 @@
 #define C_RANGE 18
 #define C_LOGK 19
 #define C_LOGL 20
+/* kernels/bias.cl: the probe's bias (kernels/bias_formula.h depth_bias's units_term, factor,
+ * clamp), signed as the application sets them */
+#define C_BIAS_UNITS 21
+#define C_BIAS_FACTOR 22
+#define C_BIAS_CLAMP 23
 #define MAT_STRIDE 16 /* a 4x4 matrix, row-major */
 
 /* A plane's flags (vflags): non-finite vertices; the coverage certificate (covers_kernel). */

@@ -13,7 +13,7 @@ using Catch::Matchers::Contains;
 
 TEST_CASE("kernel programs expand to sources without a quoted include", "[kernels]") {
   for (const char* program : {"kernels/mts.cl", "kernels/mts_test.cl", "kernels/mts_exact.cl",
-                              "kernels/lj.cl", "kernels/encode.cl"}) {
+                              "kernels/lj.cl", "kernels/encode.cl", "kernels/bias.cl"}) {
     INFO(program);
     const std::string source = expand_embedded(program);
     CHECK(source.find("#include \"") == std::string::npos);

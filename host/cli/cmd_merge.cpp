@@ -142,7 +142,8 @@ const std::map<std::string, RecordKind>& record_kinds() {
       {"cost", {render_cost_output, {}}},
       {"pipelines", {render_pipelines_output, {"summary"}}},
       {"compare", {render_compare_output, {"summary", "pairs"}}},
-      {"advise", {render_advise_output, {"ranking"}}}};
+      {"advise", {render_advise_output, {"ranking"}}},
+      {"bias", {render_bias_output, {}}}};
   return kinds;
 }
 

@@ -35,6 +35,7 @@ void add_compare_command(CLI::App& app, GlobalOptions& global);
 void add_pipelines_command(CLI::App& app, GlobalOptions& global);
 void add_report_command(CLI::App& app, GlobalOptions& global);
 void add_advise_command(CLI::App& app, GlobalOptions& global);
+void add_bias_command(CLI::App& app, GlobalOptions& global);
 
 // The record batches (lj-table, tradeoff, cost, pipelines) render their output from a header (what
 // their JSON output carries besides the records) and the records, so `merge` renders joined shards
@@ -57,5 +58,8 @@ std::string render_cost_output(const nlohmann::json& header,
 std::string render_advise_output(const nlohmann::json& header,
                                  const std::vector<nlohmann::json>& records,
                                  const OutputOptions& out);
+std::string render_bias_output(const nlohmann::json& header,
+                               const std::vector<nlohmann::json>& records,
+                               const OutputOptions& out);
 
 }  // namespace depthprec::cli

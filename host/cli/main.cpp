@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   cli::add_compare_command(app, global);
   cli::add_report_command(app, global);
   cli::add_advise_command(app, global);
+  cli::add_bias_command(app, global);
   global.command_line = "depthprec";
   for (int i = 1; i < argc; ++i) global.command_line += std::string(" ") + argv[i];
   try {

@@ -36,13 +36,21 @@ Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
   return P;
 }
 
+// tilt (radians) turns the plane about x on top of the frame's rotation; its side along y then
+// grows so that its far half, seen obliquely, still reaches past the view's edge:
+// h cos t / (D + h sin t) >= tan(fov/2) for the half side h.
 template <class T>
-Mat<T> model(const Scene& s, double D, int frame) {
+Mat<T> model(const Scene& s, double D, int frame, double tilt = 0) {
   const auto ang = frame_angles(s, frame);
   const T dist = static_cast<T>(D);
   const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
   const T side = static_cast<T>(s.plane_margin) * T(2) * dist * std::tan(half_fov);
-  const T cx = std::cos(static_cast<T>(ang[0])), sx = std::sin(static_cast<T>(ang[0]));
+  const double ax = tilt == 0 ? ang[0] : ang[0] + tilt;
+  const T side_y = tilt == 0
+                       ? side
+                       : static_cast<T>(s.plane_margin * 2 * D * std::tan(half_fov) /
+                                        (std::cos(tilt) - std::tan(half_fov) * std::sin(tilt)));
+  const T cx = std::cos(static_cast<T>(ax)), sx = std::sin(static_cast<T>(ax));
   const T cy = std::cos(static_cast<T>(ang[1])), sy = std::sin(static_cast<T>(ang[1]));
   const T cz = std::cos(static_cast<T>(ang[2])), sz = std::sin(static_cast<T>(ang[2]));
   Mat<T> Rx(T(1)), Ry(T(1)), Rz(T(1)), S(T(1)), Tr(T(1));
@@ -59,7 +67,7 @@ Mat<T> model(const Scene& s, double D, int frame) {
   Rz[0][1] = sz;
   Rz[1][1] = cz;
   S[0][0] = side;
-  S[1][1] = side;
+  S[1][1] = side_y;
   Tr[3][2] = -dist;
   return Tr * (Rx * Ry * Rz) * S;
 }
@@ -119,17 +127,17 @@ ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z) {
              : constants<double>(s, geometry, n, f);
 }
 
-Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame) {
+Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame, double tilt) {
   const bool premult = s.pipeline.compose == Compose::premultiplied;
   if (s.pipeline.matrix_precision == MatrixPrecision::single) {
-    const Mat<float> M = model<float>(s, D, frame);
+    const Mat<float> M = model<float>(s, D, frame, tilt);
     if (!premult) return to_row_major(M);
     Mat<float> P;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c) P[c][r] = pc.P[r * 4 + c];
     return to_row_major(Mat<float>(P * M));
   }
-  const Mat<double> M = model<double>(s, D, frame);
+  const Mat<double> M = model<double>(s, D, frame, tilt);
   if (!premult) return to_row_major(M);
   Mat<double> P;  // the binary64 P, so P * MV is rounded once, at the end
   for (int r = 0; r < 4; ++r)

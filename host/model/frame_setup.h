@@ -33,8 +33,11 @@ ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double 
 std::array<double, 3> frame_angles(const Scene& scene, int frame);
 
 // Model-view of a plane at requested distance D (binary64: z for plane A, z + s for plane B) in
-// frame k; with compose = premultiplied, P * MV instead.
-Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame);
+// frame k; with compose = premultiplied, P * MV instead. tilt (radians, `bias --tilt`) turns the
+// plane about the view's x axis on top of the frame's rotation, and lengthens it along y to
+// cover the view still.
+Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame,
+                   double tilt = 0);
 
 // The model matrix of a plane at distance D in frame k in binary64, never rounded: the exact
 // geometry of the storage-limited pipeline. Row-major.

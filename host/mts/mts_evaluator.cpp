@@ -35,13 +35,6 @@ cl::NDRange padded(size_t n) {
   return cl::NDRange(padded_size(n));
 }
 
-// A read-only device copy of a host array.
-template <class T>
-cl::Buffer buffer_of(const cl::Context& context, const std::vector<T>& v) {
-  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * v.size(),
-                    const_cast<T*>(v.data()));
-}
-
 }  // namespace
 
 int batch_frames(int done, int total) {
@@ -187,13 +180,6 @@ cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>
   ++launches_;
   return done;
 }
-
-namespace {
-double device_seconds(const cl::Event& e) {
-  return 1e-9 * static_cast<double>(e.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
-                                    e.getProfilingInfo<CL_PROFILING_COMMAND_START>());
-}
-}  // namespace
 
 std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probes,
                                                  const std::vector<size_t>& active,

@@ -5,6 +5,7 @@
 
 #include "host/model/frame_setup.h"
 #include "host/runtime/kernel_variant.h"
+#include "kernels/bias_formula.h"
 
 namespace depthprec {
 
@@ -23,6 +24,14 @@ struct Triangle {
   Edge e[3];
   bool valid;
   float x0, y0, d0, dzdx, dzdy, q0, dqdx, dqdy, ymin, ymax;
+  float bias;  // the depth bias added to its fragments (plane B of the bias measurement)
+};
+
+// What a plane's triangles add to their fragments' depth: nothing (the MTS planes), or a depth
+// bias (kernels/bias_formula.h depth_bias's arguments).
+struct BiasTerms {
+  float units_term = 0, factor = 0, clamp = 0;
+  int float_rule = 0, slope_form = BIAS_SLOPE_MAX;
 };
 
 enum Status { ok = 0, clipped = 1, non_finite = 2, uncovered = 3 };
@@ -32,7 +41,10 @@ struct Plane {
   bool non_finite = false;
 };
 
-Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, const Mat4f& M) {
+// flip: each quad split along its other diagonal (b to d), as kernels/mts/setup.cl's
+// triangle_vertices does for the bias measurement's overlay; bias: its offsets, or none.
+Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, const Mat4f& M,
+                  bool flip = false, const BiasTerms* bias = nullptr) {
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const bool gl = pair.depth_range == DepthRange::gl;
   const int g = s.plane_subdivisions;
@@ -73,7 +85,11 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
   for (int t = 0; t < 2 * g * g; ++t) {
     const int quad = t / 2, qi = quad % g, qj = quad / g;
     const int a = qj * (g + 1) + qi, b = a + 1, c = a + g + 2, d = a + g + 1;
-    const int vi[3] = {a, (t & 1) ? c : b, (t & 1) ? d : c};
+    int vi[3] = {a, (t & 1) ? c : b, (t & 1) ? d : c};
+    if (flip) {
+      const int fb[3] = {a, b, d}, fo[3] = {b, c, d};
+      for (int k = 0; k < 3; ++k) vi[k] = (t & 1) ? fo[k] : fb[k];
+    }
     Triangle tri{};
     for (int e = 0; e < 3; ++e) {
       const int va = vi[e], vb = vi[(e + 1) % 3];
@@ -106,6 +122,13 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
     tri.dqdy = (e2q * e1x - e1q * e2x) / det;
     tri.ymin = std::fmin(std::fmin(v0.y, v1.y), v2.y);
     tri.ymax = std::fmax(std::fmax(v0.y, v1.y), v2.y);
+    tri.bias = 0;
+    if (bias) {
+      tri.bias =
+          depth_bias(bias->units_term, bias->float_rule, bias->factor, bias->clamp,
+                     depth_bias_slope(tri.dzdx, tri.dzdy, bias->slope_form), v0.d, v1.d, v2.d);
+      if (!std::isfinite(tri.bias)) plane.non_finite = true;
+    }
     plane.tris.push_back(tri);
   }
   return plane;
@@ -140,7 +163,8 @@ class PlaneRow {
 };
 
 Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
-                const ProbeConstants& pc, const Triangle& t, float px, float py, uint32_t& code) {
+                const ProbeConstants& pc, const Triangle& t, float px, float py, uint32_t& code,
+                bool biased = false) {
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const float tx = px - t.x0, ty = py - t.y0;
   float d;
@@ -166,6 +190,7 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
     d = (t.d0 + t.dzdx * tx) + t.dzdy * ty;
     if (!std::isfinite(d)) return non_finite;
     if (!(d >= 0.0f && d <= 1.0f)) return clipped;
+    if (biased) d = std::fmin(std::fmax(d + t.bias, 0.0f), 1.0f);  // the offset, then the clamp
   }
   code = fmt.encode(d);
   return ok;
@@ -201,6 +226,57 @@ FrameCodes reference_frame(const Scene& s, const EvalPair& pair, const Probe& pr
     }
   }
   return fc;
+}
+
+BiasFrame reference_bias_frame(const Scene& s, const EvalPair& pair, const BiasOptions& options,
+                               const BiasProbe& probe, int frame) {
+  const StorageFormat fmt = s.storage_format(pair);
+  const BiasRule rule = bias_rule(options, fmt);
+  const ProbeConstants pc = probe_constants(s, pair, probe.z);
+  const Mat4f m = plane_matrix(s, pc, probe.z, frame, options.tilt_deg * M_PI / 180.0);
+  BiasTerms terms;
+  terms.units_term = rule.units_term(probe.units);
+  terms.float_rule = rule.float_rule ? 1 : 0;
+  terms.factor = static_cast<float>(probe.factor);
+  terms.clamp = static_cast<float>(options.clamp);
+  terms.slope_form = options.slope == SlopeForm::sqrt ? BIAS_SLOPE_SQRT : BIAS_SLOPE_MAX;
+  const Plane a = setup_plane(s, pair, pc, m);
+  const Plane b = setup_plane(s, pair, pc, m, true, &terms);
+  const bool greater = info(depth_path(s, pair.technique)).greater;
+  const float ox = static_cast<float>((s.viewport_w - s.kernel_w) / 2);
+  const float oy = static_cast<float>((s.viewport_h - s.kernel_h) / 2);
+  BiasFrame out;
+  if (a.non_finite || b.non_finite) {
+    out.non_finite = true;
+    return out;
+  }
+  for (int y = 0; y < s.kernel_h; ++y) {
+    const float py = oy + static_cast<float>(y) + 0.5f;
+    PlaneRow ra(a, py), rb(b, py);
+    for (int x = 0; x < s.kernel_w; ++x) {
+      const float px = ox + static_cast<float>(x) + 0.5f;
+      const int ta = ra.find(px, py), tb = rb.find(px, py);
+      if (ta < 0 || tb < 0) {
+        out.uncovered = true;
+        continue;
+      }
+      uint32_t ca = 0, cb = 0;
+      const Status sa = fragment(s, pair, fmt, pc, a.tris[ta], px, py, ca);
+      const Status sb = fragment(s, pair, fmt, pc, b.tris[tb], px, py, cb, true);
+      if (sa == non_finite || sb == non_finite) {
+        out.non_finite = true;
+        continue;
+      }
+      if (sa == clipped || sb == clipped) {
+        out.clipped = true;
+        continue;
+      }
+      const bool passes = greater ? (options.or_equal ? cb >= ca : cb > ca)
+                                  : (options.or_equal ? cb <= ca : cb < ca);
+      if (!passes) out.fight = true;
+    }
+  }
+  return out;
 }
 
 }  // namespace depthprec

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
@@ -118,19 +119,25 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
       xy.push_back(static_cast<float>(i) / static_cast<float>(g) - 0.5f);
       xy.push_back(static_cast<float>(j) / static_cast<float>(g) - 0.5f);
     }
-  std::vector<GLuint> idx;
+  // The bias measurement's overlay splits each quad along the other diagonal, (a, b, d) and
+  // (b, c, d), as kernels/mts/setup.cl's triangle_vertices does.
+  std::vector<GLuint> idx, flipped;
   for (int qj = 0; qj < g; ++qj)
     for (int qi = 0; qi < g; ++qi) {
       const GLuint a = static_cast<GLuint>(qj * (g + 1) + qi), b = a + 1,
                    c = a + static_cast<GLuint>(g) + 2, d = a + static_cast<GLuint>(g) + 1;
       idx.insert(idx.end(), {a, b, c, a, c, d});
+      flipped.insert(flipped.end(), {a, b, d, b, c, d});
     }
   index_count_ = static_cast<int>(idx.size());
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);
+  glCreateBuffers(1, &ibo_flipped_);
   glNamedBufferStorage(vbo_, static_cast<GLsizeiptr>(xy.size() * sizeof(float)), xy.data(), 0);
   glNamedBufferStorage(ibo_, static_cast<GLsizeiptr>(idx.size() * sizeof(GLuint)), idx.data(), 0);
+  glNamedBufferStorage(ibo_flipped_, static_cast<GLsizeiptr>(flipped.size() * sizeof(GLuint)),
+                       flipped.data(), 0);
   glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 2 * sizeof(float));
   glVertexArrayElementBuffer(vao_, ibo_);
   glEnableVertexArrayAttrib(vao_, 0);
@@ -147,6 +154,7 @@ RenderEvaluator::~RenderEvaluator() {
   }
   glDeleteBuffers(1, &vbo_);
   glDeleteBuffers(1, &ibo_);
+  glDeleteBuffers(1, &ibo_flipped_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteProgram(program_);
 }
@@ -169,10 +177,7 @@ void RenderEvaluator::grow_targets(size_t n) {
   check_gl("creating framebuffers");
 }
 
-void RenderEvaluator::draw(const Probe& probe, int frame, const Target& t) {
-  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
-  const Mat4f ma = plane_matrix(scene_, pc, probe.z, frame);
-  const Mat4f mb = plane_matrix(scene_, pc, probe.z + probe.s, frame);
+void RenderEvaluator::begin_frame(const ProbeConstants& pc, const Target& t) {
   const bool greater = info(depth_path(scene_, pair_.technique)).greater;
   const int ox = (scene_.viewport_w - scene_.kernel_w) / 2;
   const int oy = (scene_.viewport_h - scene_.kernel_h) / 2;
@@ -204,6 +209,16 @@ void RenderEvaluator::draw(const Probe& probe, int frame, const Target& t) {
   glUniform1f(loc_range_, pc.range);
   glUniform1f(loc_vlogk_, pc.log_k);
   glUniform1f(loc_vlogl_, pc.log_L);
+  glVertexArrayElementBuffer(vao_, ibo_);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void RenderEvaluator::draw(const Probe& probe, int frame, const Target& t) {
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const Mat4f ma = plane_matrix(scene_, pc, probe.z, frame);
+  const Mat4f mb = plane_matrix(scene_, pc, probe.z + probe.s, frame);
+  const bool greater = info(depth_path(scene_, pair_.technique)).greater;
+  begin_frame(pc, t);
 
   // Plane A, with the depth test against the cleared buffer, writing depth.
   glEnable(GL_DEPTH_TEST);
@@ -240,9 +255,9 @@ std::vector<uint8_t> RenderEvaluator::read(const Target& t) {
   return bits;
 }
 
-bool RenderEvaluator::leaves_depth_range(const Probe& probe, double D, int frame) const {
-  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
-  const Mat4f m = plane_matrix(scene_, pc, D, frame);
+bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double tilt) const {
+  const ProbeConstants pc = probe_constants(scene_, pair_, z);
+  const Mat4f m = plane_matrix(scene_, pc, D, frame, tilt);
   const bool gl = pair_.depth_range == DepthRange::gl;
   const bool log_vertex = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
   const int g = scene_.plane_subdivisions;
@@ -265,14 +280,76 @@ bool RenderEvaluator::leaves_depth_range(const Probe& probe, double D, int frame
 }
 
 std::vector<ProbeResult> RenderEvaluator::run(const std::vector<Probe>& probes) {
+  std::vector<double> z;
+  for (const Probe& p : probes) z.push_back(p.z);
+  return run_rounds(
+      z, [&](size_t i, int frame, const Target& t) { draw(probes[i], frame, t); },
+      [](uint8_t b) { return (b & a_covers) && (b & b_shows); },
+      [&](size_t i, int frame) {
+        return leaves_depth_range(probes[i].z, probes[i].z, frame) ||
+               leaves_depth_range(probes[i].z, probes[i].z + probes[i].s, frame);
+      });
+}
+
+void RenderEvaluator::draw_bias(const BiasProbe& probe, const BiasOptions& o, int frame,
+                                const Target& t) {
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const Mat4f m = plane_matrix(scene_, pc, probe.z, frame, o.tilt_deg * M_PI / 180.0);
+  const bool greater = info(depth_path(scene_, pair_.technique)).greater;
+  const GLenum func =
+      greater ? (o.or_equal ? GL_GEQUAL : GL_GREATER) : (o.or_equal ? GL_LEQUAL : GL_LESS);
+  begin_frame(pc, t);
+  glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, m.data());
+  // Plane A, writing depth.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(func);
+  glColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  // The overlay: the same plane tessellated the other way, offset as the application sets it.
+  glVertexArrayElementBuffer(vao_, ibo_flipped_);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  if (o.clamp != 0)
+    glPolygonOffsetClamp(static_cast<float>(probe.factor), static_cast<float>(probe.units),
+                         static_cast<float>(bias_sign(scene_, pair_) * o.clamp));
+  else
+    glPolygonOffset(static_cast<float>(probe.factor), static_cast<float>(probe.units));
+  glDepthMask(GL_FALSE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_TRUE, GL_FALSE);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glDisable(GL_DEPTH_TEST);
+  glColorMask(GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glVertexArrayElementBuffer(vao_, ibo_);
+  glFlush();
+}
+
+std::vector<ProbeResult> RenderEvaluator::run_bias(const std::vector<BiasProbe>& probes,
+                                                   const BiasOptions& o) {
+  std::vector<double> z;
+  for (const BiasProbe& p : probes) z.push_back(p.z);
+  const double tilt = o.tilt_deg * M_PI / 180.0;
+  return run_rounds(
+      z, [&](size_t i, int frame, const Target& t) { draw_bias(probes[i], o, frame, t); },
+      // the overlay lost the depth test where both planes cover the pixel
+      [](uint8_t b) { return (b & a_covers) && (b & b_covers) && !(b & b_shows); },
+      [&](size_t i, int frame) {
+        return leaves_depth_range(probes[i].z, probes[i].z, frame, tilt);
+      });
+}
+
+std::vector<ProbeResult> RenderEvaluator::run_rounds(
+    const std::vector<double>& z, const std::function<void(size_t, int, const Target&)>& draw_frame,
+    const std::function<bool(uint8_t)>& pixel_fights,
+    const std::function<bool(size_t, int)>& leaves_range) {
   const int frames = scene_.frames;
   const uint64_t kernel_pixels =
       static_cast<uint64_t>(scene_.kernel_w) * static_cast<uint64_t>(scene_.kernel_h);
-  std::vector<ProbeResult> results(probes.size());
-  std::vector<bool> decided(probes.size(), false);
-  std::vector<int> done(probes.size(), 0), first(probes.size(), 0);
-  for (size_t i = 0; i < probes.size(); ++i) {
-    const auto it = last_fight_frame_.find(probes[i].z);
+  std::vector<ProbeResult> results(z.size());
+  std::vector<bool> decided(z.size(), false);
+  std::vector<int> done(z.size(), 0), first(z.size(), 0);
+  for (size_t i = 0; i < z.size(); ++i) {
+    const auto it = last_fight_frame_.find(z[i]);
     if (it != last_fight_frame_.end()) first[i] = it->second;
   }
   const size_t target_bytes =
@@ -300,7 +377,7 @@ std::vector<ProbeResult> RenderEvaluator::run(const std::vector<Probe>& probes) 
       const auto t0 = std::chrono::steady_clock::now();
       for (size_t k = 0; k < n; ++k) {
         const Job& j = jobs[c + k];
-        draw(probes[j.probe], (first[j.probe] + j.visit) % frames, targets_[k]);
+        draw_frame(j.probe, (first[j.probe] + j.visit) % frames, targets_[k]);
       }
       for (size_t k = 0; k < n; ++k) seen[c + k] = read(targets_[k]);
       const double secs =
@@ -312,7 +389,7 @@ std::vector<ProbeResult> RenderEvaluator::run(const std::vector<Probe>& probes) 
         r.seconds += secs / static_cast<double>(n);
         r.kernel_seconds = r.seconds;
       }
-      std::vector<bool> counted(probes.size(), false);
+      std::vector<bool> counted(z.size(), false);
       for (size_t k = 0; k < n; ++k)
         if (!counted[jobs[c + k].probe]) {
           counted[jobs[c + k].probe] = true;
@@ -329,12 +406,11 @@ std::vector<ProbeResult> RenderEvaluator::run(const std::vector<Probe>& probes) 
       r.fragment_pairs += kernel_pixels;
       bool fight = false, uncovered = false;
       for (uint8_t b : seen[k]) {
-        if ((b & a_covers) && (b & b_shows)) fight = true;
+        if (pixel_fights(b)) fight = true;
         if ((b & (a_covers | b_covers)) != (a_covers | b_covers)) uncovered = true;
       }
       if (uncovered) {
-        if (leaves_depth_range(probes[i], probes[i].z, frame) ||
-            leaves_depth_range(probes[i], probes[i].z + probes[i].s, frame))
+        if (leaves_range(i, frame))
           r.any_clipped = true;
         else
           r.any_uncovered = true;
@@ -342,10 +418,10 @@ std::vector<ProbeResult> RenderEvaluator::run(const std::vector<Probe>& probes) 
       if (fight) {
         r.outcome = Outcome::fight;
         decided[i] = true;
-        last_fight_frame_[probes[i].z] = frame;
+        last_fight_frame_[z[i]] = frame;
       }
     }
-    for (size_t i = 0; i < probes.size(); ++i) {
+    for (size_t i = 0; i < z.size(); ++i) {
       if (decided[i]) continue;
       done[i] += batch_frames(done[i], frames);
       if (done[i] >= frames) decided[i] = true;  // every frame clean

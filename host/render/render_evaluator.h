@@ -13,10 +13,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "host/bias/bias_evaluator.h"
+#include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/mts/probe.h"
 #include "host/render/gl_context.h"
@@ -39,6 +42,11 @@ class RenderEvaluator : public ProbeEvaluator {
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   RowSource source() const override { return RowSource::rendered; }
+  // Depth-bias probes (`bias --source rendered`): plane A, then the same plane split along the
+  // other diagonal with glPolygonOffset(factor, units) (glPolygonOffsetClamp with a clamp), the
+  // compare LESS/GREATER (or-equal when asked). A probe fights where A shows through the overlay
+  // at a pixel both cover. The bias arithmetic, r and slope are the driver's.
+  std::vector<ProbeResult> run_bias(const std::vector<BiasProbe>& probes, const BiasOptions& o);
 
   // Kernel pixels of both planes of one frame, for tests and diagnosis: per pixel (row-major from
   // the kernel's bottom-left) bit 0 A covers, bit 1 B covers, bit 2 B passes the depth test.
@@ -55,20 +63,31 @@ class RenderEvaluator : public ProbeEvaluator {
   struct Target {
     unsigned fbo = 0, colour = 0, depth = 0;
   };
+  // The state every frame starts from: target t bound and cleared, the program and the probe's
+  // constants set, plane A's index buffer, no polygon offset.
+  void begin_frame(const ProbeConstants& pc, const Target& t);
   // Draws frame `frame` of the probe into target t (nothing read back yet).
   void draw(const Probe& probe, int frame, const Target& t);
+  void draw_bias(const BiasProbe& probe, const BiasOptions& o, int frame, const Target& t);
+  // The rounds both kinds of probe share: frames drawn in growing batches into the targets and
+  // read back, a probe decided at its first frame with a pixel for which pixel_fights holds;
+  // leaves_range(probe, frame) tells a clipped frame from an uncovered one.
+  std::vector<ProbeResult> run_rounds(const std::vector<double>& z,
+                                      const std::function<void(size_t, int, const Target&)>& draw,
+                                      const std::function<bool(uint8_t)>& pixel_fights,
+                                      const std::function<bool(size_t, int)>& leaves_range);
   // Reads the kernel back from target t: bits as in pixels().
   std::vector<uint8_t> read(const Target& t);
   // Whether a vertex of the plane at D leaves the clip volume's depth range in this frame (the
   // reason a kernel pixel can be uncovered other than the planes' extent).
-  bool leaves_depth_range(const Probe& probe, double D, int frame) const;
+  bool leaves_depth_range(double z, double D, int frame, double tilt = 0) const;
   void grow_targets(size_t n);
 
   GlContext& gl_;
   const Scene& scene_;
   EvalPair pair_;
   GlDepthFormat depth_;
-  unsigned program_ = 0, vao_ = 0, vbo_ = 0, ibo_ = 0;
+  unsigned program_ = 0, vao_ = 0, vbo_ = 0, ibo_ = 0, ibo_flipped_ = 0;
   int index_count_ = 0;
   int loc_p_ = -1, loc_mv_ = -1, loc_colour_ = -1, loc_vlogk_ = -1, loc_vlogl_ = -1, loc_near_ = -1,
       loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1;
@@ -76,6 +95,21 @@ class RenderEvaluator : public ProbeEvaluator {
   std::map<double, int> last_fight_frame_;  // frame order as in the emulator (MtsEvaluator)
   uint64_t frames_ = 0;
   double seconds_ = 0;
+};
+
+// The bias searches' evaluator on a real rasterizer: RenderEvaluator::run_bias.
+class BiasRenderer : public BiasEvaluator {
+ public:
+  BiasRenderer(RenderEvaluator& renderer, const BiasOptions& options)
+      : renderer_(renderer), options_(options) {}
+  std::vector<ProbeResult> run(const std::vector<BiasProbe>& probes) override {
+    return renderer_.run_bias(probes, options_);
+  }
+  RowSource source() const override { return RowSource::rendered; }
+
+ private:
+  RenderEvaluator& renderer_;
+  BiasOptions options_;
 };
 
 }  // namespace depthprec

@@ -94,20 +94,24 @@ static inline int4 kernel_pixel_box(__global const float* R, float ox, float oy,
                 min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)H)), H - 1));
 }
 
-// Vertex stage, divide, window transform and triangle set-up of one plane in one frame.
-// Global id: the plane's index in mats; it is written to tris and vflags at first_plane + id, and
-// its probe constants are those of (first_plane + id) / per_probe.
-__kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
-                        const uint per_probe, const float half_w, const float half_h,
-                        const float origin_x, const float origin_y, const uint kernel_w,
-                        const uint kernel_h, const uint band_rows, __global float* restrict tris,
-                        __global uint* restrict vflags, const uint first_plane, const uint count) {
-  const uint k = get_global_id(0);
-  if (k >= count) return;
-  const uint id = first_plane + k;
-  __global const float* P = probes + (id / per_probe) * PROBE_STRIDE;
-  __global const float* M = mats + k * MAT_STRIDE;
-  float xw[NV], yw[NV], dw[NV], qw[NV];
+// The vertices of triangle t of the plane grid: quad t / 2, split along the diagonal from its
+// lower-left corner a to c (flip 0: triangles (a, b, c) and (a, c, d), the measured planes), or
+// from b to d (flip 1: (a, b, d) and (b, c, d), the same quad tessellated the other way: the
+// coplanar overlay of depth bias, kernels/bias.cl). Vertex 0 anchors the plane equation.
+static inline int3 triangle_vertices(int t, int flip) {
+  const int quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
+  const int a = qj * (GRID + 1) + qi, b = a + 1, c = a + GRID + 2, d = a + GRID + 1;
+  if (flip) return (t & 1) ? (int3)(b, c, d) : (int3)(a, b, d);
+  return (t & 1) ? (int3)(a, c, d) : (int3)(a, b, c);
+}
+
+// Vertex stage, divide, window transform and triangle set-up of one plane in one frame into
+// record T and flags *vflag; the vertices' window depths are left in dw.
+static inline void setup_plane(__global const float* P, __global const float* M, float half_w,
+                               float half_h, float origin_x, float origin_y, uint kernel_w,
+                               uint kernel_h, uint band_rows, __global float* T,
+                               __global uint* vflag, int flip, float* dw) {
+  float xw[NV], yw[NV], qw[NV];
   uint nonfinite = 0u;
   for (int j = 0; j <= GRID; ++j) {
     for (int i = 0; i <= GRID; ++i) {
@@ -149,12 +153,10 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
 #endif
     }
   }
-  __global float* T = tris + (size_t)id * PLANE_STRIDE;
   uint shapely = 1u; /* every triangle non-degenerate, no angle below ~6 degrees */
   for (int t = 0; t < NT; ++t) {
-    const int quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
-    const int a = qj * (GRID + 1) + qi, b = a + 1, c = a + GRID + 2, d = a + GRID + 1;
-    const int i0 = a, i1 = (t & 1) ? c : b, i2 = (t & 1) ? d : c;
+    const int3 tv = triangle_vertices(t, flip);
+    const int i0 = tv.x, i1 = tv.y, i2 = tv.z;
     const int vi[3] = {i0, i1, i2};
     __global float* R = T + t * TRI_STRIDE;
     /* the edges stay in registers: written to the record and to the edge arrays (SA) from here,
@@ -229,9 +231,9 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
   }
   const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
-  vflags[id] = nonfinite | (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h,
-                                                    band_rows, bad_row)
-                                    : 0u);
+  *vflag = nonfinite | (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h,
+                                                band_rows, bad_row)
+                                : 0u);
   for (int v = 0; v < NV_PAD; ++v)
     ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
   for (int qj = 0; qj < GRID; ++qj) {
@@ -251,4 +253,20 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
   __global uint* SA = (__global uint*)T + NT * TRI_STRIDE;
   for (int k = NE; k < NE_PAD; ++k)
     for (int a = 0; a <= E_BITS; ++a) SA[a * NE_PAD + k] = SA[a * NE_PAD];
+}
+
+// Global id: the plane's index in mats; it is written to tris and vflags at first_plane + id, and
+// its probe constants are those of (first_plane + id) / per_probe.
+__kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
+                        const uint per_probe, const float half_w, const float half_h,
+                        const float origin_x, const float origin_y, const uint kernel_w,
+                        const uint kernel_h, const uint band_rows, __global float* restrict tris,
+                        __global uint* restrict vflags, const uint first_plane, const uint count) {
+  const uint k = get_global_id(0);
+  if (k >= count) return;
+  const uint id = first_plane + k;
+  float dw[NV];
+  setup_plane(probes + (id / per_probe) * PROBE_STRIDE, mats + k * MAT_STRIDE, half_w, half_h,
+              origin_x, origin_y, kernel_w, kernel_h, band_rows, tris + (size_t)id * PLANE_STRIDE,
+              vflags + id, 0, dw);
 }

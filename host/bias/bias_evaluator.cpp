@@ -1,0 +1,134 @@
+#include "host/bias/bias_evaluator.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "host/base/errors.h"
+#include "host/model/frame_setup.h"
+#include "host/mts/mts_evaluator.h"
+#include "kernels/bias_formula.h"
+#include "kernels/mts_layout.h"
+
+namespace depthprec {
+
+namespace {
+
+// Planes set up per launch at most (two per probe and frame, MTS_PLANE_STRIDE floats each: about
+// 8 KiB at the default grid), so a round of many distances stays within a few tens of MiB.
+constexpr size_t kMaxPlanesPerLaunch = 4096;
+
+}  // namespace
+
+KernelVariant bias_variant(const Scene& scene, const EvalPair& pair) {
+  KernelVariant v = mts_variant(scene, pair);
+  v.program = "kernels/bias.cl";
+  v.label = "bias:" + v.label;
+  v.cache_a_codes = false;
+  return v;
+}
+
+BiasEmulator::BiasEmulator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           const BiasOptions& options)
+    : rt_(rt),
+      scene_(scene),
+      pair_(pair),
+      options_(options),
+      rule_(bias_rule(options, scene.storage_format(pair))),
+      variant_(bias_variant(scene, pair)) {
+  const std::string why = bias_not_applicable(scene, pair);
+  if (!why.empty()) throw InputError(fmt::format("{}: no depth bias: {}", pair.label(), why));
+  program_ = rt_.program(variant_.program, variant_.options);
+  setup_ = cl::Kernel(program_, "bias_setup");
+  rows_ = cl::Kernel(program_, "bias_rows");
+  plane_floats_ = MTS_PLANE_STRIDE(scene.plane_subdivisions);
+}
+
+std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes) {
+  const int total = scene_.frames;
+  const size_t kh = static_cast<size_t>(scene_.kernel_h);
+  const cl_uint kw = static_cast<cl_uint>(scene_.kernel_w);
+  const float ox = static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2);
+  const float oy = static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2);
+  const double tilt = options_.tilt_deg * M_PI / 180.0;
+  std::vector<ProbeResult> results(probes.size());
+  std::vector<bool> decided(probes.size(), false);
+  std::vector<int> first(probes.size(), 0);
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const auto it = last_fail_frame_.find(probes[i].z);
+    if (it != last_fail_frame_.end()) first[i] = it->second;
+  }
+  // Every probe starts at visit 0 and advances by the same batch, so the undecided ones stay in
+  // step: one launch renders the same visits of all of them (as many as fit a launch).
+  int done = 0;
+  while (done < total) {
+    const int frames = batch_frames(done, total);
+    const std::vector<size_t> pending = undecided(decided);
+    if (pending.empty()) break;
+    const size_t per_launch =
+        std::max<size_t>(1, kMaxPlanesPerLaunch / (2 * static_cast<size_t>(frames)));
+    for (size_t c = 0; c < pending.size(); c += per_launch) {
+      const std::vector<size_t> active(
+          pending.begin() + static_cast<std::ptrdiff_t>(c),
+          pending.begin() + static_cast<std::ptrdiff_t>(std::min(pending.size(), c + per_launch)));
+      const auto t0 = std::chrono::steady_clock::now();
+      std::vector<float> consts, mats;
+      for (const size_t i : active) {
+        const BiasProbe& p = probes[i];
+        const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
+        auto packed = pc.packed();
+        packed[C_BIAS_UNITS] = rule_.units_term(p.units);
+        packed[C_BIAS_FACTOR] = static_cast<float>(p.factor);
+        packed[C_BIAS_CLAMP] = static_cast<float>(options_.clamp);
+        consts.insert(consts.end(), packed.begin(), packed.end());
+        for (int v = done; v < done + frames; ++v) {
+          const Mat4f m = plane_matrix(scene_, pc, p.z, (first[i] + v) % total, tilt);
+          mats.insert(mats.end(), m.begin(), m.end());
+        }
+      }
+      const size_t planes = 2 * active.size() * static_cast<size_t>(frames);
+      const cl::Buffer const_buf = buffer_of(rt_.context(), consts);
+      const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
+      cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats_);
+      cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
+      set_args(setup_, const_buf, mat_buf, static_cast<cl_uint>(2 * frames),
+               0.5f * static_cast<float>(scene_.viewport_w),
+               0.5f * static_cast<float>(scene_.viewport_h), ox, oy, kw, static_cast<cl_uint>(kh),
+               static_cast<cl_int>(rule_.float_rule ? 1 : 0),
+               static_cast<cl_int>(options_.slope == SlopeForm::sqrt ? BIAS_SLOPE_SQRT : 0), tris,
+               vflags, static_cast<cl_uint>(planes));
+      cl::Event setup_done, rows_done;
+      rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, cl::NDRange(padded_size(planes)),
+                                       cl::NDRange(kWorkGroup), nullptr, &setup_done);
+      const size_t items = active.size() * static_cast<size_t>(frames) * kh;
+      cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
+      set_args(rows_, const_buf, tris, vflags, kw, static_cast<cl_uint>(kh), ox, oy,
+               static_cast<cl_uint>(frames), static_cast<cl_int>(options_.or_equal ? 0 : 1),
+               result);
+      rt_.queue().enqueueNDRangeKernel(
+          rows_, cl::NullRange,
+          cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
+          cl::NDRange(kWorkGroup, 1, 1), nullptr, &rows_done);
+      std::vector<uint32_t> rows(items);
+      rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
+      const double secs =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double ksecs = device_seconds(setup_done) + device_seconds(rows_done);
+      uint64_t after = 0;
+      fold_launch(rows, active, done, frames, kh, results, decided, after);
+      for (const size_t i : active) {
+        results[i].seconds += secs / static_cast<double>(active.size());
+        results[i].kernel_seconds += ksecs / static_cast<double>(active.size());
+        results[i].launches += 2;
+        if (decided[i]) last_fail_frame_[probes[i].z] = (first[i] + results[i].frames - 1) % total;
+      }
+    }
+    done += frames;
+  }
+  finish_outcomes(results, decided);
+  return results;
+}
+
+}  // namespace depthprec

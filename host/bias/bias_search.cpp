@@ -1,0 +1,215 @@
+#include "host/bias/bias_search.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "host/base/json_number.h"
+#include "host/model/resolve.h"
+
+namespace depthprec {
+
+namespace {
+
+std::string failure_of(const ProbeResult& r) {
+  if (r.outcome == Outcome::non_finite || r.any_non_finite) return "non_finite";
+  if (r.outcome == Outcome::clipped || r.any_clipped) return "clipped";
+  if (r.any_uncovered) return "uncovered";
+  return "";  // a fight: the bias was too small
+}
+
+}  // namespace
+
+bool bias_passes(const ProbeResult& r) {
+  return r.outcome == Outcome::clean && !r.any_clipped && !r.any_uncovered && !r.any_non_finite;
+}
+
+void IntegerBiasSearch::record(const ProbeResult& r) {
+  ++probes_;
+  const bool pass = bias_passes(r);
+  if (!pass && probes_ == 1) first_failure_ = failure_of(r);
+  if (pass)
+    hi_ = next_;
+  else
+    lo_ = std::max(lo_, next_);
+  if (hi_ == std::numeric_limits<double>::infinity()) {  // still doubling
+    if (next_ * 2 > limit_) {
+      done_ = true;
+      return;
+    }
+    next_ *= 2;
+    return;
+  }
+  if (lo_ < 0) {  // 1 passed: is no bias at all enough?
+    next_ = 0;
+    if (hi_ == 0) done_ = true;
+    return;
+  }
+  if (hi_ - lo_ <= 1) {
+    done_ = true;
+    return;
+  }
+  next_ = std::floor((lo_ + hi_) / 2);
+}
+
+BiasAnswer IntegerBiasSearch::answer() const {
+  BiasAnswer a;
+  a.probes = probes_;
+  if (hi_ == std::numeric_limits<double>::infinity()) {
+    a.verdict = first_failure_.empty() ? "unresolvable" : first_failure_;
+    return a;
+  }
+  a.value = hi_;
+  if (lo_ >= 0) a.next_down = lo_;
+  return a;
+}
+
+void RealBiasSearch::record(const ProbeResult& r) {
+  ++probes_;
+  const bool pass = bias_passes(r);
+  if (!pass && probes_ == 1) first_failure_ = failure_of(r);
+  if (pass)
+    hi_ = next_;
+  else
+    lo_ = std::max(lo_, next_);
+  if (hi_ == std::numeric_limits<double>::infinity()) {
+    if (next_ * 2 > limit_) {
+      done_ = true;
+      return;
+    }
+    next_ *= 2;
+    return;
+  }
+  if (lo_ == 0) {  // every probe so far passed: halve toward the floor
+    if (next_ / 2 < 1 / limit_) {
+      done_ = true;
+      return;
+    }
+    next_ /= 2;
+    return;
+  }
+  if ((hi_ - lo_) / hi_ <= rel_) {
+    done_ = true;
+    return;
+  }
+  next_ = 0.5 * (lo_ + hi_);
+}
+
+BiasAnswer RealBiasSearch::answer() const {
+  BiasAnswer a;
+  a.probes = probes_;
+  if (hi_ == std::numeric_limits<double>::infinity()) {
+    a.verdict = first_failure_.empty() ? "unresolvable" : first_failure_;
+    return a;
+  }
+  a.value = hi_;
+  if (lo_ > 0) a.next_down = lo_;
+  return a;
+}
+
+namespace {
+
+// The slope factor is searched to 1/64 (1.6 %): finer than anyone sets it.
+constexpr double kFactorPrecision = 1.0 / 64;
+// Largest slope factor tried: beyond it the slope term is not what separates the planes (a
+// camera-facing plane's slope is all but 0).
+constexpr double kFactorLimit = 1 << 24;
+
+// The units search's limit: once r * units passes the whole depth range, more cannot help.
+double units_limit(const BiasRule& rule) {
+  return rule.float_rule ? std::ldexp(1.0, 25) : std::ceil(2 / rule.r_fixed);
+}
+
+}  // namespace
+
+std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene& scene,
+                                           const EvalPair& pair, const BiasOptions& options,
+                                           const std::vector<double>& distances,
+                                           const std::vector<double>& mts) {
+  const BiasRule rule = bias_rule(options, scene.storage_format(pair));
+  const double sign = bias_sign(scene, pair);
+  const size_t n = distances.size();
+  std::vector<IntegerBiasSearch> units(n, IntegerBiasSearch(units_limit(rule))),
+      with_factor(n, IntegerBiasSearch(units_limit(rule)));
+  std::vector<RealBiasSearch> factor(n, RealBiasSearch(kFactorLimit, kFactorPrecision));
+  std::vector<double> seconds(n, 0);
+  // A round: the next probe of every search not done, all in one evaluator call.
+  while (true) {
+    std::vector<BiasProbe> probes;
+    std::vector<std::pair<size_t, int>> owner;  // (distance, search)
+    for (size_t k = 0; k < n; ++k) {
+      if (!units[k].done()) {
+        probes.push_back({distances[k], sign * units[k].next(), 0});
+        owner.push_back({k, 0});
+      }
+      if (!factor[k].done()) {
+        probes.push_back({distances[k], 0, sign * factor[k].next()});
+        owner.push_back({k, 1});
+      }
+      if (!with_factor[k].done() && options.set_factor > 0) {
+        probes.push_back({distances[k], sign * with_factor[k].next(), sign * options.set_factor});
+        owner.push_back({k, 2});
+      }
+    }
+    if (probes.empty()) break;
+    const std::vector<ProbeResult> results = evaluator.run(probes);
+    for (size_t i = 0; i < probes.size(); ++i) {
+      const auto [k, which] = owner[i];
+      seconds[k] += results[i].seconds;
+      if (which == 0)
+        units[k].record(results[i]);
+      else if (which == 1)
+        factor[k].record(results[i]);
+      else
+        with_factor[k].record(results[i]);
+    }
+  }
+  std::vector<nlohmann::json> rows;
+  for (size_t k = 0; k < n; ++k) {
+    const double z = distances[k];
+    const BiasAnswer u = units[k].answer(), f = factor[k].answer();
+    nlohmann::json j = {{"technique", info(pair.technique).name},
+                        {"format", pair.format},
+                        {"depth_range", to_string(pair.depth_range)},
+                        {"z", z},
+                        {"verdict", u.verdict},
+                        {"r", rule.r_text}};
+    const auto signed_or_null = [sign](double v) -> nlohmann::json {
+      return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v == 0 ? 0.0 : sign * v);
+    };
+    j["units"] = signed_or_null(u.value);
+    j["units_fails"] = signed_or_null(u.next_down);
+    j["factor"] = signed_or_null(f.value);
+    j["factor_verdict"] = f.verdict;
+    if (options.set_factor > 0) {
+      const BiasAnswer s = with_factor[k].answer();
+      j["set_factor"] = sign * options.set_factor;
+      j["set_units"] = signed_or_null(s.value);
+      j["set_verdict"] = s.verdict;
+    }
+    // What the constant bias amounts to at z: the offset r * units in window depth (r of z's own
+    // binade for float storage), and the eye distance it moves a fragment toward the camera.
+    const ResolveSetup setup = mapping_at(pair.technique, scene.near, scene.far, scene.params, z);
+    const double d = depth_of_distance(setup.technique, setup.near, setup.far, setup.params, z);
+    if (u.resolved()) {
+      const double offset = rule.r_at(static_cast<float>(d)) * u.value;
+      const double moved = d + sign * offset;
+      j["offset"] = offset;
+      // Past the depth range the offset has moved the fragment beyond the near plane (or far):
+      // every distance nearer than z, an infinite separation.
+      j["eye_separation"] =
+          json_number((moved >= 0 && moved <= 1) ? distance_gap(setup, d, moved)
+                                                 : std::numeric_limits<double>::infinity());
+    } else {
+      j["offset"] = nullptr;
+      j["eye_separation"] = nullptr;
+    }
+    j["mts"] = std::isnan(mts[k]) ? nlohmann::json(nullptr) : nlohmann::json(mts[k]);
+    j["probes"] = u.probes + f.probes + with_factor[k].answer().probes;
+    j["seconds"] = seconds[k];
+    rows.push_back(j);
+  }
+  return rows;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,300 @@
+// bias: the smallest depth bias (polygon offset) that lets a coplanar overlay win the depth test
+// everywhere, per pair and distance, as an API applies it (host/bias/, docs/bias.md). A record
+// batch: one record per pair holding its distances' rows, so it journals, resumes, shards and
+// merges as advise does.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "host/base/errors.h"
+#include "host/base/json_number.h"
+#include "host/bias/bias_evaluator.h"
+#include "host/bias/bias_search.h"
+#include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
+#include "host/cli/scene_options.h"
+#include "host/mts/mts_evaluator.h"
+#include "host/mts/mts_search.h"
+#include "host/output/report.h"
+#include "host/output/text_table.h"
+#include "host/render/gl_context.h"
+#include "host/render/render_evaluator.h"
+#include "host/render/render_run.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct BiasCliOptions {
+  SceneOptions scene;
+  OutputOptions out;
+  BatchOptions batch;
+  std::string api = "gl", r_unorm, representation = "format", slope = "max";
+  double clamp = 0, tilt = 0, set_factor = 1;
+  bool or_equal = false;
+  std::string source = "emulated", gl_device = GlDeviceChoice{}.text;
+};
+
+// Rendered probes take the driver's r, slope and bias arithmetic, so the options that choose
+// them are refused rather than silently ignored.
+void check_rendered_options(const BiasCliOptions& o) {
+  if (o.api != "gl")
+    throw InputError(fmt::format(
+        "--api {}: --source rendered renders through OpenGL, whose glPolygonOffset is gl's rule",
+        o.api));
+  if (!o.r_unorm.empty())
+    throw InputError(
+        "--r-unorm: with --source rendered the driver decides r (compare with "
+        "--source emulated --r-unorm ...)");
+  if (o.slope != "max")
+    throw InputError("--slope: with --source rendered the driver decides the slope form");
+}
+
+BiasOptions bias_options_of(const BiasCliOptions& o) {
+  BiasOptions b;
+  b.api = parse_bias_api(o.api);
+  if (!o.r_unorm.empty()) b.unorm_r = parse_unorm_r(o.r_unorm);
+  b.representation = parse_vulkan_representation(o.representation);
+  b.slope = parse_slope_form(o.slope);
+  b.clamp = o.clamp;
+  b.tilt_deg = o.tilt;
+  b.set_factor = o.set_factor;
+  b.or_equal = o.or_equal;
+  validate(b);
+  return b;
+}
+
+nlohmann::json bias_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           const BiasOptions& b) {
+  nlohmann::json rec = {{"technique", info(pair.technique).name},
+                        {"format", pair.format},
+                        {"depth_range", to_string(pair.depth_range)}};
+  const std::string why = bias_not_applicable(scene, pair);
+  if (!why.empty()) {
+    rec["applicable"] = false;
+    rec["reason"] = why;
+    rec["rows"] = nlohmann::json::array();
+    return rec;
+  }
+  // The MTS beside each answer: what separation the pair resolves there without any bias.
+  std::vector<double> mts;
+  {
+    MtsEvaluator ev(rt, scene, pair);
+    for (const MtsRow& row : search_pair(ev, scene, pair, scene.distances))
+      mts.push_back(row.verdict() == Verdict::resolved ? row.mts
+                                                       : std::numeric_limits<double>::quiet_NaN());
+  }
+  BiasEmulator ev(rt, scene, pair, b);
+  rec["applicable"] = true;
+  rec["rows"] = bias_pair_rows(ev, scene, pair, b, scene.distances, mts);
+  return rec;
+}
+
+// The same searches with every probe rendered by the system's OpenGL. No MTS column: rendering
+// its search too would take minutes (`depthprec render` measures it).
+nlohmann::json rendered_bias_record(GlContext& gl, const Scene& scene, const EvalPair& pair,
+                                    const BiasOptions& b) {
+  nlohmann::json rec = {{"technique", info(pair.technique).name},
+                        {"format", pair.format},
+                        {"depth_range", to_string(pair.depth_range)}};
+  const std::string why = bias_not_applicable(scene, pair);
+  if (!why.empty()) {
+    rec["applicable"] = false;
+    rec["reason"] = why;
+    rec["rows"] = nlohmann::json::array();
+    return rec;
+  }
+  RenderEvaluator renderer(gl, scene, pair);
+  BiasRenderer ev(renderer, b);
+  rec["applicable"] = true;
+  rec["rows"] = bias_pair_rows(
+      ev, scene, pair, b, scene.distances,
+      std::vector<double>(scene.distances.size(), std::numeric_limits<double>::quiet_NaN()));
+  for (auto& row : rec["rows"])  // these read the API's r, which the driver chooses here
+    for (const char* k : {"r", "offset", "eye_separation"}) row.erase(k);
+  return rec;
+}
+
+void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
+  const BiasOptions b = bias_options_of(o);
+  const Scene scene = o.scene.load();
+  check_planes_cover_kernel(scene);
+  nlohmann::json rules = nlohmann::json::object();
+  for (const EvalPair& pair : scene.evaluate)  // every format's rule before any work
+    if (bias_not_applicable(scene, pair).empty())
+      rules[pair.format] = bias_rule(b, scene.storage_format(pair)).r_text;
+  const bool rendered = parse_row_source(o.source) == RowSource::rendered;
+  std::unique_ptr<GlContext> gl;
+  nlohmann::json depth_buffers;
+  if (rendered) {
+    check_rendered_options(o);
+    gl = std::make_unique<GlContext>(GlDeviceChoice::parse(o.gl_device));
+    for (const auto& [format, given] : check_scene_renders(scene)) depth_buffers[format] = given;
+  }
+  check_writable(o.out.output);
+  run_record_batch(
+      "bias", o.out, o.batch, g,
+      [&](OpenClRuntime& rt, nlohmann::json& header) {
+        header["source"] = o.source;
+        if (gl) {
+          header["renderer"] = gl->renderer();
+          header["gl_version"] = gl->version();
+          header["depth_buffers"] = depth_buffers;
+          header.erase("r");
+        }
+        header["scene"] = scene.json;
+        header["scene_name"] = scene.name;
+        header["api"] = to_string(b.api);
+        if (!gl) header["r"] = rules;  // rendered: the driver's
+        if (b.api == BiasApi::vulkan) header["vulkan_representation"] = to_string(b.representation);
+        header["slope"] = to_string(b.slope);
+        header["clamp"] = b.clamp;
+        header["compare"] = b.or_equal ? "or_equal" : "strict";
+        header["tilt_deg"] = b.tilt_deg;
+        header["set_factor"] = b.set_factor;
+        std::vector<BatchUnit> units;
+        for (const EvalPair& pair : scene.evaluate)
+          units.push_back({pair.label(), [&rt, &gl, &scene, &b, pair] {
+                             return gl ? rendered_bias_record(*gl, scene, pair, b)
+                                       : bias_record(rt, scene, pair, b);
+                           }});
+        return units;
+      },
+      render_bias_output);
+}
+
+}  // namespace
+
+std::string render_bias_output(const nlohmann::json& header,
+                               const std::vector<nlohmann::json>& records,
+                               const OutputOptions& out) {
+  if (out.format_out == "json") return records_json(header, records, !out.no_timing);
+  const bool csv = out.format_out == "csv";
+  const std::string none = csv ? "" : "-";
+  const auto num = [&](const nlohmann::json& r, const char* k) {
+    return r.contains(k) && !r.at(k).is_null()
+               ? number_cell(number_from_json(r.at(k), k), out.format_out)
+               : none;
+  };
+  const auto text = [&](const nlohmann::json& r, const char* k) {
+    return r.contains(k) ? r.at(k).get<std::string>() : none;
+  };
+  Cells cells;
+  std::vector<std::string> skipped;
+  for (const auto& rec : records) {
+    if (!rec.value("applicable", true)) {
+      skipped.push_back(fmt::format("{}/{}/{}", rec.at("technique").get<std::string>(),
+                                    rec.at("format").get<std::string>(),
+                                    rec.at("depth_range").get<std::string>()));
+      continue;
+    }
+    for (const auto& r : rec.at("rows")) {
+      const std::string verdict = r.at("verdict").get<std::string>();
+      const std::string fverdict = r.at("factor_verdict").get<std::string>();
+      cells.push_back({r.at("technique").get<std::string>(), r.at("format").get<std::string>(),
+                       r.at("depth_range").get<std::string>(), num(r, "z"),
+                       verdict == "resolved" ? num(r, "units") : verdict,
+                       fverdict == "resolved" ? num(r, "factor") : fverdict, num(r, "set_factor"),
+                       r.value("set_verdict", "") == "resolved" || !r.contains("set_verdict")
+                           ? num(r, "set_units")
+                           : text(r, "set_verdict"),
+                       num(r, "offset"), num(r, "eye_separation"), num(r, "mts")});
+    }
+  }
+  const std::string caption = fmt::format(
+      "Smallest depth bias for a coplanar overlay (scene {}, {} rules, {} slope, compare {}{}): "
+      "plane B lies in plane A, tessellated along the other diagonal, and is drawn after it with "
+      "the bias; it must pass the depth test at every kernel pixel of every frame. units: the "
+      "constant term alone (factor 0); factor: the slope term alone (units 0); set: the units "
+      "needed beside the slope factor shown -- the pair to give {}. Values are signed as you set "
+      "them (negative: toward the camera under LESS). offset: the constant bias in window depth "
+      "(units x r, r = {}); eye separation: how far it moves a fragment toward the camera at z, "
+      "beside the MTS (the separation two planes need without bias).{}",
+      header.value("scene_name", std::string("?")), header.value("api", std::string("gl")),
+      header.value("slope", std::string("max")),
+      header.value("compare", std::string("strict")) == "strict" ? "LESS/GREATER" : "LEQUAL/GEQUAL",
+      header.value("tilt_deg", 0.0) > 0
+          ? fmt::format(", planes tilted {} degrees", human(header.value("tilt_deg", 0.0)))
+          : "",
+      header.value("api", std::string("gl")) == "d3d"      ? "DepthBias / SlopeScaledDepthBias"
+      : header.value("api", std::string("gl")) == "vulkan" ? "depthBiasConstantFactor / "
+                                                             "depthBiasSlopeFactor"
+                                                           : "glPolygonOffset(factor, units)",
+      header.contains("r") ? header.at("r").dump() : "?",
+      skipped.empty() ? ""
+                      : fmt::format(" Not applicable (the fragment stage writes depth, which "
+                                    "replaces the offset depth): {}.",
+                                    fmt::join(skipped, ", ")));
+  return captioned(caption,
+                   {{"technique", true},
+                    {"format", true},
+                    {"depth_range", true},
+                    {"z"},
+                    {"units"},
+                    {"factor"},
+                    {"set factor"},
+                    {"set units"},
+                    {"offset"},
+                    {"eye separation"},
+                    {"MTS"}},
+                   cells, out.format_out);
+}
+
+void add_bias_command(CLI::App& app, GlobalOptions& global) {
+  auto o = std::make_shared<BiasCliOptions>();
+  auto* cmd = app.add_subcommand(
+      "bias",
+      "Depth bias (polygon offset) for coplanar geometry: per pair and distance, the smallest\n"
+      "bias that lets an overlay lying in a surface (a decal, a second mesh of the same surface,\n"
+      "tessellated its own way) pass the depth test at every pixel of every frame, on the\n"
+      "emulated pipeline, with the bias applied as the API specifies (--api). Reports the\n"
+      "constant term alone (units), the slope term alone (factor), the units needed beside a\n"
+      "slope factor (--set-factor, the pair to set), and what the constant bias means in eye\n"
+      "space next to the MTS. docs/bias.md says how to read it.\n"
+      "Examples:\n"
+      "  depthprec bias -t reversed -f float32 --distances 10,100,1000,5000\n"
+      "  depthprec bias -t standard -f unorm24,unorm16 --api d3d --tilt 45\n"
+      "  depthprec bias --api vulkan --vulkan-representation force_unorm -f float32");
+  o->scene.add_to(*cmd, true);
+  cmd->add_option("--api", o->api,
+                  "Whose bias rules: gl (glPolygonOffset), d3d (DepthBias, SlopeScaledDepthBias), "
+                  "vulkan (depthBias*Factor)")
+      ->capture_default_str();
+  cmd->add_option("--r-unorm", o->r_unorm,
+                  "r of unorm buffers where the API leaves it open: pow2 (2^-n), step "
+                  "(1/(2^n-1)), double_step (2/(2^n-1), Mesa's Gallium drivers, llvmpipe), "
+                  "double_pow2 (2^(1-n)) (default: step for gl and d3d, pow2 for vulkan)");
+  cmd->add_option("--vulkan-representation", o->representation,
+                  "Vulkan's depthBiasRepresentation: format, force_unorm (float buffers as 24-bit "
+                  "unorm), float (r = 1)")
+      ->capture_default_str();
+  cmd->add_option("--slope", o->slope,
+                  "The slope m: max (max(|dz/dx|, |dz/dy|)) or sqrt (sqrt(dz/dx^2 + dz/dy^2); not "
+                  "d3d)")
+      ->capture_default_str();
+  cmd->add_option("--clamp", o->clamp, "Limit of the offset's magnitude (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--tilt", o->tilt,
+                  "Tilt both planes this many degrees about the view's x axis, on top of the "
+                  "scene's rotation (0..80): the slope term's case")
+      ->capture_default_str();
+  cmd->add_option("--set-factor", o->set_factor,
+                  "The slope factor of the pair to set (its sign follows the compare; 0: leave "
+                  "that search out)")
+      ->capture_default_str();
+  cmd->add_flag("--or-equal", o->or_equal,
+                "Compare with LEQUAL/GEQUAL instead of the APIs' default LESS/GREATER");
+  cmd->add_option("--source", o->source,
+                  "emulated (the emulated pipeline with the API's rules) or rendered (every "
+                  "probe drawn with glPolygonOffset through the system's OpenGL: the driver's r "
+                  "and arithmetic; no MTS column)")
+      ->capture_default_str();
+  add_gl_device_option(cmd, o->gl_device);
+  o->out.add_to(*cmd);
+  o->batch.add_to(*cmd, "pairs (k in scene order)");
+  cmd->callback([o, &global]() { run_bias(*o, global); });
+}
+
+}  // namespace depthprec::cli

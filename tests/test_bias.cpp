@@ -1,0 +1,216 @@
+// depthprec bias: the r of each API and format, the offset formula against the conformance
+// tests' figures, the kernel against the host reference pipeline probe by probe, the searches'
+// answers (one unit less fights), known facts (a camera-facing decal in unorm24 needs a few
+// units; under standard projection the eye-space separation a fixed bias amounts to grows as
+// z^2 / n), and the command's errors and batch behaviour.
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "host/base/errors.h"
+#include "host/bias/bias_evaluator.h"
+#include "host/bias/bias_search.h"
+#include "host/mts/reference_pipeline.h"
+#include "kernels/bias_formula.h"
+#include "mts_fixture.h"
+#include "run_cli.h"
+
+using namespace depthprec;
+using Catch::Matchers::Contains;
+using depthprec::test::fresh;
+using depthprec::test::run_cli;
+
+namespace {
+
+BiasOptions api(BiasApi a) {
+  BiasOptions o;
+  o.api = a;
+  return o;
+}
+
+double r_of(const BiasOptions& o, const std::string& format) {
+  return bias_rule(o, StorageFormat::parse(format)).r_fixed;
+}
+
+const std::string kSmallScene = "--kernel 24x24 --frames 4 --no-timing -q ";
+
+Scene small_scene(const std::string& technique, const std::string& format) {
+  return load_scene(
+      "", {"kernel=[32,32]", "frames=6",
+           fmt::format(R"(evaluate=[{{"technique": "{}", "format": "{}"}}])", technique, format)});
+}
+
+// The reference's verdict over every frame: the overlay passes when no frame fights and
+// nothing was clipped, uncovered or non-finite.
+bool reference_passes(const Scene& s, const EvalPair& pair, const BiasOptions& o,
+                      const BiasProbe& p) {
+  for (int f = 0; f < s.frames; ++f) {
+    const BiasFrame fr = reference_bias_frame(s, pair, o, p, f);
+    if (fr.fight || fr.clipped || fr.uncovered || fr.non_finite) return false;
+  }
+  return true;
+}
+
+// The smallest whole units that pass on the emulator, by the search `bias` runs.
+BiasAnswer units_answer(BiasEvaluator& ev, const Scene& s, const EvalPair& pair, double z) {
+  IntegerBiasSearch search(1 << 26);
+  while (!search.done())
+    search.record(ev.run({{z, bias_sign(s, pair) * search.next(), 0}}).front());
+  return search.answer();
+}
+
+}  // namespace
+
+TEST_CASE("r per API and format follows the specifications", "[bias]") {
+  // fixed point: GL and D3D one code step, Vulkan (depthBiasExact) 2^-n
+  CHECK(r_of(api(BiasApi::gl), "unorm24") == 1.0 / 16777215.0);
+  CHECK(r_of(api(BiasApi::d3d), "unorm16") == 1.0 / 65535.0);
+  CHECK(r_of(api(BiasApi::vulkan), "unorm16") == std::ldexp(1.0, -16));
+  CHECK(r_of(api(BiasApi::vulkan), "unorm24") == std::ldexp(1.0, -24));
+  CHECK(r_of(api(BiasApi::gl), "unorm32") == 1.0 / 4294967295.0);
+  BiasOptions mesa = api(BiasApi::gl);
+  mesa.unorm_r = UnormR::double_step;  // llvmpipe: units * mrd * 2
+  CHECK(r_of(mesa, "unorm24") == 2.0 / 16777215.0);
+  BiasOptions nvidia = api(BiasApi::vulkan);
+  nvidia.unorm_r = UnormR::double_pow2;
+  CHECK(r_of(nvidia, "unorm16") == std::ldexp(1.0, -15));
+  // floating point: the primitive's exponent rule; Vulkan's representations override it
+  CHECK(bias_rule(api(BiasApi::d3d), StorageFormat::parse("float32")).float_rule);
+  BiasOptions force = api(BiasApi::vulkan);
+  force.representation = VulkanRepresentation::force_unorm;
+  CHECK(r_of(force, "float32") == std::ldexp(1.0, -24));
+  force.representation = VulkanRepresentation::float_value;
+  CHECK(r_of(force, "float32") == 1.0);
+  CHECK(r_of(force, "unorm16") == 1.0);
+  // formats without a rule, named with what is allowed
+  CHECK_THROWS_WITH(bias_rule(api(BiasApi::d3d), StorageFormat::parse("unorm32")),
+                    Contains("unorm16, unorm24 and float32"));
+  CHECK_THROWS_AS(bias_rule(api(BiasApi::gl), StorageFormat::parse("float16")), InputError);
+  CHECK_THROWS_AS(bias_rule(api(BiasApi::vulkan), StorageFormat::parse("e4m12")), InputError);
+}
+
+TEST_CASE("the offset formula reproduces the conformance tests' figures", "[bias]") {
+  // VK-GL-CTS calcMinResolvableDiff, float: 2^(exponent(z) - 23)
+  CHECK(depth_bias_float_r(0.25f) == std::ldexp(1.0f, -25));
+  CHECK(depth_bias_float_r(0.3125f) == std::ldexp(1.0f, -25));
+  CHECK(depth_bias_float_r(0.489742279053f) == std::ldexp(1.0f, -25));
+  CHECK(depth_bias_float_r(0.625f) == std::ldexp(1.0f, -24));
+  CHECK(depth_bias_float_r(0.125f) == std::ldexp(1.0f, -26));
+  CHECK(depth_bias_float_r(0.0f) == std::ldexp(1.0f, -149));
+  // WebGPU CTS depth_bias.spec.ts, depth32float: z = 0.25 with bias 8388608 ends at 0.5, with a
+  // clamp of 0.125 at 0.375; a quad of slope 0.5 with slope scale 1 ends at 0.75
+  CHECK(0.25f + depth_bias(8388608.0f, 1, 0, 0, 0, 0.25f, 0.25f, 0.25f) == 0.5f);
+  CHECK(0.25f + depth_bias(8388608.0f, 1, 0, 0.125f, 0, 0.25f, 0.25f, 0.25f) == 0.375f);
+  CHECK(0.25f + depth_bias(0, 1, 1.0f, 0, depth_bias_slope(0.5f, 0, BIAS_SLOPE_MAX), 0.25f, 0.25f,
+                           0.25f) ==
+        0.75f);
+  // the slope forms, and a negative clamp limiting a negative bias
+  CHECK(depth_bias_slope(3e-3f, -4e-3f, BIAS_SLOPE_MAX) == 4e-3f);
+  CHECK(depth_bias_slope(3.0f, -4.0f, BIAS_SLOPE_SQRT) == 5.0f);
+  CHECK(depth_bias(-1e-3f, 0, 0, -1e-4f, 0, 0.5f, 0.5f, 0.5f) == -1e-4f);
+}
+
+TEST_CASE("the bias kernel decides every probe as the host reference pipeline does",
+          "[bias][reference]") {
+  struct Case {
+    const char* technique;
+    const char* format;
+    double z;
+    double tilt;
+  };
+  for (const Case c : {Case{"standard", "unorm24", 100, 0}, Case{"reversed", "float32", 1000, 0},
+                       Case{"standard", "float32", 10, 45}, Case{"log_vertex", "unorm16", 50, 0},
+                       Case{"infinite", "unorm24", 3000, 30}}) {
+    INFO(c.technique << " " << c.format << " z=" << c.z << " tilt=" << c.tilt);
+    const Scene s = small_scene(c.technique, c.format);
+    const EvalPair pair = s.evaluate[0];
+    BiasOptions o;
+    o.tilt_deg = c.tilt;
+    BiasEmulator ev(test::runtime(), s, pair, o);
+    const BiasAnswer u = units_answer(ev, s, pair, c.z);
+    REQUIRE(u.resolved());
+    const double sign = bias_sign(s, pair);
+    // the answer, one unit less, one more; the slope factor alone; both
+    std::vector<BiasProbe> probes = {{c.z, sign * u.value, 0},
+                                     {c.z, sign * (u.value + 1), 0},
+                                     {c.z, 0, sign * 0.5},
+                                     {c.z, 0, sign * 4},
+                                     {c.z, sign * std::max(0.0, u.value - 2), sign}};
+    if (u.value > 0) probes.push_back({c.z, sign * (u.value - 1), 0});
+    const auto results = ev.run(probes);
+    for (size_t i = 0; i < probes.size(); ++i) {
+      INFO("units " << probes[i].units << " factor " << probes[i].factor);
+      CHECK(bias_passes(results[i]) == reference_passes(s, pair, o, probes[i]));
+    }
+    CHECK(bias_passes(results[0]));
+    if (u.value > 0) CHECK_FALSE(bias_passes(results.back()));  // one unit less fights
+  }
+}
+
+TEST_CASE("a camera-facing decal needs a few units; its eye-space reach grows as z^2 / n",
+          "[bias]") {
+  const auto r = run_cli("bias -t standard,reversed -f unorm24 --distances 100,1000,10000 " +
+                         kSmallScene + "--format-out json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  CHECK(j["kind"] == "bias");
+  CHECK(j["api"] == "gl");
+  REQUIRE(j["records"].size() == 2);
+  const auto& standard = j["records"][0]["rows"];
+  const auto& reversed = j["records"][1]["rows"];
+  REQUIRE(standard.size() == 3);
+  for (const auto& row : standard) {
+    // LESS: a negative bias moves the overlay toward the camera; a small whole number of units
+    const double u = row["units"];
+    CHECK(u <= -1);
+    CHECK(u >= -4);
+    CHECK(u == std::round(u));
+    CHECK(row["units_fails"].get<double>() == u + 1);
+  }
+  for (const auto& row : reversed) CHECK(row["units"].get<double>() >= 1);  // GREATER: positive
+  // a fixed offset in window depth is a fixed step of 1/w, so its eye-space reach is about
+  // z^2 / n times it: z 10 times farther, 100 times the separation
+  const double units100 = standard[0]["units"], units1e4 = standard[2]["units"];
+  const double per_unit100 = standard[0]["eye_separation"].get<double>() / std::fabs(units100),
+               per_unit1e4 = standard[2]["eye_separation"].get<double>() / std::fabs(units1e4);
+  CHECK(per_unit1e4 / per_unit100 == Approx(1e4).epsilon(0.02));
+  const double n = j["scene"]["near"];
+  CHECK(per_unit100 == Approx(100.0 * 100.0 / n / 16777215.0).epsilon(0.02));
+}
+
+TEST_CASE("bias refuses what has no bias rule and says why", "[bias][cli][errors]") {
+  const std::string base = "bias --distances 100 " + kSmallScene;
+  const auto d3d32 = run_cli(base + "-t standard -f unorm32 --api d3d");
+  CHECK(d3d32.exit_code == 3);
+  CHECK_THAT(d3d32.output, Contains("unorm16, unorm24 and float32"));
+  CHECK(run_cli(base + "-t standard -f float16").exit_code == 3);
+  CHECK(run_cli(base + "-t standard -f unorm24 --tilt 95").exit_code == 3);
+  CHECK(run_cli(base + "-t standard -f unorm24 --tilt -5").exit_code == 3);
+  CHECK(run_cli(base + "-t standard -f unorm24 --api d3d --slope sqrt").exit_code == 3);
+  CHECK(run_cli(base + "-t standard -f unorm24 --vulkan-representation float").exit_code == 3);
+  CHECK(run_cli(base + "-t standard -f unorm24 --api metal").exit_code == 3);
+  CHECK(run_cli(base + "-t standard -f unorm24 --set-factor -1").exit_code == 3);
+  // a technique whose fragment stage writes depth gets a row saying so, not a number
+  const auto frag = run_cli(base + "-t log_fragment,standard -f unorm24 --format-out json");
+  REQUIRE(frag.exit_code == 0);
+  const auto j = nlohmann::json::parse(frag.output);
+  CHECK(j["records"][0]["applicable"] == false);
+  CHECK_THAT(j["records"][0]["reason"].get<std::string>(), Contains("fragment stage"));
+  CHECK(j["records"][1]["applicable"] == true);
+}
+
+TEST_CASE("bias shards merge to the bytes of one run", "[bias][cli][batch]") {
+  const std::string args =
+      "bias --distances 10,1000 -t standard,reversed,infinite -f float32 " + kSmallScene;
+  const std::string one = fresh("/tmp/depthprec_test_bias_one.json"),
+                    a = fresh("/tmp/depthprec_test_bias_1.json"),
+                    b = fresh("/tmp/depthprec_test_bias_2.json");
+  REQUIRE(run_cli(args + "--format-out json -o " + one).exit_code == 0);
+  REQUIRE(run_cli(args + "--shard 1/2 --format-out json -o " + a).exit_code == 0);
+  REQUIRE(run_cli(args + "--shard 2/2 --format-out json -o " + b).exit_code == 0);
+  const auto merged = run_cli("merge " + b + " " + a + " --no-timing --format-out json");
+  REQUIRE(merged.exit_code == 0);
+  CHECK(merged.output == test::slurp(one));
+}
