@@ -80,8 +80,11 @@ COMMANDS = [
     ("formats", "formats", False, ["bits", "largest", "codes"], ("formats", "largest", "largest")),
     ("devices", "devices", False, ["CUs", "mem GiB"], None),
     ("advise --range 10,1000 --separation 0.05 -t standard,linear -f unorm24 --kernel 24x24 "
-     "--frames 4 --no-timing -q", "advise", True, ["smallest near", "fails at z", "near steps"],
+     "--frames 4 --no-timing -q", "advise", True,
+     ["smallest near", "fails at z", "largest far", "near steps"],
      None),
+    (f"bias {SCENE}", "bias", True,
+     ["z", "units", "factor", "set factor", "set units", "offset", "eye separation", "MTS"], None),
 ]
 
 for args, kind, scened, numeric, agree in COMMANDS:

@@ -65,13 +65,16 @@ TEST_CASE("advise ranks set-ups and says which cannot meet the separation", "[ad
   CHECK(j["kind"] == "advise");
   REQUIRE(j["records"].size() == 6);
   REQUIRE(j["ranking"].size() == 6);
-  // reversed float32 in [0,1] holds from the floor; linear unorm24 with far = 1e9 has codes of
-  // 60 units and never resolves 0.05
+  // reversed float32 in [0,1] holds from the floor; standard's error grows as z^2 / near, so it
+  // needs the largest near plane. Linear unorm24 with far = 1e9 has codes of 60 units and never
+  // resolves 0.05, but with its far plane pulled in to the content it does.
   CHECK(j["ranking"][0] == "reversed/float32/zero_to_one");
-  CHECK(j["ranking"][5] == "linear/unorm24/gl");
+  CHECK(j["ranking"][5].get<std::string>().rfind("standard/", 0) == 0);
   for (const auto& rec : j["records"])
-    if (rec["technique"] == "linear" && rec["format"] == "unorm24")
-      CHECK_FALSE(rec.contains("smallest_near"));
+    if (rec["technique"] == "linear" && rec["format"] == "unorm24") {
+      CHECK(rec.contains("smallest_near"));
+      CHECK(rec["far_tightened"] == true);
+    }
 }
 
 TEST_CASE("advise refuses what it cannot answer", "[advise][cli][errors]") {
@@ -101,4 +104,31 @@ TEST_CASE("advise shards merge to the bytes of one run", "[advise][cli][batch]")
   const auto merged = run_cli("merge " + b + " " + a + " --no-timing --format-out json");
   REQUIRE(merged.exit_code == 0);
   CHECK(merged.output == test::slurp(one));
+}
+
+TEST_CASE("advise's far plane is the farthest that holds; the next one out fails",
+          "[advise][far]") {
+  // Linear depth in unorm24 resolves (f - n) / 2^24 everywhere: with the scene's far plane at
+  // 1e9 no near plane meets 0.01, pulled in to the content it does, and it may move out again
+  // until (f - n) / 2^24 reaches the separation.
+  const Scene scene =
+      small_scene(R"([{"technique": "linear", "format": "unorm24", "depth_range": "gl"}])");
+  AdviseRequest r;
+  r.z_min = 100;
+  r.z_max = 1000;
+  r.separation = 0.01;
+  const EvalPair pair = scene.evaluate[0];
+  const auto rec = advise_record(test::runtime(), scene, pair, r);
+  REQUIRE(rec.contains("smallest_near"));
+  CHECK(rec["far_tightened"] == true);
+  REQUIRE(rec.contains("largest_far"));
+  REQUIRE(rec.contains("next_far"));
+  const double n = rec["smallest_near"], f = rec["largest_far"], out = rec["next_far"];
+  CHECK(out > f);
+  CHECK(out / f <= 1 + r.near_precision);
+  CHECK(f == Approx(r.separation * 16777216).epsilon(0.1));
+  CHECK(near_holds(test::runtime(), scene, pair, r, n, nullptr, f));
+  CHECK(mts_within(test::runtime(), scene, pair, r, n, f));
+  CHECK_FALSE((near_holds(test::runtime(), scene, pair, r, n, nullptr, out) &&
+               mts_within(test::runtime(), scene, pair, r, n, out)));
 }

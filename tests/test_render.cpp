@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/base/errors.h"
+#include "host/bias/bias_search.h"
 #include "host/model/frame_setup.h"
 #include "host/mts/mts_search.h"
 #include "host/render/gl_context.h"
@@ -281,5 +282,36 @@ TEST_CASE("render refuses what the driver or the rendering cannot do", "[render]
     CHECK_THAT(line.output, Contains("libgl1-mesa-dri") && Contains("emulator is unaffected"));
     const CliResult emulated = run_cli("mts -t standard -f unorm24 --distances 4 --frames 2", env);
     CHECK(emulated.exit_code == 0);
+  }
+}
+
+TEST_CASE("depth bias rendered with glPolygonOffset on llvmpipe", "[render][bias]") {
+  // llvmpipe's r for unorm buffers is two code steps (Mesa's mrd times 2), so the emulation with
+  // --r-unorm double_step must need the same whole units where storage decides (unorm16), and
+  // one unit less must fight on the real rasterizer too.
+  const Scene scene = load_scene("", {"kernel=[32,32]", "frames=6",
+                                      R"(evaluate=[{"technique": "standard", "format": "unorm16"},
+                        {"technique": "reversed", "format": "unorm16"}])"});
+  BiasOptions llvmpipe;
+  llvmpipe.unorm_r = UnormR::double_step;
+  for (const EvalPair& pair : scene.evaluate) {
+    INFO(pair.label());
+    RenderEvaluator renderer(gl(), scene, pair);
+    BiasRenderer rendered(renderer, llvmpipe);
+    BiasEmulator emulated(runtime(), scene, pair, llvmpipe);
+    const std::vector<double> zs = {100, 1000};
+    const std::vector<double> no_mts(zs.size(), NAN);
+    const auto r = bias_pair_rows(rendered, scene, pair, llvmpipe, zs, no_mts);
+    const auto e = bias_pair_rows(emulated, scene, pair, llvmpipe, zs, no_mts);
+    const double sign = bias_sign(scene, pair);
+    for (size_t k = 0; k < zs.size(); ++k) {
+      INFO("z = " << zs[k]);
+      REQUIRE(r[k]["verdict"] == "resolved");
+      CHECK(r[k]["units"] == e[k]["units"]);
+      const double units = r[k]["units"];
+      CHECK(units * sign >= 1);
+      const auto less = rendered.run({{zs[k], units - sign, 0}});
+      CHECK_FALSE(bias_passes(less.front()));
+    }
   }
 }

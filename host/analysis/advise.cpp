@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
@@ -37,17 +39,43 @@ std::vector<double> advise_distances(const AdviseRequest& r) {
   return zs;
 }
 
-Scene with_near(const Scene& scene, double n) {
+Scene with_near(const Scene& scene, double n, double f) {
   nlohmann::json j = scene.json;
   j["near"] = n;
+  if (f > 0) j["far"] = f;
   Scene s = scene_from_json(j, scene.source);
   s.name = scene.name;
   return s;
 }
 
+namespace {
+
+// Bisection in log scale between a plane that holds (good) and one that fails (bad), in either
+// order, until they are within precision of each other: the last good and bad, and a distance
+// where bad failed (where, updated when a probe fails).
+struct LogBracket {
+  double good, bad, where;
+};
+LogBracket bisect_log(double good, double bad, double where, double precision,
+                      const std::function<bool(double, double*)>& holds) {
+  while (std::max(good, bad) / std::min(good, bad) > 1 + precision) {
+    const double mid = std::sqrt(good * bad);
+    double at = 0;
+    if (holds(mid, &at))
+      good = mid;
+    else {
+      bad = mid;
+      where = at;
+    }
+  }
+  return {good, bad, where};
+}
+
+}  // namespace
+
 bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
-                double n, double* worst) {
-  const Scene s = with_near(scene, n);
+                double n, double* worst, double f) {
+  const Scene s = with_near(scene, n, f);
   MtsEvaluator ev(rt, s, pair);
   std::vector<Probe> probes;
   for (double z : advise_distances(r)) probes.push_back({z, r.separation_at(z)});
@@ -63,24 +91,61 @@ bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, con
 }
 
 bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
-                double n) {
-  const Scene s = with_near(scene, n);
+                double n, double f) {
+  const Scene s = with_near(scene, n, f);
   MtsEvaluator ev(rt, s, pair);
   for (const MtsRow& row : search_pair(ev, s, pair, advise_distances(r)))
     if (row.verdict() != Verdict::resolved || row.mts > r.separation_at(row.z)) return false;
   return true;
 }
 
-nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                             const AdviseRequest& r) {
-  nlohmann::json j = {{"technique", info(pair.technique).name},
-                      {"format", pair.format},
-                      {"depth_range", to_string(pair.depth_range)}};
+static void far_search(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                       const AdviseRequest& r, nlohmann::json& j, double base_far) {
+  // With the near plane found, how far out can the far plane go? A farther far plane never gains
+  // precision (it spreads the same codes over more depth), so the set-up holds up to some far
+  // plane: the largest. (The smallest is the farthest content itself, and never worse.) The
+  // near plane was found with base_far, which holds; the search runs from there to a ceiling,
+  // and the MTS search confirms the answer as it does the near plane's.
+  const double n = j["smallest_near"].get<double>();
+  const double ceiling = std::max(scene.far, r.z_max) * r.far_ceiling_ratio;
+  int steps = 0;
+  const auto holds = [&](double f, double* where) {
+    ++steps;
+    return near_holds(rt, scene, pair, r, n, where, f);
+  };
+  double where = 0, f = ceiling, above = 0;
+  if (!holds(ceiling, &where)) {
+    const LogBracket b = bisect_log(base_far, ceiling, where, r.near_precision, holds);
+    f = b.good;
+    above = b.bad;
+    where = b.where;
+  }
+  int lowered = 0;
+  while (!mts_within(rt, scene, pair, r, n, f) && f > base_far) {
+    above = f;
+    f = std::max(base_far, f / (1 + r.near_precision));
+    ++lowered;
+  }
+  j["largest_far"] = f;
+  j["far_holds_to_ceiling"] = above == 0;
+  if (above > 0) {
+    j["next_far"] = above;
+    if (where > 0) j["far_fails_at"] = where;
+  }
+  j["far_steps"] = steps;
+  j["far_lowered_by_mts_check"] = lowered;
+}
+
+// The near plane's answer with the far plane at f (0: the scene's): smallest_near and the fields
+// that go with it (advise_record).
+static nlohmann::json near_answer(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                                  const AdviseRequest& r, double f) {
+  nlohmann::json j = nlohmann::json::object();
   int steps = 0;
   double fails_at = 0;
   const auto holds = [&](double n, double* where) {
     ++steps;
-    return near_holds(rt, scene, pair, r, n, where);
+    return near_holds(rt, scene, pair, r, n, where, f);
   };
   // A larger near plane never costs precision at a given z (it only clips what is nearer), so
   // each set-up holds from some near plane up: the answer is the smallest. The largest tried
@@ -94,19 +159,10 @@ nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPa
     j["fails_at"] = fails_at;
   } else {
     // lo fails, hi holds: bisect in log(near), keeping a distance where lo failed.
-    while (hi / lo > 1 + r.near_precision) {
-      const double mid = std::sqrt(lo * hi);
-      double where = 0;
-      if (holds(mid, &where))
-        hi = mid;
-      else {
-        lo = mid;
-        fails_at = where;
-      }
-    }
-    j["smallest_near"] = hi;
-    j["next_near"] = lo;
-    j["fails_at"] = fails_at;
+    const LogBracket b = bisect_log(hi, lo, fails_at, r.near_precision, holds);
+    j["smallest_near"] = b.good;
+    j["next_near"] = b.bad;
+    j["fails_at"] = b.where;
     j["holds_from_floor"] = false;
   }
   // The probe at exactly the separation can be clean while a larger one fights (near the MTS,
@@ -117,12 +173,12 @@ nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPa
     double n = j["smallest_near"].get<double>(), below = 0;
     const double top = r.z_min / kNearestContentMargin;
     int raised = 0;
-    bool within = mts_within(rt, scene, pair, r, n);
+    bool within = mts_within(rt, scene, pair, r, n, f);
     while (!within && n < top) {
       below = n;
       n = std::min(top, n * (1 + r.near_precision));
       ++raised;
-      within = mts_within(rt, scene, pair, r, n);
+      within = mts_within(rt, scene, pair, r, n, f);
     }
     if (within) {
       if (raised) {
@@ -137,6 +193,33 @@ nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPa
     j["raised_by_mts_check"] = raised;
   }
   j["near_steps"] = steps;
+  return j;
+}
+
+nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                             const AdviseRequest& r) {
+  nlohmann::json j = {{"technique", info(pair.technique).name},
+                      {"format", pair.format},
+                      {"depth_range", to_string(pair.depth_range)}};
+  j.update(near_answer(rt, scene, pair, r, 0));
+  double far_used = scene.far;
+  // A set-up with a far plane may fail only because the scene's far plane spreads its codes too
+  // thin (linear depth in unorm, say): then try the tightest far plane the content allows.
+  const double tight = r.z_max * kNearestContentMargin;
+  if (!j.contains("smallest_near") && has_far_plane(pair.technique) && tight < scene.far) {
+    const nlohmann::json t = near_answer(rt, scene, pair, r, tight);
+    const int steps = j["near_steps"].get<int>() + t["near_steps"].get<int>();
+    if (t.contains("smallest_near")) {
+      j.update(t);
+      j.erase("fails_at");
+      if (t.contains("fails_at")) j["fails_at"] = t["fails_at"];
+      j["far_tightened"] = true;
+      far_used = tight;
+    }
+    j["near_steps"] = steps;
+  }
+  if (j.contains("smallest_near") && has_far_plane(pair.technique))
+    far_search(rt, scene, pair, r, j, far_used);
   j["distances_checked"] = advise_distances(r).size();
   return j;
 }

@@ -20,8 +20,12 @@ struct AdviseRequest {
   double separation = 0;        // needed there: absolute, or relative to z
   bool relative = false;
   double near_floor_ratio = 1e-6;  // the smallest near tried, as a fraction of z_min
-  // The bisection stops when the holding near is within this factor of the failing one.
+  // The bisection stops when the holding near is within this factor of the failing one (the
+  // far plane's likewise).
   double near_precision = 1.0 / 128;
+  // The farthest far plane tried, as a multiple of the scene's far plane (or of the farthest
+  // content, if that is farther).
+  double far_ceiling_ratio = 1e6;
 
   double separation_at(double z) const { return relative ? separation * z : separation; }
 };
@@ -33,24 +37,27 @@ void validate(const AdviseRequest& r, const Scene& scene);
 // The distances checked: z_min, z_min * 2, z_min * 4, ... below z_max, and z_max.
 std::vector<double> advise_distances(const AdviseRequest& r);
 
-// The scene with its near plane at n.
-Scene with_near(const Scene& scene, double n);
+// The scene with its near plane at n (and its far plane at f, when f > 0).
+Scene with_near(const Scene& scene, double n, double f = 0);
 
 // Whether near n holds for the pair: every checked distance's probe at the required separation is
 // clean (no fight, nothing clipped, uncovered or non-finite). worst: a distance that failed.
 bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
-                double n, double* worst = nullptr);
+                double n, double* worst = nullptr, double f = 0);
 
 // Whether the MTS search (as `mts` runs it) at near n gives every checked distance an MTS within
 // the separation.
 bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
-                double n);
+                double n, double f = 0);
 
 // One pair's answer: technique, format, depth_range, smallest_near (absent when not even a near
 // plane next to the content holds), next_near (the largest near found to fail, absent when the
 // floor holds), fails_at (a distance where it fails), holds_from_floor, near_steps, and
 // raised_by_mts_check: the steps the near plane rose until mts_within held (the probe at the
 // separation alone can be clean where a larger separation fights).
+// Techniques with a far plane also get largest_far: with that near plane, the farthest far
+// plane that still holds (far_holds_to_ceiling when even the ceiling does; else next_far, the
+// nearest far plane found to fail, and far_fails_at), far_steps and far_lowered_by_mts_check.
 nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                              const AdviseRequest& r);
 

@@ -94,15 +94,38 @@ std::string render_advise_output(const nlohmann::json& header,
   const auto num = [&](const nlohmann::json& r, const char* k) {
     return r.contains(k) ? number_cell(r.at(k).get<double>(), out.format_out) : none;
   };
+  // The far plane's limit: text marks one that holds even at the ceiling with ">=", CSV says so
+  // in a column of its own.
+  const auto far = [&](const nlohmann::json& r) {
+    if (!r.contains("largest_far")) return none;
+    const std::string v = num(r, "largest_far");
+    return !csv && r.value("far_holds_to_ceiling", false) ? ">= " + v : v;
+  };
   Cells cells;
   int rank = 1;
-  for (const auto* r : ranked)
+  for (const auto* r : ranked) {
     cells.push_back(
         {r->contains("smallest_near") ? std::to_string(rank++) : none,
          r->at("technique").get<std::string>(), r->at("format").get<std::string>(),
-         r->at("depth_range").get<std::string>(), num(*r, "smallest_near"),
+         r->at("depth_range").get<std::string>(),
+         num(*r, "smallest_near") + (!csv && r->value("far_tightened", false) ? " *" : ""),
          r->at("holds_from_floor").get<bool>() ? (csv ? "" : "(floor)") : num(*r, "next_near"),
-         num(*r, "fails_at"), std::to_string(r->at("near_steps").get<int>())});
+         num(*r, "fails_at"), far(*r), std::to_string(r->at("near_steps").get<int>())});
+    if (csv) {
+      cells.back().push_back(r->contains("largest_far")
+                                 ? (r->value("far_holds_to_ceiling", false) ? "true" : "false")
+                                 : "");
+      cells.back().push_back(r->value("far_tightened", false) ? "true" : "false");
+    }
+  }
+  std::vector<Column> cols = {
+      {"rank"},          {"technique", true},        {"format", true}, {"depth_range", true},
+      {"smallest near"}, {"next near down (fails)"}, {"fails at z"},   {"largest far"},
+      {"near steps"}};
+  if (csv) {
+    cols.push_back({"far holds to ceiling", true});
+    cols.push_back({"far tightened", true});
+  }
   const bool rel = header.value("separation_is_relative", false);
   const double s = header.value("separation", 0.0);
   return captioned(
@@ -110,21 +133,16 @@ std::string render_advise_output(const nlohmann::json& header,
                   "{}): the smallest near plane each affords -- from it up, planes that far apart "
                   "never fight at any of the {} distances checked (z, 2z, 4z, ..., the farthest); "
                   "the next near down fails at the distance named. (floor): even near = {} x the "
-                  "nearest content holds; '-': not even a near plane next to the content does",
+                  "nearest content holds; '-': not even a near plane next to the content does. "
+                  "largest far: with that near plane, the farthest far plane that still holds "
+                  "(techniques with a far plane; >=: even the ceiling tried holds). *: only with "
+                  "the far plane pulled in to the farthest content, the scene's far plane fails",
                   human(header.value("content_near", 0.0)), human(header.value("content_far", 0.0)),
                   rel ? fmt::format("{} x z", human(s)) : human(s),
                   header.value("scene_name", std::string("?")),
                   header.value("distances_checked", nlohmann::json::array()).size(),
                   human(AdviseRequest{}.near_floor_ratio)),
-      {{"rank"},
-       {"technique", true},
-       {"format", true},
-       {"depth_range", true},
-       {"smallest near"},
-       {"next near down (fails)"},
-       {"fails at z"},
-       {"near steps"}},
-      cells, out.format_out);
+      cols, cells, out.format_out);
 }
 
 void add_advise_command(CLI::App& app, GlobalOptions& global) {

@@ -181,6 +181,13 @@ std::string render_bias_output(const nlohmann::json& header,
   const auto text = [&](const nlohmann::json& r, const char* k) {
     return r.contains(k) ? r.at(k).get<std::string>() : none;
   };
+  // Text and Markdown put a search's verdict where its number would be; CSV keeps numbers in
+  // the number columns and the verdicts in columns of their own.
+  const auto value_or_verdict = [&](const nlohmann::json& r, const char* value,
+                                    const char* verdict) {
+    const std::string v = r.value(verdict, std::string("resolved"));
+    return csv || v == "resolved" ? num(r, value) : v;
+  };
   Cells cells;
   std::vector<std::string> skipped;
   for (const auto& rec : records) {
@@ -191,55 +198,75 @@ std::string render_bias_output(const nlohmann::json& header,
       continue;
     }
     for (const auto& r : rec.at("rows")) {
-      const std::string verdict = r.at("verdict").get<std::string>();
-      const std::string fverdict = r.at("factor_verdict").get<std::string>();
-      cells.push_back({r.at("technique").get<std::string>(), r.at("format").get<std::string>(),
-                       r.at("depth_range").get<std::string>(), num(r, "z"),
-                       verdict == "resolved" ? num(r, "units") : verdict,
-                       fverdict == "resolved" ? num(r, "factor") : fverdict, num(r, "set_factor"),
-                       r.value("set_verdict", "") == "resolved" || !r.contains("set_verdict")
-                           ? num(r, "set_units")
-                           : text(r, "set_verdict"),
-                       num(r, "offset"), num(r, "eye_separation"), num(r, "mts")});
+      std::vector<std::string> row = {r.at("technique").get<std::string>(),
+                                      r.at("format").get<std::string>(),
+                                      r.at("depth_range").get<std::string>(),
+                                      num(r, "z"),
+                                      value_or_verdict(r, "units", "verdict"),
+                                      value_or_verdict(r, "factor", "factor_verdict"),
+                                      num(r, "set_factor"),
+                                      value_or_verdict(r, "set_units", "set_verdict"),
+                                      num(r, "offset"),
+                                      num(r, "eye_separation"),
+                                      num(r, "mts")};
+      if (csv)
+        for (const char* k : {"verdict", "factor_verdict", "set_verdict"})
+          row.push_back(text(r, k));
+      cells.push_back(row);
     }
   }
+  const std::string api = header.value("api", std::string("gl"));
+  std::string r_text = "the driver's";
+  if (header.contains("r")) {
+    std::vector<std::string> parts;
+    for (const auto& [format, rule] : header.at("r").items())
+      parts.push_back(fmt::format("{} for {}", rule.get<std::string>(), format));
+    r_text = fmt::format("{}", fmt::join(parts, ", "));
+    if (r_text.find("(e") != std::string::npos)
+      r_text += ", e the exponent of the primitive's largest depth";
+  }
   const std::string caption = fmt::format(
-      "Smallest depth bias for a coplanar overlay (scene {}, {} rules, {} slope, compare {}{}): "
+      "Smallest depth bias for a coplanar overlay (scene {}, {}, {} slope, compare {}{}): "
       "plane B lies in plane A, tessellated along the other diagonal, and is drawn after it with "
       "the bias; it must pass the depth test at every kernel pixel of every frame. units: the "
-      "constant term alone (factor 0); factor: the slope term alone (units 0); set: the units "
-      "needed beside the slope factor shown -- the pair to give {}. Values are signed as you set "
+      "constant term alone (factor 0); factor: the slope term alone (units 0); set units: the "
+      "units needed beside the set factor -- the pair to give {}. Values are signed as you set "
       "them (negative: toward the camera under LESS). offset: the constant bias in window depth "
-      "(units x r, r = {}); eye separation: how far it moves a fragment toward the camera at z, "
-      "beside the MTS (the separation two planes need without bias).{}",
-      header.value("scene_name", std::string("?")), header.value("api", std::string("gl")),
+      "(units x r; r = {}); eye separation: how "
+      "far it moves a fragment toward the camera at z, beside the MTS (the separation two planes "
+      "need without bias).{}",
+      header.value("scene_name", std::string("?")),
+      header.value("source", std::string("emulated")) == "rendered"
+          ? fmt::format("rendered on {}", header.value("renderer", std::string("?")))
+          : api + " rules",
       header.value("slope", std::string("max")),
       header.value("compare", std::string("strict")) == "strict" ? "LESS/GREATER" : "LEQUAL/GEQUAL",
       header.value("tilt_deg", 0.0) > 0
           ? fmt::format(", planes tilted {} degrees", human(header.value("tilt_deg", 0.0)))
           : "",
-      header.value("api", std::string("gl")) == "d3d"      ? "DepthBias / SlopeScaledDepthBias"
-      : header.value("api", std::string("gl")) == "vulkan" ? "depthBiasConstantFactor / "
-                                                             "depthBiasSlopeFactor"
-                                                           : "glPolygonOffset(factor, units)",
-      header.contains("r") ? header.at("r").dump() : "?",
+      api == "d3d"      ? "DepthBias / SlopeScaledDepthBias"
+      : api == "vulkan" ? "depthBiasConstantFactor / depthBiasSlopeFactor"
+                        : "glPolygonOffset(factor, units)",
+      r_text,
       skipped.empty() ? ""
                       : fmt::format(" Not applicable (the fragment stage writes depth, which "
                                     "replaces the offset depth): {}.",
                                     fmt::join(skipped, ", ")));
-  return captioned(caption,
-                   {{"technique", true},
-                    {"format", true},
-                    {"depth_range", true},
-                    {"z"},
-                    {"units"},
-                    {"factor"},
-                    {"set factor"},
-                    {"set units"},
-                    {"offset"},
-                    {"eye separation"},
-                    {"MTS"}},
-                   cells, out.format_out);
+  std::vector<Column> cols = {{"technique", true},
+                              {"format", true},
+                              {"depth_range", true},
+                              {"z"},
+                              {"units"},
+                              {"factor"},
+                              {"set factor"},
+                              {"set units"},
+                              {"offset"},
+                              {"eye separation"},
+                              {"MTS"}};
+  if (csv)
+    for (const char* c : {"units verdict", "factor verdict", "set verdict"})
+      cols.push_back({c, true});
+  return captioned(caption, cols, cells, out.format_out);
 }
 
 void add_bias_command(CLI::App& app, GlobalOptions& global) {
