@@ -99,6 +99,10 @@ __kernel void bias_rows(__global const float* restrict probes, __global const fl
   int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
   row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
   row_segments(TB, py, origin_x, W, seg_xb, seg_tb);
+  /* Under a strict compare plane A itself fails against the cleared buffer where its code is
+   * the clear value's (LESS against 1, GREATER against 0): it is not drawn there, so nothing is
+   * measured at that pixel, as where no plane covers it. */
+  const uint clear_code = df_encode(COMPARE_GREATER ? 0.0f : 1.0f, DF_FORMAT_FROM_DEFINES());
   uint flags = 0u;
   FOR_EACH_PIECE({
     if (ta < 0 || tb < 0) {
@@ -116,9 +120,11 @@ __kernel void bias_rows(__global const float* restrict probes, __global const fl
             df_encode16(fmin(fmax(db.d + o, 0.0f), 1.0f), DF_FORMAT_FROM_DEFINES());
         const int16 nf = active & (fa.nonfinite | db.nonfinite);
         const int16 cl = active & ~nf & (fa.clipped | db.clipped);
+        const int16 a_absent = strict ? convert_int16(fa.code == (uint16)clear_code) : (int16)0;
         const int16 ok = active & ~(nf | cl);
         flags |= (any16(nf) ? R_NONFINITE : 0u) | (any16(cl) ? R_CLIPPED : 0u) |
-                 (any16(ok & b_hidden16(fa.code, code_b, strict)) ? R_FIGHT : 0u);
+                 (any16(ok & a_absent) ? R_UNCOVERED : 0u) |
+                 (any16(ok & ~a_absent & b_hidden16(fa.code, code_b, strict)) ? R_FIGHT : 0u);
       }
     }
   })

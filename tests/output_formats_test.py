@@ -81,7 +81,7 @@ COMMANDS = [
     ("devices", "devices", False, ["CUs", "mem GiB"], None),
     ("advise --range 10,1000 --separation 0.05 -t standard,linear -f unorm24 --kernel 24x24 "
      "--frames 4 --no-timing -q", "advise", True,
-     ["smallest near", "fails at z", "largest far", "near steps"],
+     ["smallest near", "fails at z", "largest far", "steps"],
      None),
     (f"bias {SCENE}", "bias", True,
      ["z", "units", "factor", "set factor", "set units", "offset", "eye separation", "MTS"], None),

@@ -169,8 +169,8 @@ TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
   CHECK_THAT(merge.output, Contains("cannot read"));
 }
 
-// lj-table, tradeoff, cost, render and compare are batches (host/batch/batch.h): the same
-// guarantees.
+// lj-table, tradeoff, cost, pipelines, advise, bias, render and compare are batches
+// (host/batch/batch.h): the same guarantees.
 TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "[batch]") {
   const std::vector<std::pair<std::string, std::string>> batches = {
       {"lj-table", "lj-table --samples 20000 --no-timing --format-out json"},
@@ -183,6 +183,12 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
        "--format-out json"},
       {"pipelines",
        "pipelines -t standard,reversed,linear,log_fragment -f unorm24 --distances 2,1024,1048576 "
+       "--kernel 60x60 --frames 20 --no-timing --format-out json"},
+      {"advise",
+       "advise --range 10,1000 --separation 0.05 -t standard,reversed,linear -f unorm24 "
+       "--kernel 60x60 --frames 20 --no-timing --format-out json"},
+      {"bias",
+       "bias -t standard,reversed,infinite,log_vertex -f unorm24 --distances 2,1024,1048576 "
        "--kernel 60x60 --frames 20 --no-timing --format-out json"},
       // The rendered batches (llvmpipe here): rows of `render`, records of `compare`.
       {"render",

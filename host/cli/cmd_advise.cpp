@@ -119,9 +119,9 @@ std::string render_advise_output(const nlohmann::json& header,
     }
   }
   std::vector<Column> cols = {
-      {"rank"},          {"technique", true},        {"format", true}, {"depth_range", true},
-      {"smallest near"}, {"next near down (fails)"}, {"fails at z"},   {"largest far"},
-      {"near steps"}};
+      {"rank"},          {"technique", true},   {"format", true}, {"depth_range", true},
+      {"smallest near"}, {"next down (fails)"}, {"fails at z"},   {"largest far"},
+      {"steps"}};
   if (csv) {
     cols.push_back({"far holds to ceiling", true});
     cols.push_back({"far tightened", true});

@@ -271,6 +271,10 @@ BiasFrame reference_bias_frame(const Scene& s, const EvalPair& pair, const BiasO
         out.clipped = true;
         continue;
       }
+      if (!options.or_equal && ca == fmt.encode(greater ? 0.0f : 1.0f)) {
+        out.uncovered = true;  // A fails its own test against the cleared buffer: not drawn
+        continue;
+      }
       const bool passes = greater ? (options.or_equal ? cb >= ca : cb > ca)
                                   : (options.or_equal ? cb <= ca : cb < ca);
       if (!passes) out.fight = true;
