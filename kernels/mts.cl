@@ -14,6 +14,9 @@
 //   COMPOSE_PREMULT    1: the host uploads P*MV, one product per vertex; 0: P * (MV * v)
 //   CONTRACT           1: the compiler may fuse a*b+c; 0: every operation rounds on its own
 //   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
+//   PLANE_FORM         0: planes anchored at a vertex (below); 1: llvmpipe's, referred to the
+//                      framebuffer origin and evaluated with fma (host/model/scene.h PlaneForm)
+//   VIEWPORT_FMA       1: window coordinates as fma(ndc, scale, translate)
 //   DF_*               the storage format (formats/depth_format.h)
 //
 // Arithmetic forms (the host reference, host/mts/reference_pipeline.cpp, uses the same ones):
@@ -35,9 +38,10 @@
 
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
     !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
-    !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) || !defined(DF_KIND)
+    !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||            \
+    !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(DF_KIND)
 #error \
-    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES and the DF_* format defines (host/runtime/kernel_variant.cpp)"
+    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
 #if CONTRACT

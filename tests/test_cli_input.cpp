@@ -212,3 +212,22 @@ TEST_CASE("on a terminal the progress line is erased before the output", "[cli]"
   CHECK_THAT(out, Contains("mts: 2/2 rows"));              // the progress line was drawn
   CHECK_THAT(out, Contains("\r\x1b[Ktechnique  format"));  // and erased before the header
 }
+
+TEST_CASE("--profile sets its implementation forms as --sets do, and render refuses them",
+          "[cli][profile]") {
+  const std::string small = " -t standard -f float32 --distances 100 --kernel 16x16 --frames 2 -q";
+  const auto llvmpipe = run_cli("mts --profile llvmpipe --format-out json --no-timing" + small);
+  REQUIRE(llvmpipe.exit_code == 0);
+  const auto j = nlohmann::json::parse(llvmpipe.output);
+  CHECK(j["scene"]["pipeline"]["plane"] == "origin_fma");
+  CHECK(j["scene"]["pipeline"]["viewport"] == "fma");
+  const auto unknown = run_cli("mts --profile nvidia" + small);
+  CHECK(unknown.exit_code == 3);
+  CHECK_THAT(unknown.output, Contains("ideal, llvmpipe"));
+  const auto twice = run_cli("mts --profile llvmpipe --set pipeline.plane=vertex" + small);
+  CHECK(twice.exit_code == 2);
+  CHECK_THAT(twice.output, Contains("--profile"));
+  const auto render = run_cli("render --profile llvmpipe" + small);
+  CHECK(render.exit_code == 3);
+  CHECK_THAT(render.output, Contains("plane=origin_fma"));
+}

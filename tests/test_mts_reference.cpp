@@ -115,3 +115,45 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
     }
   }
 }
+
+// llvmpipe's forms (pipeline.plane = origin_fma, pipeline.viewport = fma): the kernel follows
+// the reference in them too, codes and probe outcomes.
+TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's plane and viewport",
+          "[mts][reference][llvmpipe]") {
+  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12",
+                                      "pipeline.plane=origin_fma", "pipeline.viewport=fma"});
+  for (const auto& [t, format, range] :
+       {std::tuple{Technique::standard, "float32", DepthRange::gl},
+        std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+        std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+        std::tuple{Technique::infinite, "unorm16", DepthRange::zero_to_one},
+        std::tuple{Technique::linear, "float32", DepthRange::gl},
+        std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl}}) {
+    const EvalPair pair{t, format, range};
+    const bool log = t == Technique::log_vertex;
+    size_t compared = 0;
+    for (const auto& [z, s] : {std::pair{1.005, 3e-7}, std::pair{3.0, 1e-3},
+                               std::pair{1000.0, 0.05}, std::pair{1048576.0, 5000.0}}) {
+      INFO(pair.label() << " z = " << z << " s = " << s);
+      const Compared c = compare(scene, pair, {z, s}, 5);
+      CHECK(c.status_differ == 0);
+      if (log)
+        CHECK(c.off_by_more_than_one == 0);
+      else
+        CHECK(c.differ == 0);
+      compared += c.ok_pixels;
+    }
+    CHECK(compared > 0);
+    MtsEvaluator ev(runtime(), scene, pair);
+    std::vector<Probe> probes;
+    for (double z : {1.005, 7.0, 3000.0, 2e6})
+      for (double f : {1e-8, 1e-6, 1e-4, 1e-2, 1.0}) probes.push_back({z, z * f});
+    const auto results = ev.run(probes);
+    for (size_t k = 0; k < probes.size(); ++k) {
+      const ReferenceOutcome expect = reference_outcome(scene, pair, probes[k]);
+      INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+      CHECK(to_string(results[k].outcome) == std::string(to_string(expect.outcome)));
+      CHECK(results[k].frames == expect.frames);
+    }
+  }
+}

@@ -15,6 +15,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
+#include "host/model/profile.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 #include "host/output/report.h"
@@ -55,7 +56,10 @@ void check_rendered_options(const BiasCliOptions& o) {
 BiasOptions bias_options_of(const BiasCliOptions& o) {
   BiasOptions b;
   b.api = parse_bias_api(o.api);
-  if (!o.r_unorm.empty()) b.unorm_r = parse_unorm_r(o.r_unorm);
+  if (!o.r_unorm.empty())
+    b.unorm_r = parse_unorm_r(o.r_unorm);
+  else if (!o.scene.profile.empty() && o.source == "emulated")  // the profile's choice of r
+    b.unorm_r = parse_unorm_r(profile(o.scene.profile).bias_unorm_r);
   b.representation = parse_vulkan_representation(o.representation);
   b.slope = parse_slope_form(o.slope);
   b.clamp = o.clamp;
@@ -119,13 +123,14 @@ nlohmann::json rendered_bias_record(GlContext& gl, const Scene& scene, const Eva
 
 void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
   const BiasOptions b = bias_options_of(o);
-  const Scene scene = o.scene.load();
+  const bool rendered = parse_row_source(o.source) == RowSource::rendered;
+  // Rendered probes take the driver's own implementation forms, whatever profile was named.
+  const Scene scene = rendered ? rendered_counterpart(o.scene.load()) : o.scene.load();
   check_planes_cover_kernel(scene);
   nlohmann::json rules = nlohmann::json::object();
   for (const EvalPair& pair : scene.evaluate)  // every format's rule before any work
     if (bias_not_applicable(scene, pair).empty())
       rules[pair.format] = bias_rule(b, scene.storage_format(pair)).r_text;
-  const bool rendered = parse_row_source(o.source) == RowSource::rendered;
   std::unique_ptr<GlContext> gl;
   nlohmann::json depth_buffers;
   if (rendered) {

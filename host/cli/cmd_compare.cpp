@@ -66,7 +66,10 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
   const Shard shard = Shard::parse(o.batch.shard);
   if (o.batch.resume && o.out.output.empty()) RowJournal(o.out.output, true, {});  // usage error
   GlContext gl(GlDeviceChoice::parse(o.gl_device));
-  const RenderedWith with{gl.renderer(), gl.version(), gl.platform(), check_scene_renders(scene)};
+  // The emulation may follow a profile's implementation forms; the driver has its own.
+  const Scene rendered_scene = rendered_counterpart(scene);
+  const RenderedWith with{gl.renderer(), gl.version(), gl.platform(),
+                          check_scene_renders(rendered_scene)};
   OpenClRuntime rt(global.device);
   json header = batch_header("compare", rt.description(), o.batch.shard);
   header["scene_name"] = scene.name;
@@ -96,7 +99,7 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
       const std::string key = row_key(r.pair, r.z);
       emit(units.index_of.at(key), compare_record(emulated.at(key), r));
     };
-    render_scene(gl, scene, log, control);
+    render_scene(gl, rendered_scene, log, control);
     header["rendered_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   };

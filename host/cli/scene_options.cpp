@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "host/base/errors.h"
+#include "host/model/profile.h"
 
 namespace depthprec::cli {
 
@@ -46,6 +47,9 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--rounding", rounding, "Storage rounding: nearest_even or truncate");
   cmd.add_option("--denormals", denormals, "keep or flush");
   cmd.add_option("--log-k", log_k, "k of the log techniques");
+  cmd.add_option("--profile", profile,
+                 "Implementation profile: ideal (docs/spec.md 2) or llvmpipe (Mesa's depth-plane "
+                 "set-up and FMA viewport); sets pipeline.plane and pipeline.viewport");
 }
 
 namespace {
@@ -83,7 +87,7 @@ std::string whole_number_text(const std::string& option, const std::string& v) {
 bool SceneOptions::any() const {
   for (const std::string* v :
        {&scene_file, &near, &far, &kernel, &frames, &rel_precision, &matrix_precision, &compose,
-        &divide, &rounding, &denormals, &log_k, &fov})
+        &divide, &rounding, &denormals, &log_k, &fov, &profile})
     if (!v->empty()) return true;
   return !sets.empty() || !techniques.empty() || !formats.empty() || !depth_ranges.empty() ||
          !distances.empty();
@@ -122,6 +126,11 @@ Scene SceneOptions::load() const {
   set_if("--rounding", "pipeline.rounding", rounding, rounding);
   set_if("--denormals", "pipeline.denormals", denormals, denormals);
   set_if("--log-k", "log_k", log_k, log_k.empty() ? "" : number_text("--log-k", log_k));
+  if (!profile.empty())
+    for (const std::string& set : depthprec::profile(profile).sets) {
+      const auto eq = set.find('=');
+      set_if("--profile", set.substr(0, eq), profile, set.substr(eq + 1));
+    }
   if (!distances.empty()) {
     std::string list, typed;
     std::vector<std::string> entries;

@@ -16,7 +16,7 @@ struct SceneOptions {
   std::vector<std::string> sets;
   std::vector<std::string> techniques, formats, depth_ranges;
   std::string near, far, kernel, frames, rel_precision, matrix_precision, compose, divide, rounding,
-      denormals, log_k, fov;
+      denormals, log_k, fov, profile;
   std::vector<std::string> distances;
 
   void add_to(CLI::App& cmd, bool with_pairs);

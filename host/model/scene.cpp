@@ -51,7 +51,8 @@ const std::set<std::string> kTopKeys = {"name",
                                         "layer_overlap",
                                         "evaluate"};
 const std::set<std::string> kPipelineKeys = {
-    "depth_range", "matrix_precision", "compose", "divide", "rounding", "denormals", "contraction"};
+    "depth_range", "matrix_precision", "compose", "divide",  "rounding",
+    "denormals",   "contraction",      "plane",   "viewport"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -240,6 +241,17 @@ Divide parse_divide(const std::string& s) {
   if (s == "reciprocal") return Divide::reciprocal;
   if (s == "exact") return Divide::exact;
   throw InputError(fmt::format("unknown divide '{}': expected reciprocal or exact", s));
+}
+
+PlaneForm parse_plane_form(const std::string& s) {
+  if (s == "vertex") return PlaneForm::vertex;
+  if (s == "origin_fma") return PlaneForm::origin_fma;
+  throw InputError(fmt::format("unknown plane '{}': expected vertex or origin_fma", s));
+}
+ViewportForm parse_viewport_form(const std::string& s) {
+  if (s == "separate") return ViewportForm::separate;
+  if (s == "fma") return ViewportForm::fma;
+  throw InputError(fmt::format("unknown viewport '{}': expected separate or fma", s));
 }
 
 // "a.b=value": value parsed as JSON, or taken as a string when it is not JSON.
@@ -441,6 +453,8 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.pipeline.rounding = r.choice("pipeline.rounding", parse_rounding);
   s.pipeline.denormals = r.choice("pipeline.denormals", parse_denormals);
   s.pipeline.contraction = r.boolean("pipeline.contraction");
+  s.pipeline.plane = r.choice("pipeline.plane", parse_plane_form);
+  s.pipeline.viewport = r.choice("pipeline.viewport", parse_viewport_form);
 
   s.params.log_k = r.positive("log_k");
   s.params.layers = r.integer("layers", 1, 64);

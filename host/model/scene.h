@@ -19,6 +19,16 @@ namespace depthprec {
 enum class MatrixPrecision { single, binary64 };  // "float", "double"
 enum class Compose { separate, premultiplied };
 enum class Divide { reciprocal, exact };
+// How the interpolated depth (or 1/w) plane of a triangle is set up and evaluated
+// (docs/spec.md 2.4): vertex: anchored at its first vertex, gradients divided by the area, each
+// pixel (c0 + dzdx (px - x0)) + dzdy (py - y0); origin_fma: as Mesa's llvmpipe does (22.3,
+// lp_state_setup.c): gradients as differences times 1/area, the value a0 referred to the
+// framebuffer origin, each pixel fma(dzdy, y, fma(dzdx, x, a0)) at integer pixel coordinates,
+// the vertices reordered (v1, v0, v2) when the triangle's area is negative.
+enum class PlaneForm { vertex, origin_fma };
+// The viewport transform: separate multiply and add, or fused (fma(ndc, scale, translate), as
+// llvmpipe's generated vertex code does on an FMA CPU).
+enum class ViewportForm { separate, fma };
 
 struct Pipeline {
   // The depth range of pairs that name none; none here ("technique" in a scene): each technique's
@@ -30,6 +40,8 @@ struct Pipeline {
   Rounding rounding = Rounding::nearest_even;
   Denormals denormals = Denormals::keep;
   bool contraction = false;
+  PlaneForm plane = PlaneForm::vertex;
+  ViewportForm viewport = ViewportForm::separate;
 };
 
 struct EvalPair {

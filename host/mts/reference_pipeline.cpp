@@ -73,9 +73,15 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       for (int r = 0; r < 3; ++r)
         ndc[r] = s.pipeline.divide == Divide::exact ? clip[r] / clip[3] : clip[r] * inv_w;
       Vertex& vx = v[j * (g + 1) + i];
-      vx.x = ndc[0] * hw + hw;
-      vx.y = ndc[1] * hh + hh;
-      vx.d = gl ? ndc[2] * 0.5f + 0.5f : ndc[2];
+      if (s.pipeline.viewport == ViewportForm::fma) {
+        vx.x = std::fma(ndc[0], hw, hw);
+        vx.y = std::fma(ndc[1], hh, hh);
+        vx.d = gl ? std::fma(ndc[2], 0.5f, 0.5f) : ndc[2];
+      } else {
+        vx.x = ndc[0] * hw + hw;
+        vx.y = ndc[1] * hh + hh;
+        vx.d = gl ? ndc[2] * 0.5f + 0.5f : ndc[2];
+      }
       vx.q = inv_w;
       if (!std::isfinite(vx.x) || !std::isfinite(vx.y) || !std::isfinite(vx.q))
         plane.non_finite = true;
@@ -111,15 +117,35 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
     const Vertex &v0 = v[vi[0]], &v1 = v[vi[1]], &v2 = v[vi[2]];
     const float e1x = v1.x - v0.x, e1y = v1.y - v0.y, e2x = v2.x - v0.x, e2y = v2.y - v0.y;
     const float det = e1x * e2y - e2x * e1y;
-    const float e1d = v1.d - v0.d, e2d = v2.d - v0.d, e1q = v1.q - v0.q, e2q = v2.q - v0.q;
-    tri.x0 = v0.x;
-    tri.y0 = v0.y;
-    tri.d0 = v0.d;
-    tri.dzdx = (e1d * e2y - e2d * e1y) / det;
-    tri.dzdy = (e2d * e1x - e1d * e2x) / det;
-    tri.q0 = v0.q;
-    tri.dqdx = (e1q * e2y - e2q * e1y) / det;
-    tri.dqdy = (e2q * e1x - e1q * e2x) / det;
+    if (s.pipeline.plane == PlaneForm::origin_fma) {
+      // llvmpipe's set-up: (v1, v0, v2) for a negative area, gradients times 1/area, the value at
+      // the framebuffer origin, evaluated at integer pixel coordinates (x0 = y0 = 0.5).
+      const Vertex &u0 = det < 0.0f ? v1 : v0, &u1 = det < 0.0f ? v0 : v1, &u2 = v2;
+      const float x0c = u0.x - 0.5f, y0c = u0.y - 0.5f;
+      const float dx01 = u0.x - u1.x, dy01 = u0.y - u1.y, dx20 = u2.x - u0.x, dy20 = u2.y - u0.y;
+      const float ooa = 1.0f / (dx01 * dy20 - dx20 * dy01);
+      const float dy20o = dy20 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dx01o = dx01 * ooa;
+      const auto plane = [&](float a0v, float a1v, float a2v, float& a0, float& dadx, float& dady) {
+        const float da01 = a0v - a1v, da20 = a2v - a0v;
+        dadx = da01 * dy20o - da20 * dy01o;
+        dady = da20 * dx01o - da01 * dx20o;
+        a0 = a0v - (dadx * x0c + dady * y0c);
+      };
+      tri.x0 = 0.5f;
+      tri.y0 = 0.5f;
+      plane(u0.d, u1.d, u2.d, tri.d0, tri.dzdx, tri.dzdy);
+      plane(u0.q, u1.q, u2.q, tri.q0, tri.dqdx, tri.dqdy);
+    } else {
+      const float e1d = v1.d - v0.d, e2d = v2.d - v0.d, e1q = v1.q - v0.q, e2q = v2.q - v0.q;
+      tri.x0 = v0.x;
+      tri.y0 = v0.y;
+      tri.d0 = v0.d;
+      tri.dzdx = (e1d * e2y - e2d * e1y) / det;
+      tri.dzdy = (e2d * e1x - e1d * e2x) / det;
+      tri.q0 = v0.q;
+      tri.dqdx = (e1q * e2y - e2q * e1y) / det;
+      tri.dqdy = (e2q * e1x - e1q * e2x) / det;
+    }
     tri.ymin = std::fmin(std::fmin(v0.y, v1.y), v2.y);
     tri.ymax = std::fmax(std::fmax(v0.y, v1.y), v2.y);
     tri.bias = 0;
@@ -167,9 +193,14 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
                 bool biased = false) {
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const float tx = px - t.x0, ty = py - t.y0;
+  // The plane at the pixel, in the set-up's form (docs/spec.md 2.4).
+  const auto at = [&](float c0, float dx, float dy) {
+    return s.pipeline.plane == PlaneForm::origin_fma ? std::fma(dy, ty, std::fma(dx, tx, c0))
+                                                     : (c0 + dx * tx) + dy * ty;
+  };
   float d;
   if (ti.from == DepthFrom::fragment) {
-    const float q = (t.q0 + t.dqdx * tx) + t.dqdy * ty;
+    const float q = at(t.q0, t.dqdx, t.dqdy);
     const float w = 1.0f / q;
     if (!std::isfinite(w)) return non_finite;
     if (w < pc.near || w > pc.far) return clipped;
@@ -187,7 +218,7 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
     if (std::isnan(d)) return non_finite;
     d = std::fmin(std::fmax(d, 0.0f), 1.0f);
   } else {
-    d = (t.d0 + t.dzdx * tx) + t.dzdy * ty;
+    d = at(t.d0, t.dzdx, t.dzdy);
     if (!std::isfinite(d)) return non_finite;
     if (!(d >= 0.0f && d <= 1.0f)) return clipped;
     if (biased) d = std::fmin(std::fmax(d + t.bias, 0.0f), 1.0f);  // the offset, then the clamp

@@ -79,6 +79,10 @@ void check_renderable(const Scene& scene) {
     refuse("denormals=flush", "the driver decides how its arithmetic treats denormals");
   if (scene.pipeline.contraction != def.contraction)
     refuse("contraction=true", "the driver's shader compiler decides contraction into FMA");
+  if (scene.pipeline.plane != def.plane)
+    refuse("plane=origin_fma", "the driver sets up and interpolates its own depth planes");
+  if (scene.pipeline.viewport != def.viewport)
+    refuse("viewport=fma", "the driver does the viewport transform itself");
   if (scene.kernel_w > scene.viewport_w || scene.kernel_h > scene.viewport_h)
     throw InputError(fmt::format("kernel {}x{} is larger than the viewport {}x{}", scene.kernel_w,
                                  scene.kernel_h, scene.viewport_w, scene.viewport_h));

@@ -21,6 +21,14 @@ std::map<std::string, std::string> check_scene_renders(const Scene& scene) {
   return out;
 }
 
+Scene rendered_counterpart(const Scene& scene) {
+  Scene s = scene;
+  const Pipeline def;
+  s.pipeline.plane = def.plane;
+  s.pipeline.viewport = def.viewport;
+  return s;
+}
+
 MtsRun render_scene(GlContext& gl, const Scene& scene,
                     const std::function<void(const std::string&)>& log, const RunControl& control) {
   MtsRun run;

@@ -16,6 +16,11 @@ namespace depthprec {
 // (check_renderable); returns the depth buffers the pairs get, as the output header reports them.
 std::map<std::string, std::string> check_scene_renders(const Scene& scene);
 
+// The scene a real rasterizer renders for an emulated one: the same, with the emulation's
+// implementation forms (pipeline.plane, pipeline.viewport: a profile's) back at their defaults,
+// since the driver has its own. What `compare --profile llvmpipe` renders.
+Scene rendered_counterpart(const Scene& scene);
+
 MtsRun render_scene(GlContext& gl, const Scene& scene,
                     const std::function<void(const std::string&)>& log = {},
                     const RunControl& control = {});

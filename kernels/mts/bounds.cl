@@ -24,7 +24,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
   b.lo = 0xffffffffUL;
   b.hi = 0UL;
   b.bad = 0;
-  float c0[16], sl[16], x0[16], rt[16], px[16];
+  float c0[16], sl[16], x0[16], rt[16], dy[16], y[16], px[16];
   int n = 0;
   for (int t = 0; t <= NT; ++t) {
     if (t < NT) {
@@ -38,6 +38,8 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
         sl[n] = rp.slope;
         x0[n] = rp.x0;
         rt[n] = rp.row_term;
+        dy[n] = rp.dy;
+        y[n] = rp.y;
         px[n] = ox + (float)((q & 1) ? i1 : i0) + 0.5f;
         ++n;
       }
@@ -48,6 +50,8 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
         sl[k] = sl[0];
         x0[k] = x0[0];
         rt[k] = rt[0];
+        dy[k] = dy[0];
+        y[k] = y[0];
         px[k] = px[0];
       }
       row_plane16_t rp;
@@ -55,6 +59,8 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
       rp.slope = vload16(0, sl);
       rp.x0 = vload16(0, x0);
       rp.row_term = vload16(0, rt);
+      rp.dy = vload16(0, dy);
+      rp.y = vload16(0, y);
       const frag16_t f = fragment16(rp, P, vload16(0, px));
       b.bad |= any(f.nonfinite | f.clipped);
       /* halving reductions: 16 -> 8 -> 4 -> 2 -> 1 lanes */
@@ -88,7 +94,8 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // GAP_STEP: one code step for unorm (round(d N) of values more than 1/N apart differ; no saturation
 // in an unclipped band), any positive amount for float32 (codes are the bit patterns, monotone in
 // d). GEQUAL mirrors it (hi_B below lo_A). Other formats, and fragment-stage depth (not an
-// interpolated plane), are not certified this way.
+// interpolated plane), are not certified this way; nor is llvmpipe's plane form (PLANE_FORM 1),
+// whose error this bound does not describe.
 //
 // Fragment-stage depth (DEPTH_FROM 2) interpolates q = 1/w the same way, so lo/hi bound q against
 // a reference plane R of q; d = h(q) is then a decreasing, convex function of q (frag_gap_clear),
@@ -98,7 +105,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 #elif DF_KIND == 1 && DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH
 #define GAP_STEP 0.0
 #endif
-#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER)
+#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER) && PLANE_FORM == 0
 #define GAP_CERT 1
 #else
 #define GAP_CERT 0

@@ -1,30 +1,34 @@
 // Fragment depth and stored codes along a row, 16 pixels at a time, and the fight test.
 
-// A triangle's interpolation set up for one row: depth (or 1/w) = (c0 + slope * (px - x0)) +
-// row_term
+// A triangle's interpolation set up for one row. PLANE_FORM 0: depth (or 1/w) = (c0 + slope *
+// (px - x0)) + row_term, row_term = dzdy * (py - y0). PLANE_FORM 1 (llvmpipe): fma(dy, y,
+// fma(slope, px - x0, c0)), y = py - y0: x0 = y0 = 0.5 make px - x0 and y the integer pixel
+// coordinates.
 typedef struct {
-  float c0, slope, x0, row_term;
+  float c0, slope, x0, row_term, dy, y;
 } row_plane_t;
 
 static inline row_plane_t row_plane(__global const float* T, int t, float py) {
   __global const float* R = T + t * TRI_STRIDE;
   row_plane_t rp;
   rp.x0 = R[T_X0];
+  rp.y = py - R[T_Y0];
 #if DEPTH_FROM == 2
   rp.c0 = R[T_Q0];
   rp.slope = R[T_DQDX];
-  rp.row_term = R[T_DQDY] * (py - R[T_Y0]);
+  rp.dy = R[T_DQDY];
 #else
   rp.c0 = R[T_D0];
   rp.slope = R[T_DZDX];
-  rp.row_term = R[T_DZDY] * (py - R[T_Y0]);
+  rp.dy = R[T_DZDY];
 #endif
+  rp.row_term = rp.dy * rp.y;
   return rp;
 }
 
 // Row planes of 16 lanes: one triangle broadcast, or one triangle per lane (per piece).
 typedef struct {
-  float16 c0, slope, x0, row_term;
+  float16 c0, slope, x0, row_term, dy, y;
 } row_plane16_t;
 
 static inline row_plane16_t broadcast16(row_plane_t rp) {
@@ -33,7 +37,18 @@ static inline row_plane16_t broadcast16(row_plane_t rp) {
   r.slope = (float16)rp.slope;
   r.x0 = (float16)rp.x0;
   r.row_term = (float16)rp.row_term;
+  r.dy = (float16)rp.dy;
+  r.y = (float16)rp.y;
   return r;
+}
+
+// The interpolated plane at 16 pixel centres, every lane rounding on its own.
+static inline float16 plane_at16(row_plane16_t rp, float16 px) {
+#if PLANE_FORM == 1
+  return fma(rp.dy, rp.y, fma(rp.slope, px - rp.x0, rp.c0));
+#else
+  return (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
+#endif
 }
 
 // Depth and status of 16 fragments: depth (or 1/w) = (c0 + slope * (px - x0)) + row_term, every
@@ -46,7 +61,7 @@ typedef struct {
 static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float16 px) {
   depth16_t r;
 #if DEPTH_FROM == 2
-  const float16 q = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
+  const float16 q = plane_at16(rp, px);
   const float16 w = 1.0f / q;
   const int16 nf_w = !isfinite(w);
   r.clipped = (w < P[C_NEAR]) || (w > P[C_FAR]);
@@ -60,7 +75,7 @@ static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float
   r.nonfinite = nf_w || isnan(d);
   r.d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
 #else
-  r.d = (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
+  r.d = plane_at16(rp, px);
   r.nonfinite = !isfinite(r.d);
   r.clipped = !((r.d >= 0.0f) && (r.d <= 1.0f));
 #endif

@@ -168,7 +168,8 @@ __kernel void mts_raster(
     }
   } else
     for (int g = 0; g < np; g += 16) {
-      float c0a[16], sla[16], x0a[16], rta[16], c0b[16], slb[16], x0b[16], rtb[16], e0[16], e1[16];
+      float c0a[16], sla[16], x0a[16], rta[16], dya[16], ya[16], c0b[16], slb[16], x0b[16], rtb[16],
+          dyb[16], yb[16], e0[16], e1[16];
       for (int k = 0; k < 16; ++k) {
         const int i = min(g + k, np - 1);
         const row_plane_t ra = row_plane(TA, max(p_ta[i], 0), py),
@@ -177,10 +178,14 @@ __kernel void mts_raster(
         sla[k] = ra.slope;
         x0a[k] = ra.x0;
         rta[k] = ra.row_term;
+        dya[k] = ra.dy;
+        ya[k] = ra.y;
         c0b[k] = rb.c0;
         slb[k] = rb.slope;
         x0b[k] = rb.x0;
         rtb[k] = rb.row_term;
+        dyb[k] = rb.dy;
+        yb[k] = rb.y;
         e0[k] = origin_x + (float)px_start[i] + 0.5f;
         e1[k] = origin_x + (float)(px_end[i] - 1) + 0.5f;
       }
@@ -189,10 +194,14 @@ __kernel void mts_raster(
       ra.slope = vload16(0, sla);
       ra.x0 = vload16(0, x0a);
       ra.row_term = vload16(0, rta);
+      ra.dy = vload16(0, dya);
+      ra.y = vload16(0, ya);
       rb.c0 = vload16(0, c0b);
       rb.slope = vload16(0, slb);
       rb.x0 = vload16(0, x0b);
       rb.row_term = vload16(0, rtb);
+      rb.dy = vload16(0, dyb);
+      rb.y = vload16(0, yb);
       const float16 p0 = vload16(0, e0), p1 = vload16(0, e1);
       const frag16_t a0 = fragment16(ra, P, p0), a1 = fragment16(ra, P, p1);
       const frag16_t b0 = fragment16(rb, P, p0), b1 = fragment16(rb, P, p1);

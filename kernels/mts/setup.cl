@@ -139,12 +139,22 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #else
       const float3 ndc = (float3)(clip.x * inv_w, clip.y * inv_w, clip.z * inv_w);
 #endif
+#if VIEWPORT_FMA
+      xw[v] = fma(ndc.x, half_w, half_w);
+      yw[v] = fma(ndc.y, half_h, half_h);
+#if RANGE_GL
+      dw[v] = fma(ndc.z, 0.5f, 0.5f);
+#else
+      dw[v] = ndc.z;
+#endif
+#else
       xw[v] = ndc.x * half_w + half_w;
       yw[v] = ndc.y * half_h + half_h;
 #if RANGE_GL
       dw[v] = ndc.z * 0.5f + 0.5f;
 #else
       dw[v] = ndc.z;
+#endif
 #endif
       qw[v] = inv_w;
       if (!isfinite(xw[v]) || !isfinite(yw[v]) || !isfinite(qw[v])) nonfinite = 1u;
@@ -200,6 +210,31 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
       if (!(fabs(det) >= 0.1f * longest)) shapely = 0u;
     }
+#if PLANE_FORM == 1
+    {
+      /* llvmpipe (lp_state_setup.c): the vertices as it passes them, (v1, v0, v2) when the area
+       * is negative; gradients as differences times 1/area; the value at the framebuffer origin.
+       * Evaluated at integer pixel coordinates (px - 0.5, py - 0.5): T_X0 = T_Y0 = 0.5. */
+      const int j0 = det < 0.0f ? i1 : i0, j1 = det < 0.0f ? i0 : i1, j2 = i2;
+      const float x0c = xw[j0] - 0.5f, y0c = yw[j0] - 0.5f;
+      const float dx01 = xw[j0] - xw[j1], dy01 = yw[j0] - yw[j1];
+      const float dx20 = xw[j2] - xw[j0], dy20 = yw[j2] - yw[j0];
+      const float ooa = 1.0f / (dx01 * dy20 - dx20 * dy01);
+      const float dy20o = dy20 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dx01o = dx01 * ooa;
+      const float dz01 = dw[j0] - dw[j1], dz20 = dw[j2] - dw[j0];
+      const float dzdx = dz01 * dy20o - dz20 * dy01o, dzdy = dz20 * dx01o - dz01 * dx20o;
+      const float dq01 = qw[j0] - qw[j1], dq20 = qw[j2] - qw[j0];
+      const float dqdx = dq01 * dy20o - dq20 * dy01o, dqdy = dq20 * dx01o - dq01 * dx20o;
+      R[T_X0] = 0.5f;
+      R[T_Y0] = 0.5f;
+      R[T_D0] = dw[j0] - (dzdx * x0c + dzdy * y0c);
+      R[T_DZDX] = dzdx;
+      R[T_DZDY] = dzdy;
+      R[T_Q0] = qw[j0] - (dqdx * x0c + dqdy * y0c);
+      R[T_DQDX] = dqdx;
+      R[T_DQDY] = dqdy;
+    }
+#else
     const float e1d = dw[i1] - dw[i0], e2d = dw[i2] - dw[i0];
     const float e1q = qw[i1] - qw[i0], e2q = qw[i2] - qw[i0];
     R[T_X0] = xw[i0];
@@ -210,6 +245,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
     R[T_Q0] = qw[i0];
     R[T_DQDX] = (e1q * e2y - e2q * e1y) / det;
     R[T_DQDY] = (e2q * e1x - e1q * e2x) / det;
+#endif
     R[T_YMIN] = fmin(fmin(yw[i0], yw[i1]), yw[i2]);
     R[T_YMAX] = fmax(fmax(yw[i0], yw[i1]), yw[i2]);
     __global float* SA = T + NT * TRI_STRIDE;

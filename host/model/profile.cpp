@@ -1,0 +1,40 @@
+#include "host/model/profile.h"
+
+#include <fmt/format.h>
+
+#include "host/base/errors.h"
+
+namespace depthprec {
+
+const std::vector<Profile>& profiles() {
+  static const std::vector<Profile> table = {
+      {"ideal",
+       "the documented pipeline of docs/spec.md 2: planes anchored at a vertex, separate "
+       "multiply and add",
+       {"pipeline.plane=vertex", "pipeline.viewport=separate"},
+       "step"},
+      // Mesa 22.3 as Debian 12 ships it (docs/validation.md): its depth-plane set-up and
+      // evaluation, and its FMA viewport transform. Not modelled (yet): its clipping of triangles
+      // that cross the viewport edge, its fixed-point coverage, its unorm conversions.
+      {"llvmpipe",
+       "Mesa's llvmpipe (22.3): depth planes referred to the framebuffer origin and evaluated "
+       "with FMA, FMA viewport transform; bias r of unorm buffers 2/(2^n - 1)",
+       {"pipeline.plane=origin_fma", "pipeline.viewport=fma"},
+       "double_step"},
+  };
+  return table;
+}
+
+const Profile& profile(const std::string& name) {
+  for (const Profile& p : profiles())
+    if (name == p.name) return p;
+  throw InputError(fmt::format("unknown profile '{}' (allowed: {})", name, profile_names()));
+}
+
+std::string profile_names() {
+  std::string out;
+  for (const Profile& p : profiles()) out += (out.empty() ? "" : ", ") + std::string(p.name);
+  return out;
+}
+
+}  // namespace depthprec
