@@ -83,6 +83,9 @@ COMMANDS = [
      "--frames 4 --no-timing -q", "advise", True,
      ["smallest near", "fails at z", "largest far", "steps"],
      None),
+    (f"table --profiles ideal,llvmpipe {SCENE}", "profiles", True, ["z"], None),
+    (f"mts --profiles ideal,llvmpipe {SCENE}", "profiles", True,
+     ["z", "ideal", "llvmpipe", "spread"], None),
     (f"bias {SCENE}", "bias", True,
      ["z", "units", "factor", "set factor", "set units", "offset", "eye separation", "MTS"], None),
 ]

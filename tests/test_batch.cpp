@@ -190,6 +190,9 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
       {"bias",
        "bias -t standard,reversed,infinite,log_vertex -f unorm24 --distances 2,1024,1048576 "
        "--kernel 60x60 --frames 20 --no-timing --format-out json"},
+      {"profiles",
+       "table --profiles ideal,llvmpipe -t standard,reversed,infinite -f float32 --distances "
+       "2,1024,1048576 --kernel 60x60 --frames 20 --no-timing --format-out json"},
       // The rendered batches (llvmpipe here): rows of `render`, records of `compare`.
       {"render",
        "render -t standard,reversed,linear -f unorm24 --distances 2,1024,1048576 --kernel 64x64 "

@@ -213,7 +213,7 @@ TEST_CASE("on a terminal the progress line is erased before the output", "[cli]"
   CHECK_THAT(out, Contains("\r\x1b[Ktechnique  format"));  // and erased before the header
 }
 
-TEST_CASE("--profile sets its implementation forms as --sets do, and render refuses them",
+TEST_CASE("a profile sets its implementation forms as --sets do, and render refuses them",
           "[cli][profile]") {
   const std::string small = " -t standard -f float32 --distances 100 --kernel 16x16 --frames 2 -q";
   const auto llvmpipe = run_cli("mts --profile llvmpipe --format-out json --no-timing" + small);
@@ -230,4 +230,33 @@ TEST_CASE("--profile sets its implementation forms as --sets do, and render refu
   const auto render = run_cli("render --profile llvmpipe" + small);
   CHECK(render.exit_code == 3);
   CHECK_THAT(render.output, Contains("plane=origin_fma"));
+}
+
+TEST_CASE("profiles side by side: each one's MTS and the spread", "[cli][profile]") {
+  const std::string small =
+      " -t standard,reversed -f float32 --distances 2,1024 --kernel 24x24 "
+      "--frames 4 -q --no-timing --format-out json";
+  const auto both = run_cli("mts --profiles ideal,llvmpipe" + small);
+  REQUIRE(both.exit_code == 0);
+  const auto j = nlohmann::json::parse(both.output);
+  CHECK(j["kind"] == "profiles");
+  CHECK(j["profiles"] == nlohmann::json({"ideal", "llvmpipe"}));
+  REQUIRE(j["records"].size() == 2);
+  // each profile's column is that profile's own run
+  const auto ideal = nlohmann::json::parse(run_cli("mts" + small).output);
+  const auto llvmpipe = nlohmann::json::parse(run_cli("mts --profile llvmpipe" + small).output);
+  size_t k = 0;
+  for (const auto& rec : j["records"])
+    for (const auto& row : rec["rows"]) {
+      INFO(rec["technique"] << " z = " << row["z"]);
+      const double a = row["mts"]["ideal"], b = row["mts"]["llvmpipe"];
+      CHECK(a == ideal["rows"][k]["mts"].get<double>());
+      CHECK(b == llvmpipe["rows"][k]["mts"].get<double>());
+      CHECK(row["spread"].get<double>() == std::max(a, b) / std::min(a, b));
+      ++k;
+    }
+  CHECK(run_cli("table --profiles ideal" + small).exit_code == 2);
+  CHECK(run_cli("table --profiles ideal,ideal" + small).exit_code == 2);
+  CHECK(run_cli("table --profile llvmpipe --profiles ideal,llvmpipe" + small).exit_code == 2);
+  CHECK(run_cli("table --profiles ideal,nvidia" + small).exit_code == 3);
 }

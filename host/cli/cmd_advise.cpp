@@ -59,11 +59,9 @@ void run_advise(const AdviseOptions& o, const GlobalOptions& g) {
         header["separation"] = r.separation;
         header["separation_is_relative"] = r.relative;
         header["distances_checked"] = advise_distances(r);
-        std::vector<BatchUnit> units;
-        for (const EvalPair& pair : scene.evaluate)
-          units.push_back({pair.label(),
-                           [&rt, &scene, &r, pair] { return advise_record(rt, scene, pair, r); }});
-        return units;
+        return pair_units(scene, [&rt, &scene, &r](const EvalPair& pair) {
+          return advise_record(rt, scene, pair, r);
+        });
       },
       render_advise_output);
 }

@@ -159,13 +159,9 @@ void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
         header["compare"] = b.or_equal ? "or_equal" : "strict";
         header["tilt_deg"] = b.tilt_deg;
         header["set_factor"] = b.set_factor;
-        std::vector<BatchUnit> units;
-        for (const EvalPair& pair : scene.evaluate)
-          units.push_back({pair.label(), [&rt, &gl, &scene, &b, pair] {
-                             return gl ? rendered_bias_record(*gl, scene, pair, b)
-                                       : bias_record(rt, scene, pair, b);
-                           }});
-        return units;
+        return pair_units(scene, [&rt, &gl, &scene, &b](const EvalPair& pair) {
+          return gl ? rendered_bias_record(*gl, scene, pair, b) : bias_record(rt, scene, pair, b);
+        });
       },
       render_bias_output);
 }

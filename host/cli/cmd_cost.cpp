@@ -43,12 +43,9 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
       [&scene, timing](OpenClRuntime& rt, nlohmann::json& header) {
         header["scene"] = scene.json;
         header["scene_name"] = scene.name;
-        std::vector<BatchUnit> units;
-        for (const EvalPair& pair : scene.evaluate)
-          units.push_back({pair.label(), [&rt, &scene, pair, timing] {
-                             return cost_record(rt, scene, pair, timing);
-                           }});
-        return units;
+        return pair_units(scene, [&rt, &scene, timing](const EvalPair& pair) {
+          return cost_record(rt, scene, pair, timing);
+        });
       },
       render_cost_output);
   if (o.plot.empty()) return;

@@ -143,7 +143,8 @@ const std::map<std::string, RecordKind>& record_kinds() {
       {"pipelines", {render_pipelines_output, {"summary"}}},
       {"compare", {render_compare_output, {"summary", "pairs"}}},
       {"advise", {render_advise_output, {"ranking"}}},
-      {"bias", {render_bias_output, {}}}};
+      {"bias", {render_bias_output, {}}},
+      {"profiles", {render_profiles_output, {}}}};
   return kinds;
 }
 

@@ -3,6 +3,7 @@
 // run_scene, which shares launches between a pair's distances; Ctrl-C or SIGTERM stops after the
 // current launch round with every finished row kept.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cstdio>
 #include <fstream>
@@ -11,15 +12,21 @@
 #include <optional>
 #include <set>
 
+#include "host/analysis/profiles.h"
 #include "host/base/errors.h"
 #include "host/base/interrupt.h"
+#include "host/base/json_number.h"
 #include "host/batch/batch.h"
 #include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
+#include "host/model/profile.h"
 #include "host/mts/mts_run.h"
 #include "host/output/json_header.h"
 #include "host/output/progress.h"
+#include "host/output/report.h"
 #include "host/output/row_json.h"
+#include "host/output/text_table.h"
 #include "host/render/render_run.h"
 
 namespace depthprec::cli {
@@ -36,7 +43,54 @@ struct MtsOptions {
   int jobs = RunControl{}.jobs;
   bool render = false;  // probes decided by the system's OpenGL, not the emulator
   std::string gl_device = GlDeviceChoice{}.text;
+  std::vector<std::string> profiles;  // --profiles: the spread between implementation profiles
 };
+
+void add_profiles_option(CLI::App* cmd, MtsOptions& o) {
+  cmd->add_option("--profiles", o.profiles,
+                  "Compare implementation profiles (" + profile_names() +
+                      "): each pair's MTS under every one named, and the spread (largest over "
+                      "smallest), to see where the answer depends on the rasterizer")
+      ->delimiter(',');
+}
+
+// --profiles: a record batch of one record per pair (host/analysis/profiles.h), so it journals,
+// resumes, shards and merges as the other record batches do.
+void run_profiles(const MtsOptions& o, const GlobalOptions& global, bool wide) {
+  if (!o.scene.profile.empty())
+    throw Error(ExitCode::usage,
+                "--profile and --profiles: give --profiles alone (it runs each profile named)");
+  if (o.attribute) throw Error(ExitCode::usage, "--attribute does not combine with --profiles");
+  if (o.profiles.size() < 2)
+    throw Error(ExitCode::usage,
+                fmt::format("--profiles: name two or more of {}", profile_names()));
+  std::vector<ProfiledScene> scenes;
+  nlohmann::json settings = nlohmann::json::object();
+  for (const std::string& name : o.profiles) {
+    for (const auto& s : scenes)
+      if (s.profile == name)
+        throw Error(ExitCode::usage, fmt::format("--profiles: '{}' is named twice", name));
+    SceneOptions so = o.scene;
+    so.profile = name;
+    scenes.push_back({name, so.load()});
+    settings[name] = profile(name).sets;
+  }
+  const Scene& scene = scenes.front().scene;
+  check_writable(o.out.output);
+  run_record_batch(
+      "profiles", o.out, o.batch, global,
+      [&](OpenClRuntime& rt, nlohmann::json& header) {
+        header["scene"] = scene.json;
+        header["scene_name"] = scene.name;
+        header["profiles"] = o.profiles;
+        header["profile_settings"] = settings;
+        header["layout"] = wide ? "table" : "mts";
+        return pair_units(scene, [&rt, &scenes](const EvalPair& pair) {
+          return profiles_record(rt, scenes, pair);
+        });
+      },
+      render_profiles_output);
+}
 
 void add_jobs_option(CLI::App* cmd, MtsOptions& o) {
   cmd->add_option(
@@ -58,6 +112,7 @@ void add_attribute_flag(CLI::App* cmd, MtsOptions& o) {
 }
 
 void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
+  if (!o.profiles.empty()) return run_profiles(o, global, wide);
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
   const Shard shard = Shard::parse(o.batch.shard);
@@ -127,6 +182,73 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
 
 }  // namespace
 
+std::string render_profiles_output(const nlohmann::json& header,
+                                   const std::vector<nlohmann::json>& records,
+                                   const OutputOptions& out) {
+  if (out.format_out == "json") return records_json(header, records, !out.no_timing);
+  const bool csv = out.format_out == "csv";
+  const auto names = header.at("profiles").get<std::vector<std::string>>();
+  // A profile's cell: its MTS, or (text) the verdict that replaces it; CSV keeps numbers apart.
+  const auto cell = [&](const nlohmann::json& row, const std::string& p) -> std::string {
+    const nlohmann::json& v = row.at("mts").at(p);
+    if (!v.is_null()) return number_cell(number_from_json(v, "mts"), out.format_out);
+    return csv ? "" : row.at("verdict").at(p).get<std::string>();
+  };
+  const auto spread = [&](const nlohmann::json& row) -> std::string {
+    return row.at("spread").is_null()
+               ? (csv ? "" : "-")
+               : number_cell(row.at("spread").get<double>(), out.format_out, "{:.3f}");
+  };
+  const std::string caption = fmt::format(
+      "MTS under each implementation profile ({}; scene {}) and the spread, the largest over the "
+      "smallest: 1 where the format and technique decide the answer, above 1 where the "
+      "rasterizer's arithmetic does. '-': a profile has no number there",
+      fmt::join(names, ", "), header.value("scene_name", std::string("?")));
+  std::vector<Column> cols;
+  Cells cells;
+  if (header.value("layout", std::string("mts")) == "mts") {
+    cols = {{"technique", true}, {"format", true}, {"depth_range", true}, {"z"}};
+    for (const auto& p : names) cols.push_back({p});
+    cols.push_back({"spread"});
+    if (csv)
+      for (const auto& p : names) cols.push_back({p + " verdict", true});
+    for (const auto& rec : records)
+      for (const auto& row : rec.at("rows")) {
+        std::vector<std::string> line = {rec.at("technique").get<std::string>(),
+                                         rec.at("format").get<std::string>(),
+                                         rec.at("depth_range").get<std::string>(),
+                                         number_cell(row.at("z").get<double>(), out.format_out)};
+        for (const auto& p : names) line.push_back(cell(row, p));
+        line.push_back(spread(row));
+        if (csv)
+          for (const auto& p : names) line.push_back(row.at("verdict").at(p).get<std::string>());
+        cells.push_back(line);
+      }
+    return captioned(caption, cols, cells, out.format_out);
+  }
+  // The wide layout: one row per distance, per pair a column per profile and its spread.
+  cols = {{"z"}};
+  for (const auto& rec : records) {
+    const std::string pair =
+        fmt::format("{}/{}/{}", rec.at("technique").get<std::string>(),
+                    rec.at("format").get<std::string>(), rec.at("depth_range").get<std::string>());
+    for (const auto& p : names) cols.push_back({pair + " " + p});
+    cols.push_back({pair + " spread"});
+  }
+  const size_t n = records.empty() ? 0 : records.front().at("rows").size();
+  for (size_t k = 0; k < n; ++k) {
+    std::vector<std::string> line = {
+        number_cell(records.front().at("rows")[k].at("z").get<double>(), out.format_out)};
+    for (const auto& rec : records) {
+      const nlohmann::json& row = rec.at("rows")[k];
+      for (const auto& p : names) line.push_back(cell(row, p));
+      line.push_back(spread(row));
+    }
+    cells.push_back(line);
+  }
+  return captioned(caption, cols, cells, out.format_out);
+}
+
 void add_gl_device_option(CLI::App* cmd, std::string& choice) {
   cmd->add_option("--gl-device", choice,
                   "The EGL display to render on: auto (Mesa's surfaceless platform when the EGL "
@@ -154,6 +276,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   mts->batch.add_to(*cmd, kMtsUnits);
   add_attribute_flag(cmd, *mts);
   add_jobs_option(cmd, *mts);
+  add_profiles_option(cmd, *mts);
   cmd->callback([mts, &global]() { run(*mts, global, false); });
 
   auto table = std::make_shared<MtsOptions>();
@@ -173,6 +296,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
   table->batch.add_to(*tcmd, kMtsUnits);
   add_attribute_flag(tcmd, *table);
   add_jobs_option(tcmd, *table);
+  add_profiles_option(tcmd, *table);
   tcmd->callback([table, &global]() { run(*table, global, true); });
 
   auto render = std::make_shared<MtsOptions>();

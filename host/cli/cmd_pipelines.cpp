@@ -124,11 +124,8 @@ void run_pipelines(const PipelinesOptions& o, const GlobalOptions& g) {
       [&scene](OpenClRuntime& rt, nlohmann::json& header) {
         header["scene"] = scene.json;
         header["scene_name"] = scene.name;
-        std::vector<BatchUnit> units;
-        for (const EvalPair& pair : scene.evaluate)
-          units.push_back(
-              {pair.label(), [&rt, &scene, pair] { return pair_record(rt, scene, pair); }});
-        return units;
+        return pair_units(
+            scene, [&rt, &scene](const EvalPair& pair) { return pair_record(rt, scene, pair); });
       },
       render_pipelines_output);
 }

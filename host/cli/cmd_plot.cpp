@@ -29,9 +29,21 @@ void run_plot(const PlotOptions& o) {
   std::ifstream in(o.input);
   if (!in) throw InputError(fmt::format("plot: cannot read '{}'", o.input));
   const auto j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_discarded() && j.is_object() && j.value("kind", "") == "profiles" &&
+      j.contains("records")) {  // `mts --profiles` / `table --profiles`: the band between them
+    check_plot_output(o.output);
+    const std::string scene = j.value("scene_name", "?");
+    plot_profiles(j["records"].get<std::vector<nlohmann::json>>(),
+                  j.at("profiles").get<std::vector<std::string>>(),
+                  o.title.empty() ? fmt::format("MTS by profile, scene {}", scene) : o.title,
+                  o.output);
+    return;
+  }
   if (j.is_discarded() || !j.is_object() || !j.contains("rows"))
     throw InputError(fmt::format(
-        "plot: '{}' is not a JSON output of mts, table or merge (--format-out json)", o.input));
+        "plot: '{}' is not a JSON output of mts, table (with or without --profiles) or merge "
+        "(--format-out json)",
+        o.input));
   check_plot_output(o.output);
   std::vector<MtsRow> rows;
   for (const auto& rj : j["rows"]) rows.push_back(row_from_json(rj));
@@ -51,7 +63,8 @@ void add_plot_command(CLI::App& app) {
       "plot",
       "Plot MTS against distance (log-log, one line per technique/format/depth range, the\n"
       "binary32 vertex-precision bound shaded, as Gilg et al.'s fig. 6) with gnuplot, from the\n"
-      "JSON output of mts, table or merge.\n"
+      "JSON output of mts, table or merge; for `--profiles` outputs, a line per profile and the\n"
+      "band between them.\n"
       "Example:\n"
       "  depthprec table --format-out json -o table.json && depthprec plot table.json -o "
       "table.png");

@@ -61,5 +61,8 @@ std::string render_advise_output(const nlohmann::json& header,
 std::string render_bias_output(const nlohmann::json& header,
                                const std::vector<nlohmann::json>& records,
                                const OutputOptions& out);
+std::string render_profiles_output(const nlohmann::json& header,
+                                   const std::vector<nlohmann::json>& records,
+                                   const OutputOptions& out);
 
 }  // namespace depthprec::cli

@@ -6,6 +6,14 @@
 
 namespace depthprec::cli {
 
+std::vector<BatchUnit> pair_units(const Scene& scene,
+                                  const std::function<nlohmann::json(const EvalPair&)>& record) {
+  std::vector<BatchUnit> units;
+  for (const EvalPair& pair : scene.evaluate)
+    units.push_back({pair.label(), [record, pair] { return record(pair); }});
+  return units;
+}
+
 std::vector<nlohmann::json> run_record_batch(
     const std::string& kind, const OutputOptions& out, const BatchOptions& batch,
     const GlobalOptions& global,

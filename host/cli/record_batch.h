@@ -11,6 +11,7 @@
 
 #include "host/batch/batch.h"
 #include "host/cli/commands.h"
+#include "host/model/scene.h"
 #include "host/runtime/opencl_runtime.h"
 
 namespace depthprec::cli {
@@ -18,6 +19,11 @@ namespace depthprec::cli {
 using RecordRenderer =
     std::function<std::string(const nlohmann::json& header,
                               const std::vector<nlohmann::json>& records, const OutputOptions&)>;
+
+// The units of a batch with one record per pair of the scene, keyed by the pair's label, in
+// scene order: what advise, bias, cost, pipelines and --profiles run.
+std::vector<BatchUnit> pair_units(const Scene& scene,
+                                  const std::function<nlohmann::json(const EvalPair&)>& record);
 
 // prepare fills the header (batch_header's fields are set already) and lists the units; they may
 // keep a reference to the runtime, which lives until the output is written. Returns the records.

@@ -250,4 +250,56 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
   run_gnuplot(script, output);
 }
 
+void plot_profiles(const std::vector<nlohmann::json>& records,
+                   const std::vector<std::string>& profiles, const std::string& title,
+                   const std::string& output) {
+  if (records.empty()) throw InputError("plot: there are no profile records to plot");
+  std::string script = script_start(output);
+  std::vector<std::string> labels;
+  for (size_t i = 0; i < records.size(); ++i) {
+    const auto& r = records[i];
+    labels.push_back(r.at("technique").get<std::string>() + "/" +
+                     r.at("format").get<std::string>() + "/" +
+                     r.at("depth_range").get<std::string>());
+    script += fmt::format("$p{} << EOD\n", i);
+    for (const auto& row : r.at("rows")) {
+      // z, the band (min, max over the profiles that resolved it), then each profile (NaN: none)
+      double lo = INFINITY, hi = -INFINITY;
+      std::string values;
+      for (const auto& p : profiles) {
+        const nlohmann::json& v = row.at("mts").at(p);
+        const double m = v.is_null() ? NAN : number_from_json(v, "mts");
+        if (std::isfinite(m)) {
+          lo = std::min(lo, m);
+          hi = std::max(hi, m);
+        }
+        values += fmt::format(" {:.17g}", m);
+      }
+      if (!std::isfinite(lo)) lo = hi = NAN;
+      script +=
+          fmt::format("{:.17g} {:.17g} {:.17g}{}\n", row.at("z").get<double>(), lo, hi, values);
+    }
+    script += "EOD\n";
+  }
+  script += "set logscale x 2\nset format x '2^{%L}'\n";
+  script += kLogTenY;
+  script += fmt::format(
+      "set key outside right\nset grid\nset xlabel 'distance z of the front plane'\n"
+      "set ylabel 'minimum triangle separation'\nset title {} noenhanced\nplot ",
+      gnuplot_quote(title));
+  for (size_t i = 0; i < records.size(); ++i) {
+    script += fmt::format(
+        "$p{0} using 1:2:3 with filledcurves fs transparent solid 0.2 noborder lc rgb '{1}' "
+        "notitle, ",
+        i, kColours[i % 12]);
+    for (size_t k = 0; k < profiles.size(); ++k)
+      script += fmt::format(
+          "$p{} using 1:{} with linespoints lw 1.5 dt {} ps 0.5 {} title {} "
+          "noenhanced{}",
+          i, 4 + k, 1 + k, series_style(i), gnuplot_quote(labels[i] + " " + profiles[k]),
+          i + 1 == records.size() && k + 1 == profiles.size() ? "\n" : ", ");
+  }
+  run_gnuplot(script, output);
+}
+
 }  // namespace depthprec

@@ -35,4 +35,11 @@ void plot_lj_table(const std::map<std::string, nlohmann::json>& records, const s
 // one colour) above their ratio emulated/rendered: the records of `compare`.
 void plot_compare(const std::vector<nlohmann::json>& records, const std::string& output);
 
+// MTS against distance under each implementation profile (the records of `--profiles`): per pair
+// one colour, a line per profile (solid, dashed, dotted, ...) and the band between the smallest
+// and the largest shaded, so where the answer depends on the rasterizer shows as width.
+void plot_profiles(const std::vector<nlohmann::json>& records,
+                   const std::vector<std::string>& profiles, const std::string& title,
+                   const std::string& output);
+
 }  // namespace depthprec
