@@ -24,6 +24,15 @@
 #define DF_ROUND_NEAREST_EVEN 0u
 #define DF_ROUND_TRUNCATE 1u
 
+/* How a unorm code is computed from the binary32 depth: exactly (one correct rounding, the
+ * default), or with the binary32 arithmetic Mesa's llvmpipe uses (lp_bld_conv.c, Mesa 22.3):
+ *   unorm16  rint_even(fl32(d * 0x1.fffep-1) * 65536)
+ *   unorm24  rint_even(fl32(d * 16777215))                 two roundings
+ *   unorm32  2 * trunc(d * 2^31), 2^32 - 1 at d = 1         31 bits, truncated
+ * Only those three widths have an llvmpipe form. */
+#define DF_CONVERT_EXACT 0u
+#define DF_CONVERT_LLVMPIPE 1u
+
 typedef struct df_format {
   df_u32 kind;     /* DF_KIND_UNORM or DF_KIND_FLOAT */
   df_u32 bits;     /* total storage bits, 1..32 */
@@ -33,6 +42,7 @@ typedef struct df_format {
   df_u32 max_code; /* largest code that stands for a finite value */
   df_u32 rounding; /* DF_ROUND_* */
   df_u32 flush;    /* 1: a code that would be subnormal is stored as 0 */
+  df_u32 convert;  /* DF_CONVERT_* (unorm only) */
 } df_format;
 
 DF_FN df_format df_make_unorm(df_u32 bits, df_u32 rounding, df_u32 flush) {
@@ -45,6 +55,12 @@ DF_FN df_format df_make_unorm(df_u32 bits, df_u32 rounding, df_u32 flush) {
   f.max_code = (df_u32)((((df_u64)1) << bits) - 1u);
   f.rounding = rounding;
   f.flush = flush;
+  f.convert = DF_CONVERT_EXACT;
+  return f;
+}
+
+DF_FN df_format df_with_convert(df_format f, df_u32 convert) {
+  f.convert = convert;
   return f;
 }
 
@@ -62,6 +78,7 @@ DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_styl
                           : (df_u32)((((df_u64)1) << (exp_bits + man_bits)) - 1u);
   f.rounding = rounding;
   f.flush = flush;
+  f.convert = DF_CONVERT_EXACT;
   return f;
 }
 
@@ -75,7 +92,7 @@ DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_styl
  * Other formats: none (0xffffffff, no depth reaches it); binary32 storage is already a bit copy.
  * tests/test_storage_format.cpp checks the property on every binary32 from T's predecessor to 1. */
 DF_FN df_u32 df_order_exact_from(df_format f) {
-  if (f.kind == DF_KIND_UNORM && f.bits == 24u)
+  if (f.kind == DF_KIND_UNORM && f.bits == 24u && f.convert == DF_CONVERT_EXACT)
     return f.rounding == DF_ROUND_NEAREST_EVEN ? 0x3f000002u : 0x3f000001u;
   return 0xffffffffu;
 }
@@ -137,12 +154,28 @@ DF_FN df_u32 df_encode_float(df_u32 u, df_format f) {
   return (df_u32)code;
 }
 
+/* Round half to even of 0 <= x < 2^24 in binary32: below 2^23 adding 2^23 leaves the integer in
+ * the sum (the adder rounds); from 2^23 on x is an integer already. */
+DF_FN float df_rint_small(float x) {
+  return x >= 8388608.0f ? x : (x + 8388608.0f) - 8388608.0f;
+}
+
+/* llvmpipe's unorm conversion (DF_CONVERT_LLVMPIPE) of 0 < d < 1. */
+DF_FN df_u32 df_encode_unorm_llvmpipe(float d, df_format f) {
+  if (f.bits == 16u) return (df_u32)df_rint_small((d * 0x1.fffep-1f) * 65536.0f);
+  if (f.bits == 24u) return (df_u32)df_rint_small(d * 16777215.0f);
+  const df_u32 t = (df_u32)(d * 2147483648.0f); /* truncating */
+  return (t << 1) - (t >> 31);
+}
+
 /* Storage code of a binary32 window depth. */
 DF_FN df_u32 df_encode(float d, df_format f) {
   df_u32 u = df_float_bits(d);
   if (u >> 31) return 0u;         /* negative, -0 */
   if (u > 0x7f800000u) return 0u; /* NaN */
   if (u == 0x7f800000u) return f.max_code;
+  if (f.kind == DF_KIND_UNORM && f.convert == DF_CONVERT_LLVMPIPE)
+    return u == 0u ? 0u : (u >= 0x3f800000u ? f.max_code : df_encode_unorm_llvmpipe(d, f));
   return f.kind == DF_KIND_UNORM ? df_encode_unorm(u, f) : df_encode_float(u, f);
 }
 
@@ -201,6 +234,13 @@ DF_FN uint16 df_encode_unorm_f64_16(float16 d, df_format f) {
 /* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by
  * lane through the scalar encoder for the other float formats. */
 DF_FN uint16 df_encode16(float16 d, df_format f) {
+  if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT) { /* lane by lane */
+    float a[16];
+    uint c[16];
+    vstore16(d, 0, a);
+    for (int k = 0; k < 16; ++k) c[k] = df_encode(a[k], f);
+    return vload16(0, c);
+  }
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16(d, f);
 #endif
@@ -224,6 +264,7 @@ DF_FN uint16 df_encode16(float16 d, df_format f) {
  * or clamped): the checks for negative, NaN and too large values fall away, which is a good part
  * of the pixel loop. The exhaustive format proof compares it with df_encode on [0, 1] and -0. */
 DF_FN uint16 df_encode16_unit(float16 d, df_format f) {
+  if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT) return df_encode16(d, f);
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16_unit(d, f);
 #endif
@@ -244,7 +285,8 @@ DF_FN df_u32 df_code_below(df_u32 c) {
  * compile-time constant, so every branch on the kind folds away. */
 #if defined(DF_KIND) && defined(DF_ROUNDING) && defined(DF_FLUSH)
 #if DF_KIND == 0
-#define DF_FORMAT_FROM_DEFINES() df_make_unorm(DF_BITS, DF_ROUNDING, DF_FLUSH)
+#define DF_FORMAT_FROM_DEFINES() \
+  df_with_convert(df_make_unorm(DF_BITS, DF_ROUNDING, DF_FLUSH), DF_CONVERT)
 #else
 #define DF_FORMAT_FROM_DEFINES() df_make_float(DF_E, DF_M, DF_IEEE, DF_ROUNDING, DF_FLUSH)
 #endif

@@ -36,6 +36,7 @@ TEST_CASE("bands decided from code bounds and coverage taken from plane A change
     if (llvmpipe) {
       sets.push_back("pipeline.plane=origin_fma");
       sets.push_back("pipeline.viewport=fma");
+      sets.push_back("pipeline.conversion=llvmpipe");
     }
     const Scene scene = load_scene("", sets);
     for (const auto& [t, format, range] :

@@ -116,17 +116,19 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
   }
 }
 
-// llvmpipe's forms (pipeline.plane = origin_fma, pipeline.viewport = fma): the kernel follows
-// the reference in them too, codes and probe outcomes.
-TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's plane and viewport",
+// llvmpipe's forms (pipeline.plane = origin_fma, pipeline.viewport = fma, pipeline.conversion =
+// llvmpipe): the kernel follows the reference in them too, codes and probe outcomes.
+TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms",
           "[mts][reference][llvmpipe]") {
-  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12",
-                                      "pipeline.plane=origin_fma", "pipeline.viewport=fma"});
+  const Scene scene = load_scene(
+      "", {"kernel=[48,40]", "viewport=[48,40]", "frames=12", "pipeline.plane=origin_fma",
+           "pipeline.viewport=fma", "pipeline.conversion=llvmpipe"});
   for (const auto& [t, format, range] :
        {std::tuple{Technique::standard, "float32", DepthRange::gl},
         std::tuple{Technique::standard, "unorm24", DepthRange::gl},
         std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
         std::tuple{Technique::infinite, "unorm16", DepthRange::zero_to_one},
+        std::tuple{Technique::reversed, "unorm32", DepthRange::zero_to_one},
         std::tuple{Technique::linear, "float32", DepthRange::gl},
         std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};

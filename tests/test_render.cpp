@@ -350,3 +350,28 @@ TEST_CASE("the llvmpipe profile's depth is llvmpipe's on most pixels", "[render]
   CHECK(same_llvmpipe > same_ideal + pixels / 5);
   CHECK(same_llvmpipe > pixels * 3 / 4);
 }
+
+TEST_CASE("the llvmpipe profile stores unorm32 as llvmpipe does: 31 truncated bits",
+          "[render][llvmpipe]") {
+  // reversed/unorm32 is storage-limited: the ideal pipeline's correctly rounded 32-bit codes
+  // resolve half the separation llvmpipe's 2 * trunc(d * 2^31) can. The profile's conversion
+  // gives llvmpipe's own MTS.
+  const std::vector<std::string> base = {
+      "kernel=[64,64]", "frames=10",
+      R"(evaluate=[{"technique": "reversed", "format": "unorm32", "depth_range": "zero_to_one"}])"};
+  auto with_llvmpipe = base;
+  for (const char* s :
+       {"pipeline.plane=origin_fma", "pipeline.viewport=fma", "pipeline.conversion=llvmpipe"})
+    with_llvmpipe.push_back(s);
+  const Scene ideal = load_scene("", base), llvmpipe = load_scene("", with_llvmpipe);
+  const EvalPair pair = ideal.evaluate[0];
+  const std::vector<double> zs = {4096, 1048576};
+  const auto rendered = rendered_rows(ideal, pair, zs);
+  const auto emulated = mts_rows(llvmpipe, pair.technique, pair.format, pair.depth_range, zs);
+  const auto exact = mts_rows(ideal, pair.technique, pair.format, pair.depth_range, zs);
+  for (size_t k = 0; k < zs.size(); ++k) {
+    INFO("z = " << zs[k]);
+    CHECK(emulated[k].mts == rendered[k].mts);
+    CHECK(exact[k].mts < 0.6 * rendered[k].mts);
+  }
+}

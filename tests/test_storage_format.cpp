@@ -138,7 +138,13 @@ TEST_CASE("code_floor agrees with truncating encode and brackets binary64 values
 
 TEST_CASE("defines describe the format for a kernel", "[formats]") {
   CHECK(StorageFormat::parse("unorm24").defines() ==
-        "-DDF_KIND=0 -DDF_BITS=24u -DDF_ROUNDING=0u -DDF_FLUSH=0u");
+        "-DDF_KIND=0 -DDF_BITS=24u -DDF_ROUNDING=0u -DDF_FLUSH=0u -DDF_CONVERT=0u");
+  CHECK(
+      StorageFormat::parse("unorm16", Rounding::nearest_even, Denormals::keep, Conversion::llvmpipe)
+          .defines() == "-DDF_KIND=0 -DDF_BITS=16u -DDF_ROUNDING=0u -DDF_FLUSH=0u -DDF_CONVERT=1u");
+  CHECK_THROWS_AS(StorageFormat::parse("unorm20", Rounding::nearest_even, Denormals::keep,
+                                       Conversion::llvmpipe),
+                  InputError);
   CHECK(StorageFormat::parse("e4m12", Rounding::truncate, Denormals::flush).defines() ==
         "-DDF_KIND=1 -DDF_E=4 -DDF_M=12 -DDF_IEEE=0u -DDF_ROUNDING=1u -DDF_FLUSH=1u");
 }

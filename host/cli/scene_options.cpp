@@ -49,7 +49,8 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--log-k", log_k, "k of the log techniques");
   cmd.add_option("--profile", profile,
                  "Implementation profile: ideal (docs/spec.md 2) or llvmpipe (Mesa's depth-plane "
-                 "set-up and FMA viewport); sets pipeline.plane and pipeline.viewport");
+                 "set-up, FMA viewport and unorm conversions); sets pipeline.plane, "
+                 "pipeline.viewport and pipeline.conversion");
 }
 
 namespace {

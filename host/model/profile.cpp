@@ -11,15 +11,16 @@ const std::vector<Profile>& profiles() {
       {"ideal",
        "the documented pipeline of docs/spec.md 2: planes anchored at a vertex, separate "
        "multiply and add",
-       {"pipeline.plane=vertex", "pipeline.viewport=separate"},
+       {"pipeline.plane=vertex", "pipeline.viewport=separate", "pipeline.conversion=exact"},
        "step"},
       // Mesa 22.3 as Debian 12 ships it (docs/validation.md): its depth-plane set-up and
-      // evaluation, and its FMA viewport transform. Not modelled (yet): its clipping of triangles
-      // that cross the viewport edge, its fixed-point coverage, its unorm conversions.
+      // evaluation, its FMA viewport transform and its unorm conversions. Not modelled (yet): its
+      // clipping of triangles that cross the viewport edge, its fixed-point coverage.
       {"llvmpipe",
        "Mesa's llvmpipe (22.3): depth planes referred to the framebuffer origin and evaluated "
-       "with FMA, FMA viewport transform; bias r of unorm buffers 2/(2^n - 1)",
-       {"pipeline.plane=origin_fma", "pipeline.viewport=fma"},
+       "with FMA, FMA viewport transform, binary32 unorm conversions; bias r of unorm buffers "
+       "2/(2^n - 1)",
+       {"pipeline.plane=origin_fma", "pipeline.viewport=fma", "pipeline.conversion=llvmpipe"},
        "double_step"},
   };
   return table;

@@ -51,8 +51,8 @@ const std::set<std::string> kTopKeys = {"name",
                                         "layer_overlap",
                                         "evaluate"};
 const std::set<std::string> kPipelineKeys = {
-    "depth_range", "matrix_precision", "compose", "divide",  "rounding",
-    "denormals",   "contraction",      "plane",   "viewport"};
+    "depth_range", "matrix_precision", "compose", "divide",   "rounding",
+    "denormals",   "contraction",      "plane",   "viewport", "conversion"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -455,6 +455,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.pipeline.contraction = r.boolean("pipeline.contraction");
   s.pipeline.plane = r.choice("pipeline.plane", parse_plane_form);
   s.pipeline.viewport = r.choice("pipeline.viewport", parse_viewport_form);
+  s.pipeline.conversion = r.choice("pipeline.conversion", parse_conversion);
 
   s.params.log_k = r.positive("log_k");
   s.params.layers = r.integer("layers", 1, 64);

@@ -42,6 +42,7 @@ struct Pipeline {
   bool contraction = false;
   PlaneForm plane = PlaneForm::vertex;
   ViewportForm viewport = ViewportForm::separate;
+  Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
 };
 
 struct EvalPair {
@@ -78,7 +79,9 @@ struct Scene {
   DepthRange range_for(Technique t) const { return pipeline.depth_range.value_or(info(t).range); }
 
   StorageFormat storage_format(const EvalPair& p) const {
-    return StorageFormat::parse(p.format, pipeline.rounding, pipeline.denormals);
+    return StorageFormat::parse(
+        p.format, pipeline.rounding, pipeline.denormals,
+        p.format.rfind("unorm", 0) == 0 ? pipeline.conversion : Conversion::exact);
   }
 };
 

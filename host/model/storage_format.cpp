@@ -37,8 +37,18 @@ Denormals parse_denormals(const std::string& s) {
   throw InputError(fmt::format("unknown denormals mode '{}': expected keep or flush", s));
 }
 
-StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding,
-                                   Denormals denormals) {
+const char* to_string(Conversion c) {
+  return c == Conversion::exact ? "exact" : "llvmpipe";
+}
+
+Conversion parse_conversion(const std::string& s) {
+  if (s == "exact") return Conversion::exact;
+  if (s == "llvmpipe") return Conversion::llvmpipe;
+  throw InputError(fmt::format("unknown conversion '{}': expected exact or llvmpipe", s));
+}
+
+StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, Denormals denormals,
+                                   Conversion conversion) {
   const df_u32 r = rounding == Rounding::nearest_even ? DF_ROUND_NEAREST_EVEN : DF_ROUND_TRUNCATE;
   const df_u32 fl = denormals == Denormals::flush ? 1u : 0u;
   StorageFormat f;
@@ -52,6 +62,14 @@ StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding,
       throw InputError(
           fmt::format("storage format '{}': unorm takes 1 to 32 bits, not {}", name, m[1].str()));
     f.spec_ = df_make_unorm(static_cast<df_u32>(b), r, fl);
+    if (conversion == Conversion::llvmpipe) {
+      if (b != 16 && b != 24 && b != 32)
+        throw InputError(fmt::format(
+            "storage format '{}': pipeline.conversion llvmpipe exists for unorm16, unorm24 and "
+            "unorm32 only (the depth formats llvmpipe stores)",
+            name));
+      f.spec_ = df_with_convert(f.spec_, DF_CONVERT_LLVMPIPE);
+    }
   } else if (name == "float32") {
     f.spec_ = df_make_float(8, 23, 1, r, fl);
   } else if (name == "float24") {
@@ -113,8 +131,9 @@ double StorageFormat::spacing_at(double v) const {
 
 std::string StorageFormat::defines() const {
   if (spec_.kind == DF_KIND_UNORM)
-    return fmt::format("-DDF_KIND=0 -DDF_BITS={}u -DDF_ROUNDING={}u -DDF_FLUSH={}u", spec_.bits,
-                       spec_.rounding, spec_.flush);
+    return fmt::format(
+        "-DDF_KIND=0 -DDF_BITS={}u -DDF_ROUNDING={}u -DDF_FLUSH={}u -DDF_CONVERT={}u", spec_.bits,
+        spec_.rounding, spec_.flush, spec_.convert);
   const bool ieee = spec_.bias == (1 << (spec_.exp_bits - 1)) - 1;
   return fmt::format(
       "-DDF_KIND=1 -DDF_E={} -DDF_M={} -DDF_IEEE={}u -DDF_ROUNDING={}u -DDF_FLUSH={}u",

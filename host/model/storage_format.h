@@ -11,17 +11,24 @@ namespace depthprec {
 
 enum class Rounding { nearest_even, truncate };
 enum class Denormals { keep, flush };
+// How the pipeline computes a unorm code (formats/depth_format.h DF_CONVERT_*).
+enum class Conversion { exact, llvmpipe };
 
 const char* to_string(Rounding r);
 const char* to_string(Denormals d);
 Rounding parse_rounding(const std::string& s);    // throws InputError
 Denormals parse_denormals(const std::string& s);  // throws InputError
+const char* to_string(Conversion c);
+Conversion parse_conversion(const std::string& s);  // throws InputError
 
 class StorageFormat {
  public:
   // "unorm24", "float32", "e4m12", ... Throws InputError saying what is allowed.
+  // conversion llvmpipe: only unorm16, unorm24 and unorm32 have one (InputError otherwise); it
+  // does not apply to float formats.
   static StorageFormat parse(const std::string& name, Rounding rounding = Rounding::nearest_even,
-                             Denormals denormals = Denormals::keep);
+                             Denormals denormals = Denormals::keep,
+                             Conversion conversion = Conversion::exact);
 
   const std::string& name() const { return name_; }
   const df_format& spec() const { return spec_; }

@@ -100,7 +100,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // Fragment-stage depth (DEPTH_FROM 2) interpolates q = 1/w the same way, so lo/hi bound q against
 // a reference plane R of q; d = h(q) is then a decreasing, convex function of q (frag_gap_clear),
 // and only LEQUAL set-ups use it.
-#if DF_KIND == 0
+#if DF_KIND == 0 && DF_CONVERT == 0
 #define GAP_STEP (1.0 / (double)DF_FORMAT_FROM_DEFINES().max_code)
 #elif DF_KIND == 1 && DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH
 #define GAP_STEP 0.0
