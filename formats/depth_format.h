@@ -92,8 +92,12 @@ DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_styl
  * Other formats: none (0xffffffff, no depth reaches it); binary32 storage is already a bit copy.
  * tests/test_storage_format.cpp checks the property on every binary32 from T's predecessor to 1. */
 DF_FN df_u32 df_order_exact_from(df_format f) {
-  if (f.kind == DF_KIND_UNORM && f.bits == 24u && f.convert == DF_CONVERT_EXACT)
-    return f.rounding == DF_ROUND_NEAREST_EVEN ? 0x3f000002u : 0x3f000001u;
+  /* llvmpipe's unorm24, rint(fl32(d (2^24 - 1))): from 0.5 on, fl32(k - d) lies within a unit
+   * of k and rounds to k - 1 (0.5 itself stores 2^23, as 0.5 + 2^-24 does): the same T as
+   * round to nearest even. */
+  if (f.kind == DF_KIND_UNORM && f.bits == 24u)
+    return f.rounding == DF_ROUND_NEAREST_EVEN || f.convert == DF_CONVERT_LLVMPIPE ? 0x3f000002u
+                                                                                   : 0x3f000001u;
   return 0xffffffffu;
 }
 
@@ -233,13 +237,25 @@ DF_FN uint16 df_encode_unorm_f64_16(float16 d, df_format f) {
 
 /* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by
  * lane through the scalar encoder for the other float formats. */
+/* llvmpipe's conversion (df_encode_unorm_llvmpipe) of 16 depths in [-0, 1], the same roundings
+ * lane by lane: df_rint_small's trick, and the truncating conversion of convert_uint16. */
+DF_FN uint16 df_encode_unorm_llvmpipe16_unit(float16 d, df_format f) {
+  if (f.bits == 32u) {
+    const uint16 t = convert_uint16(d * 2147483648.0f);
+    return (t << 1) - (t >> 31);
+  }
+  const float16 x = f.bits == 16u ? (d * 0x1.fffep-1f) * 65536.0f : d * 16777215.0f;
+  const float16 r = x >= 8388608.0f ? x : (x + 8388608.0f) - 8388608.0f;
+  return convert_uint16(r);
+}
+
 DF_FN uint16 df_encode16(float16 d, df_format f) {
-  if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT) { /* lane by lane */
-    float a[16];
-    uint c[16];
-    vstore16(d, 0, a);
-    for (int k = 0; k < 16; ++k) c[k] = df_encode(a[k], f);
-    return vload16(0, c);
+  if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT) {
+    const uint16 u = as_uint16(d);
+    const int16 zero = (u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u;
+    const int16 big = !zero && d >= 1.0f; /* and +inf */
+    const uint16 q = df_encode_unorm_llvmpipe16_unit((zero || big) ? (float16)0.0f : d, f);
+    return big ? (uint16)f.max_code : (zero ? (uint16)0 : q);
   }
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16(d, f);
@@ -264,7 +280,8 @@ DF_FN uint16 df_encode16(float16 d, df_format f) {
  * or clamped): the checks for negative, NaN and too large values fall away, which is a good part
  * of the pixel loop. The exhaustive format proof compares it with df_encode on [0, 1] and -0. */
 DF_FN uint16 df_encode16_unit(float16 d, df_format f) {
-  if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT) return df_encode16(d, f);
+  if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT)
+    return df_encode_unorm_llvmpipe16_unit(d, f);
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16_unit(d, f);
 #endif

@@ -68,6 +68,11 @@ StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, D
             "storage format '{}': pipeline.conversion llvmpipe exists for unorm16, unorm24 and "
             "unorm32 only (the depth formats llvmpipe stores)",
             name));
+      if (rounding != Rounding::nearest_even)
+        throw InputError(fmt::format(
+            "storage format '{}': pipeline.conversion llvmpipe rounds as llvmpipe does; "
+            "pipeline.rounding must stay nearest_even",
+            name));
       f.spec_ = df_with_convert(f.spec_, DF_CONVERT_LLVMPIPE);
     }
   } else if (name == "float32") {
