@@ -12,6 +12,7 @@
 #include "host/base/errors.h"
 #include "host/bias/bias_evaluator.h"
 #include "host/bias/bias_search.h"
+#include "host/model/profile.h"
 #include "host/mts/reference_pipeline.h"
 #include "kernels/bias_formula.h"
 #include "mts_fixture.h"
@@ -36,10 +37,14 @@ double r_of(const BiasOptions& o, const std::string& format) {
 
 const std::string kSmallScene = "--kernel 24x24 --frames 4 --no-timing -q ";
 
-Scene small_scene(const std::string& technique, const std::string& format) {
-  return load_scene(
-      "", {"kernel=[32,32]", "frames=6",
-           fmt::format(R"(evaluate=[{{"technique": "{}", "format": "{}"}}])", technique, format)});
+// llvmpipe: with the llvmpipe profile's settings (host/model/profile.cpp).
+Scene small_scene(const std::string& technique, const std::string& format, bool llvmpipe = false) {
+  std::vector<std::string> sets = {
+      "kernel=[32,32]", "frames=6",
+      fmt::format(R"(evaluate=[{{"technique": "{}", "format": "{}"}}])", technique, format)};
+  if (llvmpipe)
+    for (const std::string& set : profile("llvmpipe").sets) sets.push_back(set);
+  return load_scene("", sets);
 }
 
 // The reference's verdict over every frame: the overlay passes when no frame fights and
@@ -119,12 +124,16 @@ TEST_CASE("the bias kernel decides every probe as the host reference pipeline do
     const char* format;
     double z;
     double tilt;
+    bool llvmpipe;  // under the llvmpipe profile's plane, viewport and conversion
   };
-  for (const Case c : {Case{"standard", "unorm24", 100, 0}, Case{"reversed", "float32", 1000, 0},
-                       Case{"standard", "float32", 10, 45}, Case{"log_vertex", "unorm16", 50, 0},
-                       Case{"infinite", "unorm24", 3000, 30}}) {
-    INFO(c.technique << " " << c.format << " z=" << c.z << " tilt=" << c.tilt);
-    const Scene s = small_scene(c.technique, c.format);
+  for (const Case c :
+       {Case{"standard", "unorm24", 100, 0, false}, Case{"reversed", "float32", 1000, 0, false},
+        Case{"standard", "float32", 10, 45, false}, Case{"log_vertex", "unorm16", 50, 0, false},
+        Case{"infinite", "unorm24", 3000, 30, false}, Case{"standard", "unorm24", 100, 0, true},
+        Case{"reversed", "unorm32", 1000, 20, true}}) {
+    INFO(c.technique << " " << c.format << " z=" << c.z << " tilt=" << c.tilt
+                     << (c.llvmpipe ? " llvmpipe" : ""));
+    const Scene s = small_scene(c.technique, c.format, c.llvmpipe);
     const EvalPair pair = s.evaluate[0];
     BiasOptions o;
     o.tilt_deg = c.tilt;
