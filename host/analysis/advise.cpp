@@ -198,9 +198,7 @@ static nlohmann::json near_answer(OpenClRuntime& rt, const Scene& scene, const E
 
 nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                              const AdviseRequest& r) {
-  nlohmann::json j = {{"technique", info(pair.technique).name},
-                      {"format", pair.format},
-                      {"depth_range", to_string(pair.depth_range)}};
+  nlohmann::json j = pair.fields();
   j.update(near_answer(rt, scene, pair, r, 0));
   double far_used = scene.far;
   // A set-up with a far plane may fail only because the scene's far plane spreads its codes too

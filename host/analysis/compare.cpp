@@ -15,16 +15,14 @@ namespace depthprec {
 using nlohmann::json;
 
 json compare_record(const MtsRow& emulated, const MtsRow& rendered) {
-  json j = {{"technique", info(emulated.pair.technique).name},
-            {"format", emulated.pair.format},
-            {"depth_range", to_string(emulated.pair.depth_range)},
-            {"z", emulated.z},
+  json j = emulated.pair.fields();
+  j.update({{"z", emulated.z},
             {"emulated_mts", json_number(emulated.mts)},
             {"rendered_mts", json_number(rendered.mts)},
             {"emulated_verdict", to_string(emulated.verdict())},
             {"rendered_verdict", to_string(rendered.verdict())},
             {"emulated", row_to_json(emulated, true)},
-            {"rendered", row_to_json(rendered, true)}};
+            {"rendered", row_to_json(rendered, true)}});
   if (emulated.verdict() == Verdict::resolved && rendered.verdict() == Verdict::resolved)
     j["ratio"] = emulated.mts / rendered.mts;
   return j;
@@ -53,15 +51,6 @@ void check_compare_record(const json& r) {
       fail(fmt::format("'{}' is missing or not a row object", side));
 }
 
-namespace {
-
-std::string label_of(const json& r) {
-  return fmt::format("{}/{}/{}", r.at("technique").get<std::string>(),
-                     r.at("format").get<std::string>(), r.at("depth_range").get<std::string>());
-}
-
-}  // namespace
-
 CompareSummary summarise(const std::vector<json>& records, double rel_precision) {
   for (const auto& r : records) check_compare_record(r);
   CompareSummary s;
@@ -82,7 +71,7 @@ CompareSummary summarise(const std::vector<json>& records, double rel_precision)
     if (std::abs(std::log(ratio)) > worst_log) {
       worst_log = std::abs(std::log(ratio));
       s.worst_ratio = ratio;
-      s.worst_key = fmt::format("{} z={}", label_of(r), r.at("z").get<double>());
+      s.worst_key = fmt::format("{} z={}", pair_label(r), r.at("z").get<double>());
     }
   }
   if (ratios.empty()) {
@@ -126,7 +115,7 @@ std::vector<std::pair<std::string, CompareSummary>> summarise_by_pair(
   std::vector<std::string> order;
   std::map<std::string, std::vector<json>> groups;
   for (const auto& r : records) {
-    const std::string l = label_of(r);
+    const std::string l = pair_label(r);
     if (!groups.count(l)) order.push_back(l);
     groups[l].push_back(r);
   }

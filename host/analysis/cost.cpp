@@ -33,12 +33,10 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
   }
   std::sort(ratio.begin(), ratio.end());
   const double median = ratio.empty() ? INFINITY : ratio[ratio.size() / 2];
-  nlohmann::json j = {{"technique", info(pair.technique).name},
-                      {"format", pair.format},
-                      {"depth_range", to_string(pair.depth_range)},
-                      {"median_mts_over_vertex_bound", json_number(median)},
-                      {"unresolvable_distances", unresolved},
-                      {"structural_cost", structural_cost(scene, pair.technique)}};
+  nlohmann::json j = pair.fields();
+  j.update({{"median_mts_over_vertex_bound", json_number(median)},
+            {"unresolvable_distances", unresolved},
+            {"structural_cost", structural_cost(scene, pair.technique)}});
   if (const auto c = lj_config_for(pair.technique, scene.near, scene.far))
     j["lj_ae"] = json_number(lj_average_error_device(rt, *c, scene.storage_format(pair)).ae);
   if (timing)

@@ -11,9 +11,7 @@ namespace depthprec {
 
 nlohmann::json profiles_record(OpenClRuntime& rt, const std::vector<ProfiledScene>& scenes,
                                const EvalPair& pair) {
-  nlohmann::json rec = {{"technique", info(pair.technique).name},
-                        {"format", pair.format},
-                        {"depth_range", to_string(pair.depth_range)}};
+  nlohmann::json rec = pair.fields();
   const std::vector<double>& zs = scenes.front().scene.distances;
   std::vector<nlohmann::json> rows(zs.size());
   std::vector<double> lo(zs.size(), std::numeric_limits<double>::infinity()), hi(zs.size(), 0);

@@ -81,10 +81,7 @@ std::string render_advise_output(const nlohmann::json& header,
                    [&](const auto* a, const auto* b) { return near_of(a) < near_of(b); });
   if (out.format_out == "json") {
     nlohmann::json ranking = nlohmann::json::array();
-    for (const auto* r : ranked)
-      ranking.push_back(fmt::format("{}/{}/{}", r->at("technique").get<std::string>(),
-                                    r->at("format").get<std::string>(),
-                                    r->at("depth_range").get<std::string>()));
+    for (const auto* r : ranked) ranking.push_back(pair_label(*r));
     return records_json(header, records, !out.no_timing, {{"ranking", ranking}});
   }
   const bool csv = out.format_out == "csv";

@@ -53,9 +53,7 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
   for (const auto& r : records)
     if (r.contains("ns_per_fragment_pair"))
       points.push_back(
-          {fmt::format("{}/{}/{}", r["technique"].get<std::string>(),
-                       r["format"].get<std::string>(), r["depth_range"].get<std::string>()),
-           r["ns_per_fragment_pair"].get<double>(),
+          {pair_label(r), r["ns_per_fragment_pair"].get<double>(),
            number_from_json(r["median_mts_over_vertex_bound"], "median_mts_over_vertex_bound")});
   plot_cost(points, o.plot);
 }

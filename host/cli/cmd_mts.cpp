@@ -229,9 +229,7 @@ std::string render_profiles_output(const nlohmann::json& header,
   // The wide layout: one row per distance, per pair a column per profile and its spread.
   cols = {{"z"}};
   for (const auto& rec : records) {
-    const std::string pair =
-        fmt::format("{}/{}/{}", rec.at("technique").get<std::string>(),
-                    rec.at("format").get<std::string>(), rec.at("depth_range").get<std::string>());
+    const std::string pair = pair_label(rec);
     for (const auto& p : names) cols.push_back({pair + " " + p});
     cols.push_back({pair + " spread"});
   }

@@ -306,6 +306,18 @@ std::string EvalPair::label() const {
   return fmt::format("{}/{}/{}", info(technique).name, format, to_string(depth_range));
 }
 
+nlohmann::json EvalPair::fields() const {
+  return {{"technique", info(technique).name},
+          {"format", format},
+          {"depth_range", to_string(depth_range)}};
+}
+
+std::string pair_label(const nlohmann::json& record) {
+  return fmt::format("{}/{}/{}", record.at("technique").get<std::string>(),
+                     record.at("format").get<std::string>(),
+                     record.at("depth_range").get<std::string>());
+}
+
 const std::string& default_scene_text() {
   static const std::string text = embedded_sources().at(kDefaultPath);
   return text;

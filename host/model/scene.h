@@ -50,7 +50,12 @@ struct EvalPair {
   std::string format;
   DepthRange depth_range;
   std::string label() const;  // "reversed/float32/zero_to_one"
+  // technique, format and depth_range, as every JSON record of a pair carries them.
+  nlohmann::json fields() const;
 };
+
+// The label of a JSON record that carries a pair's fields: "reversed/float32/zero_to_one".
+std::string pair_label(const nlohmann::json& record);
 
 struct Scene {
   std::string name;

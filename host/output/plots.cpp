@@ -201,9 +201,7 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
   };
   double lo = 1, hi = 1;  // the ratios' range
   for (const auto& r : records) {
-    const std::string label = r.at("technique").get<std::string>() + "/" +
-                              r.at("format").get<std::string>() + "/" +
-                              r.at("depth_range").get<std::string>();
+    const std::string label = pair_label(r);
     if (!series.count(label)) order.push_back(label);
     const double z = r.at("z").get<double>();
     series[label].mts.push_back(
@@ -258,9 +256,7 @@ void plot_profiles(const std::vector<nlohmann::json>& records,
   std::vector<std::string> labels;
   for (size_t i = 0; i < records.size(); ++i) {
     const auto& r = records[i];
-    labels.push_back(r.at("technique").get<std::string>() + "/" +
-                     r.at("format").get<std::string>() + "/" +
-                     r.at("depth_range").get<std::string>());
+    labels.push_back(pair_label(r));
     script += fmt::format("$p{} << EOD\n", i);
     for (const auto& row : r.at("rows")) {
       // z, the band (min, max over the profiles that resolved it), then each profile (NaN: none)

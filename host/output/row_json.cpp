@@ -50,10 +50,8 @@ std::string row_key(const EvalPair& pair, double z) {
 }
 
 json row_to_json(const MtsRow& r, bool timing) {
-  json j = {{"source", to_string(r.source)},
-            {"technique", info(r.pair.technique).name},
-            {"format", r.pair.format},
-            {"depth_range", to_string(r.pair.depth_range)},
+  json j = r.pair.fields();
+  j.update({{"source", to_string(r.source)},
             {"z", r.z},
             {"mts", number(r.mts)},
             {"lo", r.lo},
@@ -68,7 +66,7 @@ json row_to_json(const MtsRow& r, bool timing) {
             {"fight_max", number(r.fight_max)},
             {"clean_min", number(r.clean_min)},
             {"flags", r.flags()},
-            {"verdict", to_string(r.verdict())}};
+            {"verdict", to_string(r.verdict())}});
   if (r.below_one_code) j["code_width"] = number(r.code_width);
   if (r.attributed()) {
     j["storage_mts"] = number(r.storage_mts);
