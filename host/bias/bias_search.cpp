@@ -24,23 +24,39 @@ bool bias_passes(const ProbeResult& r) {
   return r.outcome == Outcome::clean && !r.any_clipped && !r.any_uncovered && !r.any_non_finite;
 }
 
-void IntegerBiasSearch::record(const ProbeResult& r) {
+bool BiasSearch::record_opening(const ProbeResult& r) {
   ++probes_;
   const bool pass = bias_passes(r);
   if (!pass && probes_ == 1) first_failure_ = failure_of(r);
-  if (pass)
+  if (pass) {
     hi_ = next_;
-  else
+  } else {
     lo_ = std::max(lo_, next_);
-  if (hi_ == std::numeric_limits<double>::infinity()) {  // still doubling
-    if (next_ * 2 > limit_) {
-      done_ = true;
-      return;
-    }
-    next_ *= 2;
-    return;
+    failed_ = true;
   }
-  if (lo_ < 0) {  // 1 passed: is no bias at all enough?
+  if (hi_ < std::numeric_limits<double>::infinity()) return false;
+  if (next_ * 2 > limit_)
+    done_ = true;
+  else
+    next_ *= 2;
+  return true;
+}
+
+BiasAnswer BiasSearch::answer() const {
+  BiasAnswer a;
+  a.probes = probes_;
+  if (hi_ == std::numeric_limits<double>::infinity()) {
+    a.verdict = first_failure_.empty() ? "unresolvable" : first_failure_;
+    return a;
+  }
+  a.value = hi_;
+  if (failed_) a.next_down = lo_;
+  return a;
+}
+
+void IntegerBiasSearch::record(const ProbeResult& r) {
+  if (record_opening(r)) return;
+  if (!failed_) {  // 1 passed: is no bias at all enough?
     next_ = 0;
     if (hi_ == 0) done_ = true;
     return;
@@ -52,35 +68,9 @@ void IntegerBiasSearch::record(const ProbeResult& r) {
   next_ = std::floor((lo_ + hi_) / 2);
 }
 
-BiasAnswer IntegerBiasSearch::answer() const {
-  BiasAnswer a;
-  a.probes = probes_;
-  if (hi_ == std::numeric_limits<double>::infinity()) {
-    a.verdict = first_failure_.empty() ? "unresolvable" : first_failure_;
-    return a;
-  }
-  a.value = hi_;
-  if (lo_ >= 0) a.next_down = lo_;
-  return a;
-}
-
 void RealBiasSearch::record(const ProbeResult& r) {
-  ++probes_;
-  const bool pass = bias_passes(r);
-  if (!pass && probes_ == 1) first_failure_ = failure_of(r);
-  if (pass)
-    hi_ = next_;
-  else
-    lo_ = std::max(lo_, next_);
-  if (hi_ == std::numeric_limits<double>::infinity()) {
-    if (next_ * 2 > limit_) {
-      done_ = true;
-      return;
-    }
-    next_ *= 2;
-    return;
-  }
-  if (lo_ == 0) {  // every probe so far passed: halve toward the floor
+  if (record_opening(r)) return;
+  if (!failed_) {  // every probe so far passed: halve toward the floor
     if (next_ / 2 < 1 / limit_) {
       done_ = true;
       return;
@@ -93,18 +83,6 @@ void RealBiasSearch::record(const ProbeResult& r) {
     return;
   }
   next_ = 0.5 * (lo_ + hi_);
-}
-
-BiasAnswer RealBiasSearch::answer() const {
-  BiasAnswer a;
-  a.probes = probes_;
-  if (hi_ == std::numeric_limits<double>::infinity()) {
-    a.verdict = first_failure_.empty() ? "unresolvable" : first_failure_;
-    return a;
-  }
-  a.value = hi_;
-  if (lo_ > 0) a.next_down = lo_;
-  return a;
 }
 
 namespace {
@@ -168,12 +146,9 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
   for (size_t k = 0; k < n; ++k) {
     const double z = distances[k];
     const BiasAnswer u = units[k].answer(), f = factor[k].answer();
-    nlohmann::json j = {{"technique", info(pair.technique).name},
-                        {"format", pair.format},
-                        {"depth_range", to_string(pair.depth_range)},
-                        {"z", z},
-                        {"verdict", u.verdict},
-                        {"r", rule.r_text}};
+    nlohmann::json j = pair.fields();
+    j["z"] = z;
+    j["verdict"] = u.verdict;
     const auto signed_or_null = [sign](double v) -> nlohmann::json {
       return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v == 0 ? 0.0 : sign * v);
     };
@@ -189,20 +164,24 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
     }
     // What the constant bias amounts to at z: the offset r * units in window depth (r of z's own
     // binade for float storage), and the eye distance it moves a fragment toward the camera.
-    const ResolveSetup setup = mapping_at(pair.technique, scene.near, scene.far, scene.params, z);
-    const double d = depth_of_distance(setup.technique, setup.near, setup.far, setup.params, z);
-    if (u.resolved()) {
-      const double offset = rule.r_at(static_cast<float>(d)) * u.value;
-      const double moved = d + sign * offset;
-      j["offset"] = offset;
-      // Past the depth range the offset has moved the fragment beyond the near plane (or far):
-      // every distance nearer than z, an infinite separation.
-      j["eye_separation"] =
-          json_number((moved >= 0 && moved <= 1) ? distance_gap(setup, d, moved)
-                                                 : std::numeric_limits<double>::infinity());
-    } else {
+    // Rendered rows leave them out: their r is the driver's.
+    if (evaluator.source() == RowSource::emulated) {
+      j["r"] = rule.r_text;
       j["offset"] = nullptr;
       j["eye_separation"] = nullptr;
+      if (u.resolved()) {
+        const ResolveSetup setup =
+            mapping_at(pair.technique, scene.near, scene.far, scene.params, z);
+        const double d = depth_of_distance(setup.technique, setup.near, setup.far, setup.params, z);
+        const double offset = rule.r_at(static_cast<float>(d)) * u.value;
+        const double moved = d + sign * offset;
+        j["offset"] = offset;
+        // Past the depth range the offset has moved the fragment beyond the near plane (or
+        // far): every distance nearer than z, an infinite separation.
+        j["eye_separation"] =
+            json_number((moved >= 0 && moved <= 1) ? distance_gap(setup, d, moved)
+                                                   : std::numeric_limits<double>::infinity());
+      }
     }
     j["mts"] = std::isnan(mts[k]) ? nlohmann::json(nullptr) : nlohmann::json(mts[k]);
     j["probes"] = u.probes + f.probes + with_factor[k].answer().probes;

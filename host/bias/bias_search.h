@@ -25,38 +25,43 @@ struct BiasAnswer {
   bool resolved() const { return verdict == "resolved"; }
 };
 
-// Smallest whole number u >= 0 that passes: u = 1, 2, 4, ... until one passes (giving up past
-// limit), then bisection on the integers; u = 0 is probed when 1 passes.
-class IntegerBiasSearch {
+// What both searches share: the bracket [lo, hi] of the largest value that failed and the
+// smallest that passed, and the opening phase: 1, 2, 4, ... until one passes (giving up past
+// limit). Each search decides what follows.
+class BiasSearch {
  public:
-  explicit IntegerBiasSearch(double limit) : limit_(limit) {}
+  explicit BiasSearch(double limit) : limit_(limit) {}
   bool done() const { return done_; }
   double next() const { return next_; }
-  void record(const ProbeResult& r);
   BiasAnswer answer() const;
 
- private:
-  double limit_, next_ = 1, lo_ = -1, hi_ = std::numeric_limits<double>::infinity();
-  bool done_ = false;
+ protected:
+  // Records the probe at next(); true when it decided the step (still doubling, or done).
+  bool record_opening(const ProbeResult& r);
+
+  double limit_, next_ = 1, lo_ = 0, hi_ = std::numeric_limits<double>::infinity();
+  bool done_ = false, failed_ = false;  // failed_: some probe failed (lo_ is one)
   int probes_ = 0;
-  std::string first_failure_;  // why the first failing probe failed
+  std::string first_failure_;  // why the first probe failed, when it did
 };
 
-// Smallest real f > 0 that passes, to a relative precision: f = 1, then doubling (to limit) or
-// halving (to 1/limit) until the outcome changes, then bisection until (hi - lo) / hi <= rel.
-class RealBiasSearch {
+// Smallest whole number u >= 0 that passes: the opening, then bisection on the integers; u = 0
+// is probed when 1 passes.
+class IntegerBiasSearch : public BiasSearch {
  public:
-  RealBiasSearch(double limit, double rel) : limit_(limit), rel_(rel) {}
-  bool done() const { return done_; }
-  double next() const { return next_; }
+  using BiasSearch::BiasSearch;
   void record(const ProbeResult& r);
-  BiasAnswer answer() const;
+};
+
+// Smallest real f > 0 that passes, to a relative precision: the opening, or halving (to 1/limit)
+// when 1 passes, then bisection until (hi - lo) / hi <= rel.
+class RealBiasSearch : public BiasSearch {
+ public:
+  RealBiasSearch(double limit, double rel) : BiasSearch(limit), rel_(rel) {}
+  void record(const ProbeResult& r);
 
  private:
-  double limit_, rel_, next_ = 1, lo_ = 0, hi_ = std::numeric_limits<double>::infinity();
-  bool done_ = false;
-  int probes_ = 0;
-  std::string first_failure_;
+  double rel_;
 };
 
 // A probe passes when the overlay won at every pixel of every frame and nothing was clipped,

@@ -70,54 +70,35 @@ BiasOptions bias_options_of(const BiasCliOptions& o) {
   return b;
 }
 
-nlohmann::json bias_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                           const BiasOptions& b) {
-  nlohmann::json rec = {{"technique", info(pair.technique).name},
-                        {"format", pair.format},
-                        {"depth_range", to_string(pair.depth_range)}};
+// One pair's record: its rows, or why the bias does not apply. gl: the probes are rendered
+// through it (no MTS column: rendering its search too would take minutes, `depthprec render`
+// measures it); null: emulated, with the pair's MTS beside each answer.
+nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
+                           const EvalPair& pair, const BiasOptions& b) {
+  nlohmann::json rec = pair.fields();
   const std::string why = bias_not_applicable(scene, pair);
+  rec["applicable"] = why.empty();
   if (!why.empty()) {
-    rec["applicable"] = false;
     rec["reason"] = why;
     rec["rows"] = nlohmann::json::array();
+    return rec;
+  }
+  std::vector<double> mts(scene.distances.size(), std::numeric_limits<double>::quiet_NaN());
+  if (gl) {
+    RenderEvaluator renderer(*gl, scene, pair);
+    BiasRenderer ev(renderer, b);
+    rec["rows"] = bias_pair_rows(ev, scene, pair, b, scene.distances, mts);
     return rec;
   }
   // The MTS beside each answer: what separation the pair resolves there without any bias.
-  std::vector<double> mts;
   {
     MtsEvaluator ev(rt, scene, pair);
-    for (const MtsRow& row : search_pair(ev, scene, pair, scene.distances))
-      mts.push_back(row.verdict() == Verdict::resolved ? row.mts
-                                                       : std::numeric_limits<double>::quiet_NaN());
+    const auto rows = search_pair(ev, scene, pair, scene.distances);
+    for (size_t k = 0; k < rows.size(); ++k)
+      if (rows[k].verdict() == Verdict::resolved) mts[k] = rows[k].mts;
   }
   BiasEmulator ev(rt, scene, pair, b);
-  rec["applicable"] = true;
   rec["rows"] = bias_pair_rows(ev, scene, pair, b, scene.distances, mts);
-  return rec;
-}
-
-// The same searches with every probe rendered by the system's OpenGL. No MTS column: rendering
-// its search too would take minutes (`depthprec render` measures it).
-nlohmann::json rendered_bias_record(GlContext& gl, const Scene& scene, const EvalPair& pair,
-                                    const BiasOptions& b) {
-  nlohmann::json rec = {{"technique", info(pair.technique).name},
-                        {"format", pair.format},
-                        {"depth_range", to_string(pair.depth_range)}};
-  const std::string why = bias_not_applicable(scene, pair);
-  if (!why.empty()) {
-    rec["applicable"] = false;
-    rec["reason"] = why;
-    rec["rows"] = nlohmann::json::array();
-    return rec;
-  }
-  RenderEvaluator renderer(gl, scene, pair);
-  BiasRenderer ev(renderer, b);
-  rec["applicable"] = true;
-  rec["rows"] = bias_pair_rows(
-      ev, scene, pair, b, scene.distances,
-      std::vector<double>(scene.distances.size(), std::numeric_limits<double>::quiet_NaN()));
-  for (auto& row : rec["rows"])  // these read the API's r, which the driver chooses here
-    for (const char* k : {"r", "offset", "eye_separation"}) row.erase(k);
   return rec;
 }
 
@@ -160,7 +141,7 @@ void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
         header["tilt_deg"] = b.tilt_deg;
         header["set_factor"] = b.set_factor;
         return pair_units(scene, [&rt, &gl, &scene, &b](const EvalPair& pair) {
-          return gl ? rendered_bias_record(*gl, scene, pair, b) : bias_record(rt, scene, pair, b);
+          return bias_record(rt, gl.get(), scene, pair, b);
         });
       },
       render_bias_output);
@@ -193,9 +174,7 @@ std::string render_bias_output(const nlohmann::json& header,
   std::vector<std::string> skipped;
   for (const auto& rec : records) {
     if (!rec.value("applicable", true)) {
-      skipped.push_back(fmt::format("{}/{}/{}", rec.at("technique").get<std::string>(),
-                                    rec.at("format").get<std::string>(),
-                                    rec.at("depth_range").get<std::string>()));
+      skipped.push_back(pair_label(rec));
       continue;
     }
     for (const auto& r : rec.at("rows")) {
