@@ -121,7 +121,8 @@ static void far_search(OpenClRuntime& rt, const Scene& scene, const EvalPair& pa
     where = b.where;
   }
   int lowered = 0;
-  while (!mts_within(rt, scene, pair, r, n, f) && f > base_far) {
+  // base_far needs no check: the near plane's MTS search ran with it.
+  while (f > base_far && !mts_within(rt, scene, pair, r, n, f)) {
     above = f;
     f = std::max(base_far, f / (1 + r.near_precision));
     ++lowered;
