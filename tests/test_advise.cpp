@@ -1,6 +1,6 @@
 // advise: the smallest near plane that holds is found by bisection, the next one down fails, and
 // the emulator's MTS agrees: at the near plane found the MTS is within the separation, below it
-// a distance needs more.
+// a distance needs more; the far plane likewise. Batch behaviour: tests/test_batch.cpp.
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -10,7 +10,6 @@
 
 using namespace depthprec;
 using Catch::Matchers::Contains;
-using depthprec::test::fresh;
 using depthprec::test::run_cli;
 
 namespace {
@@ -88,22 +87,6 @@ TEST_CASE("advise refuses what it cannot answer", "[advise][cli][errors]") {
   const auto far = run_cli(base + "--range 10,1000 --separation 1 --far 500");
   CHECK(far.exit_code == 3);
   CHECK_THAT(far.output, Contains("far plane"));
-}
-
-TEST_CASE("advise shards merge to the bytes of one run", "[advise][cli][batch]") {
-  const std::string args =
-      "advise --range 10,1000 --relative 1e-4 -t standard,reversed -f "
-      "float32 " +
-      kSmallScene;
-  const std::string one = fresh("/tmp/depthprec_test_advise_one.json"),
-                    a = fresh("/tmp/depthprec_test_advise_1.json"),
-                    b = fresh("/tmp/depthprec_test_advise_2.json");
-  REQUIRE(run_cli(args + "--format-out json -o " + one).exit_code == 0);
-  REQUIRE(run_cli(args + "--shard 1/2 --format-out json -o " + a).exit_code == 0);
-  REQUIRE(run_cli(args + "--shard 2/2 --format-out json -o " + b).exit_code == 0);
-  const auto merged = run_cli("merge " + b + " " + a + " --no-timing --format-out json");
-  REQUIRE(merged.exit_code == 0);
-  CHECK(merged.output == test::slurp(one));
 }
 
 TEST_CASE("advise's far plane is the farthest that holds; the next one out fails",

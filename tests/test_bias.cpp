@@ -2,7 +2,8 @@
 // tests' figures, the kernel against the host reference pipeline probe by probe, the searches'
 // answers (one unit less fights), known facts (a camera-facing decal in unorm24 needs a few
 // units; under standard projection the eye-space separation a fixed bias amounts to grows as
-// z^2 / n), and the command's errors and batch behaviour.
+// z^2 / n), and the command's errors. Journal, resume, shards and merge: tests/test_batch.cpp,
+// with every record batch.
 #include <fmt/format.h>
 
 #include <catch2/catch.hpp>
@@ -20,7 +21,6 @@
 
 using namespace depthprec;
 using Catch::Matchers::Contains;
-using depthprec::test::fresh;
 using depthprec::test::run_cli;
 
 namespace {
@@ -208,18 +208,4 @@ TEST_CASE("bias refuses what has no bias rule and says why", "[bias][cli][errors
   CHECK(j["records"][0]["applicable"] == false);
   CHECK_THAT(j["records"][0]["reason"].get<std::string>(), Contains("fragment stage"));
   CHECK(j["records"][1]["applicable"] == true);
-}
-
-TEST_CASE("bias shards merge to the bytes of one run", "[bias][cli][batch]") {
-  const std::string args =
-      "bias --distances 10,1000 -t standard,reversed,infinite -f float32 " + kSmallScene;
-  const std::string one = fresh("/tmp/depthprec_test_bias_one.json"),
-                    a = fresh("/tmp/depthprec_test_bias_1.json"),
-                    b = fresh("/tmp/depthprec_test_bias_2.json");
-  REQUIRE(run_cli(args + "--format-out json -o " + one).exit_code == 0);
-  REQUIRE(run_cli(args + "--shard 1/2 --format-out json -o " + a).exit_code == 0);
-  REQUIRE(run_cli(args + "--shard 2/2 --format-out json -o " + b).exit_code == 0);
-  const auto merged = run_cli("merge " + b + " " + a + " --no-timing --format-out json");
-  REQUIRE(merged.exit_code == 0);
-  CHECK(merged.output == test::slurp(one));
 }

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 
 #include "host/model/frame_setup.h"
 #include "host/mts/reference_pipeline.h"
@@ -40,12 +41,48 @@ Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, i
   return c;
 }
 
+// Every probe's kernel codes against the reference's, frame frame_of(k) for the k-th probe: bit
+// for bit, or within one code where the library log is involved (log). Returns the pixels that
+// were real depth comparisons in both.
+size_t check_codes(const Scene& scene, const EvalPair& pair, const std::vector<Probe>& probes,
+                   const std::function<int(size_t)>& frame_of, bool log) {
+  size_t compared = 0;
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const Compared c = compare(scene, pair, probes[k], frame_of(k));
+    INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+    CHECK(c.status_differ == 0);
+    if (log)
+      CHECK(c.off_by_more_than_one == 0);
+    else
+      CHECK(c.differ == 0);
+    compared += c.ok_pixels;
+  }
+  return compared;
+}
+
+// The raster kernel's probe outcomes and deciding frames against the reference's, for probes at
+// the given distances and separations z * f.
+void check_outcomes(const Scene& scene, const EvalPair& pair, const std::vector<double>& zs,
+                    const std::vector<double>& fractions) {
+  MtsEvaluator ev(runtime(), scene, pair);
+  std::vector<Probe> probes;
+  for (double z : zs)
+    for (double f : fractions) probes.push_back({z, z * f});
+  const auto results = ev.run(probes);
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const ReferenceOutcome expect = reference_outcome(scene, pair, probes[k]);
+    INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+    CHECK(to_string(results[k].outcome) == std::string(to_string(expect.outcome)));
+    CHECK(results[k].frames == expect.frames);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("kernel codes equal the host reference for every technique and depth range",
           "[mts][reference]") {
   const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]"});
-  const std::vector<std::pair<double, double>> zs = {
+  const std::vector<Probe> probes = {
       {1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}, {3e8, 3e8}};
   const int frames[] = {0, 37, 99};
   for (const auto& ti : technique_table()) {
@@ -53,18 +90,8 @@ TEST_CASE("kernel codes equal the host reference for every technique and depth r
       for (const char* format : {"float32", "unorm24", "e4m12"}) {
         const EvalPair pair{ti.id, format, range};
         const bool log = ti.id == Technique::log_vertex || ti.id == Technique::log_fragment;
-        size_t compared = 0;
-        for (size_t k = 0; k < zs.size(); ++k) {
-          const Probe probe{zs[k].first, zs[k].second};
-          const Compared c = compare(scene, pair, probe, frames[k % 3]);
-          INFO(pair.label() << " z = " << probe.z << " s = " << probe.s);
-          CHECK(c.status_differ == 0);
-          if (log)
-            CHECK(c.off_by_more_than_one == 0);
-          else
-            CHECK(c.differ == 0);
-          compared += c.ok_pixels;
-        }
+        const size_t compared = check_codes(
+            scene, pair, probes, [&](size_t k) { return frames[k % 3]; }, log);
         INFO(pair.label());
         CHECK(compared > 0);  // some pixels were real depth comparisons, not all clipped
       }
@@ -101,18 +128,8 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
         std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one},
         std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
         std::tuple{Technique::log_fragment, "float32", DepthRange::gl}}) {
-    const EvalPair pair{t, format, range};
-    MtsEvaluator ev(runtime(), scene, pair);
-    std::vector<Probe> probes;
-    for (double z : {1.005, 7.0, 3000.0, 2e6})
-      for (double f : {1e-9, 1e-7, 1e-5, 1e-3, 0.1, 1.0}) probes.push_back({z, z * f});
-    const auto results = ev.run(probes);
-    for (size_t k = 0; k < probes.size(); ++k) {
-      const ReferenceOutcome expect = reference_outcome(scene, pair, probes[k]);
-      INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
-      CHECK(to_string(results[k].outcome) == std::string(to_string(expect.outcome)));
-      CHECK(results[k].frames == expect.frames);
-    }
+    check_outcomes(scene, {t, format, range}, {1.005, 7.0, 3000.0, 2e6},
+                   {1e-9, 1e-7, 1e-5, 1e-3, 0.1, 1.0});
   }
 }
 
@@ -132,30 +149,10 @@ TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms"
         std::tuple{Technique::linear, "float32", DepthRange::gl},
         std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};
-    const bool log = t == Technique::log_vertex;
-    size_t compared = 0;
-    for (const auto& [z, s] : {std::pair{1.005, 3e-7}, std::pair{3.0, 1e-3},
-                               std::pair{1000.0, 0.05}, std::pair{1048576.0, 5000.0}}) {
-      INFO(pair.label() << " z = " << z << " s = " << s);
-      const Compared c = compare(scene, pair, {z, s}, 5);
-      CHECK(c.status_differ == 0);
-      if (log)
-        CHECK(c.off_by_more_than_one == 0);
-      else
-        CHECK(c.differ == 0);
-      compared += c.ok_pixels;
-    }
-    CHECK(compared > 0);
-    MtsEvaluator ev(runtime(), scene, pair);
-    std::vector<Probe> probes;
-    for (double z : {1.005, 7.0, 3000.0, 2e6})
-      for (double f : {1e-8, 1e-6, 1e-4, 1e-2, 1.0}) probes.push_back({z, z * f});
-    const auto results = ev.run(probes);
-    for (size_t k = 0; k < probes.size(); ++k) {
-      const ReferenceOutcome expect = reference_outcome(scene, pair, probes[k]);
-      INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
-      CHECK(to_string(results[k].outcome) == std::string(to_string(expect.outcome)));
-      CHECK(results[k].frames == expect.frames);
-    }
+    INFO(pair.label());
+    CHECK(check_codes(
+              scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
+              [](size_t) { return 5; }, t == Technique::log_vertex) > 0);
+    check_outcomes(scene, pair, {1.005, 7.0, 3000.0, 2e6}, {1e-8, 1e-6, 1e-4, 1e-2, 1.0});
   }
 }
