@@ -43,15 +43,8 @@ struct WinVertex {
 };
 
 // Window coordinates of the plane's grid vertices as the vertex stage and viewport transform
-// produce them: clip = P (MV obj) in the kernels' order; 1/w, then ndc * scale + translate, with
-// or without FMA.
-// Row r of m times v with the products fused as a shader compiler fuses mat * vec:
-// fma(m3, w, fma(m2, z, fma(m1, y, m0 x))).
-float fused_row_dot(const Mat4f& m, int r, const float v[4]) {
-  return std::fma(m[r * 4 + 3], v[3],
-                  std::fma(m[r * 4 + 2], v[2], std::fma(m[r * 4 + 1], v[1], m[r * 4] * v[0])));
-}
-
+// produce them: clip = P (MV obj) in either vertex form (host/model/frame_setup.h); 1/w, then
+// ndc * scale + translate, with or without FMA.
 std::vector<WinVertex> window_vertices(const Scene& s, const EvalPair& pair,
                                        const ProbeConstants& pc, const Mat4f& mv, bool fma_viewport,
                                        bool fma_vertex = false) {
@@ -65,10 +58,9 @@ std::vector<WinVertex> window_vertices(const Scene& s, const EvalPair& pair,
       const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float eye[4], clip[4];
-      for (int r = 0; r < 4; ++r)
-        eye[r] = fma_vertex ? fused_row_dot(mv, r, obj) : mat_row_dot(mv, r, obj);
-      for (int r = 0; r < 4; ++r)
-        clip[r] = fma_vertex ? fused_row_dot(pc.P, r, eye) : mat_row_dot(pc.P, r, eye);
+      const VertexForm form = fma_vertex ? VertexForm::fma : VertexForm::separate;
+      for (int r = 0; r < 4; ++r) eye[r] = mat_row_dot(mv, r, obj, form);
+      for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, form);
       const float oow = 1.0f / clip[3];
       const float nx = clip[0] * oow, ny = clip[1] * oow, nz = clip[2] * oow;
       const float zs = gl ? 0.5f : 1.0f, zt = gl ? 0.5f : 0.0f;

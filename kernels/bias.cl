@@ -13,7 +13,8 @@
 
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
     !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
-    !defined(CONTRACT) || !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(DF_KIND)
+    !defined(CONTRACT) || !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) ||                 \
+    !defined(VERTEX_FMA) || !defined(DF_KIND)
 #error "kernels/bias.cl needs the defines of kernels/mts.cl (host/runtime/kernel_variant.cpp)"
 #endif
 #if DEPTH_FROM == 2

@@ -17,10 +17,11 @@
 //   PLANE_FORM         0: planes anchored at a vertex (below); 1: llvmpipe's, referred to the
 //                      framebuffer origin and evaluated with fma (host/model/scene.h PlaneForm)
 //   VIEWPORT_FMA       1: window coordinates as fma(ndc, scale, translate)
+//   VERTEX_FMA         1: matrix rows as fma(m1, y, fma(m0, x, fma(m2, z, m3 w))), llvmpipe's
 //   DF_*               the storage format (formats/depth_format.h)
 //
 // Arithmetic forms (the host reference, host/mts/reference_pipeline.cpp, uses the same ones):
-//   matrix * vector     r_i = ((m_i0 x + m_i1 y) + m_i2 z) + m_i3 w
+//   matrix * vector     r_i = ((m_i0 x + m_i1 y) + m_i2 z) + m_i3 w (VERTEX_FMA 0)
 //   window x, y         x_w = x_ndc * (W/2) + W/2
 //   edge function       E = dx * (py - ay) - dy * (px - ax), anchored at the lower vertex index
 //                       of the edge so both triangles sharing it compute the same value
@@ -39,9 +40,9 @@
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
     !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
     !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||            \
-    !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(DF_KIND)
+    !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) || !defined(DF_KIND)
 #error \
-    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA and the DF_* format defines (host/runtime/kernel_variant.cpp)"
+    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
 #if CONTRACT

@@ -7,6 +7,7 @@
 #include <string>
 #include <tuple>
 
+#include "host/model/profile.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;
@@ -33,11 +34,8 @@ TEST_CASE("bands decided from code bounds and coverage taken from plane A change
     const bool llvmpipe = margin.find("llvmpipe") != std::string::npos;
     std::vector<std::string> sets = {"kernel=[48,48]", "viewport=[48,48]", "frames=12",
                                      "plane_margin=" + margin.substr(0, 3)};
-    if (llvmpipe) {
-      sets.push_back("pipeline.plane=origin_fma");
-      sets.push_back("pipeline.viewport=fma");
-      sets.push_back("pipeline.conversion=llvmpipe");
-    }
+    if (llvmpipe)
+      for (const std::string& s : profile("llvmpipe").sets) sets.push_back(s);
     const Scene scene = load_scene("", sets);
     for (const auto& [t, format, range] :
          {std::tuple{Technique::standard, "unorm24", DepthRange::gl},

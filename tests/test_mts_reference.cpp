@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "host/model/frame_setup.h"
+#include "host/model/profile.h"
 #include "host/mts/reference_pipeline.h"
 #include "mts_fixture.h"
 #include "reference_outcome.h"
@@ -133,13 +134,13 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
   }
 }
 
-// llvmpipe's forms (pipeline.plane = origin_fma, pipeline.viewport = fma, pipeline.conversion =
-// llvmpipe): the kernel follows the reference in them too, codes and probe outcomes.
+// llvmpipe's forms (every setting of the llvmpipe profile: set-up, viewport, vertex stage,
+// conversion): the kernel follows the reference in them too, codes and probe outcomes.
 TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms",
           "[mts][reference][llvmpipe]") {
-  const Scene scene = load_scene(
-      "", {"kernel=[48,40]", "viewport=[48,40]", "frames=12", "pipeline.plane=origin_fma",
-           "pipeline.viewport=fma", "pipeline.conversion=llvmpipe"});
+  std::vector<std::string> sets = {"kernel=[48,40]", "viewport=[48,40]", "frames=12"};
+  for (const std::string& s : profile("llvmpipe").sets) sets.push_back(s);
+  const Scene scene = load_scene("", sets);
   for (const auto& [t, format, range] :
        {std::tuple{Technique::standard, "float32", DepthRange::gl},
         std::tuple{Technique::standard, "unorm24", DepthRange::gl},

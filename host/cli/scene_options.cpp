@@ -48,9 +48,9 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--denormals", denormals, "keep or flush");
   cmd.add_option("--log-k", log_k, "k of the log techniques");
   cmd.add_option("--profile", profile,
-                 "Implementation profile: ideal (docs/spec.md 2) or llvmpipe (Mesa's depth-plane "
-                 "set-up, FMA viewport and unorm conversions); sets pipeline.plane, "
-                 "pipeline.viewport and pipeline.conversion");
+                 "Implementation profile: ideal (docs/spec.md 2) or llvmpipe (Mesa's fused vertex "
+                 "products, depth-plane set-up, FMA viewport and unorm conversions); sets "
+                 "pipeline.vertex, pipeline.plane, pipeline.viewport and pipeline.conversion");
 }
 
 namespace {

@@ -30,7 +30,7 @@ LjPipelineResult lj_pipeline_error(const LjConfig& c, const StorageFormat& f,
     // The vertex at the kernel centre: eye = (0, 0, -fl32(Ze), 1); clip = P * eye in binary32.
     const float eye[4] = {0.0f, 0.0f, -static_cast<float>(Ze), 1.0f};
     float clip[4];
-    for (int row = 0; row < 4; ++row) clip[row] = mat_row_dot(pc.P, row, eye);
+    for (int row = 0; row < 4; ++row) clip[row] = mat_row_dot(pc.P, row, eye, pipeline.vertex);
     const float inv_w = 1.0f / clip[3];
     float d;
     if (fragment) {  // w_buffer: d = w / f from the perspective-correct w

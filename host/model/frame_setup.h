@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include "host/model/scene.h"
 #include "kernels/mts_layout.h"
@@ -12,9 +13,14 @@ namespace depthprec {
 
 using Mat4f = std::array<float, 16>;  // row-major: m[r * 4 + c]
 
-// Row r of m times v in binary32, in the kernels' order: ((m0 x + m1 y) + m2 z) + m3 w.
-inline float mat_row_dot(const Mat4f& m, int r, const float v[4]) {
-  return ((m[r * 4] * v[0] + m[r * 4 + 1] * v[1]) + m[r * 4 + 2] * v[2]) + m[r * 4 + 3] * v[3];
+// Row r of m times v in binary32, in the kernels' order (kernels/mts/common.cl mat_vec):
+// ((m0 x + m1 y) + m2 z) + m3 w, or under VertexForm::fma fma(m1, y, fma(m0, x, fma(m2, z, m3 w))).
+inline float mat_row_dot(const Mat4f& m, int r, const float v[4],
+                         VertexForm form = VertexForm::separate) {
+  const float* row = &m[r * 4];
+  if (form == VertexForm::fma)
+    return std::fma(row[1], v[1], std::fma(row[0], v[0], std::fma(row[2], v[2], row[3] * v[3])));
+  return ((row[0] * v[0] + row[1] * v[1]) + row[2] * v[2]) + row[3] * v[3];
 }
 
 // Per-probe constants, packed as the kernels read them (kernels/mts_layout.h: PROBE_STRIDE floats,

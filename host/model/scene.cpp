@@ -51,8 +51,9 @@ const std::set<std::string> kTopKeys = {"name",
                                         "layer_overlap",
                                         "evaluate"};
 const std::set<std::string> kPipelineKeys = {
-    "depth_range", "matrix_precision", "compose", "divide",   "rounding",
-    "denormals",   "contraction",      "plane",   "viewport", "conversion"};
+    "depth_range", "matrix_precision", "compose",     "divide",
+    "rounding",    "denormals",        "contraction", "plane",
+    "viewport",    "conversion",       "vertex"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -252,6 +253,11 @@ ViewportForm parse_viewport_form(const std::string& s) {
   if (s == "separate") return ViewportForm::separate;
   if (s == "fma") return ViewportForm::fma;
   throw InputError(fmt::format("unknown viewport '{}': expected separate or fma", s));
+}
+VertexForm parse_vertex_form(const std::string& s) {
+  if (s == "separate") return VertexForm::separate;
+  if (s == "fma") return VertexForm::fma;
+  throw InputError(fmt::format("unknown vertex '{}': expected separate or fma", s));
 }
 
 // "a.b=value": value parsed as JSON, or taken as a string when it is not JSON.
@@ -467,6 +473,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.pipeline.contraction = r.boolean("pipeline.contraction");
   s.pipeline.plane = r.choice("pipeline.plane", parse_plane_form);
   s.pipeline.viewport = r.choice("pipeline.viewport", parse_viewport_form);
+  s.pipeline.vertex = r.choice("pipeline.vertex", parse_vertex_form);
   s.pipeline.conversion = r.choice("pipeline.conversion", parse_conversion);
 
   s.params.log_k = r.positive("log_k");

@@ -29,6 +29,11 @@ enum class PlaneForm { vertex, origin_fma };
 // The viewport transform: separate multiply and add, or fused (fma(ndc, scale, translate), as
 // llvmpipe's generated vertex code does on an FMA CPU).
 enum class ViewportForm { separate, fma };
+// The vertex stage's matrix-vector products, row by row: separate multiplies and adds in the
+// order ((m0 x + m1 y) + m2 z) + m3 w, or fused as fma(m1, y, fma(m0, x, fma(m2, z, m3 w))), the
+// form llvmpipe's compiled vertex shader gives depthprec's planes (measured pixel by pixel,
+// docs/validation.md).
+enum class VertexForm { separate, fma };
 
 struct Pipeline {
   // The depth range of pairs that name none; none here ("technique" in a scene): each technique's
@@ -42,6 +47,7 @@ struct Pipeline {
   bool contraction = false;
   PlaneForm plane = PlaneForm::vertex;
   ViewportForm viewport = ViewportForm::separate;
+  VertexForm vertex = VertexForm::separate;
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
 };
 

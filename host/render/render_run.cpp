@@ -26,6 +26,7 @@ Scene rendered_counterpart(const Scene& scene) {
   const Pipeline def;
   s.pipeline.plane = def.plane;
   s.pipeline.viewport = def.viewport;
+  s.pipeline.vertex = def.vertex;
   s.pipeline.conversion = def.conversion;
   return s;
 }

@@ -10,13 +10,17 @@
 #define V_BAD_ROW MTS_V_BAD_ROW(GRID)
 #define PLANE_STRIDE MTS_PLANE_STRIDE(GRID)
 
+// m * v row by row, in the form VERTEX_FMA names (host/model/frame_setup.h mat_row_dot).
+static inline float mat_row(__global const float* m, float4 v) {
+#if VERTEX_FMA
+  return fma(m[1], v.y, fma(m[0], v.x, fma(m[2], v.z, m[3] * v.w)));
+#else
+  return ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
+#endif
+}
+
 static inline float4 mat_vec(__global const float* m, float4 v) {
-  float4 r;
-  r.x = ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
-  r.y = ((m[4] * v.x + m[5] * v.y) + m[6] * v.z) + m[7] * v.w;
-  r.z = ((m[8] * v.x + m[9] * v.y) + m[10] * v.z) + m[11] * v.w;
-  r.w = ((m[12] * v.x + m[13] * v.y) + m[14] * v.z) + m[15] * v.w;
-  return r;
+  return (float4)(mat_row(m, v), mat_row(m + 4, v), mat_row(m + 8, v), mat_row(m + 12, v));
 }
 
 // any() of a 16-lane mask by halving ORs: PoCL expands any() into a test and branch per lane pair.
