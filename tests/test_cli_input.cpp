@@ -221,6 +221,8 @@ TEST_CASE("a profile sets its implementation forms as --sets do, and render refu
   const auto j = nlohmann::json::parse(llvmpipe.output);
   CHECK(j["scene"]["pipeline"]["plane"] == "origin_fma");
   CHECK(j["scene"]["pipeline"]["viewport"] == "fma");
+  CHECK(j["scene"]["pipeline"]["vertex"] == "fma");
+  CHECK(j["scene"]["pipeline"]["profile"] == "llvmpipe");
   const auto unknown = run_cli("mts --profile nvidia" + small);
   CHECK(unknown.exit_code == 3);
   CHECK_THAT(unknown.output, Contains("ideal, llvmpipe"));
@@ -230,6 +232,39 @@ TEST_CASE("a profile sets its implementation forms as --sets do, and render refu
   const auto render = run_cli("render --profile llvmpipe" + small);
   CHECK(render.exit_code == 3);
   CHECK_THAT(render.output, Contains("plane=origin_fma"));
+}
+
+TEST_CASE("a scene names its profile as pipeline.profile, and the header names the one it matches",
+          "[cli][profile]") {
+  const std::string small =
+      " -t standard -f float32 --distances 100,4096 --kernel 16x16 --frames 2 -q --no-timing "
+      "--format-out json";
+  const std::string file = "/tmp/depthprec_test_profiled_scene.json";
+  std::ofstream(file) << R"({"pipeline": {"profile": "llvmpipe"}})";
+  const auto from_file = run_cli("mts " + file + small);
+  const auto from_option = run_cli("mts --profile llvmpipe" + small);
+  REQUIRE(from_file.exit_code == 0);
+  REQUIRE(from_option.exit_code == 0);
+  const auto a = nlohmann::json::parse(from_file.output),
+             b = nlohmann::json::parse(from_option.output);
+  CHECK(a["rows"] == b["rows"]);
+  CHECK(a["scene"]["pipeline"] == b["scene"]["pipeline"]);
+  // a pipeline that is no profile's is "custom"; the defaults are "ideal"
+  const auto custom = run_cli("mts --set pipeline.vertex=fma" + small);
+  REQUIRE(custom.exit_code == 0);
+  CHECK(nlohmann::json::parse(custom.output)["scene"]["pipeline"]["profile"] == "custom");
+  const auto ideal = run_cli("mts" + small);
+  REQUIRE(ideal.exit_code == 0);
+  CHECK(nlohmann::json::parse(ideal.output)["scene"]["pipeline"]["profile"] == "ideal");
+  // the profile's key given another value in the same file is refused, naming the file
+  std::ofstream(file) << R"({"pipeline": {"profile": "llvmpipe", "viewport": "separate"}})";
+  const auto clash = run_cli("mts " + file + small);
+  CHECK(clash.exit_code == 3);
+  CHECK_THAT(clash.output, Contains("pipeline.viewport") && Contains(file));
+  std::ofstream(file) << R"({"pipeline": {"profile": "nvidia"}})";
+  const auto unknown = run_cli("mts " + file + small);
+  CHECK(unknown.exit_code == 3);
+  CHECK_THAT(unknown.output, Contains("ideal, llvmpipe"));
 }
 
 TEST_CASE("profiles side by side: each one's MTS and the spread", "[cli][profile]") {

@@ -127,11 +127,12 @@ Scene SceneOptions::load() const {
   set_if("--rounding", "pipeline.rounding", rounding, rounding);
   set_if("--denormals", "pipeline.denormals", denormals, denormals);
   set_if("--log-k", "log_k", log_k, log_k.empty() ? "" : number_text("--log-k", log_k));
+  // --profile is pipeline.profile (the scene applies its settings); the keys it settles are
+  // named here too, so a --set of one of them is refused as a key given twice.
+  set_if("--profile", "pipeline.profile", profile, profile);
   if (!profile.empty())
-    for (const std::string& set : depthprec::profile(profile).sets) {
-      const auto eq = set.find('=');
-      set_if("--profile", set.substr(0, eq), profile, set.substr(eq + 1));
-    }
+    for (const std::string& set : depthprec::profile(profile).sets)
+      origins[set.substr(0, set.find('='))] = "--profile " + profile;
   if (!distances.empty()) {
     std::string list, typed;
     std::vector<std::string> entries;

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "host/base/errors.h"
+#include "host/model/profile.h"
 #include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
@@ -53,7 +54,7 @@ const std::set<std::string> kTopKeys = {"name",
 const std::set<std::string> kPipelineKeys = {
     "depth_range", "matrix_precision", "compose",     "divide",
     "rounding",    "denormals",        "contraction", "plane",
-    "viewport",    "conversion",       "vertex"};
+    "viewport",    "conversion",       "vertex",      "profile"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -345,14 +346,67 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   return load_scene_text(buf.str(), path, overrides, check, origins);
 }
 
+namespace {
+
+// pipeline.profile (host/model/profile.cpp): the named profile's settings fill the pipeline keys
+// the scene file and the overrides leave alone; a key either sets to another value is refused,
+// naming both. "custom" (what a header says of a pipeline no profile matches) names none.
+void apply_profile(json& merged, const std::vector<const json*>& layers,
+                   const std::map<std::string, std::string>& blame, const std::string& where) {
+  std::string name;
+  for (const json* layer : layers)
+    if (layer->contains("pipeline") && (*layer)["pipeline"].contains("profile")) {
+      const json& v = (*layer)["pipeline"]["profile"];
+      if (!v.is_string())
+        throw InputError(fmt::format("pipeline.profile: expected a profile's name ({}), not {}",
+                                     profile_names(), v.dump()));
+      name = v.get<std::string>();
+    }
+  if (name.empty() || name == "custom") return;
+  const auto named = [&blame](const std::string& key, const std::string& fallback) {
+    const auto it = blame.find(key);
+    return it != blame.end() ? it->second : fallback;
+  };
+  for (const std::string& set : profile(name).sets) {
+    const auto eq = set.find('=');
+    const std::string key = set.substr(9, eq - 9);  // after "pipeline."
+    const std::string value = set.substr(eq + 1);
+    for (const json* layer : layers)
+      if (layer->contains("pipeline") && (*layer)["pipeline"].contains(key) &&
+          (*layer)["pipeline"][key] != value)
+        throw InputError(fmt::format("{} sets pipeline.{} to {}, and {} sets it to {}: give one",
+                                     named("pipeline.profile", "pipeline.profile " + name), key,
+                                     value, named("pipeline." + key, where),
+                                     (*layer)["pipeline"][key].dump()));
+    merged["pipeline"][key] = value;
+  }
+}
+
+// The profile whose every setting the pipeline has, else "custom".
+std::string matching_profile(const json& pipeline) {
+  for (const Profile& p : profiles()) {
+    bool all = true;
+    for (const std::string& set : p.sets) {
+      const auto eq = set.find('=');
+      const std::string key = set.substr(9, eq - 9);
+      all = all && pipeline.contains(key) && pipeline[key] == set.substr(eq + 1);
+    }
+    if (all) return p.name;
+  }
+  return "custom";
+}
+
+}  // namespace
+
 Scene load_scene_text(const std::string& text, const std::string& path,
                       const std::vector<std::string>& overrides, bool check,
                       const std::map<std::string, std::string>& origins) {
   json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
   std::string source = std::string("embedded:") + kDefaultPath;
+  json user = json::object(), patch = json::object();
   if (!path.empty()) {
     source = path;
-    const json user = parse_text(text, path);
+    user = parse_text(text, path);
     check_user_keys(user, path, text);
     // A scene file that does not name itself is called after its file, never after the default
     // scene it starts from: outputs and plots must not label a user's scene "gilg2021".
@@ -363,7 +417,6 @@ Scene load_scene_text(const std::string& text, const std::string& path,
   }
   std::map<std::string, std::string> blame = origins;
   if (!overrides.empty()) {
-    json patch = json::object();
     for (const auto& o : overrides) {
       apply_override(patch, o);
       blame.emplace(o.substr(0, o.find('=')), "--set " + o);
@@ -376,6 +429,7 @@ Scene load_scene_text(const std::string& text, const std::string& path,
     if (patch.contains("evaluate")) merged["evaluate"] = patch["evaluate"];
     if (!overrides.empty()) source += " (with --set overrides)";
   }
+  apply_profile(merged, {&user, &patch}, blame, path.empty() ? source : path);
 
   Scene s = parse_scene(merged, source, path.empty() ? source : path, text, blame);
   if (check) check_pairs(s);
@@ -387,6 +441,7 @@ Scene scene_from_json(const json& j, const std::string& source) {
   check_user_keys(j, source, "");
   merged.merge_patch(j);
   if (j.contains("evaluate")) merged["evaluate"] = j["evaluate"];
+  apply_profile(merged, {&j}, {}, source);
   Scene s = parse_scene(merged, source, source, "", {});
   check_pairs(s);
   return s;
@@ -510,6 +565,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
     s.evaluate.push_back(p);
   }
   s.json = merged;
+  s.json["pipeline"]["profile"] = matching_profile(merged["pipeline"]);
   return s;
 }
 
