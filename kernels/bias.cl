@@ -30,6 +30,7 @@
 // clang-format off
 #include "formats/depth_format.h"
 #include "kernels/mts_layout.h"
+#include "kernels/llvmpipe_log.h"
 #include "kernels/bias_formula.h"
 #include "kernels/mts/common.cl"
 #include "kernels/mts/setup.cl"

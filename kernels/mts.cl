@@ -18,6 +18,7 @@
 //                      framebuffer origin and evaluated with fma (host/model/scene.h PlaneForm)
 //   VIEWPORT_FMA       1: window coordinates as fma(ndc, scale, translate)
 //   VERTEX_FMA         1: matrix rows as fma(m1, y, fma(m0, x, fma(m2, z, m3 w))), llvmpipe's
+//   LLVMPIPE_LOG       1: the shaders' log is llvmpipe's (kernels/llvmpipe_log.h); 0: OpenCL's
 //   DF_*               the storage format (formats/depth_format.h)
 //
 // Arithmetic forms (the host reference, host/mts/reference_pipeline.cpp, uses the same ones):
@@ -40,9 +41,10 @@
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
     !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
     !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||            \
-    !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) || !defined(DF_KIND)
+    !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) ||               \
+    !defined(LLVMPIPE_LOG) || !defined(DF_KIND)
 #error \
-    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA and the DF_* format defines (host/runtime/kernel_variant.cpp)"
+    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA, LLVMPIPE_LOG and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
 #if CONTRACT
@@ -55,6 +57,7 @@
 // clang-format off
 #include "formats/depth_format.h"   /* storage formats, shared with the host */
 #include "kernels/mts_layout.h"     /* buffer layout, shared with the host */
+#include "kernels/llvmpipe_log.h"   /* llvmpipe's log, shared with the host */
 #include "kernels/mts/common.cl"    /* layout names at this GRID, mat_vec, any16 */
 #include "kernels/mts/setup.cl"     /* mts_setup: vertex stage, triangle set-up, coverage certificate */
 #include "kernels/mts/coverage.cl"  /* row_segments: covering triangles along a row; coverage reuse */

@@ -148,6 +148,7 @@ TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms"
         std::tuple{Technique::infinite, "unorm16", DepthRange::zero_to_one},
         std::tuple{Technique::reversed, "unorm32", DepthRange::zero_to_one},
         std::tuple{Technique::linear, "float32", DepthRange::gl},
+        std::tuple{Technique::log_fragment, "float32", DepthRange::gl},
         std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};
     INFO(pair.label());

@@ -322,15 +322,16 @@ TEST_CASE("depth bias rendered with glPolygonOffset on llvmpipe", "[render][bias
 TEST_CASE("the llvmpipe profile's depth is llvmpipe's on every pixel", "[render][llvmpipe]") {
   // Plane A's depth as llvmpipe stores it in a float32 buffer (no quantisation hides a
   // difference), against the emulation's stored depth under each profile, pixel by pixel, for a
-  // projection technique and a fragment-depth one (gl_FragDepth from 1 / gl_FragCoord.w), at
+  // projection technique, fragment-depth ones (gl_FragDepth from 1 / gl_FragCoord.w, through
+  // the shader's log for log_fragment) and the vertex-stage log, at
   // distances from near the near plane to far beyond it, with the outer triangles clipped at the
   // viewport edge (kernel = viewport). The profile's forms reproduce the driver on every pixel;
   // the ideal pipeline differs on about a third of them.
   std::vector<std::string> profile_sets;
   for (const std::string& s : profile("llvmpipe").sets) profile_sets.push_back(s);
-  for (const char* technique : {"standard", "linear"}) {
+  for (const char* technique : {"standard", "linear", "log_fragment", "log_vertex"}) {
     const std::vector<std::string> base = {
-        "kernel=[64,64]", "frames=4",
+        "kernel=[64,64]", "frames=4", "log_k=3",
         fmt::format(R"(evaluate=[{{"technique": "{}", "format": "float32", "depth_range": "gl"}}])",
                     technique)};
     auto with_llvmpipe = base;

@@ -52,9 +52,9 @@ const std::set<std::string> kTopKeys = {"name",
                                         "layer_overlap",
                                         "evaluate"};
 const std::set<std::string> kPipelineKeys = {
-    "depth_range", "matrix_precision", "compose",     "divide",
-    "rounding",    "denormals",        "contraction", "plane",
-    "viewport",    "conversion",       "vertex",      "profile"};
+    "depth_range", "matrix_precision", "compose", "divide",   "rounding",
+    "denormals",   "contraction",      "plane",   "viewport", "conversion",
+    "vertex",      "profile",          "log"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -254,6 +254,11 @@ ViewportForm parse_viewport_form(const std::string& s) {
   if (s == "separate") return ViewportForm::separate;
   if (s == "fma") return ViewportForm::fma;
   throw InputError(fmt::format("unknown viewport '{}': expected separate or fma", s));
+}
+LogForm parse_log_form(const std::string& s) {
+  if (s == "library") return LogForm::library;
+  if (s == "llvmpipe") return LogForm::llvmpipe;
+  throw InputError(fmt::format("unknown log '{}': expected library or llvmpipe", s));
 }
 VertexForm parse_vertex_form(const std::string& s) {
   if (s == "separate") return VertexForm::separate;
@@ -529,6 +534,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.pipeline.plane = r.choice("pipeline.plane", parse_plane_form);
   s.pipeline.viewport = r.choice("pipeline.viewport", parse_viewport_form);
   s.pipeline.vertex = r.choice("pipeline.vertex", parse_vertex_form);
+  s.pipeline.log = r.choice("pipeline.log", parse_log_form);
   s.pipeline.conversion = r.choice("pipeline.conversion", parse_conversion);
 
   s.params.log_k = r.positive("log_k");

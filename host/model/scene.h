@@ -34,6 +34,9 @@ enum class ViewportForm { separate, fma };
 // form llvmpipe's compiled vertex shader gives depthprec's planes (measured pixel by pixel,
 // docs/validation.md).
 enum class VertexForm { separate, fma };
+// The shaders' natural log (log_vertex, log_fragment): the library's (OpenCL's log, <= 3 ulp), or
+// llvmpipe's approximation (kernels/llvmpipe_log.h).
+enum class LogForm { library, llvmpipe };
 
 struct Pipeline {
   // The depth range of pairs that name none; none here ("technique" in a scene): each technique's
@@ -48,6 +51,7 @@ struct Pipeline {
   PlaneForm plane = PlaneForm::vertex;
   ViewportForm viewport = ViewportForm::separate;
   VertexForm vertex = VertexForm::separate;
+  LogForm log = LogForm::library;
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
 };
 

@@ -3,13 +3,23 @@
 #include <cmath>
 #include <vector>
 
+#include "formats/df_prelude.h"
 #include "host/model/frame_setup.h"
 #include "host/runtime/kernel_variant.h"
 #include "kernels/bias_formula.h"
+#include "kernels/llvmpipe_log.h"
 
 namespace depthprec {
 
 namespace {
+
+DP_LLVMPIPE_LOG_DEFINE(llvmpipe_log, float, df_float_bits, df_bits_float, static_cast<float>,
+                       std::fma)
+
+// The shaders' natural log in the scene's form (pipeline.log).
+float shader_log(LogForm form, float x) {
+  return form == LogForm::llvmpipe ? llvmpipe_log(x) : std::log(x);
+}
 
 struct Vertex {
   float x, y, d, q;
@@ -65,7 +75,7 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
         for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, s.pipeline.vertex);
       }
       if (ti.from == DepthFrom::vertex_log) {
-        const float t = std::log(pc.log_k * clip[3] + 1.0f);
+        const float t = shader_log(s.pipeline.log, pc.log_k * clip[3] + 1.0f);
         clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];
       }
       const float inv_w = 1.0f / clip[3];
@@ -212,7 +222,7 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
         d = w / pc.far;
         break;
       default:
-        d = std::log(pc.log_k * w + 1.0f) / pc.log_L;
+        d = shader_log(s.pipeline.log, pc.log_k * w + 1.0f) / pc.log_L;
         break;
     }
     if (std::isnan(d)) return non_finite;

@@ -27,6 +27,7 @@ Scene rendered_counterpart(const Scene& scene) {
   s.pipeline.plane = def.plane;
   s.pipeline.viewport = def.viewport;
   s.pipeline.vertex = def.vertex;
+  s.pipeline.log = def.log;
   s.pipeline.conversion = def.conversion;
   return s;
 }

@@ -23,6 +23,15 @@ static inline float4 mat_vec(__global const float* m, float4 v) {
   return (float4)(mat_row(m, v), mat_row(m + 4, v), mat_row(m + 8, v), mat_row(m + 12, v));
 }
 
+// The shaders' natural log, of one value and of 16 (LLVMPIPE_LOG, kernels/llvmpipe_log.h).
+#if LLVMPIPE_LOG
+DP_LLVMPIPE_LOG_DEFINE(shader_log, float, as_uint, as_float, convert_float, fma)
+DP_LLVMPIPE_LOG_DEFINE(shader_log16, float16, as_uint16, as_float16, convert_float16, fma)
+#else
+#define shader_log log
+#define shader_log16 log
+#endif
+
 // any() of a 16-lane mask by halving ORs: PoCL expands any() into a test and branch per lane pair.
 static inline int any16(int16 m) {
   const int8 m8 = m.lo | m.hi;

@@ -70,7 +70,7 @@ static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float
 #elif FRAG_DEPTH == 2
   float16 d = w / P[C_FAR];
 #else
-  float16 d = log(P[C_LOGK] * w + 1.0f) / P[C_LOGL];
+  float16 d = shader_log16(P[C_LOGK] * w + 1.0f) / P[C_LOGL];
 #endif
   r.nonfinite = nf_w || isnan(d);
   r.d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */

@@ -125,7 +125,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #endif
 #if DEPTH_FROM == 1
       {
-        const float t = log(P[C_LOGK] * clip.w + 1.0f);
+        const float t = shader_log(P[C_LOGK] * clip.w + 1.0f);
 #if RANGE_GL
         clip.z = ((2.0f * t) / P[C_LOGL] - 1.0f) * clip.w;
 #else
