@@ -14,7 +14,7 @@
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
     !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
     !defined(CONTRACT) || !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) ||                 \
-    !defined(VERTEX_FMA) || !defined(DF_KIND)
+    !defined(VERTEX_FMA) || !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(DF_KIND)
 #error "kernels/bias.cl needs the defines of kernels/mts.cl (host/runtime/kernel_variant.cpp)"
 #endif
 #if DEPTH_FROM == 2
@@ -59,9 +59,10 @@ __kernel void bias_setup(__global const float* restrict probes, __global const f
     __global float* R = T + t * TRI_STRIDE;
     float o = 0.0f;
     if (is_b) {
-      const int3 v = triangle_vertices(t, 1);
+      /* the float rule reads the largest |depth| of the triangle's vertices (T_ZMAX) */
       o = depth_bias(P[C_BIAS_UNITS], float_rule, P[C_BIAS_FACTOR], P[C_BIAS_CLAMP],
-                     depth_bias_slope(R[T_DZDX], R[T_DZDY], slope_form), dw[v.x], dw[v.y], dw[v.z]);
+                     depth_bias_slope(R[T_DZDX], R[T_DZDY], slope_form), R[T_ZMAX], R[T_ZMAX],
+                     R[T_ZMAX]);
       if (!isfinite(o)) vflags[id] |= V_NONFINITE;
     }
     R[T_BIAS] = o;

@@ -3,37 +3,44 @@
  * kernels/lj_formulas.h is for the LJ formulas: the records of a plane, of a probe's constants, of
  * a cached row and band of plane A, of mts_frame_bounds' verdicts, and the bits of a row's result
  * word. Valid C++ and OpenCL C. The plane record depends on the grid (quads per plane side):
- * MTS_PLANE_STRIDE(grid) for the host, PLANE_STRIDE (GRID from -D) in the kernels. */
+ * MTS_PLANE_STRIDE(grid, slots) for the host, PLANE_STRIDE (GRID and CLIP_SLOTS from -D) in the
+ * kernels. Each of the grid's 2 grid^2 triangles owns `slots` triangle records: 1, or
+ * MTS_CLIP_SLOTS when the pipeline clips triangles at the viewport edge as llvmpipe does
+ * (pipeline.clip), whose fan of at most 5 triangles fills its slots in order. */
 #ifndef DEPTHPREC_MTS_LAYOUT_H
 #define DEPTHPREC_MTS_LAYOUT_H
 
 /* A plane record: NT triangle records of TRI_STRIDE floats, then its 3*NT edges as arrays
  * (structure of arrays, padded to a multiple of 16) so a row can place all edge boundaries 16 at
  * a time. */
+#define MTS_CLIP_SLOTS 5 /* a triangle clipped by the four x, y planes has at most 7 vertices */
 #define MTS_NV(g) (((g) + 1) * ((g) + 1))
-#define MTS_NT(g) (2 * (g) * (g))
+#define MTS_NT(g, s) (2 * (g) * (g) * (s))
 #define TRI_STRIDE 32
-#define MTS_NE(g) (3 * MTS_NT(g))
-#define MTS_NE_PAD(g) ((MTS_NE(g) + 15) / 16 * 16)
+#define MTS_NE(g, s) (3 * MTS_NT(g, s))
+#define MTS_NE_PAD(g, s) ((MTS_NE(g, s) + 15) / 16 * 16)
 #define E_AX 0
 #define E_AY 1
 #define E_DX 2
 #define E_DY 3
 #define E_DXDY 4
 #define E_BITS 5 /* uint: bit 0 negate, bit 1 owns */
-/* Then each row of quads' y-range (grid pairs ymin, ymax): the triangles a kernel row can meet
- * are those of the quad rows whose range holds it, a run of indices. */
-#define MTS_Q_YRANGE(g) (MTS_NT(g) * TRI_STRIDE + 6 * MTS_NE_PAD(g))
+/* Then each row of quads' y-range (grid pairs ymin, ymax), then (grid ints) how many triangle
+ * records it uses from its first, 2 grid slots qj: the triangles a kernel row can meet are those
+ * of the quad rows whose range holds it, a run of indices. A quad row's triangles fill its
+ * records in order, a clipped one's fan in place of it, so the order is the grid's. */
+#define MTS_Q_YRANGE(g, s) (MTS_NT(g, s) * TRI_STRIDE + 6 * MTS_NE_PAD(g, s))
 /* Then, from a multiple of 16 floats on (so they load as aligned float16, and every plane record
  * starts at one), the window x and y of every vertex, padded with zeros to a multiple of 16: how
  * far plane B's vertices lie from plane A's (b_moved_from_a). */
 #define MTS_NV_PAD(g) ((MTS_NV(g) + 15) / 16 * 16)
-#define MTS_V_XW(g) ((MTS_Q_YRANGE(g) + 2 * (g) + 15) / 16 * 16)
-#define MTS_V_YW(g) (MTS_V_XW(g) + MTS_NV_PAD(g))
+#define MTS_Q_USED(g, s) (MTS_Q_YRANGE(g, s) + 2 * (g))
+#define MTS_V_XW(g, s) ((MTS_Q_USED(g, s) + (g) + 15) / 16 * 16)
+#define MTS_V_YW(g, s) (MTS_V_XW(g, s) + MTS_NV_PAD(g))
 /* Then per vertex the kernel row of the pixel centre it lies near (int; -1: none, or padding):
  * the rows covers_kernel's certificate does not hold for (row_covered). */
-#define MTS_V_BAD_ROW(g) (MTS_V_YW(g) + MTS_NV_PAD(g))
-#define MTS_PLANE_STRIDE(g) (MTS_V_BAD_ROW(g) + MTS_NV_PAD(g))
+#define MTS_V_BAD_ROW(g, s) (MTS_V_YW(g, s) + MTS_NV_PAD(g))
+#define MTS_PLANE_STRIDE(g, s) (MTS_V_BAD_ROW(g, s) + MTS_NV_PAD(g))
 
 /* Triangle record offsets */
 #define T_EDGES 0 /* 3 x (ax, ay, dx, dy) */
@@ -50,6 +57,7 @@
 #define T_YMAX 22
 #define T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
 #define T_BIAS 26 /* the triangle's depth bias (kernels/bias.cl only) */
+#define T_ZMAX 27 /* the largest |window depth| of its vertices (the float rule of depth bias) */
 #define T_BOX 28  /* int4: the kernel pixels the triangle may own (kernel_pixel_box) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */

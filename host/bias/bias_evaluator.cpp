@@ -43,7 +43,7 @@ BiasEmulator::BiasEmulator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   program_ = rt_.program(variant_.program, variant_.options);
   setup_ = cl::Kernel(program_, "bias_setup");
   rows_ = cl::Kernel(program_, "bias_rows");
-  plane_floats_ = MTS_PLANE_STRIDE(scene.plane_subdivisions);
+  plane_floats_ = MTS_PLANE_STRIDE(scene.plane_subdivisions, scene.pipeline.clip_slots());
 }
 
 std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes) {

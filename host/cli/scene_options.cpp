@@ -49,9 +49,9 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--log-k", log_k, "k of the log techniques");
   cmd.add_option("--profile", profile,
                  "Implementation profile: ideal (docs/spec.md 2) or llvmpipe (Mesa's fused vertex "
-                 "products, log, depth-plane set-up, FMA viewport and unorm conversions); sets "
-                 "pipeline.vertex, pipeline.log, pipeline.plane, pipeline.viewport and "
-                 "pipeline.conversion");
+                 "products, log, clip stage, depth-plane set-up, FMA viewport and unorm "
+                 "conversions); sets pipeline.vertex, pipeline.log, pipeline.clip, "
+                 "pipeline.plane, pipeline.viewport and pipeline.conversion");
 }
 
 namespace {

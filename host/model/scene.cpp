@@ -54,7 +54,7 @@ const std::set<std::string> kTopKeys = {"name",
 const std::set<std::string> kPipelineKeys = {
     "depth_range", "matrix_precision", "compose", "divide",   "rounding",
     "denormals",   "contraction",      "plane",   "viewport", "conversion",
-    "vertex",      "profile",          "log"};
+    "vertex",      "profile",          "log",     "clip"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -254,6 +254,11 @@ ViewportForm parse_viewport_form(const std::string& s) {
   if (s == "separate") return ViewportForm::separate;
   if (s == "fma") return ViewportForm::fma;
   throw InputError(fmt::format("unknown viewport '{}': expected separate or fma", s));
+}
+ClipForm parse_clip_form(const std::string& s) {
+  if (s == "none") return ClipForm::none;
+  if (s == "llvmpipe") return ClipForm::llvmpipe;
+  throw InputError(fmt::format("unknown clip '{}': expected none or llvmpipe", s));
 }
 LogForm parse_log_form(const std::string& s) {
   if (s == "library") return LogForm::library;
@@ -535,6 +540,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.pipeline.viewport = r.choice("pipeline.viewport", parse_viewport_form);
   s.pipeline.vertex = r.choice("pipeline.vertex", parse_vertex_form);
   s.pipeline.log = r.choice("pipeline.log", parse_log_form);
+  s.pipeline.clip = r.choice("pipeline.clip", parse_clip_form);
   s.pipeline.conversion = r.choice("pipeline.conversion", parse_conversion);
 
   s.params.log_k = r.positive("log_k");

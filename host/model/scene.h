@@ -13,6 +13,7 @@
 
 #include "host/model/storage_format.h"
 #include "host/model/technique.h"
+#include "kernels/mts_layout.h"
 
 namespace depthprec {
 
@@ -37,6 +38,10 @@ enum class VertexForm { separate, fma };
 // The shaders' natural log (log_vertex, log_fragment): the library's (OpenCL's log, <= 3 ulp), or
 // llvmpipe's approximation (kernels/llvmpipe_log.h).
 enum class LogForm { library, llvmpipe };
+// Triangles that cross the viewport edge: rasterised as they are, their fragments outside the
+// viewport never seen (none), or clipped into a fan of new triangles as llvmpipe's clip stage
+// does (Mesa 22.3 draw_pipe_clip.c), whose new vertices carry other roundings.
+enum class ClipForm { none, llvmpipe };
 
 struct Pipeline {
   // The depth range of pairs that name none; none here ("technique" in a scene): each technique's
@@ -52,6 +57,9 @@ struct Pipeline {
   ViewportForm viewport = ViewportForm::separate;
   VertexForm vertex = VertexForm::separate;
   LogForm log = LogForm::library;
+  ClipForm clip = ClipForm::none;
+  // Triangle records per grid triangle (kernels/mts_layout.h): one, or a clipped fan's slots.
+  int clip_slots() const { return clip == ClipForm::llvmpipe ? MTS_CLIP_SLOTS : 1; }
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
 };
 

@@ -122,7 +122,8 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   raster_ = cl::Kernel(program_, "mts_raster");
   bounds_ = cl::Kernel(program_, "mts_frame_bounds");
   // The buffer layout is kernels/mts_layout.h, which the kernels include too.
-  plane_floats_ = MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions));
+  plane_floats_ = MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions),
+                                   static_cast<size_t>(scene.pipeline.clip_slots()));
   row_words_ = ROW_WORDS;
   band_words_ = BAND_WORDS;
   decided_words_ = DECIDED_WORDS;

@@ -1,5 +1,6 @@
 #include "host/mts/reference_pipeline.h"
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -23,7 +24,66 @@ float shader_log(LogForm form, float x) {
 
 struct Vertex {
   float x, y, d, q;
+  std::array<float, 4> c;  // clip coordinates (the clip stage's input)
+  int id;                  // edges are evaluated from their lower-id vertex
 };
+
+// llvmpipe's clip stage (docs/spec.md 2, pipeline.clip; kernels/mts/setup.cl clip_fan has the
+// account): a vertex's clip mask, bit k outside plane k of x <= w, x >= -w, y <= w, y >= -w.
+unsigned clip_mask(const std::array<float, 4>& c) {
+  return (c[0] > c[3] ? 1u : 0u) | (0.0f > c[0] + c[3] ? 2u : 0u) | (c[1] > c[3] ? 4u : 0u) |
+         (0.0f > c[1] + c[3] ? 8u : 0u);
+}
+
+float clip_dist(const std::array<float, 4>& c, int k) {
+  static const float planes[4][4] = {{-1, 0, 0, 1}, {1, 0, 0, 1}, {0, -1, 0, 1}, {0, 1, 0, 1}};
+  const float* p = planes[k];
+  return ((c[0] * p[0] + c[1] * p[1]) + c[2] * p[2]) + c[3] * p[3];
+}
+
+// The polygon a triangle (with the union of its vertices' clip masks) becomes; empty when a
+// distance is not finite. New vertices get ids from next_id on.
+std::vector<Vertex> clip_polygon(std::vector<Vertex> poly, unsigned mask, float hw, float hh,
+                                 bool gl, int next_id) {
+  for (int k = 0; k < 4 && poly.size() >= 3; ++k) {
+    if (!((mask >> k) & 1u)) continue;
+    std::vector<Vertex> out;
+    poly.push_back(poly[0]);
+    Vertex prev = poly[0];
+    float dp_prev = clip_dist(prev.c, k);
+    if (!std::isfinite(dp_prev)) return {};
+    for (size_t i = 1; i < poly.size(); ++i) {
+      const Vertex cur = poly[i];
+      const float dp = clip_dist(cur.c, k);
+      if (!std::isfinite(dp)) return {};
+      bool cross;
+      if (dp_prev >= 0.0f) {
+        out.push_back(prev);
+        cross = dp < 0.0f;
+      } else {
+        cross = !(dp < 0.0f);
+      }
+      if (cross) {
+        const bool leaving = dp < 0.0f;
+        const Vertex &o = leaving ? cur : prev, &in = leaving ? prev : cur;
+        const float t = leaving ? dp / (dp - dp_prev) : dp_prev / (dp_prev - dp);
+        Vertex n{};
+        for (int r = 0; r < 4; ++r) n.c[r] = o.c[r] + t * (in.c[r] - o.c[r]);
+        const float oow = 1.0f / n.c[3];
+        n.x = n.c[0] * oow * hw + hw;
+        n.y = n.c[1] * oow * hh + hh;
+        n.d = gl ? n.c[2] * oow * 0.5f + 0.5f : n.c[2] * oow * 1.0f + 0.0f;
+        n.q = oow;
+        n.id = next_id++;
+        out.push_back(n);
+      }
+      prev = cur;
+      dp_prev = dp;
+    }
+    poly = out;
+  }
+  return poly;
+}
 
 struct Edge {
   float ax, ay, dx, dy;
@@ -93,27 +153,23 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
         vx.d = gl ? ndc[2] * 0.5f + 0.5f : ndc[2];
       }
       vx.q = inv_w;
+      for (int r = 0; r < 4; ++r) vx.c[r] = clip[r];
+      vx.id = j * (g + 1) + i;
       if (!std::isfinite(vx.x) || !std::isfinite(vx.y) || !std::isfinite(vx.q))
         plane.non_finite = true;
       if (ti.from != DepthFrom::fragment && !std::isfinite(vx.d)) plane.non_finite = true;
     }
   }
-  for (int t = 0; t < 2 * g * g; ++t) {
-    const int quad = t / 2, qi = quad % g, qj = quad / g;
-    const int a = qj * (g + 1) + qi, b = a + 1, c = a + g + 2, d = a + g + 1;
-    int vi[3] = {a, (t & 1) ? c : b, (t & 1) ? d : c};
-    if (flip) {
-      const int fb[3] = {a, b, d}, fo[3] = {b, c, d};
-      for (int k = 0; k < 3; ++k) vi[k] = (t & 1) ? fo[k] : fb[k];
-    }
+  // One triangle from its vertices (in the order the set-up takes them).
+  const auto emit = [&](const Vertex* tv[3]) {
     Triangle tri{};
     for (int e = 0; e < 3; ++e) {
-      const int va = vi[e], vb = vi[(e + 1) % 3];
-      const Vertex& lo = v[std::min(va, vb)];
-      const Vertex& hi = v[std::max(va, vb)];
-      tri.e[e] = {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y, va > vb, false};
+      const Vertex &va = *tv[e], &vb = *tv[(e + 1) % 3];
+      const Vertex& lo = va.id < vb.id ? va : vb;
+      const Vertex& hi = va.id < vb.id ? vb : va;
+      tri.e[e] = {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y, va.id > vb.id, false};
     }
-    const Vertex& p2 = v[vi[2]];
+    const Vertex& p2 = *tv[2];
     float orient = tri.e[0].dx * (p2.y - tri.e[0].ay) - tri.e[0].dy * (p2.x - tri.e[0].ax);
     if (tri.e[0].negate) orient = -orient;
     if (orient < 0.0f)
@@ -124,7 +180,7 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       const float dx = sg * e.dx, dy = sg * e.dy;
       e.owns = dy < 0.0f || (dy == 0.0f && dx < 0.0f);
     }
-    const Vertex &v0 = v[vi[0]], &v1 = v[vi[1]], &v2 = v[vi[2]];
+    const Vertex &v0 = *tv[0], &v1 = *tv[1], &v2 = *tv[2];
     const float e1x = v1.x - v0.x, e1y = v1.y - v0.y, e2x = v2.x - v0.x, e2y = v2.y - v0.y;
     const float det = e1x * e2y - e2x * e1y;
     if (s.pipeline.plane == PlaneForm::origin_fma) {
@@ -166,6 +222,28 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       if (!std::isfinite(tri.bias)) plane.non_finite = true;
     }
     plane.tris.push_back(tri);
+  };
+  const unsigned slots = static_cast<unsigned>(s.pipeline.clip_slots());
+  for (int t = 0; t < 2 * g * g; ++t) {
+    const int quad = t / 2, qi = quad % g, qj = quad / g;
+    const int a = qj * (g + 1) + qi, b = a + 1, c = a + g + 2, d = a + g + 1;
+    int vi[3] = {a, (t & 1) ? c : b, (t & 1) ? d : c};
+    if (flip) {
+      const int fb[3] = {a, b, d}, fo[3] = {b, c, d};
+      for (int k = 0; k < 3; ++k) vi[k] = (t & 1) ? fo[k] : fb[k];
+    }
+    const Vertex* tv[3] = {&v[vi[0]], &v[vi[1]], &v[vi[2]]};
+    const unsigned m0 = clip_mask(tv[0]->c), m1 = clip_mask(tv[1]->c), m2 = clip_mask(tv[2]->c);
+    if (slots == 1 || !(m0 | m1 | m2)) {
+      emit(tv);
+    } else if (!(m0 & m1 & m2)) {  // all outside one plane: culled
+      const std::vector<Vertex> poly = clip_polygon({*tv[0], *tv[1], *tv[2]}, m0 | m1 | m2, hw, hh,
+                                                    gl, (g + 1) * (g + 1) + 8 * t);
+      for (size_t i = 2; i < poly.size(); ++i) {
+        const Vertex* f[3] = {&poly[i - 1], &poly[i], &poly[0]};
+        emit(f);
+      }
+    }
   }
   return plane;
 }

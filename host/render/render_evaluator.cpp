@@ -83,6 +83,8 @@ void check_renderable(const Scene& scene) {
     refuse("plane=origin_fma", "the driver sets up and interpolates its own depth planes");
   if (scene.pipeline.viewport != def.viewport)
     refuse("viewport=fma", "the driver does the viewport transform itself");
+  if (scene.pipeline.clip != def.clip)
+    refuse("clip=llvmpipe", "the driver clips triangles its own way");
   if (scene.pipeline.log != def.log)
     refuse("log=llvmpipe", "the driver's shaders compute their own log");
   if (scene.pipeline.vertex != def.vertex)

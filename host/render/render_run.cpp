@@ -28,6 +28,7 @@ Scene rendered_counterpart(const Scene& scene) {
   s.pipeline.viewport = def.viewport;
   s.pipeline.vertex = def.vertex;
   s.pipeline.log = def.log;
+  s.pipeline.clip = def.clip;
   s.pipeline.conversion = def.conversion;
   return s;
 }

@@ -1,14 +1,17 @@
 // Common to the MTS kernels: the layout's names at this program's GRID, and small helpers.
 #define NV MTS_NV(GRID)
-#define NT MTS_NT(GRID)
-#define NE MTS_NE(GRID)
-#define NE_PAD MTS_NE_PAD(GRID)
-#define Q_YRANGE MTS_Q_YRANGE(GRID)
+#define NT0 (2 * GRID * GRID) /* the grid's triangles; NT0 * CLIP_SLOTS records */
+#define NT MTS_NT(GRID, CLIP_SLOTS)
+#define NE MTS_NE(GRID, CLIP_SLOTS)
+#define NE_PAD MTS_NE_PAD(GRID, CLIP_SLOTS)
+#define Q_YRANGE MTS_Q_YRANGE(GRID, CLIP_SLOTS)
+#define Q_USED MTS_Q_USED(GRID, CLIP_SLOTS)
+#define Q_SLOTS (2 * GRID * CLIP_SLOTS) /* records per quad row */
 #define NV_PAD MTS_NV_PAD(GRID)
-#define V_XW MTS_V_XW(GRID)
-#define V_YW MTS_V_YW(GRID)
-#define V_BAD_ROW MTS_V_BAD_ROW(GRID)
-#define PLANE_STRIDE MTS_PLANE_STRIDE(GRID)
+#define V_XW MTS_V_XW(GRID, CLIP_SLOTS)
+#define V_YW MTS_V_YW(GRID, CLIP_SLOTS)
+#define V_BAD_ROW MTS_V_BAD_ROW(GRID, CLIP_SLOTS)
+#define PLANE_STRIDE MTS_PLANE_STRIDE(GRID, CLIP_SLOTS)
 
 // m * v row by row, in the form VERTEX_FMA names (host/model/frame_setup.h mat_row_dot).
 static inline float mat_row(__global const float* m, float4 v) {

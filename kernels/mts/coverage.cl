@@ -84,8 +84,8 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   int t_first = NT, t_last = -1;
   for (int qj = 0; qj < GRID; ++qj) {
     if (T[Q_YRANGE + 2 * qj] <= py && py <= T[Q_YRANGE + 2 * qj + 1]) {
-      t_first = min(t_first, 2 * GRID * qj);
-      t_last = 2 * GRID * (qj + 1) - 1;
+      t_first = min(t_first, Q_SLOTS * qj);
+      t_last = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj] - 1;
     }
   }
   const int g_first = (3 * t_first) / 16 * 16, g_end = 3 * (t_last + 1);
@@ -273,8 +273,10 @@ static inline int b_keeps_orientation(__global const float* TA, __global const f
 // loses only that pixel's row), B within A's coverage margin (coverage_margin: moved is
 // b_moved_from_a), and B's triangles keep A's orientation (oriented: b_keeps_orientation). The
 // last two are per frame: mts_frame_bounds finds them once.
+// Not under clipping: a clipped triangle's new vertices, which moved does not see, and its fan,
+// which can differ between A and B, are outside this argument.
 static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB,
                                   uint vflags_b, int row, __global const uint* rec) {
-  return oriented && moved < ((__global const float*)rec)[RW_MARGIN] &&
+  return CLIP_SLOTS == 1 && oriented && moved < ((__global const float*)rec)[RW_MARGIN] &&
          row_covered(TB, vflags_b, row);
 }

@@ -105,6 +105,222 @@ static inline int3 triangle_vertices(int t, int flip) {
   return (t & 1) ? (int3)(a, c, d) : (int3)(a, b, c);
 }
 
+// One triangle record (slot t of plane T) from its vertices: ids (an edge is evaluated from its
+// lower-id vertex, so two triangles sharing it compute the same value), window x, y, depth and
+// 1/w. Edges, orientation and ownership bits, the depth and 1/w planes in the set-up's form, the
+// y-range, the largest |depth|, the edge arrays and the pixel box. Clears *shapely for a
+// degenerate triangle or one with an angle below ~6 degrees (covers_kernel's precondition).
+static inline void setup_triangle(__global float* T, int t, const int* id, const float* x,
+                                  const float* y, const float* d, const float* q, float origin_x,
+                                  float origin_y, uint kernel_w, uint kernel_h, uint* shapely) {
+  __global float* R = T + t * TRI_STRIDE;
+  /* the edges stay in registers: written to the record and to the edge arrays (SA) from here,
+   * never read back */
+  float ex[3], ey[3], edx[3], edy[3];
+  uint bits = 0u;
+  for (int e = 0; e < 3; ++e) {
+    const int a = e, b = (e + 1) % 3;
+    const int lo = id[a] < id[b] ? a : b, hi = id[a] < id[b] ? b : a;
+    ex[e] = x[lo];
+    ey[e] = y[lo];
+    edx[e] = x[hi] - x[lo];
+    edy[e] = y[hi] - y[lo];
+    R[T_EDGES + 4 * e + 0] = ex[e];
+    R[T_EDGES + 4 * e + 1] = ey[e];
+    R[T_EDGES + 4 * e + 2] = edx[e];
+    R[T_EDGES + 4 * e + 3] = edy[e];
+    if (id[a] > id[b]) bits |= 1u << e;
+  }
+  // orientation: edge 0 evaluated at vertex 2
+  float orient = edx[0] * (y[2] - ey[0]) - edy[0] * (x[2] - ex[0]);
+  if (bits & 1u) orient = -orient;
+  if (orient < 0.0f) bits ^= 7u;
+  const int valid = orient != 0.0f && isfinite(orient);
+  for (int e = 0; e < 3; ++e) {
+    const float s = (bits >> e) & 1u ? -1.0f : 1.0f;
+    const float dx = s * edx[e], dy = s * edy[e];
+    if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
+  }
+  if (valid)
+    bits |= 64u;
+  else
+    *shapely = 0u;
+  const float e1x = x[1] - x[0], e1y = y[1] - y[0];
+  const float e2x = x[2] - x[0], e2y = y[2] - y[0];
+  const float det = e1x * e2y - e2x * e1y;
+  {
+    const float e3x = x[2] - x[1], e3y = y[2] - y[1];
+    const float longest =
+        fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
+    /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
+    if (!(fabs(det) >= 0.1f * longest)) *shapely = 0u;
+  }
+#if PLANE_FORM == 1
+  {
+    /* llvmpipe (lp_state_setup.c): the vertices as it passes them, (v1, v0, v2) when the area
+     * is negative; gradients as differences times 1/area; the value at the framebuffer origin.
+     * Evaluated at integer pixel coordinates (px - 0.5, py - 0.5): T_X0 = T_Y0 = 0.5. */
+    const int j0 = det < 0.0f ? 1 : 0, j1 = det < 0.0f ? 0 : 1, j2 = 2;
+    const float x0c = x[j0] - 0.5f, y0c = y[j0] - 0.5f;
+    const float dx01 = x[j0] - x[j1], dy01 = y[j0] - y[j1];
+    const float dx20 = x[j2] - x[j0], dy20 = y[j2] - y[j0];
+    const float ooa = 1.0f / (dx01 * dy20 - dx20 * dy01);
+    const float dy20o = dy20 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dx01o = dx01 * ooa;
+    const float dz01 = d[j0] - d[j1], dz20 = d[j2] - d[j0];
+    const float dzdx = dz01 * dy20o - dz20 * dy01o, dzdy = dz20 * dx01o - dz01 * dx20o;
+    const float dq01 = q[j0] - q[j1], dq20 = q[j2] - q[j0];
+    const float dqdx = dq01 * dy20o - dq20 * dy01o, dqdy = dq20 * dx01o - dq01 * dx20o;
+    R[T_X0] = 0.5f;
+    R[T_Y0] = 0.5f;
+    R[T_D0] = d[j0] - (dzdx * x0c + dzdy * y0c);
+    R[T_DZDX] = dzdx;
+    R[T_DZDY] = dzdy;
+    R[T_Q0] = q[j0] - (dqdx * x0c + dqdy * y0c);
+    R[T_DQDX] = dqdx;
+    R[T_DQDY] = dqdy;
+  }
+#else
+  const float e1d = d[1] - d[0], e2d = d[2] - d[0];
+  const float e1q = q[1] - q[0], e2q = q[2] - q[0];
+  R[T_X0] = x[0];
+  R[T_Y0] = y[0];
+  R[T_D0] = d[0];
+  R[T_DZDX] = (e1d * e2y - e2d * e1y) / det;
+  R[T_DZDY] = (e2d * e1x - e1d * e2x) / det;
+  R[T_Q0] = q[0];
+  R[T_DQDX] = (e1q * e2y - e2q * e1y) / det;
+  R[T_DQDY] = (e2q * e1x - e1q * e2x) / det;
+#endif
+  R[T_YMIN] = fmin(fmin(y[0], y[1]), y[2]);
+  R[T_YMAX] = fmax(fmax(y[0], y[1]), y[2]);
+  R[T_ZMAX] = fmax(fmax(fabs(d[0]), fabs(d[1])), fabs(d[2]));
+  __global float* SA = T + NT * TRI_STRIDE;
+  for (int e = 0; e < 3; ++e) {
+    const int k = 3 * t + e;
+    const float dxdy = edx[e] / edy[e];
+    R[T_DXDY + e] = dxdy;
+    SA[E_AX * NE_PAD + k] = ex[e];
+    SA[E_AY * NE_PAD + k] = ey[e];
+    SA[E_DX * NE_PAD + k] = edx[e];
+    SA[E_DY * NE_PAD + k] = edy[e];
+    SA[E_DXDY * NE_PAD + k] = dxdy;
+    ((__global uint*)SA)[E_BITS * NE_PAD + k] =
+        ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
+  }
+  ((__global uint*)R)[T_BITS] = bits;
+  vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0,
+          (__global int*)R + T_BOX);
+}
+
+// A slot no triangle uses: invalid, empty y-range and pixel box, zero edges.
+static inline void empty_slot(__global float* T, int t) {
+  __global float* R = T + t * TRI_STRIDE;
+  for (int k = 0; k < TRI_STRIDE; ++k) R[k] = 0.0f;
+  R[T_YMIN] = INFINITY;
+  R[T_YMAX] = -INFINITY;
+  vstore4((int4)(1, 0, 1, 0), 0, (__global int*)R + T_BOX);
+  __global float* SA = T + NT * TRI_STRIDE;
+  for (int e = 0; e < 3; ++e)
+    for (int a = 0; a <= E_BITS; ++a) SA[a * NE_PAD + 3 * t + e] = 0.0f;
+}
+
+#if CLIP_SLOTS > 1
+// Triangles crossing the viewport edge, as llvmpipe's clip stage draws them (Mesa 22.3,
+// draw_pipe_clip.c; with a depth buffer bound it has no guard band). A vertex's clip mask is
+// draw_llvm.c's: bit k set when it lies outside plane k of draw's order x <= w, x >= -w, y <= w,
+// y >= -w. A triangle with every vertex outside one plane is culled; one with a vertex outside
+// any is clipped, plane by plane in that order for the planes its vertices' masks name, by
+// Sutherland-Hodgman on the clip coordinates: distances dot4(clip, plane), a new vertex
+// out + t (in - out) with t = dp_out / (dp_out - dp_in) (the same whichever way an edge is walked,
+// so both triangles sharing a clipped edge make the same vertex), its window coordinates in C
+// without FMA, pos * (1/w) * scale + translate. The polygon is drawn as the fan (p[i-1], p[i],
+// p[0]) (GL's provoking vertex, the last), into the triangle's slots in order.
+typedef struct {
+  float4 c;         /* clip coordinates */
+  float x, y, d, q; /* window x, y, depth, 1/w */
+  int id;           /* grid vertices 0..NV-1; a triangle's new vertices NV + 8 t0 + k */
+} clip_vertex_t;
+
+static inline uint clip_mask(float4 c) {
+  return (c.x > c.w ? 1u : 0u) | (0.0f > c.x + c.w ? 2u : 0u) | (c.y > c.w ? 4u : 0u) |
+         (0.0f > c.y + c.w ? 8u : 0u);
+}
+
+static inline float clip_dist(float4 c, int k) {
+  const float4 p = k == 0   ? (float4)(-1.0f, 0.0f, 0.0f, 1.0f)
+                   : k == 1 ? (float4)(1.0f, 0.0f, 0.0f, 1.0f)
+                   : k == 2 ? (float4)(0.0f, -1.0f, 0.0f, 1.0f)
+                            : (float4)(0.0f, 1.0f, 0.0f, 1.0f);
+  return ((c.x * p.x + c.y * p.y) + c.z * p.z) + c.w * p.w;
+}
+
+// Clips grid triangle t0 (its vertices in tri[0..2], mask the union of their clip masks) and
+// sets up its fan in records first, first + 1, ...; returns how many it filled.
+static inline int clip_fan(__global float* T, int t0, int first, const clip_vertex_t* tri,
+                           uint mask, float half_w, float half_h, float origin_x, float origin_y,
+                           uint kernel_w, uint kernel_h, uint* shapely) {
+  clip_vertex_t a[9], b[9];
+  clip_vertex_t* in = a;
+  clip_vertex_t* out = b;
+  for (int k = 0; k < 3; ++k) in[k] = tri[k];
+  int n = 3, next_id = NV + 8 * t0;
+  for (int p = 0; p < 4 && n >= 3; ++p) {
+    if (!((mask >> p) & 1u)) continue;
+    in[n] = in[0];
+    clip_vertex_t prev = in[0];
+    float dp_prev = clip_dist(prev.c, p);
+    if (!isfinite(dp_prev)) return 0;
+    int m = 0;
+    for (int i = 1; i <= n; ++i) {
+      const clip_vertex_t cur = in[i];
+      const float dp = clip_dist(cur.c, p);
+      if (!isfinite(dp)) return 0;
+      int cross;
+      if (dp_prev >= 0.0f) {
+        out[m++] = prev;
+        cross = dp < 0.0f;
+      } else {
+        cross = !(dp < 0.0f);
+      }
+      if (cross) {
+        const int leaving = dp < 0.0f;
+        const clip_vertex_t o = leaving ? cur : prev, v_in = leaving ? prev : cur;
+        const float t = leaving ? dp / (dp - dp_prev) : dp_prev / (dp_prev - dp);
+        clip_vertex_t nv;
+        nv.c = o.c + t * (v_in.c - o.c);
+        const float oow = 1.0f / nv.c.w;
+        nv.x = nv.c.x * oow * half_w + half_w;
+        nv.y = nv.c.y * oow * half_h + half_h;
+#if RANGE_GL
+        nv.d = nv.c.z * oow * 0.5f + 0.5f;
+#else
+        nv.d = nv.c.z * oow * 1.0f + 0.0f;
+#endif
+        nv.q = oow;
+        nv.id = next_id++;
+        out[m++] = nv;
+      }
+      prev = cur;
+      dp_prev = dp;
+    }
+    n = m;
+    clip_vertex_t* swap = in;
+    in = out;
+    out = swap;
+  }
+  if (n < 3) return 0;
+  for (int i = 2; i < n; ++i) {
+    const clip_vertex_t* f[3] = {&in[i - 1], &in[i], &in[0]};
+    const int id[3] = {f[0]->id, f[1]->id, f[2]->id};
+    const float x[3] = {f[0]->x, f[1]->x, f[2]->x}, y[3] = {f[0]->y, f[1]->y, f[2]->y};
+    const float d[3] = {f[0]->d, f[1]->d, f[2]->d}, q[3] = {f[0]->q, f[1]->q, f[2]->q};
+    setup_triangle(T, first + i - 2, id, x, y, d, q, origin_x, origin_y, kernel_w, kernel_h,
+                   shapely);
+  }
+  return n - 2;
+}
+#endif
+
 // Vertex stage, divide, window transform and triangle set-up of one plane in one frame into
 // record T and flags *vflag; the vertices' window depths are left in dw.
 static inline void setup_plane(__global const float* P, __global const float* M, float half_w,
@@ -112,6 +328,9 @@ static inline void setup_plane(__global const float* P, __global const float* M,
                                uint kernel_h, uint band_rows, __global float* T,
                                __global uint* vflag, int flip, float* dw) {
   float xw[NV], yw[NV], qw[NV];
+#if CLIP_SLOTS > 1
+  float4 cv[NV]; /* clip coordinates, for the clip stage */
+#endif
   uint nonfinite = 0u;
   for (int j = 0; j <= GRID; ++j) {
     for (int i = 0; i <= GRID; ++i) {
@@ -157,6 +376,9 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #endif
 #endif
       qw[v] = inv_w;
+#if CLIP_SLOTS > 1
+      cv[v] = clip;
+#endif
       if (!isfinite(xw[v]) || !isfinite(yw[v]) || !isfinite(qw[v])) nonfinite = 1u;
 #if DEPTH_FROM != 2
       if (!isfinite(dw[v])) nonfinite = 1u;
@@ -164,106 +386,36 @@ static inline void setup_plane(__global const float* P, __global const float* M,
     }
   }
   uint shapely = 1u; /* every triangle non-degenerate, no angle below ~6 degrees */
-  for (int t = 0; t < NT; ++t) {
-    const int3 tv = triangle_vertices(t, flip);
-    const int i0 = tv.x, i1 = tv.y, i2 = tv.z;
-    const int vi[3] = {i0, i1, i2};
-    __global float* R = T + t * TRI_STRIDE;
-    /* the edges stay in registers: written to the record and to the edge arrays (SA) from here,
-     * never read back */
-    float ex[3], ey[3], edx[3], edy[3];
-    uint bits = 0u;
-    for (int e = 0; e < 3; ++e) {
-      const int va = vi[e], vb = vi[(e + 1) % 3];
-      const int lo = min(va, vb), hi = max(va, vb);
-      ex[e] = xw[lo];
-      ey[e] = yw[lo];
-      edx[e] = xw[hi] - xw[lo];
-      edy[e] = yw[hi] - yw[lo];
-      R[T_EDGES + 4 * e + 0] = ex[e];
-      R[T_EDGES + 4 * e + 1] = ey[e];
-      R[T_EDGES + 4 * e + 2] = edx[e];
-      R[T_EDGES + 4 * e + 3] = edy[e];
-      if (va > vb) bits |= 1u << e;
-    }
-    // orientation: edge 0 evaluated at vertex 2
-    float orient = edx[0] * (yw[i2] - ey[0]) - edy[0] * (xw[i2] - ex[0]);
-    if (bits & 1u) orient = -orient;
-    if (orient < 0.0f) bits ^= 7u;
-    const int valid = orient != 0.0f && isfinite(orient);
-    for (int e = 0; e < 3; ++e) {
-      const float s = (bits >> e) & 1u ? -1.0f : 1.0f;
-      const float dx = s * edx[e], dy = s * edy[e];
-      if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
-    }
-    if (valid)
-      bits |= 64u;
-    else
-      shapely = 0u;
-    const float e1x = xw[i1] - xw[i0], e1y = yw[i1] - yw[i0];
-    const float e2x = xw[i2] - xw[i0], e2y = yw[i2] - yw[i0];
-    const float det = e1x * e2y - e2x * e1y;
-    {
-      const float e3x = xw[i2] - xw[i1], e3y = yw[i2] - yw[i1];
-      const float longest =
-          fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
-      /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
-      if (!(fabs(det) >= 0.1f * longest)) shapely = 0u;
-    }
-#if PLANE_FORM == 1
-    {
-      /* llvmpipe (lp_state_setup.c): the vertices as it passes them, (v1, v0, v2) when the area
-       * is negative; gradients as differences times 1/area; the value at the framebuffer origin.
-       * Evaluated at integer pixel coordinates (px - 0.5, py - 0.5): T_X0 = T_Y0 = 0.5. */
-      const int j0 = det < 0.0f ? i1 : i0, j1 = det < 0.0f ? i0 : i1, j2 = i2;
-      const float x0c = xw[j0] - 0.5f, y0c = yw[j0] - 0.5f;
-      const float dx01 = xw[j0] - xw[j1], dy01 = yw[j0] - yw[j1];
-      const float dx20 = xw[j2] - xw[j0], dy20 = yw[j2] - yw[j0];
-      const float ooa = 1.0f / (dx01 * dy20 - dx20 * dy01);
-      const float dy20o = dy20 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dx01o = dx01 * ooa;
-      const float dz01 = dw[j0] - dw[j1], dz20 = dw[j2] - dw[j0];
-      const float dzdx = dz01 * dy20o - dz20 * dy01o, dzdy = dz20 * dx01o - dz01 * dx20o;
-      const float dq01 = qw[j0] - qw[j1], dq20 = qw[j2] - qw[j0];
-      const float dqdx = dq01 * dy20o - dq20 * dy01o, dqdy = dq20 * dx01o - dq01 * dx20o;
-      R[T_X0] = 0.5f;
-      R[T_Y0] = 0.5f;
-      R[T_D0] = dw[j0] - (dzdx * x0c + dzdy * y0c);
-      R[T_DZDX] = dzdx;
-      R[T_DZDY] = dzdy;
-      R[T_Q0] = qw[j0] - (dqdx * x0c + dqdy * y0c);
-      R[T_DQDX] = dqdx;
-      R[T_DQDY] = dqdy;
-    }
-#else
-    const float e1d = dw[i1] - dw[i0], e2d = dw[i2] - dw[i0];
-    const float e1q = qw[i1] - qw[i0], e2q = qw[i2] - qw[i0];
-    R[T_X0] = xw[i0];
-    R[T_Y0] = yw[i0];
-    R[T_D0] = dw[i0];
-    R[T_DZDX] = (e1d * e2y - e2d * e1y) / det;
-    R[T_DZDY] = (e2d * e1x - e1d * e2x) / det;
-    R[T_Q0] = qw[i0];
-    R[T_DQDX] = (e1q * e2y - e2q * e1y) / det;
-    R[T_DQDY] = (e2q * e1x - e1q * e2x) / det;
+  int next = 0;      /* the next free record of the current quad row */
+  for (int t0 = 0; t0 < NT0; ++t0) {
+    const int qj = t0 / (2 * GRID);
+    if (t0 % (2 * GRID) == 0) next = Q_SLOTS * qj;
+    const int3 tv = triangle_vertices(t0, flip);
+    const int vi[3] = {tv.x, tv.y, tv.z};
+#if CLIP_SLOTS > 1
+    const uint m0 = clip_mask(cv[vi[0]]), m1 = clip_mask(cv[vi[1]]), m2 = clip_mask(cv[vi[2]]);
+    if (!(m0 | m1 | m2)) {
 #endif
-    R[T_YMIN] = fmin(fmin(yw[i0], yw[i1]), yw[i2]);
-    R[T_YMAX] = fmax(fmax(yw[i0], yw[i1]), yw[i2]);
-    __global float* SA = T + NT * TRI_STRIDE;
-    for (int e = 0; e < 3; ++e) {
-      const int k = 3 * t + e;
-      const float dxdy = edx[e] / edy[e];
-      R[T_DXDY + e] = dxdy;
-      SA[E_AX * NE_PAD + k] = ex[e];
-      SA[E_AY * NE_PAD + k] = ey[e];
-      SA[E_DX * NE_PAD + k] = edx[e];
-      SA[E_DY * NE_PAD + k] = edy[e];
-      SA[E_DXDY * NE_PAD + k] = dxdy;
-      ((__global uint*)SA)[E_BITS * NE_PAD + k] =
-          ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
+      const float x[3] = {xw[vi[0]], xw[vi[1]], xw[vi[2]]};
+      const float y[3] = {yw[vi[0]], yw[vi[1]], yw[vi[2]]};
+      const float d[3] = {dw[vi[0]], dw[vi[1]], dw[vi[2]]};
+      const float q[3] = {qw[vi[0]], qw[vi[1]], qw[vi[2]]};
+      setup_triangle(T, next++, vi, x, y, d, q, origin_x, origin_y, kernel_w, kernel_h, &shapely);
+#if CLIP_SLOTS > 1
+    } else if (!(m0 & m1 & m2)) { /* all outside one plane: culled */
+      clip_vertex_t poly[3];
+      for (int k = 0; k < 3; ++k) {
+        const int v = vi[k];
+        poly[k] = (clip_vertex_t){cv[v], xw[v], yw[v], dw[v], qw[v], v};
+      }
+      next += clip_fan(T, t0, next, poly, m0 | m1 | m2, half_w, half_h, origin_x, origin_y,
+                       kernel_w, kernel_h, &shapely);
     }
-    ((__global uint*)R)[T_BITS] = bits;
-    vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0,
-            (__global int*)R + T_BOX);
+#endif
+    if (t0 % (2 * GRID) == 2 * GRID - 1) {
+      ((__global int*)T)[Q_USED + qj] = next - Q_SLOTS * qj;
+      for (int k = next; k < Q_SLOTS * (qj + 1); ++k) empty_slot(T, k);
+    }
   }
   const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
@@ -274,7 +426,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
     ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
   for (int qj = 0; qj < GRID; ++qj) {
     float lo = INFINITY, hi = -INFINITY;
-    for (int t = 2 * GRID * qj; t < 2 * GRID * (qj + 1); ++t) {
+    for (int t = Q_SLOTS * qj; t < Q_SLOTS * qj + ((__global int*)T)[Q_USED + qj]; ++t) {
       lo = fmin(lo, T[t * TRI_STRIDE + T_YMIN]);
       hi = fmax(hi, T[t * TRI_STRIDE + T_YMAX]);
     }
