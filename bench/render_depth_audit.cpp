@@ -61,7 +61,7 @@ std::vector<WinVertex> window_vertices(const Scene& s, const EvalPair& pair,
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float eye[4], clip[4];
       const VertexForm form = fma_vertex ? VertexForm::fma : VertexForm::separate;
-      for (int r = 0; r < 4; ++r) eye[r] = mat_row_dot(mv, r, obj, form);
+      for (int r = 0; r < 4; ++r) eye[r] = object_row_dot(mv, r, obj, form);
       for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, form);
       const float oow = 1.0f / clip[3];
       const float nx = clip[0] * oow, ny = clip[1] * oow, nz = clip[2] * oow;

@@ -17,7 +17,7 @@
 //   PLANE_FORM         0: planes anchored at a vertex (below); 1: llvmpipe's, referred to the
 //                      framebuffer origin and evaluated with fma (host/model/scene.h PlaneForm)
 //   VIEWPORT_FMA       1: window coordinates as fma(ndc, scale, translate)
-//   VERTEX_FMA         1: matrix rows as fma(m1, y, fma(m0, x, fma(m2, z, m3 w))), llvmpipe's
+//   VERTEX_FMA         1: matrix rows fused as llvmpipe's shader fuses them (common.cl mat_vec)
 //   LLVMPIPE_LOG       1: the shaders' log is llvmpipe's (kernels/llvmpipe_log.h); 0: OpenCL's
 //   CLIP_SLOTS         1: triangles as they are; MTS_CLIP_SLOTS: those crossing the viewport edge
 //                      clipped into fans as llvmpipe does (setup.cl clip_fan)

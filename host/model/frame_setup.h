@@ -13,14 +13,24 @@ namespace depthprec {
 
 using Mat4f = std::array<float, 16>;  // row-major: m[r * 4 + c]
 
-// Row r of m times v in binary32, in the kernels' order (kernels/mts/common.cl mat_vec):
-// ((m0 x + m1 y) + m2 z) + m3 w, or under VertexForm::fma fma(m1, y, fma(m0, x, fma(m2, z, m3 w))).
+// Row r of m times a computed vector v in binary32, in the kernels' order (kernels/mts/common.cl
+// mat_vec): ((m0 x + m1 y) + m2 z) + m3 w, or under VertexForm::fma the chain a shader compiler
+// fuses it into, fma(m3, w, fma(m2, z, fma(m1, y, m0 x))).
 inline float mat_row_dot(const Mat4f& m, int r, const float v[4],
                          VertexForm form = VertexForm::separate) {
   const float* row = &m[r * 4];
   if (form == VertexForm::fma)
-    return std::fma(row[1], v[1], std::fma(row[0], v[0], std::fma(row[2], v[2], row[3] * v[3])));
+    return std::fma(row[3], v[3], std::fma(row[2], v[2], std::fma(row[1], v[1], row[0] * v[0])));
   return ((row[0] * v[0] + row[1] * v[1]) + row[2] * v[2]) + row[3] * v[3];
+}
+
+// Row r of m times a plane's object position (x, y, 0, 1) (kernels/mts/common.cl obj_vec): as
+// mat_row_dot, except that under VertexForm::fma the compiler, which sees the constant z and w,
+// folds them away and fuses what is left as fma(m1, y, fma(m0, x, m3)).
+inline float object_row_dot(const Mat4f& m, int r, const float obj[4], VertexForm form) {
+  const float* row = &m[r * 4];
+  if (form == VertexForm::fma) return std::fma(row[1], obj[1], std::fma(row[0], obj[0], row[3]));
+  return mat_row_dot(m, r, obj);
 }
 
 // Per-probe constants, packed as the kernels read them (kernels/mts_layout.h: PROBE_STRIDE floats,

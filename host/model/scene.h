@@ -31,9 +31,8 @@ enum class PlaneForm { vertex, origin_fma };
 // llvmpipe's generated vertex code does on an FMA CPU).
 enum class ViewportForm { separate, fma };
 // The vertex stage's matrix-vector products, row by row: separate multiplies and adds in the
-// order ((m0 x + m1 y) + m2 z) + m3 w, or fused as fma(m1, y, fma(m0, x, fma(m2, z, m3 w))), the
-// form llvmpipe's compiled vertex shader gives depthprec's planes (measured pixel by pixel,
-// docs/validation.md).
+// order ((m0 x + m1 y) + m2 z) + m3 w, or fused as llvmpipe's compiled vertex shader fuses
+// depthprec's (host/model/frame_setup.h; measured pixel by pixel, docs/validation.md).
 enum class VertexForm { separate, fma };
 // The shaders' natural log (log_vertex, log_fragment): the library's (OpenCL's log, <= 3 ulp), or
 // llvmpipe's approximation (kernels/llvmpipe_log.h).

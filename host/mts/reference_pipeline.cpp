@@ -128,10 +128,10 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float clip[4];
       if (s.pipeline.compose == Compose::premultiplied) {
-        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(M, r, obj, s.pipeline.vertex);
+        for (int r = 0; r < 4; ++r) clip[r] = object_row_dot(M, r, obj, s.pipeline.vertex);
       } else {
         float eye[4];
-        for (int r = 0; r < 4; ++r) eye[r] = mat_row_dot(M, r, obj, s.pipeline.vertex);
+        for (int r = 0; r < 4; ++r) eye[r] = object_row_dot(M, r, obj, s.pipeline.vertex);
         for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, s.pipeline.vertex);
       }
       if (ti.from == DepthFrom::vertex_log) {

@@ -338,9 +338,9 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       const float4 obj =
           (float4)((float)i / (float)GRID - 0.5f, (float)j / (float)GRID - 0.5f, 0.0f, 1.0f);
 #if COMPOSE_PREMULT
-      float4 clip = mat_vec(M, obj);
+      float4 clip = obj_vec(M, obj);
 #else
-      float4 clip = mat_vec(P, mat_vec(M, obj));
+      float4 clip = mat_vec(P, obj_vec(M, obj));
 #endif
 #if DEPTH_FROM == 1
       {
