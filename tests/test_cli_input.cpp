@@ -234,8 +234,10 @@ TEST_CASE("a profile sets its implementation forms as --sets do, and render refu
   CHECK_THAT(render.output, Contains("plane=origin_fma"));
 }
 
-TEST_CASE("a scene names its profile as pipeline.profile, and the header names the one it matches",
-          "[cli][profile]") {
+TEST_CASE(
+    "a scene names its profile as pipeline.profile; the header and every emulated row name the one "
+    "it matches",
+    "[cli][profile]") {
   const std::string small =
       " -t standard -f float32 --distances 100,4096 --kernel 16x16 --frames 2 -q --no-timing "
       "--format-out json";
@@ -249,13 +251,16 @@ TEST_CASE("a scene names its profile as pipeline.profile, and the header names t
              b = nlohmann::json::parse(from_option.output);
   CHECK(a["rows"] == b["rows"]);
   CHECK(a["scene"]["pipeline"] == b["scene"]["pipeline"]);
+  for (const auto& row : a["rows"]) CHECK(row["profile"] == "llvmpipe");
   // a pipeline that is no profile's is "custom"; the defaults are "ideal"
   const auto custom = run_cli("mts --set pipeline.vertex=fma" + small);
   REQUIRE(custom.exit_code == 0);
   CHECK(nlohmann::json::parse(custom.output)["scene"]["pipeline"]["profile"] == "custom");
+  CHECK(nlohmann::json::parse(custom.output)["rows"][0]["profile"] == "custom");
   const auto ideal = run_cli("mts" + small);
   REQUIRE(ideal.exit_code == 0);
   CHECK(nlohmann::json::parse(ideal.output)["scene"]["pipeline"]["profile"] == "ideal");
+  CHECK(nlohmann::json::parse(ideal.output)["rows"][0]["profile"] == "ideal");
   // the profile's key given another value in the same file is refused, naming the file
   std::ofstream(file) << R"({"pipeline": {"profile": "llvmpipe", "viewport": "separate"}})";
   const auto clash = run_cli("mts " + file + small);

@@ -31,6 +31,9 @@ RowSource parse_row_source(const std::string& s);  // throws InputError
 struct MtsRow {
   EvalPair pair;
   RowSource source = RowSource::emulated;
+  // The implementation profile an emulated row's pipeline matches (docs/spec.md 2: ideal,
+  // llvmpipe, or custom); empty for a rendered row, whose arithmetic is the driver's.
+  std::string profile;
   double z = 0;
   double mts = 0;  // hi: the smallest separation seen that never fought; +inf if unresolvable
   double lo = 0, hi = 0;

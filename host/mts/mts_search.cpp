@@ -173,6 +173,8 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
   for (size_t i = 0; i < distances.size(); ++i) {
     rows[i].pair = pair;
     rows[i].source = evaluator.source();
+    if (rows[i].source == RowSource::emulated)
+      rows[i].profile = scene.json["pipeline"].value("profile", "custom");
     rows[i].z = distances[i];
     rows[i].vertex_bound = vertex_bound(distances[i]);
     searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor,

@@ -51,6 +51,7 @@ std::string row_key(const EvalPair& pair, double z) {
 
 json row_to_json(const MtsRow& r, bool timing) {
   json j = r.pair.fields();
+  if (!r.profile.empty()) j["profile"] = r.profile;
   j.update({{"source", to_string(r.source)},
             {"z", r.z},
             {"mts", number(r.mts)},
@@ -86,6 +87,7 @@ MtsRow row_from_json(const json& j) {
   MtsRow r;
   try {
     r.source = parse_row_source(j.value("source", "emulated"));
+    r.profile = j.value("profile", "");
     r.pair.technique = parse_technique(j.at("technique").get<std::string>());
     r.pair.format = j.at("format").get<std::string>();
     r.pair.depth_range = parse_depth_range(j.at("depth_range").get<std::string>());
