@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "host/base/errors.h"
+#include "host/base/named_choice.h"
 #include "host/model/profile.h"
 #include "host/runtime/embedded_sources.h"
 
@@ -230,45 +231,37 @@ class Reader {
 };
 
 MatrixPrecision parse_matrix_precision(const std::string& s) {
-  if (s == "float") return MatrixPrecision::single;
-  if (s == "double") return MatrixPrecision::binary64;
-  throw InputError(fmt::format("unknown matrix precision '{}': expected float or double", s));
+  return named_choice<MatrixPrecision>(
+      "matrix precision", s,
+      {{"float", MatrixPrecision::single}, {"double", MatrixPrecision::binary64}});
 }
 Compose parse_compose(const std::string& s) {
-  if (s == "separate") return Compose::separate;
-  if (s == "premultiplied") return Compose::premultiplied;
-  throw InputError(fmt::format("unknown compose '{}': expected separate or premultiplied", s));
+  return named_choice<Compose>(
+      "compose", s, {{"separate", Compose::separate}, {"premultiplied", Compose::premultiplied}});
 }
 Divide parse_divide(const std::string& s) {
-  if (s == "reciprocal") return Divide::reciprocal;
-  if (s == "exact") return Divide::exact;
-  throw InputError(fmt::format("unknown divide '{}': expected reciprocal or exact", s));
+  return named_choice<Divide>("divide", s,
+                              {{"reciprocal", Divide::reciprocal}, {"exact", Divide::exact}});
 }
-
 PlaneForm parse_plane_form(const std::string& s) {
-  if (s == "vertex") return PlaneForm::vertex;
-  if (s == "origin_fma") return PlaneForm::origin_fma;
-  throw InputError(fmt::format("unknown plane '{}': expected vertex or origin_fma", s));
+  return named_choice<PlaneForm>(
+      "plane", s, {{"vertex", PlaneForm::vertex}, {"origin_fma", PlaneForm::origin_fma}});
 }
 ViewportForm parse_viewport_form(const std::string& s) {
-  if (s == "separate") return ViewportForm::separate;
-  if (s == "fma") return ViewportForm::fma;
-  throw InputError(fmt::format("unknown viewport '{}': expected separate or fma", s));
+  return named_choice<ViewportForm>(
+      "viewport", s, {{"separate", ViewportForm::separate}, {"fma", ViewportForm::fma}});
 }
 ClipForm parse_clip_form(const std::string& s) {
-  if (s == "none") return ClipForm::none;
-  if (s == "llvmpipe") return ClipForm::llvmpipe;
-  throw InputError(fmt::format("unknown clip '{}': expected none or llvmpipe", s));
+  return named_choice<ClipForm>("clip", s,
+                                {{"none", ClipForm::none}, {"llvmpipe", ClipForm::llvmpipe}});
 }
 LogForm parse_log_form(const std::string& s) {
-  if (s == "library") return LogForm::library;
-  if (s == "llvmpipe") return LogForm::llvmpipe;
-  throw InputError(fmt::format("unknown log '{}': expected library or llvmpipe", s));
+  return named_choice<LogForm>("log", s,
+                               {{"library", LogForm::library}, {"llvmpipe", LogForm::llvmpipe}});
 }
 VertexForm parse_vertex_form(const std::string& s) {
-  if (s == "separate") return VertexForm::separate;
-  if (s == "fma") return VertexForm::fma;
-  throw InputError(fmt::format("unknown vertex '{}': expected separate or fma", s));
+  return named_choice<VertexForm>("vertex", s,
+                                  {{"separate", VertexForm::separate}, {"fma", VertexForm::fma}});
 }
 
 // "a.b=value": value parsed as JSON, or taken as a string when it is not JSON.

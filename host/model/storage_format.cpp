@@ -7,6 +7,7 @@
 
 #include "host/base/did_you_mean.h"
 #include "host/base/errors.h"
+#include "host/base/named_choice.h"
 
 namespace depthprec {
 
@@ -26,15 +27,13 @@ const char* to_string(Denormals d) {
 }
 
 Rounding parse_rounding(const std::string& s) {
-  if (s == "nearest_even") return Rounding::nearest_even;
-  if (s == "truncate") return Rounding::truncate;
-  throw InputError(fmt::format("unknown rounding '{}': expected nearest_even or truncate", s));
+  return named_choice<Rounding>(
+      "rounding", s, {{"nearest_even", Rounding::nearest_even}, {"truncate", Rounding::truncate}});
 }
 
 Denormals parse_denormals(const std::string& s) {
-  if (s == "keep") return Denormals::keep;
-  if (s == "flush") return Denormals::flush;
-  throw InputError(fmt::format("unknown denormals mode '{}': expected keep or flush", s));
+  return named_choice<Denormals>("denormals mode", s,
+                                 {{"keep", Denormals::keep}, {"flush", Denormals::flush}});
 }
 
 const char* to_string(Conversion c) {
@@ -42,9 +41,8 @@ const char* to_string(Conversion c) {
 }
 
 Conversion parse_conversion(const std::string& s) {
-  if (s == "exact") return Conversion::exact;
-  if (s == "llvmpipe") return Conversion::llvmpipe;
-  throw InputError(fmt::format("unknown conversion '{}': expected exact or llvmpipe", s));
+  return named_choice<Conversion>(
+      "conversion", s, {{"exact", Conversion::exact}, {"llvmpipe", Conversion::llvmpipe}});
 }
 
 StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, Denormals denormals,

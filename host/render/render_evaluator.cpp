@@ -71,26 +71,30 @@ void check_renderable(const Scene& scene) {
                     "default, or measure it with `depthprec mts`)",
                     option, why));
   };
-  if (scene.pipeline.divide != def.divide)
-    refuse("divide=exact", "the driver does the perspective divide itself");
-  if (scene.pipeline.rounding != def.rounding)
-    refuse("rounding=truncate", "the driver rounds binary32 arithmetic as its hardware does");
-  if (scene.pipeline.denormals != def.denormals)
-    refuse("denormals=flush", "the driver decides how its arithmetic treats denormals");
-  if (scene.pipeline.contraction != def.contraction)
-    refuse("contraction=true", "the driver's shader compiler decides contraction into FMA");
-  if (scene.pipeline.plane != def.plane)
-    refuse("plane=origin_fma", "the driver sets up and interpolates its own depth planes");
-  if (scene.pipeline.viewport != def.viewport)
-    refuse("viewport=fma", "the driver does the viewport transform itself");
-  if (scene.pipeline.clip != def.clip)
-    refuse("clip=llvmpipe", "the driver clips triangles its own way");
-  if (scene.pipeline.log != def.log)
-    refuse("log=llvmpipe", "the driver's shaders compute their own log");
-  if (scene.pipeline.vertex != def.vertex)
-    refuse("vertex=fma", "the driver's shader compiler forms the vertex stage's products");
-  if (scene.pipeline.conversion != def.conversion)
-    refuse("conversion=llvmpipe", "the driver converts depth to its buffer's codes itself");
+  const Pipeline& p = scene.pipeline;
+  const struct {
+    bool changed;
+    const char *setting, *why;
+  } drivers[] = {
+      {p.divide != def.divide, "divide=exact", "the driver does the perspective divide itself"},
+      {p.rounding != def.rounding, "rounding=truncate",
+       "the driver rounds binary32 arithmetic as its hardware does"},
+      {p.denormals != def.denormals, "denormals=flush",
+       "the driver decides how its arithmetic treats denormals"},
+      {p.contraction != def.contraction, "contraction=true",
+       "the driver's shader compiler decides contraction into FMA"},
+      {p.plane != def.plane, "plane=origin_fma",
+       "the driver sets up and interpolates its own depth planes"},
+      {p.viewport != def.viewport, "viewport=fma", "the driver does the viewport transform itself"},
+      {p.clip != def.clip, "clip=llvmpipe", "the driver clips triangles its own way"},
+      {p.log != def.log, "log=llvmpipe", "the driver's shaders compute their own log"},
+      {p.vertex != def.vertex, "vertex=fma",
+       "the driver's shader compiler forms the vertex stage's products"},
+      {p.conversion != def.conversion, "conversion=llvmpipe",
+       "the driver converts depth to its buffer's codes itself"},
+  };
+  for (const auto& d : drivers)
+    if (d.changed) refuse(d.setting, d.why);
   if (scene.kernel_w > scene.viewport_w || scene.kernel_h > scene.viewport_h)
     throw InputError(fmt::format("kernel {}x{} is larger than the viewport {}x{}", scene.kernel_w,
                                  scene.kernel_h, scene.viewport_w, scene.viewport_h));
