@@ -52,9 +52,8 @@ __kernel void bias_setup(__global const float* restrict probes, __global const f
   const int is_b = (int)(id & 1u);
   __global const float* P = probes + (id / per_probe) * PROBE_STRIDE;
   __global float* T = tris + (size_t)id * PLANE_STRIDE;
-  float dw[NV];
   setup_plane(P, mats + (id >> 1) * MAT_STRIDE, half_w, half_h, origin_x, origin_y, kernel_w,
-              kernel_h, kernel_h, T, vflags + id, is_b, dw);
+              kernel_h, kernel_h, T, vflags + id, is_b);
   for (int t = 0; t < NT; ++t) {
     __global float* R = T + t * TRI_STRIDE;
     float o = 0.0f;

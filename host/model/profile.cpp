@@ -28,6 +28,12 @@ const std::vector<Profile>& profiles() {
   return table;
 }
 
+std::pair<std::string, std::string> pipeline_setting(const std::string& set) {
+  const std::string prefix = "pipeline.";
+  const auto eq = set.find('=');
+  return {set.substr(prefix.size(), eq - prefix.size()), set.substr(eq + 1)};
+}
+
 const Profile& profile(const std::string& name) {
   for (const Profile& p : profiles())
     if (name == p.name) return p;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace depthprec {
@@ -14,6 +15,9 @@ struct Profile {
   std::vector<std::string> sets;  // "pipeline.plane=origin_fma", ...
   const char* bias_unorm_r;       // `bias`'s r for unorm buffers (--r-unorm) under it
 };
+
+// A profile's setting "pipeline.plane=origin_fma" as ("plane", "origin_fma").
+std::pair<std::string, std::string> pipeline_setting(const std::string& set);
 
 const std::vector<Profile>& profiles();
 // Throws InputError listing the profiles.

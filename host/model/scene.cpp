@@ -371,9 +371,7 @@ void apply_profile(json& merged, const std::vector<const json*>& layers,
     return it != blame.end() ? it->second : fallback;
   };
   for (const std::string& set : profile(name).sets) {
-    const auto eq = set.find('=');
-    const std::string key = set.substr(9, eq - 9);  // after "pipeline."
-    const std::string value = set.substr(eq + 1);
+    const auto [key, value] = pipeline_setting(set);
     for (const json* layer : layers)
       if (layer->contains("pipeline") && (*layer)["pipeline"].contains(key) &&
           (*layer)["pipeline"][key] != value)
@@ -390,9 +388,8 @@ std::string matching_profile(const json& pipeline) {
   for (const Profile& p : profiles()) {
     bool all = true;
     for (const std::string& set : p.sets) {
-      const auto eq = set.find('=');
-      const std::string key = set.substr(9, eq - 9);
-      all = all && pipeline.contains(key) && pipeline[key] == set.substr(eq + 1);
+      const auto [key, value] = pipeline_setting(set);
+      all = all && pipeline.contains(key) && pipeline[key] == value;
     }
     if (all) return p.name;
   }

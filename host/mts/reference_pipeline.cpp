@@ -223,7 +223,6 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
     }
     plane.tris.push_back(tri);
   };
-  const unsigned slots = static_cast<unsigned>(s.pipeline.clip_slots());
   for (int t = 0; t < 2 * g * g; ++t) {
     const int quad = t / 2, qi = quad % g, qj = quad / g;
     const int a = qj * (g + 1) + qi, b = a + 1, c = a + g + 2, d = a + g + 1;
@@ -233,8 +232,12 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       for (int k = 0; k < 3; ++k) vi[k] = (t & 1) ? fo[k] : fb[k];
     }
     const Vertex* tv[3] = {&v[vi[0]], &v[vi[1]], &v[vi[2]]};
+    if (s.pipeline.clip == ClipForm::none) {
+      emit(tv);
+      continue;
+    }
     const unsigned m0 = clip_mask(tv[0]->c), m1 = clip_mask(tv[1]->c), m2 = clip_mask(tv[2]->c);
-    if (slots == 1 || !(m0 | m1 | m2)) {
+    if (!(m0 | m1 | m2)) {
       emit(tv);
     } else if (!(m0 & m1 & m2)) {  // all outside one plane: culled
       const std::vector<Vertex> poly = clip_polygon({*tv[0], *tv[1], *tv[2]}, m0 | m1 | m2, hw, hh,

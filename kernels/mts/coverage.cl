@@ -214,9 +214,14 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
 // not) lies within 4.1 eps (|dx (py - ay)| + |dy (px - ax)|) of its exact value, so a pass with
 // E above twice that rounding bound plus the movement survives; the margin is the d at which the
 // movement would take half of what is left over, with 1 % slack for the margin's own rounding.
-// 0 when A leaves a pixel uncovered or a test sits at its rounding bound.
+// 0 when A leaves a pixel uncovered or a test sits at its rounding bound, and always under
+// clipping (CLIP_SLOTS > 1): a clipped triangle's new vertices, which b_moved_from_a does not
+// see, and its fan, which can differ between A and B, are outside this argument.
 static inline float coverage_margin(__global const float* T, float py, float ox, int n,
                                     const int* seg_x, const int* seg_t) {
+#if CLIP_SLOTS > 1
+  return 0.0f;
+#endif
   __global const float* SA = T + NT * TRI_STRIDE;
   __global const uint* SB = (__global const uint*)SA + E_BITS * NE_PAD;
   const float eps = 0x1.0p-24f;
@@ -273,10 +278,8 @@ static inline int b_keeps_orientation(__global const float* TA, __global const f
 // loses only that pixel's row), B within A's coverage margin (coverage_margin: moved is
 // b_moved_from_a), and B's triangles keep A's orientation (oriented: b_keeps_orientation). The
 // last two are per frame: mts_frame_bounds finds them once.
-// Not under clipping: a clipped triangle's new vertices, which moved does not see, and its fan,
-// which can differ between A and B, are outside this argument.
 static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB,
                                   uint vflags_b, int row, __global const uint* rec) {
-  return CLIP_SLOTS == 1 && oriented && moved < ((__global const float*)rec)[RW_MARGIN] &&
+  return oriented && moved < ((__global const float*)rec)[RW_MARGIN] &&
          row_covered(TB, vflags_b, row);
 }

@@ -322,12 +322,12 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
 #endif
 
 // Vertex stage, divide, window transform and triangle set-up of one plane in one frame into
-// record T and flags *vflag; the vertices' window depths are left in dw.
+// record T and flags *vflag.
 static inline void setup_plane(__global const float* P, __global const float* M, float half_w,
                                float half_h, float origin_x, float origin_y, uint kernel_w,
                                uint kernel_h, uint band_rows, __global float* T,
-                               __global uint* vflag, int flip, float* dw) {
-  float xw[NV], yw[NV], qw[NV];
+                               __global uint* vflag, int flip) {
+  float xw[NV], yw[NV], dw[NV], qw[NV];
 #if CLIP_SLOTS > 1
   float4 cv[NV]; /* clip coordinates, for the clip stage */
 #endif
@@ -453,8 +453,7 @@ __kernel void mts_setup(__global const float* restrict probes, __global const fl
   const uint k = get_global_id(0);
   if (k >= count) return;
   const uint id = first_plane + k;
-  float dw[NV];
   setup_plane(probes + (id / per_probe) * PROBE_STRIDE, mats + k * MAT_STRIDE, half_w, half_h,
               origin_x, origin_y, kernel_w, kernel_h, band_rows, tris + (size_t)id * PLANE_STRIDE,
-              vflags + id, 0, dw);
+              vflags + id, 0);
 }
