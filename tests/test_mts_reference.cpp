@@ -134,8 +134,8 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
   }
 }
 
-// llvmpipe's forms (every setting of the llvmpipe profile: set-up, viewport, vertex stage,
-// conversion): the kernel follows the reference in them too, codes and probe outcomes.
+// llvmpipe's forms (every setting of the llvmpipe profile: vertex stage, log, clip stage, set-up,
+// viewport, conversion): the kernel follows the reference in them too, codes and probe outcomes.
 TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms",
           "[mts][reference][llvmpipe]") {
   std::vector<std::string> sets = {"kernel=[48,40]", "viewport=[48,40]", "frames=12"};

@@ -195,7 +195,7 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
 //   log      d = fl(log(fl(fl(k w) + 1)) / L): x = k w + 1 within 3.0001 u of ln x after the log,
 //            the log itself within 3 ulp (the bound LOG_CODE_SLACK assumes), so 7.02 u h + 3.001 u
 //            / L; llvmpipe's log (LLVMPIPE_LOG) is within 3.84 ulp over every binary32 x >= 1
-//            (measured exhaustively, docs/validation.md), so 8.7 u h + 3.001 u / L
+//            (bench/llvmpipe_log_error, every one), so 8.7 u h + 3.001 u / L
 static inline double frag_h(__global const float* P, double q) {
 #if FRAG_DEPTH == 1
   return (1.0 / q - (double)P[C_NEAR]) / (double)P[C_RANGE];
