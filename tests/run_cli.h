@@ -16,6 +16,9 @@ struct CliResult {
   std::string output;  // stdout and stderr together
 };
 
+// Options for a command's run small enough for a test that checks behaviour, not figures.
+inline const std::string kSmallScene = "--kernel 24x24 --frames 4 --no-timing -q ";
+
 // env: assignments put before the command, e.g. "OCL_ICD_VENDORS=/nonexistent".
 inline CliResult run_cli(const std::string& args, const std::string& env = "") {
   const std::string cmd =

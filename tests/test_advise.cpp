@@ -10,11 +10,10 @@
 
 using namespace depthprec;
 using Catch::Matchers::Contains;
+using depthprec::test::kSmallScene;
 using depthprec::test::run_cli;
 
 namespace {
-
-const std::string kSmallScene = "--kernel 24x24 --frames 4 --no-timing -q ";
 
 Scene small_scene(const std::string& pairs) {
   return load_scene("", {"kernel=[24,24]", "frames=4", "evaluate=" + pairs});

@@ -21,6 +21,7 @@
 
 using namespace depthprec;
 using Catch::Matchers::Contains;
+using depthprec::test::kSmallScene;
 using depthprec::test::run_cli;
 
 namespace {
@@ -34,8 +35,6 @@ BiasOptions api(BiasApi a) {
 double r_of(const BiasOptions& o, const std::string& format) {
   return bias_rule(o, StorageFormat::parse(format)).r_fixed;
 }
-
-const std::string kSmallScene = "--kernel 24x24 --frames 4 --no-timing -q ";
 
 // llvmpipe: with the llvmpipe profile's settings (host/model/profile.cpp).
 Scene small_scene(const std::string& technique, const std::string& format, bool llvmpipe = false) {

@@ -9,17 +9,11 @@
 #include "host/model/storage_format.h"
 #include "host/runtime/device_encode.h"
 #include "host/runtime/opencl_runtime.h"
+#include "mts_fixture.h"
 
 using namespace depthprec;
 
-namespace {
-OpenClRuntime& runtime() {
-  // Never destroyed: a runtime closing at process exit would talk to PoCL after its compiler's
-  // statics are gone (storing program binaries asks PoCL to compile).
-  static OpenClRuntime& rt = *new OpenClRuntime;
-  return rt;
-}
-}  // namespace
+using depthprec::test::runtime;
 
 TEST_CASE("device and host encoders agree on sampled inputs", "[formats][device]") {
   // scalar and 16-lane device encoders, host encoder: one answer for every format family

@@ -40,7 +40,7 @@ struct VariantSummary {
   int verdict_changes = 0;
 };
 
-std::vector<VariantSummary> summarise(const nlohmann::json& rec) {
+std::vector<VariantSummary> summarise_variants(const nlohmann::json& rec) {
   std::vector<VariantSummary> out;
   const auto& base = rec.at("variants").at(kPipelineVariants[0].name);
   for (const PipelineVariant& v : kPipelineVariants) {
@@ -76,7 +76,7 @@ std::string render_pipelines_output(const nlohmann::json& header,
   if (out.format_out == "json") {
     nlohmann::json summary = nlohmann::json::array();
     for (const auto& rec : records)
-      for (const auto& v : summarise(rec))
+      for (const auto& v : summarise_variants(rec))
         summary.push_back({{"pair", rec.at("pair")},
                            {"variant", v.variant},
                            {"median_ratio", json_number(v.median)},
@@ -95,7 +95,7 @@ std::string render_pipelines_output(const nlohmann::json& header,
   Cells cells;
   for (const auto& rec : records) {
     std::vector<std::string> row = {rec.at("pair").get<std::string>()};
-    for (const auto& v : summarise(rec)) {
+    for (const auto& v : summarise_variants(rec)) {
       const auto num = [csv, &out](double x) {
         return std::isnan(x) ? (csv ? "" : "-") : number_cell(x, out.format_out, "{:.4g}");
       };
