@@ -235,8 +235,14 @@ DF_FN uint16 df_encode_unorm_f64_16(float16 d, df_format f) {
 }
 #endif
 
+/* Formats whose 16-lane encoders below are df_encode lane by lane (the float formats other than
+ * binary32): for them a comparison of the lanes with df_encode compares a function with itself. */
+DF_FN int df_encode16_is_scalar(df_format f) {
+  return f.kind == DF_KIND_FLOAT && !df_is_binary32(f);
+}
+
 /* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by
- * lane through the scalar encoder for the other float formats. */
+ * lane through the scalar encoder for the other float formats (df_encode16_is_scalar). */
 /* llvmpipe's conversion (df_encode_unorm_llvmpipe) of 16 depths in [-0, 1], the same roundings
  * lane by lane: df_rint_small's trick, and the truncating conversion of convert_uint16. */
 DF_FN uint16 df_encode_unorm_llvmpipe16_unit(float16 d, df_format f) {
@@ -262,7 +268,7 @@ DF_FN uint16 df_encode16(float16 d, df_format f) {
 #endif
   if (f.kind == DF_KIND_UNORM)
     return convert_uint16(df_encode_unorm_bf16(convert_ulong16(as_uint16(d)), f));
-  if (df_is_binary32(f)) {
+  if (!df_encode16_is_scalar(f)) { /* binary32 */
     const uint16 u = as_uint16(d);
     /* negative and NaN store 0; finite non-negative values are their own code */
     return ((u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u)

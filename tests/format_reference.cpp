@@ -36,7 +36,7 @@ uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool
   const bool subnormal = p < 1 - f.bias;
   int qp = subnormal ? 1 - f.bias : p;
   double n = std::ldexp(static_cast<double>(d), f.M - qp);  // exact: a power-of-two scaling
-  n = truncate ? std::trunc(n) : std::nearbyint(n);
+  n = truncate ? std::trunc(n) : std::rint(n);              // rint: ties to even
   auto mant = static_cast<uint64_t>(n);
   uint64_t code;
   if (subnormal) {
