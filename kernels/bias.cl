@@ -14,7 +14,8 @@
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
     !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
     !defined(CONTRACT) || !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) ||                 \
-    !defined(VERTEX_FMA) || !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(DF_KIND)
+    !defined(VERTEX_FMA) || !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) ||               \
+    !defined(SNAP_BITS) || !defined(DF_KIND)
 #error "kernels/bias.cl needs the defines of kernels/mts.cl (host/runtime/kernel_variant.cpp)"
 #endif
 #if DEPTH_FROM == 2
@@ -31,6 +32,7 @@
 #include "formats/depth_format.h"
 #include "kernels/mts_layout.h"
 #include "kernels/llvmpipe_log.h"
+#include "kernels/snap.h"
 #include "kernels/bias_formula.h"
 #include "kernels/mts/common.cl"
 #include "kernels/mts/setup.cl"

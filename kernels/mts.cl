@@ -21,6 +21,7 @@
 //   LLVMPIPE_LOG       1: the shaders' log is llvmpipe's (kernels/llvmpipe_log.h); 0: OpenCL's
 //   CLIP_SLOTS         1: triangles as they are; MTS_CLIP_SLOTS: those crossing the viewport edge
 //                      clipped into fans as llvmpipe does (setup.cl clip_fan)
+//   SNAP_BITS          0: window x, y as computed; n: snapped to 2^-n pixel (kernels/snap.h)
 //   DF_*               the storage format (formats/depth_format.h)
 //
 // Arithmetic forms (the host reference, host/mts/reference_pipeline.cpp, uses the same ones):
@@ -44,9 +45,9 @@
     !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
     !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||            \
     !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) ||               \
-    !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(DF_KIND)
+    !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(SNAP_BITS) || !defined(DF_KIND)
 #error \
-    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA, LLVMPIPE_LOG, CLIP_SLOTS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
+    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA, LLVMPIPE_LOG, CLIP_SLOTS, SNAP_BITS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
 #if CONTRACT
@@ -60,6 +61,7 @@
 #include "formats/depth_format.h"   /* storage formats, shared with the host */
 #include "kernels/mts_layout.h"     /* buffer layout, shared with the host */
 #include "kernels/llvmpipe_log.h"   /* llvmpipe's log, shared with the host */
+#include "kernels/snap.h"           /* sub-pixel snapping, shared with the host */
 #include "kernels/mts/common.cl"    /* layout names at this GRID, mat_vec, any16 */
 #include "kernels/mts/setup.cl"     /* mts_setup: vertex stage, triangle set-up, coverage certificate */
 #include "kernels/mts/coverage.cl"  /* row_segments: covering triangles along a row; coverage reuse */

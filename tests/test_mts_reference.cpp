@@ -8,6 +8,7 @@
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"
 #include "host/mts/reference_pipeline.h"
+#include "kernels/snap.h"
 #include "mts_fixture.h"
 #include "reference_outcome.h"
 
@@ -15,6 +16,8 @@ using namespace depthprec;
 using namespace depthprec::test;
 
 namespace {
+
+DP_SNAP_WINDOW_DEFINE(snap_window, std::fabs, std::rint)
 
 struct Compared {
   size_t pixels = 0, ok_pixels = 0, differ = 0, off_by_more_than_one = 0, status_differ = 0;
@@ -78,7 +81,47 @@ void check_outcomes(const Scene& scene, const EvalPair& pair, const std::vector<
   }
 }
 
+// Sub-pixel snapping (pipeline.snap): the kernel follows the reference, codes and probe outcomes,
+// with 8 bits on the grid's vertices, and with 4 on the new vertices of llvmpipe's clip stage too.
+TEST_CASE("with snapped vertices the kernel follows the reference", "[mts][reference][snap]") {
+  for (const auto& [bits, clip] : {std::pair{"8", "none"}, std::pair{"4", "llvmpipe"}}) {
+    const Scene scene = load_scene(
+        "", {"kernel=[48,40]", "viewport=[48,40]", "frames=12",
+             std::string("pipeline.snap=") + bits, std::string("pipeline.clip=") + clip});
+    for (const auto& [t, format, range] :
+         {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+          std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+          std::tuple{Technique::linear, "float32", DepthRange::gl}}) {
+      const EvalPair pair{t, format, range};
+      INFO(pair.label() << " snap " << bits << " clip " << clip);
+      CHECK(check_codes(
+                scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
+                [](size_t k) { return static_cast<int>(3 * k); }, false) > 0);
+      check_outcomes(scene, pair, {1.005, 7.0, 3000.0}, {1e-7, 1e-5, 1e-3, 0.1});
+    }
+  }
+}
+
 }  // namespace
+
+TEST_CASE("snapping moves window coordinates to the 2^-n pixel grid, half to even", "[snap]") {
+  CHECK(snap_window(0.3f, 2) == 0.25f);
+  CHECK(snap_window(0.375f, 2) == 0.5f);  // 1.5 quarters: to the even 2
+  CHECK(snap_window(0.625f, 2) == 0.5f);  // 2.5 quarters: to the even 2
+  CHECK(snap_window(-0.3f, 2) == -0.25f);
+  CHECK(snap_window(100.00195f, 8) == 100.0f);
+  CHECK(snap_window(100.00196f, 8) == 100.00390625f);
+  CHECK(snap_window(0.3f, 0) == 0.3f);          // none
+  CHECK(snap_window(65537.5f, 8) == 65537.5f);  // every binary32 from 2^15 is on the grid
+  CHECK(std::isnan(snap_window(NAN, 8)));
+  CHECK(std::isinf(snap_window(INFINITY, 8)));
+  // and the pipeline's depths follow the snapped positions
+  const Scene plain = load_scene("", {"kernel=[48,40]", "viewport=[48,40]"});
+  const Scene snapped = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "pipeline.snap=8"});
+  const EvalPair pair{Technique::standard, "float32", DepthRange::gl};
+  CHECK(reference_frame(plain, pair, {3.0, 1e-3}, 5).code_a !=
+        reference_frame(snapped, pair, {3.0, 1e-3}, 5).code_a);
+}
 
 TEST_CASE("kernel codes equal the host reference for every technique and depth range",
           "[mts][reference]") {

@@ -51,7 +51,7 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
                  "Implementation profile: ideal (docs/spec.md 2) or llvmpipe (Mesa's fused vertex "
                  "products, log, clip stage, depth-plane set-up, FMA viewport and unorm "
                  "conversions); sets pipeline.vertex, pipeline.log, pipeline.clip, "
-                 "pipeline.plane, pipeline.viewport and pipeline.conversion");
+                 "pipeline.plane, pipeline.viewport, pipeline.conversion and pipeline.snap");
 }
 
 namespace {

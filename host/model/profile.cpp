@@ -12,7 +12,8 @@ const std::vector<Profile>& profiles() {
        "the documented pipeline of docs/spec.md 2: planes anchored at a vertex, separate "
        "multiply and add",
        {"pipeline.plane=vertex", "pipeline.viewport=separate", "pipeline.vertex=separate",
-        "pipeline.log=library", "pipeline.clip=none", "pipeline.conversion=exact"},
+        "pipeline.log=library", "pipeline.clip=none", "pipeline.conversion=exact",
+        "pipeline.snap=none"},
        "step"},
       // Mesa 22.3 as Debian 12 ships it (docs/validation.md): its vertex shader's fused products,
       // its depth-plane set-up and evaluation, its FMA viewport transform and its unorm
@@ -22,7 +23,8 @@ const std::vector<Profile>& profiles() {
        "framebuffer origin and evaluated with FMA, FMA viewport transform, binary32 unorm "
        "conversions, its approximate log, its clip stage; bias r of unorm buffers 2/(2^n - 1)",
        {"pipeline.plane=origin_fma", "pipeline.viewport=fma", "pipeline.vertex=fma",
-        "pipeline.log=llvmpipe", "pipeline.clip=llvmpipe", "pipeline.conversion=llvmpipe"},
+        "pipeline.log=llvmpipe", "pipeline.clip=llvmpipe", "pipeline.conversion=llvmpipe",
+        "pipeline.snap=none"},
        "double_step"},
   };
   return table;

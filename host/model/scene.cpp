@@ -55,7 +55,7 @@ const std::set<std::string> kTopKeys = {"name",
 const std::set<std::string> kPipelineKeys = {
     "depth_range", "matrix_precision", "compose", "divide",   "rounding",
     "denormals",   "contraction",      "plane",   "viewport", "conversion",
-    "vertex",      "profile",          "log",     "clip"};
+    "vertex",      "profile",          "log",     "clip",     "snap"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
@@ -181,6 +181,15 @@ class Reader {
     const json& v = at(key);
     if (!v.is_string()) fail(key, fmt::format("must be a string, not {}", v.dump()));
     return v.get<std::string>();
+  }
+
+  // "none" (0) or a whole number lo..hi.
+  int none_or_integer(const std::string& key, int lo, int hi) const {
+    const json& v = at(key);
+    if (v == "none") return 0;
+    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+      fail(key, fmt::format("must be none or a whole number {}..{}, not {}", lo, hi, v.dump()));
+    return v.get<int>();
   }
 
   bool boolean(const std::string& key) const {
@@ -531,6 +540,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.pipeline.vertex = r.choice("pipeline.vertex", parse_vertex_form);
   s.pipeline.log = r.choice("pipeline.log", parse_log_form);
   s.pipeline.clip = r.choice("pipeline.clip", parse_clip_form);
+  s.pipeline.snap_bits = r.none_or_integer("pipeline.snap", 1, 16);
   s.pipeline.conversion = r.choice("pipeline.conversion", parse_conversion);
 
   s.params.log_k = r.positive("log_k");

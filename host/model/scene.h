@@ -57,6 +57,9 @@ struct Pipeline {
   VertexForm vertex = VertexForm::separate;
   LogForm log = LogForm::library;
   ClipForm clip = ClipForm::none;
+  // Sub-pixel snapping (kernels/snap.h): window x and y rounded to 2^-snap_bits pixel before
+  // coverage and the depth plane are computed from them; 0: not snapped.
+  int snap_bits = 0;
   // Triangle records per grid triangle (kernels/mts_layout.h): one, or a clipped fan's slots.
   int clip_slots() const { return clip == ClipForm::llvmpipe ? MTS_CLIP_SLOTS : 1; }
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's

@@ -9,6 +9,7 @@
 #include "host/runtime/kernel_variant.h"
 #include "kernels/bias_formula.h"
 #include "kernels/llvmpipe_log.h"
+#include "kernels/snap.h"
 
 namespace depthprec {
 
@@ -16,6 +17,8 @@ namespace {
 
 DP_LLVMPIPE_LOG_DEFINE(llvmpipe_log, float, df_float_bits, df_bits_float, static_cast<float>,
                        std::fma)
+
+DP_SNAP_WINDOW_DEFINE(snap_window, std::fabs, std::rint)
 
 // The shaders' natural log in the scene's form (pipeline.log).
 float shader_log(LogForm form, float x) {
@@ -42,9 +45,10 @@ float clip_dist(const std::array<float, 4>& c, int k) {
 }
 
 // The polygon a triangle (with the union of its vertices' clip masks) becomes; empty when a
-// distance is not finite. New vertices get ids from next_id on.
+// distance is not finite. New vertices get ids from next_id on, and window x, y snapped to
+// 2^-snap_bits pixel.
 std::vector<Vertex> clip_polygon(std::vector<Vertex> poly, unsigned mask, float hw, float hh,
-                                 bool gl, int next_id) {
+                                 bool gl, int snap_bits, int next_id) {
   for (int k = 0; k < 4 && poly.size() >= 3; ++k) {
     if (!((mask >> k) & 1u)) continue;
     std::vector<Vertex> out;
@@ -70,8 +74,8 @@ std::vector<Vertex> clip_polygon(std::vector<Vertex> poly, unsigned mask, float 
         Vertex n{};
         for (int r = 0; r < 4; ++r) n.c[r] = o.c[r] + t * (in.c[r] - o.c[r]);
         const float oow = 1.0f / n.c[3];
-        n.x = n.c[0] * oow * hw + hw;
-        n.y = n.c[1] * oow * hh + hh;
+        n.x = snap_window(n.c[0] * oow * hw + hw, snap_bits);
+        n.y = snap_window(n.c[1] * oow * hh + hh, snap_bits);
         n.d = gl ? n.c[2] * oow * 0.5f + 0.5f : n.c[2] * oow * 1.0f + 0.0f;
         n.q = oow;
         n.id = next_id++;
@@ -152,6 +156,8 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
         vx.y = ndc[1] * hh + hh;
         vx.d = gl ? ndc[2] * 0.5f + 0.5f : ndc[2];
       }
+      vx.x = snap_window(vx.x, s.pipeline.snap_bits);
+      vx.y = snap_window(vx.y, s.pipeline.snap_bits);
       vx.q = inv_w;
       for (int r = 0; r < 4; ++r) vx.c[r] = clip[r];
       vx.id = j * (g + 1) + i;
@@ -240,8 +246,9 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
     if (!(m0 | m1 | m2)) {
       emit(tv);
     } else if (!(m0 & m1 & m2)) {  // all outside one plane: culled
-      const std::vector<Vertex> poly = clip_polygon({*tv[0], *tv[1], *tv[2]}, m0 | m1 | m2, hw, hh,
-                                                    gl, (g + 1) * (g + 1) + 8 * t);
+      const std::vector<Vertex> poly =
+          clip_polygon({*tv[0], *tv[1], *tv[2]}, m0 | m1 | m2, hw, hh, gl, s.pipeline.snap_bits,
+                       (g + 1) * (g + 1) + 8 * t);
       for (size_t i = 2; i < poly.size(); ++i) {
         const Vertex* f[3] = {&poly[i - 1], &poly[i], &poly[0]};
         emit(f);

@@ -92,6 +92,8 @@ void check_renderable(const Scene& scene) {
        "the driver's shader compiler forms the vertex stage's products"},
       {p.conversion != def.conversion, "conversion=llvmpipe",
        "the driver converts depth to its buffer's codes itself"},
+      {p.snap_bits != def.snap_bits, "snap",
+       "the driver snaps vertices to its own sub-pixel precision"},
   };
   for (const auto& d : drivers)
     if (d.changed) refuse(d.setting, d.why);

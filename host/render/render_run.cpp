@@ -30,6 +30,7 @@ Scene rendered_counterpart(const Scene& scene) {
   s.pipeline.log = def.log;
   s.pipeline.clip = def.clip;
   s.pipeline.conversion = def.conversion;
+  s.pipeline.snap_bits = def.snap_bits;
   return s;
 }
 

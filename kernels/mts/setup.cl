@@ -1,5 +1,9 @@
 // Vertex set-up of a plane, and the certificate that it covers the kernel.
 
+// Window x and y as the rasterizer stores them (pipeline.snap, kernels/snap.h).
+DP_SNAP_WINDOW_DEFINE(snap_window_bits, fabs, rint)
+#define snap_window(x) snap_window_bits((x), SNAP_BITS)
+
 // A certificate that the plane's rasterisation owns every kernel pixel centre (no pixel
 // uncovered), so a frame can be decided from code bounds without walking its rows
 // (mts_frame_bounds). In exact arithmetic the triangles tile the plane's outline; the binary32 edge
@@ -289,8 +293,8 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
         clip_vertex_t nv;
         nv.c = o.c + t * (v_in.c - o.c);
         const float oow = 1.0f / nv.c.w;
-        nv.x = nv.c.x * oow * half_w + half_w;
-        nv.y = nv.c.y * oow * half_h + half_h;
+        nv.x = snap_window(nv.c.x * oow * half_w + half_w);
+        nv.y = snap_window(nv.c.y * oow * half_h + half_h);
 #if RANGE_GL
         nv.d = nv.c.z * oow * 0.5f + 0.5f;
 #else
@@ -375,6 +379,8 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       dw[v] = ndc.z;
 #endif
 #endif
+      xw[v] = snap_window(xw[v]);
+      yw[v] = snap_window(yw[v]);
       qw[v] = inv_w;
 #if CLIP_SLOTS > 1
       cv[v] = clip;
