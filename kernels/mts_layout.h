@@ -77,6 +77,7 @@
 /* A plane's flags (vflags): non-finite vertices; the coverage certificate (covers_kernel). */
 #define V_NONFINITE 1u
 #define V_COVERS 2u
+#define V_SLIVERS 4u /* bands left out of the certificate for a sliver triangle (setup.cl) */
 #define V_BAND_SHIFT 8
 #define V_MAX_BANDS 24u
 

@@ -20,8 +20,8 @@ DP_SNAP_WINDOW_DEFINE(snap_window_bits, fabs, rint)
 // bands; a vertex in a later one clears V_COVERS) and the rest stay certified; and the pixel's
 // row is written to bad_row[vertex] (-1 for a vertex near no pixel centre) for row_covered.
 static inline uint covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw,
-                                 uint kh, uint band_rows, int* bad_row) {
-  uint bad_bands = 0u;
+                                 uint kh, uint band_rows, uint sliver_bands, int* bad_row) {
+  uint bad_bands = sliver_bands;
   const float x0 = ox, x1 = ox + (float)kw, y0 = oy, y1 = oy + (float)kh; /* pixel area */
   for (int v = 0; v < NV; ++v) bad_row[v] = -1;
   for (int v = 0; v < NV; ++v) {
@@ -65,7 +65,7 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
       }
     }
   }
-  return V_COVERS | (bad_bands << V_BAND_SHIFT);
+  return V_COVERS | (sliver_bands ? V_SLIVERS : 0u) | (bad_bands << V_BAND_SHIFT);
 }
 
 // Every pixel of the band (or of the whole kernel) is owned by exactly one triangle.
@@ -74,12 +74,13 @@ static inline int band_covered(uint vf, uint band) {
 }
 
 // Every pixel of kernel row `row` of plane T (flags vf) is owned by exactly one triangle: the
-// certificate of band_covered, down to the one row a vertex near a pixel centre spoils.
+// certificate of band_covered, down to the one row a vertex near a pixel centre spoils (none in a
+// plane with sliver triangles, whose bands are known but not their rows).
 static inline int row_covered(__global const float* T, uint vf, int row) {
   __global const int16* bad = (__global const int16*)((__global const int*)T + V_BAD_ROW);
   int16 hit = (int16)0;
   for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
-  return (vf & V_COVERS) && !any16(hit);
+  return (vf & V_COVERS) && !(vf & V_SLIVERS) && !any16(hit);
 }
 
 // The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
@@ -109,14 +110,53 @@ static inline int3 triangle_vertices(int t, int flip) {
   return (t & 1) ? (int3)(a, c, d) : (int3)(a, b, c);
 }
 
+// Where covers_kernel's argument fails near a sliver (a triangle with an angle below ~6 degrees):
+// a pixel centre within the edge tests' rounding error (< 0.006 px) of two edges meeting at vertex
+// V at angle a lies within 0.0125 / sin(a) of V (with the factor two covers_kernel keeps), and
+// no pixel centre is near two edges of a triangle anywhere else. So the bands of the kernel rows
+// holding a pixel centre within max(1/8, 0.0125 / sin a) of a vertex, in x and in y, are set in
+// *slivers and left out of the certificate; the rest of the kernel keeps it. A vertex on the
+// viewport's edge, where clipping makes most slivers, is half a pixel from every pixel centre in
+// one coordinate, so it costs nothing down to angles of about 1.4 degrees. sin a = |det| / (|e1|
+// |e2|) for the edges at V, taken 1 % smaller; a degenerate triangle (det 0 or not a number)
+// marks every row of its box. A band past V_MAX_BANDS clears *shapely.
+static inline void mark_sliver(const float* x, const float* y, float det, float ox, float oy,
+                               uint kw, uint kh, uint band_rows, uint* slivers, uint* shapely) {
+  for (int v = 0; v < 3; ++v) {
+    const int a = (v + 1) % 3, b = (v + 2) % 3;
+    const float ax = x[a] - x[v], ay = y[a] - y[v], bx = x[b] - x[v], by = y[b] - y[v];
+    const float sin_v = 0.99f * fabs(det) / (sqrt(ax * ax + ay * ay) * sqrt(bx * bx + by * by));
+    const float r = sin_v > 0.0f ? fmax(0.125f, 0.0125f / sin_v) : INFINITY;
+    const float rx = isfinite(r) ? r : fmax(fmax(fabs(ax), fabs(bx)), 1.0f) + 1.0f;
+    const float ry = isfinite(r) ? r : fmax(fmax(fabs(ay), fabs(by)), 1.0f) + 1.0f;
+    if (!(rx < 16384.0f && ry < 16384.0f)) { /* not a number, or beyond any kernel */
+      *shapely = 0u;
+      return;
+    }
+    /* pixel centres ox + i + 0.5 within rx of x[v], and rows within ry of y[v] */
+    const int i0 = max((int)ceil(x[v] - rx - ox - 0.5f), 0);
+    const int i1 = min((int)floor(x[v] + rx - ox - 0.5f), (int)kw - 1);
+    const int j0 = max((int)ceil(y[v] - ry - oy - 0.5f), 0);
+    const int j1 = min((int)floor(y[v] + ry - oy - 0.5f), (int)kh - 1);
+    if (i0 > i1 || j0 > j1) continue;
+    if ((uint)j1 / band_rows >= V_MAX_BANDS) {
+      *shapely = 0u;
+      return;
+    }
+    for (int band = j0 / (int)band_rows; band <= j1 / (int)band_rows; ++band)
+      *slivers |= 1u << band;
+  }
+}
+
 // One triangle record (slot t of plane T) from its vertices: ids (an edge is evaluated from its
 // lower-id vertex, so two triangles sharing it compute the same value), window x, y, depth and
 // 1/w. Edges, orientation and ownership bits, the depth and 1/w planes in the set-up's form, the
-// y-range, the largest |depth|, the edge arrays and the pixel box. Clears *shapely for a
-// degenerate triangle or one with an angle below ~6 degrees (covers_kernel's precondition).
+// y-range, the largest |depth|, the edge arrays and the pixel box. A degenerate triangle, or one
+// with an angle below ~6 degrees, is a sliver (mark_sliver).
 static inline void setup_triangle(__global float* T, int t, const int* id, const float* x,
                                   const float* y, const float* d, const float* q, float origin_x,
-                                  float origin_y, uint kernel_w, uint kernel_h, uint* shapely) {
+                                  float origin_y, uint kernel_w, uint kernel_h, uint band_rows,
+                                  uint* slivers, uint* shapely) {
   __global float* R = T + t * TRI_STRIDE;
   /* the edges stay in registers: written to the record and to the edge arrays (SA) from here,
    * never read back */
@@ -145,10 +185,7 @@ static inline void setup_triangle(__global float* T, int t, const int* id, const
     const float dx = s * edx[e], dy = s * edy[e];
     if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
   }
-  if (valid)
-    bits |= 64u;
-  else
-    *shapely = 0u;
+  if (valid) bits |= 64u;
   const float e1x = x[1] - x[0], e1y = y[1] - y[0];
   const float e2x = x[2] - x[0], e2y = y[2] - y[0];
   const float det = e1x * e2y - e2x * e1y;
@@ -157,7 +194,8 @@ static inline void setup_triangle(__global float* T, int t, const int* id, const
     const float longest =
         fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
     /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
-    if (!(fabs(det) >= 0.1f * longest)) *shapely = 0u;
+    if (!valid || !(fabs(det) >= 0.1f * longest))
+      mark_sliver(x, y, det, origin_x, origin_y, kernel_w, kernel_h, band_rows, slivers, shapely);
   }
 #if PLANE_FORM == 1
   {
@@ -262,7 +300,8 @@ static inline float clip_dist(float4 c, int k) {
 // sets up its fan in records first, first + 1, ...; returns how many it filled.
 static inline int clip_fan(__global float* T, int t0, int first, const clip_vertex_t* tri,
                            uint mask, float half_w, float half_h, float origin_x, float origin_y,
-                           uint kernel_w, uint kernel_h, uint* shapely) {
+                           uint kernel_w, uint kernel_h, uint band_rows, uint* slivers,
+                           uint* shapely) {
   clip_vertex_t a[9], b[9];
   clip_vertex_t* in = a;
   clip_vertex_t* out = b;
@@ -273,12 +312,18 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
     in[n] = in[0];
     clip_vertex_t prev = in[0];
     float dp_prev = clip_dist(prev.c, p);
-    if (!isfinite(dp_prev)) return 0;
+    if (!isfinite(dp_prev)) {
+      *shapely = 0u; /* the triangle is dropped: its pixels may be uncovered */
+      return 0;
+    }
     int m = 0;
     for (int i = 1; i <= n; ++i) {
       const clip_vertex_t cur = in[i];
       const float dp = clip_dist(cur.c, p);
-      if (!isfinite(dp)) return 0;
+      if (!isfinite(dp)) {
+        *shapely = 0u;
+        return 0;
+      }
       int cross;
       if (dp_prev >= 0.0f) {
         out[m++] = prev;
@@ -319,7 +364,7 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
     const float x[3] = {f[0]->x, f[1]->x, f[2]->x}, y[3] = {f[0]->y, f[1]->y, f[2]->y};
     const float d[3] = {f[0]->d, f[1]->d, f[2]->d}, q[3] = {f[0]->q, f[1]->q, f[2]->q};
     setup_triangle(T, first + i - 2, id, x, y, d, q, origin_x, origin_y, kernel_w, kernel_h,
-                   shapely);
+                   band_rows, slivers, shapely);
   }
   return n - 2;
 }
@@ -391,7 +436,8 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #endif
     }
   }
-  uint shapely = 1u; /* every triangle non-degenerate, no angle below ~6 degrees */
+  uint shapely = 1u; /* covers_kernel's argument holds at least outside the sliver bands */
+  uint slivers = 0u; /* bands of kernel rows near a sliver triangle */
   int next = 0;      /* the next free record of the current quad row */
   for (int t0 = 0; t0 < NT0; ++t0) {
     const int qj = t0 / (2 * GRID);
@@ -406,7 +452,8 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       const float y[3] = {yw[vi[0]], yw[vi[1]], yw[vi[2]]};
       const float d[3] = {dw[vi[0]], dw[vi[1]], dw[vi[2]]};
       const float q[3] = {qw[vi[0]], qw[vi[1]], qw[vi[2]]};
-      setup_triangle(T, next++, vi, x, y, d, q, origin_x, origin_y, kernel_w, kernel_h, &shapely);
+      setup_triangle(T, next++, vi, x, y, d, q, origin_x, origin_y, kernel_w, kernel_h, band_rows,
+                     &slivers, &shapely);
 #if CLIP_SLOTS > 1
     } else if (!(m0 & m1 & m2)) { /* all outside one plane: culled */
       clip_vertex_t poly[3];
@@ -415,7 +462,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
         poly[k] = (clip_vertex_t){cv[v], xw[v], yw[v], dw[v], qw[v], v};
       }
       next += clip_fan(T, t0, next, poly, m0 | m1 | m2, half_w, half_h, origin_x, origin_y,
-                       kernel_w, kernel_h, &shapely);
+                       kernel_w, kernel_h, band_rows, &slivers, &shapely);
     }
 #endif
     if (t0 % (2 * GRID) == 2 * GRID - 1) {
@@ -426,7 +473,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
   const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
   *vflag = nonfinite | (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h,
-                                                band_rows, bad_row)
+                                                band_rows, slivers, bad_row)
                                 : 0u);
   for (int v = 0; v < NV_PAD; ++v)
     ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
