@@ -4,15 +4,11 @@
 #include <cctype>
 #include <map>
 
+#include "host/base/text.h"
+
 namespace depthprec {
 
 namespace {
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 // Edits (insert, delete, substitute, swap two neighbours) from a to b: "mst" is one from "mts".
 size_t edit_distance(const std::string& a, const std::string& b) {
@@ -31,7 +27,7 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 
 std::string suggest(const std::string& typed, const std::map<std::string, std::string>& aliases,
                     const std::vector<std::string>& names) {
-  const std::string key = lower(typed);
+  const std::string key = to_lower(typed);
   const auto a = aliases.find(key);
   if (a != aliases.end()) return " (did you mean " + a->second + "?)";
   const std::string near = closest_name(typed, names);
@@ -41,11 +37,11 @@ std::string suggest(const std::string& typed, const std::map<std::string, std::s
 }  // namespace
 
 std::string closest_name(const std::string& typed, const std::vector<std::string>& candidates) {
-  const std::string t = lower(typed);
+  const std::string t = to_lower(typed);
   std::string best;
   size_t best_d = std::max<size_t>(1, t.size() / 3) + 1;
   for (const auto& c : candidates) {
-    const size_t d = edit_distance(t, lower(c));
+    const size_t d = edit_distance(t, to_lower(c));
     if (d < best_d) {
       best_d = d;
       best = c;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "host/base/errors.h"
+#include "host/base/text.h"
 #include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
@@ -26,11 +27,6 @@ std::vector<cl::Platform> platforms_or_throw() {
   }
   if (platforms.empty()) throw RuntimeError(kNoPlatform);
   return platforms;
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
 }
 
 std::string trim(std::string s) {
@@ -105,7 +101,7 @@ OpenClRuntime::OpenClRuntime(const std::string& selector_arg)
   if (selector.empty()) {
     for (const auto& c : all)
       if (!chosen && c.info.device_type == "CPU" &&
-          lower(c.info.platform_name).find("portable computing language") != std::string::npos)
+          to_lower(c.info.platform_name).find("portable computing language") != std::string::npos)
         chosen = &c;
     for (const auto& c : all)
       if (!chosen && c.info.device_type == "CPU") chosen = &c;
@@ -118,8 +114,9 @@ OpenClRuntime::OpenClRuntime(const std::string& selector_arg)
         if (c.info.platform_index == pi && c.info.device_index == di) chosen = &c;
     } else {
       for (const auto& c : all)
-        if (!chosen && (lower(c.info.device_name).find(lower(selector)) != std::string::npos ||
-                        lower(c.info.platform_name).find(lower(selector)) != std::string::npos))
+        if (!chosen &&
+            (to_lower(c.info.device_name).find(to_lower(selector)) != std::string::npos ||
+             to_lower(c.info.platform_name).find(to_lower(selector)) != std::string::npos))
           chosen = &c;
     }
     if (!chosen) {
