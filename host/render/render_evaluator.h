@@ -27,9 +27,21 @@
 
 namespace depthprec {
 
-// Throws InputError when the scene asks for arithmetic only the emulator has: the driver does
-// its own divide, rounding, denormals and contraction, so those pipeline options must keep their
-// defaults; a kernel larger than the viewport is refused too.
+// A pipeline setting the driver decides for itself: render refuses any value but the default.
+// An implementation form (a profile's, reset set) is one a real rasterizer has its own of:
+// `compare` and `bias --source rendered` render the scene with it at its default
+// (rendered_counterpart). The others (divide, rounding, denormals, contraction) are refused there
+// too: an emulation that sets them has no rendered counterpart.
+struct DriverSetting {
+  const char* setting;  // as named in the refusal, e.g. "plane=origin_fma"
+  const char* why;
+  bool (*changed)(const Pipeline&);
+  void (*reset)(Pipeline&);  // nullptr: not an implementation form
+};
+const std::vector<DriverSetting>& driver_settings();
+
+// Throws InputError when the scene sets a driver setting or its kernel is larger than the
+// viewport.
 void check_renderable(const Scene& scene);
 
 class RenderEvaluator : public ProbeEvaluator {

@@ -23,14 +23,8 @@ std::map<std::string, std::string> check_scene_renders(const Scene& scene) {
 
 Scene rendered_counterpart(const Scene& scene) {
   Scene s = scene;
-  const Pipeline def;
-  s.pipeline.plane = def.plane;
-  s.pipeline.viewport = def.viewport;
-  s.pipeline.vertex = def.vertex;
-  s.pipeline.log = def.log;
-  s.pipeline.clip = def.clip;
-  s.pipeline.conversion = def.conversion;
-  s.pipeline.snap_bits = def.snap_bits;
+  for (const DriverSetting& d : driver_settings())
+    if (d.reset) d.reset(s.pipeline);
   return s;
 }
 

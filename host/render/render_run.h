@@ -17,8 +17,8 @@ namespace depthprec {
 std::map<std::string, std::string> check_scene_renders(const Scene& scene);
 
 // The scene a real rasterizer renders for an emulated one: the same, with the emulation's
-// implementation forms (pipeline.plane, pipeline.viewport: a profile's) back at their defaults,
-// since the driver has its own. What `compare --profile llvmpipe` renders.
+// implementation forms (driver_settings with a reset: a profile's) back at their defaults, since
+// the driver has its own. What `compare --profile llvmpipe` renders.
 Scene rendered_counterpart(const Scene& scene);
 
 MtsRun render_scene(GlContext& gl, const Scene& scene,
