@@ -36,15 +36,6 @@ struct Tally {
   }
 };
 
-// floor(m * max / 2^s + 1/2) in integers: the exact product, rounded half up.
-uint32_t half_up_exact(uint32_t u, const df_format& f) {
-  const uint32_t ex = u >> 23;
-  const uint64_t m = ex ? ((u & 0x7fffffu) | 0x800000u) : (u & 0x7fffffu);
-  const uint32_t s = 150u - (ex ? ex : 1u);
-  if (s >= 60u) return 0u;
-  return static_cast<uint32_t>((m * f.max_code + (uint64_t{1} << (s - 1))) >> s);
-}
-
 }  // namespace
 
 int main() {
@@ -58,11 +49,14 @@ int main() {
       const uint32_t correct = df_encode(d, f);
       // d has 24 significant bits and max_code at most 24: the double product is exact
       const double p = static_cast<double>(d) * static_cast<double>(f.max_code);
+      // p's bits span at most 48 places, so p + 1/2 is exact from p = 2^-4 on, and below that
+      // floor gives 0 either way: the exact product rounded half up
+      const auto half_up = static_cast<uint32_t>(std::floor(p + 0.5));
       // volatile keeps the compiler from fusing the product and the sum of the literal reading
       volatile float x = d * scale;
       const float xs = x;
       volatile float y = xs + 0.5f;
-      exact.add(u == 0x3f800000u ? f.max_code : half_up_exact(u, f), correct, p);
+      exact.add(half_up, correct, p);
       product.add(static_cast<uint32_t>(std::floor(static_cast<double>(xs) + 0.5)), correct, p);
       literal.add(static_cast<uint32_t>(y), correct, p);
     }
