@@ -24,22 +24,19 @@
 #define E_DX 2
 #define E_DY 3
 #define E_DXDY 4
-#define E_BITS 5 /* uint: bit 0 negate, bit 1 owns */
+#define E_BITS 5     /* uint: bit 0 negate, bit 1 owns, then the ids of the edge's two vertices */
+#define E_ID_SHIFT 2 /* 15 bits each, in the triangle's order: which vertices (b_keeps_a_edges) */
 /* Then each row of quads' y-range (grid pairs ymin, ymax), then (grid ints) how many triangle
  * records it uses from its first, 2 grid slots qj: the triangles a kernel row can meet are those
  * of the quad rows whose range holds it, a run of indices. A quad row's triangles fill its
  * records in order, a clipped one's fan in place of it, so the order is the grid's. */
 #define MTS_Q_YRANGE(g, s) (MTS_NT(g, s) * TRI_STRIDE + 6 * MTS_NE_PAD(g, s))
-/* Then, from a multiple of 16 floats on (so they load as aligned float16, and every plane record
- * starts at one), the window x and y of every vertex, padded with zeros to a multiple of 16: how
- * far plane B's vertices lie from plane A's (b_moved_from_a). */
 #define MTS_NV_PAD(g) ((MTS_NV(g) + 15) / 16 * 16)
 #define MTS_Q_USED(g, s) (MTS_Q_YRANGE(g, s) + 2 * (g))
-#define MTS_V_XW(g, s) ((MTS_Q_USED(g, s) + (g) + 15) / 16 * 16)
-#define MTS_V_YW(g, s) (MTS_V_XW(g, s) + MTS_NV_PAD(g))
-/* Then per vertex the kernel row of the pixel centre it lies near (int; -1: none, or padding):
- * the rows covers_kernel's certificate does not hold for (row_covered). */
-#define MTS_V_BAD_ROW(g, s) (MTS_V_YW(g, s) + MTS_NV_PAD(g))
+/* Then, from a multiple of 16 ints on (so they load as aligned int16, and every plane record
+ * starts at one), per vertex the kernel row of the pixel centre it lies near (int; -1: none, or
+ * padding): the rows covers_kernel's certificate does not hold for (row_covered). */
+#define MTS_V_BAD_ROW(g, s) ((MTS_Q_USED(g, s) + (g) + 15) / 16 * 16)
 #define MTS_PLANE_STRIDE(g, s) (MTS_V_BAD_ROW(g, s) + MTS_NV_PAD(g))
 
 /* Triangle record offsets */
@@ -110,9 +107,9 @@
 #define CODE_ROW_PAD 16
 
 /* mts_frame_bounds' words per band of a (probe, frame), read by mts_raster: the verdict (D_*, the
- * bits D_MASK) with bit DV_ORIENTED: every triangle of plane B has plane A's orientation; and how
- * far B's vertices lie from A's (b_moved_from_a, a float). Both are per frame, found per band so
- * mts_raster reads one place. */
+ * bits D_MASK) with bit DV_ORIENTED: plane B's edges that the band's rows can meet join A's
+ * vertices with A's orientation (b_keeps_a_edges); and how far they lie from A's (b_moved_from_a,
+ * a float; infinite in a band decided clean, where mts_raster does not ask). */
 #define DW_VERDICT 0
 #define DW_MOVED 1
 #define DECIDED_WORDS 2

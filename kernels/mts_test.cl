@@ -8,15 +8,13 @@
 // mts_raster's, bit 0: plane B's own coverage (row_segments) differs from plane A's cached one;
 // bit 1: b_coverage_is_a says they are the same; bit 2: both (the shortcut would be wrong);
 // bit 3: the row is cached.
-__kernel void mts_coverage_audit(__global const float* restrict tris,
-                                 __global const uint* restrict vflags,
-                                 __global const float* restrict a_tris,
-                                 __global const uint* restrict a_vflags,
-                                 __global const uint* restrict a_rows,
-                                 __global const uint* restrict a_slots, const uint first_frame,
-                                 const uint frames_total, const uint kernel_w, const uint kernel_h,
-                                 const float origin_x, const float origin_y, const uint frames,
-                                 __global uint* restrict out, const uint items) {
+__kernel void mts_coverage_audit(
+    __global const float* restrict tris, __global const uint* restrict vflags,
+    __global const float* restrict a_tris, __global const uint* restrict a_vflags,
+    __global const uint* restrict a_rows, __global const uint* restrict a_slots,
+    const uint first_frame, const uint frames_total, const uint kernel_w, const uint kernel_h,
+    const float origin_x, const float origin_y, const uint frames, const uint band_rows,
+    __global uint* restrict out, const uint items) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / kernel_h, row = id - pf * kernel_h;
@@ -33,8 +31,12 @@ __kernel void mts_coverage_audit(__global const float* restrict tris,
   int differs = nb != n;
   for (int k = 0; k < n && !differs; ++k)
     differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
-  const int same = b_coverage_is_a(b_moved_from_a(TA, TB), b_keeps_orientation(TA, TB), TB,
-                                   vflags[pf], (int)row, rec);
+  /* as mts_frame_bounds finds them for the row's band */
+  const uint r0 = row / band_rows * band_rows, r1 = min(kernel_h, r0 + band_rows);
+  const float py0 = origin_y + (float)r0 + 0.5f, py1 = origin_y + (float)(r1 - 1) + 0.5f;
+  const int same =
+      b_coverage_is_a(b_moved_from_a(TA, TB, py0, py1), b_keeps_a_edges(TA, TB, py0, py1), TB,
+                      vflags[pf], (int)row, band_rows, rec);
   out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 

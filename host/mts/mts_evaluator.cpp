@@ -313,7 +313,7 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
   cl::Kernel k(test_program(), "mts_coverage_audit");
   set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0},
            static_cast<cl_uint>(frames), kw, kh, origin_x(), origin_y(),
-           static_cast<cl_uint>(frames), out, static_cast<cl_uint>(items));
+           static_cast<cl_uint>(frames), kBandRows, out, static_cast<cl_uint>(items));
   rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
   std::vector<uint32_t> words(items);
   rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, words.data());

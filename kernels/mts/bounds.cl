@@ -286,38 +286,18 @@ static inline uint a_plane(__global const uint* a_slots, uint probe, uint visit,
 }
 #define A_PLANE(pf) a_plane(a_slots, (pf) / frames, (pf) % frames, first_frame, frames_total)
 
-// Decides bands of kernel rows of a (probe, frame) clean without rasterising them, when both
-// planes certainly own every pixel of the band (band_covered) and their code bounds over it
-// exclude a fight: LEQUAL: B's smallest code above A's largest (log depth: by LOG_CODE_SLACK more,
-// as for pieces), or, where that fails, the gap certificate (plane_gap_range, frag_gap_clear).
-// Most probes of a search's descent from s = z are decided here. A band that is not decided goes
-// through mts_raster row by row, so the answer never depends on this pass, only the work does.
-// Global id: (probe * frames + frame) * bands + band.
-__kernel void mts_frame_bounds(
-    __global const float* restrict probes, __global const float* restrict tris,
-    __global const uint* restrict vflags, __global const float* restrict a_tris,
-    __global const uint* restrict a_vflags, __global const uint* restrict a_bands,
-    __global const uint* restrict a_slots, const uint first_frame, const uint frames_total,
-    const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
-    const uint frames, const uint bands, const uint band_rows, __global uint* restrict decided,
-    const uint items) {
-  const uint id = get_global_id(0);
-  if (id >= items) return;
-  const uint pf = id / bands, band = id - pf * bands;
-  const uint ap = A_PLANE(pf);
-  __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
-  __global uint* out = decided + (size_t)id * DECIDED_WORDS;
-  __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
-  __global const float* ref = a_tris + (size_t)ap * PLANE_STRIDE;
-  const int finite = !((a_vflags[ap] | vflags[pf]) & V_NONFINITE);
-  const uint oriented = finite && b_keeps_orientation(ref, TB) ? DV_ORIENTED : 0u;
-  ((__global float*)out)[DW_MOVED] = finite ? b_moved_from_a(ref, TB) : INFINITY;
-  out[DW_VERDICT] = D_RASTER | oriented;
-  __global const uint* a = a_bands + ((size_t)ap * bands + band) * BAND_WORDS;
-  if (!band_covered(a_vflags[ap], band) || !band_covered(vflags[pf], band) || a[2]) return;
-  const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
+// The verdict of one band of a (probe, frame): D_CLEAN when both planes certainly own every pixel
+// of the band (band_covered) and their code bounds over it exclude a fight: LEQUAL: B's smallest
+// code above A's largest (log depth: by LOG_CODE_SLACK more, as for pieces), or, where that fails,
+// the gap certificate (plane_gap_range, frag_gap_clear). Otherwise D_RASTER, or D_INSIDE /
+// D_ORDERED where the bounds show both planes finite and unclipped over the band.
+static inline uint band_verdict(__global const float* P, __global const float* TB,
+                                __global const float* ref, uint vflags_b, uint vflags_a,
+                                __global const uint* a, float origin_x, float origin_y,
+                                uint kernel_w, int r0, int r1, uint band) {
+  if (!band_covered(vflags_a, band) || !band_covered(vflags_b, band) || a[2]) return D_RASTER;
   const code_bounds_t b = plane_code_bounds(TB, P, origin_x, origin_y, (int)kernel_w, r0, r1);
-  if (b.bad) return;
+  if (b.bad) return D_RASTER;
 #if COMPARE_GREATER
   uint clean = b.hi + LOG_SLACK_OR_0 < (ulong)a[0];
 #else
@@ -347,5 +327,41 @@ __kernel void mts_frame_bounds(
   const uint from = df_order_exact_from(DF_FORMAT_FROM_DEFINES());
   const int ordered =
       from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
-  out[DW_VERDICT] = (clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE) | oriented;
+  return clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE;
+}
+
+// Decides bands of kernel rows of a (probe, frame) clean without rasterising them (band_verdict).
+// Most probes of a search's descent from s = z are decided here. A band that is not decided goes
+// through mts_raster row by row, so the answer never depends on this pass, only the work does;
+// for it, whether B's edges are A's and how far they moved (b_coverage_is_a).
+// Global id: (probe * frames + frame) * bands + band.
+__kernel void mts_frame_bounds(
+    __global const float* restrict probes, __global const float* restrict tris,
+    __global const uint* restrict vflags, __global const float* restrict a_tris,
+    __global const uint* restrict a_vflags, __global const uint* restrict a_bands,
+    __global const uint* restrict a_slots, const uint first_frame, const uint frames_total,
+    const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
+    const uint frames, const uint bands, const uint band_rows, __global uint* restrict decided,
+    const uint items) {
+  const uint id = get_global_id(0);
+  if (id >= items) return;
+  const uint pf = id / bands, band = id - pf * bands;
+  const uint ap = A_PLANE(pf);
+  __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
+  __global uint* out = decided + (size_t)id * DECIDED_WORDS;
+  __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
+  __global const float* ref = a_tris + (size_t)ap * PLANE_STRIDE;
+  const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
+  const uint verdict = band_verdict(P, TB, ref, vflags[pf], a_vflags[ap],
+                                    a_bands + ((size_t)ap * bands + band) * BAND_WORDS, origin_x,
+                                    origin_y, kernel_w, r0, r1, band);
+  float moved = INFINITY;
+  uint oriented = 0u;
+  if (verdict != D_CLEAN && !((a_vflags[ap] | vflags[pf]) & V_NONFINITE)) {
+    const float py0 = origin_y + (float)r0 + 0.5f, py1 = origin_y + (float)(r1 - 1) + 0.5f;
+    oriented = b_keeps_a_edges(ref, TB, py0, py1) ? DV_ORIENTED : 0u;
+    moved = b_moved_from_a(ref, TB, py0, py1);
+  }
+  ((__global float*)out)[DW_MOVED] = moved;
+  out[DW_VERDICT] = verdict | oriented;
 }

@@ -203,25 +203,23 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
 
 // Plane B is plane A moved along the view direction and scaled with its distance, so both project
 // to the same window triangles in exact arithmetic; in binary32 B's vertices lie some delta
-// (~1e-4 px) from A's. Returns a margin: for any B whose vertices all lie within less than it of
-// A's (per coordinate), and which owns each kernel pixel through exactly one triangle (V_COVERS),
-// B's coverage of the row is A's segments. Proof: each segment's triangle passes its three edge
-// tests at the segment's first and last pixel in B too, so (each test being monotone along the
-// row) at every pixel of the segment, and the one triangle that passes a pixel owns it; and the
-// row stays inside each triangle's y-range, which row_segments also asks. The edge value
-// E = dx (py - ay) - dy (px - ax) of a pixel moves by at most d (|dx| + |dy| + 2|py - ay| +
-// 2|px - ax|) + 4 d^2 when the edge's vertices move by d, and each binary32 evaluation (fused or
-// not) lies within 4.1 eps (|dx (py - ay)| + |dy (px - ax)|) of its exact value, so a pass with
-// E above twice that rounding bound plus the movement survives; the margin is the d at which the
-// movement would take half of what is left over, with 1 % slack for the margin's own rounding.
-// 0 when A leaves a pixel uncovered or a test sits at its rounding bound, and always under
-// clipping (CLIP_SLOTS > 1): a clipped triangle's new vertices, which b_moved_from_a does not
-// see, and its fan, which can differ between A and B, are outside this argument.
+// (~1e-4 px) from A's. Returns a margin: for any B whose edges join A's vertices and lie within
+// less than it of A's (per coordinate, as b_moved_from_a measures), and which owns each kernel
+// pixel through exactly one triangle (V_COVERS), B's coverage of the row is A's segments. Proof:
+// each segment's triangle passes its three edge tests at the segment's first and last pixel in B
+// too, so (each test being monotone along the row) at every pixel of the segment, and the one
+// triangle that passes a pixel owns it; and the row stays inside each triangle's y-range, which
+// row_segments also asks. The edge value E = dx (py - ay) - dy (px - ax) of a pixel moves by at
+// most d (|dx| + |dy| + 2|py - ay| + 2|px - ax|) + 4 d^2 when the edge's anchor (ax, ay) moves by d
+// and its direction (dx, dy) by 2 d per coordinate (as when its vertices move by d;
+// b_moved_from_a), and each binary32 evaluation (fused or not) lies within 4.1 eps (|dx (py - ay)|
+// + |dy (px - ax)|) of its exact value, so a pass with E above twice that rounding bound plus the
+// movement survives; the margin is the d at which the movement would take half of what is left
+// over, with 1 % slack for the margin's own rounding. 0 when A leaves a pixel uncovered or a test
+// sits at its rounding bound. The argument reads only the triangle records, so it holds for the
+// clip stage's fans as for the grid's triangles.
 static inline float coverage_margin(__global const float* T, float py, float ox, int n,
                                     const int* seg_x, const int* seg_t) {
-#if CLIP_SLOTS > 1
-  return 0.0f;
-#endif
   __global const float* SA = T + NT * TRI_STRIDE;
   __global const uint* SB = (__global const uint*)SA + E_BITS * NE_PAD;
   const float eps = 0x1.0p-24f;
@@ -250,36 +248,86 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
   return 0.99f * margin;
 }
 
-// How far plane B's vertices lie from plane A's: the largest per-coordinate difference (rounded
-// up). Both planes are finite (callers check V_NONFINITE first), so max needs no NaN handling,
-// which fmax would compile into compares and blends; the loads are aligned (V_XW).
-static inline float b_moved_from_a(__global const float* TA, __global const float* TB) {
-  __global const float16* a = (__global const float16*)(TA + V_XW);
-  __global const float16* b = (__global const float16*)(TB + V_XW);
-  float16 m = (float16)0.0f;
-  for (int k = 0; k < 2 * NV_PAD / 16; ++k) m = max(m, fabs(b[k] - a[k]));
-  const float8 m8 = max(m.lo, m.hi);
-  const float4 m4 = max(m8.lo, m8.hi);
-  const float2 m2 = max(m4.lo, m4.hi);
-  return 1.0001f * max(m2.x, m2.y);
+// The triangle records a kernel row with pixel centres py0..py1 can meet in plane T: those of
+// the quad rows whose y-range holds one of them, a run of records from (*first) to (*end), as
+// row_segments takes them row by row.
+static inline void records_meeting(__global const float* T, float py0, float py1, int* first,
+                                   int* end) {
+  *first = 0;
+  *end = 0;
+  int found = 0;
+  for (int qj = 0; qj < GRID; ++qj) {
+    if (T[Q_YRANGE + 2 * qj] <= py1 && py0 <= T[Q_YRANGE + 2 * qj + 1]) {
+      if (!found) *first = Q_SLOTS * qj;
+      found = 1;
+      *end = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj];
+    }
+  }
 }
 
-// Whether every triangle of plane B has plane A's orientation (its edges negated alike).
-static inline int b_keeps_orientation(__global const float* TA, __global const float* TB) {
-  __global const uint* a = (__global const uint*)TA + T_BITS;
-  __global const uint* b = (__global const uint*)TB + T_BITS;
-  uint differ = 0u;
-  for (int t = 0; t < NT; ++t) differ |= (a[t * TRI_STRIDE] ^ b[t * TRI_STRIDE]) & 7u;
-  return differ == 0u;
+// How far plane B's triangle records lie from plane A's, as the d of coverage_margin, over the
+// records A's rows py0..py1 can meet (records_meeting): the largest difference of an edge's anchor
+// (ax, ay), of half its direction (dx, dy) and of a triangle's y-range, rounded up. For edges
+// between the same vertices (b_keeps_a_edges) this is at most how far B's vertices lie from A's,
+// plus the rounding of dx and dy; it reads what the edge tests read, so it covers the clip
+// stage's new vertices too. A difference between unequal infinities or with a NaN is infinite.
+static inline float16 moved16(float16 a, float16 b) {
+  const float16 d = fabs(b - a);
+  return a == b ? (float16)0.0f : d <= INFINITY ? d : (float16)INFINITY;
+}
+
+static inline float b_moved_from_a(__global const float* TA, __global const float* TB, float py0,
+                                   float py1) {
+  int first, end;
+  records_meeting(TA, py0, py1, &first, &end);
+  __global const float* EA = TA + NT * TRI_STRIDE;
+  __global const float* EB = TB + NT * TRI_STRIDE;
+  float16 m = (float16)0.0f;
+  for (int g = 3 * first / 16 * 16; g < 3 * end; g += 16) {
+    m = fmax(m, moved16(vload16(0, EA + E_AX * NE_PAD + g), vload16(0, EB + E_AX * NE_PAD + g)));
+    m = fmax(m, moved16(vload16(0, EA + E_AY * NE_PAD + g), vload16(0, EB + E_AY * NE_PAD + g)));
+    m = fmax(
+        m, 0.5f * moved16(vload16(0, EA + E_DX * NE_PAD + g), vload16(0, EB + E_DX * NE_PAD + g)));
+    m = fmax(
+        m, 0.5f * moved16(vload16(0, EA + E_DY * NE_PAD + g), vload16(0, EB + E_DY * NE_PAD + g)));
+  }
+  const float8 m8 = fmax(m.lo, m.hi);
+  const float4 m4 = fmax(m8.lo, m8.hi);
+  const float2 m2 = fmax(m4.lo, m4.hi);
+  float r = fmax(m2.x, m2.y);
+  for (int t = first; t < end; ++t) {
+    const float2 ya = vload2(0, TA + t * TRI_STRIDE + T_YMIN);
+    const float2 yb = vload2(0, TB + t * TRI_STRIDE + T_YMIN);
+    const float d0 = ya.x == yb.x ? 0.0f : fabs(yb.x - ya.x);
+    const float d1 = ya.y == yb.y ? 0.0f : fabs(yb.y - ya.y);
+    r = fmax(r, fmax(d0 <= INFINITY ? d0 : INFINITY, d1 <= INFINITY ? d1 : INFINITY));
+  }
+  return 1.0001f * r;
+}
+
+// Whether every edge of plane B among the records A's rows py0..py1 can meet joins the same two
+// vertices as A's (the clip stage's fans alike, however they fill the records) with A's
+// orientation: its edge test negated alike.
+static inline int b_keeps_a_edges(__global const float* TA, __global const float* TB, float py0,
+                                  float py1) {
+  int first, end;
+  records_meeting(TA, py0, py1, &first, &end);
+  __global const uint* a = (__global const uint*)(TA + NT * TRI_STRIDE) + E_BITS * NE_PAD;
+  __global const uint* b = (__global const uint*)(TB + NT * TRI_STRIDE) + E_BITS * NE_PAD;
+  uint16 differ = (uint16)0u;
+  for (int g = 3 * first / 16 * 16; g < 3 * end; g += 16)
+    differ |= (vload16(0, a + g) ^ vload16(0, b + g)) & ~2u;
+  return !any(differ != (uint16)0u);
 }
 
 // Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
 // the row through exactly one triangle (row_covered; a frame with a vertex near a pixel centre
 // loses only that pixel's row), B within A's coverage margin (coverage_margin: moved is
-// b_moved_from_a), and B's triangles keep A's orientation (oriented: b_keeps_orientation). The
+// b_moved_from_a), and B's edges are A's (oriented: b_keeps_a_edges). The
 // last two are per frame: mts_frame_bounds finds them once.
 static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB,
-                                  uint vflags_b, int row, __global const uint* rec) {
+                                  uint vflags_b, int row, uint band_rows,
+                                  __global const uint* rec) {
   return oriented && moved < ((__global const float*)rec)[RW_MARGIN] &&
-         row_covered(TB, vflags_b, row);
+         row_covered(TB, vflags_b, row, band_rows);
 }

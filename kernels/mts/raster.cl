@@ -88,9 +88,10 @@ __kernel void mts_raster(
   const float py = origin_y + (float)row + 0.5f;
   __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
   const int cached = rec[RW_N] > 0u;
-  const int b_is_a = shortcuts && cached &&
-                     b_coverage_is_a(((__global const float*)dec)[DW_MOVED],
-                                     dec[DW_VERDICT] & DV_ORIENTED, TBp, vflags[pf], (int)row, rec);
+  const int b_is_a =
+      shortcuts && cached &&
+      b_coverage_is_a(((__global const float*)dec)[DW_MOVED], dec[DW_VERDICT] & DV_ORIENTED, TBp,
+                      vflags[pf], (int)row, band_rows, rec);
   const int inside = band_verdict == D_INSIDE || band_verdict == D_ORDERED;
   const int ordered = band_verdict == D_ORDERED;
 #if CACHE_A_CODES

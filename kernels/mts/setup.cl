@@ -74,13 +74,14 @@ static inline int band_covered(uint vf, uint band) {
 }
 
 // Every pixel of kernel row `row` of plane T (flags vf) is owned by exactly one triangle: the
-// certificate of band_covered, down to the one row a vertex near a pixel centre spoils (none in a
-// plane with sliver triangles, whose bands are known but not their rows).
-static inline int row_covered(__global const float* T, uint vf, int row) {
+// certificate of band_covered, down to the one row a vertex near a pixel centre spoils; in a plane
+// with sliver triangles, whose bands are known but not their rows, only outside those bands.
+static inline int row_covered(__global const float* T, uint vf, int row, uint band_rows) {
   __global const int16* bad = (__global const int16*)((__global const int*)T + V_BAD_ROW);
   int16 hit = (int16)0;
   for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
-  return (vf & V_COVERS) && !(vf & V_SLIVERS) && !any16(hit);
+  return (vf & V_COVERS) && (!(vf & V_SLIVERS) || band_covered(vf, (uint)row / band_rows)) &&
+         !any16(hit);
 }
 
 // The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
@@ -153,6 +154,9 @@ static inline void mark_sliver(const float* x, const float* y, float det, float 
 // 1/w. Edges, orientation and ownership bits, the depth and 1/w planes in the set-up's form, the
 // y-range, the largest |depth|, the edge arrays and the pixel box. A degenerate triangle, or one
 // with an angle below ~6 degrees, is a sliver (mark_sliver).
+#if MTS_NV(GRID) + 8 * NT0 > (1 << 15) /* the grid's vertices, then 8 per clipped triangle */
+#error "vertex ids need more than the 15 bits the edge arrays keep for each (E_ID_SHIFT)"
+#endif
 static inline void setup_triangle(__global float* T, int t, const int* id, const float* x,
                                   const float* y, const float* d, const float* q, float origin_x,
                                   float origin_y, uint kernel_w, uint kernel_h, uint band_rows,
@@ -247,7 +251,8 @@ static inline void setup_triangle(__global float* T, int t, const int* id, const
     SA[E_DY * NE_PAD + k] = edy[e];
     SA[E_DXDY * NE_PAD + k] = dxdy;
     ((__global uint*)SA)[E_BITS * NE_PAD + k] =
-        ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1);
+        ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1) | ((uint)id[e] << E_ID_SHIFT) |
+        ((uint)id[(e + 1) % 3] << (E_ID_SHIFT + 15));
   }
   ((__global uint*)R)[T_BITS] = bits;
   vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0,
@@ -485,10 +490,6 @@ static inline void setup_plane(__global const float* P, __global const float* M,
     }
     T[Q_YRANGE + 2 * qj] = lo;
     T[Q_YRANGE + 2 * qj + 1] = hi;
-  }
-  for (int v = 0; v < NV_PAD; ++v) {
-    T[V_XW + v] = v < NV ? xw[v] : 0.0f;
-    T[V_YW + v] = v < NV ? yw[v] : 0.0f;
   }
   /* the edge arrays' padding repeats triangle 0's edge 0 */
   __global uint* SA = (__global uint*)T + NT * TRI_STRIDE;
