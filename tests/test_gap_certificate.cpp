@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "host/model/profile.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;
@@ -16,7 +17,16 @@ using namespace depthprec::test;
 
 TEST_CASE("the gap certificate changes no probe result from just below the MTS upwards",
           "[mts][bounds]") {
-  const Scene scene = load_scene("", {"kernel=[64,64]", "viewport=[64,64]", "frames=16"});
+  // and under llvmpipe's profile: its plane form and unorm conversions, without its clip stage and
+  // with it (whose slivers withhold the coverage certificate from the bands near them: in this
+  // kernel of two bands, from many)
+  const std::string profile_name = GENERATE("ideal", "llvmpipe without clip", "llvmpipe");
+  const bool llvmpipe = profile_name != "ideal", clip = profile_name == "llvmpipe";
+  std::vector<std::string> sets = {"kernel=[64,64]", "viewport=[64,64]", "frames=16"};
+  if (llvmpipe)
+    for (const std::string& s : profile("llvmpipe").sets)
+      sets.push_back(clip || s != "pipeline.clip=llvmpipe" ? s : "pipeline.clip=none");
+  const Scene scene = load_scene("", sets);
   for (const auto& [t, format, range] :
        {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
         std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
@@ -37,7 +47,8 @@ TEST_CASE("the gap certificate changes no probe result from just below the MTS u
                      pairs_before = with.fragment_pairs();
       const auto a = with.run(*probes), b = without.run(*probes);
       for (size_t k = 0; k < probes->size(); ++k) {
-        INFO(pair.label() << " z = " << (*probes)[k].z << " s = " << (*probes)[k].s);
+        INFO(pair.label() << " " << profile_name << " z = " << (*probes)[k].z
+                          << " s = " << (*probes)[k].s);
         CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
         CHECK(a[k].frames == b[k].frames);
         CHECK(a[k].any_clipped == b[k].any_clipped);
@@ -47,9 +58,9 @@ TEST_CASE("the gap certificate changes no probe result from just below the MTS u
         // the code bounds alone decide next to nothing at these distances so close to the MTS
         const uint64_t decided = with.pairs_decided_by_bounds() - decided_before;
         const uint64_t pairs = with.fragment_pairs() - pairs_before;
-        INFO(pair.label() << ": " << decided << " of " << pairs
+        INFO(pair.label() << " " << profile_name << ": " << decided << " of " << pairs
                           << " pairs decided without rasterising above the MTS");
-        CHECK(decided > pairs / 2);
+        CHECK(decided > (clip ? pairs / 8 : pairs / 2));
       }
     }
   }

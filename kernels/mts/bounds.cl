@@ -86,26 +86,34 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // exact L = c0 + s (px - x0) + t (py - y0), u = 2^-24: each of the six roundings contributes at
 // most u times its result, which the three terms bound; the 0.01 covers evaluating L and E in
 // binary64, 2^-140 the absolute error of subnormal results; fused operations only remove roundings.
+// llvmpipe's form (PLANE_FORM 1), fma(t, fl(py - y0), fma(s, fl(px - x0), c0)) with x0 = y0 = 1/2,
+// rounds at most four times, so the same E bounds it.
 // Measured against one reference plane R (the exact L of plane A's triangle 0): every pixel a
 // triangle may own lies in its pixel_box, over which L - R is linear and E convex, so
 // L - E - R is smallest and L + E - R largest at the box's corners. With lo/hi the smallest
 // L - E - R and largest L + E - R over a plane's triangles in the band, d_B - d_A >= lo_B - hi_A at
 // every pixel, whichever triangles own it. B's code exceeds A's (LEQUAL) when that is above
-// GAP_STEP: one code step for unorm (round(d N) of values more than 1/N apart differ; no saturation
-// in an unclipped band), any positive amount for float32 (codes are the bit patterns, monotone in
-// d). GEQUAL mirrors it (hi_B below lo_A). Other formats, and fragment-stage depth (not an
-// interpolated plane), are not certified this way; nor is llvmpipe's plane form (PLANE_FORM 1),
-// whose error this bound does not describe.
+// GAP_STEP: for unorm, w / N when code(d) - d N lies in an interval of width w, since depths more
+// than that apart then have codes in order (no saturation in an unclipped band): w = 1 for the
+// exact conversion (round(d N) or floor(d N)); llvmpipe's (DF_CONVERT 1, df_encode_unorm_llvmpipe)
+// are monotone too: unorm16 rint(fl(d (1 - 2^-16)) 2^16) within 1/2 + 2^16 u of d N, so w < 1 +
+// 2^-7; unorm24 rint(fl(d (2^24 - 1))) within 3/4 (the product rounds by at most 1/4 below 2^23,
+// where rint adds up to 1/2, and by 1/2 from 2^23 on, where it is an integer already), w = 3/2;
+// unorm32 2 trunc(d 2^31) - d N in (-2, 1], w = 3. Any positive amount for float32 (codes are the
+// bit patterns, monotone in d). GEQUAL mirrors it (hi_B below lo_A). Other formats, and
+// fragment-stage depth (not an interpolated plane), are not certified this way.
 //
 // Fragment-stage depth (DEPTH_FROM 2) interpolates q = 1/w the same way, so lo/hi bound q against
 // a reference plane R of q; d = h(q) is then a decreasing, convex function of q (frag_gap_clear),
 // and only LEQUAL set-ups use it.
-#if DF_KIND == 0 && DF_CONVERT == 0
-#define GAP_STEP (1.0 / (double)DF_FORMAT_FROM_DEFINES().max_code)
+#if DF_KIND == 0
+#define GAP_CODE_WIDTH \
+  (DF_CONVERT == 0 ? 1.0 : DF_BITS == 16 ? 1.0078125 : DF_BITS == 24 ? 1.5 : 3.0)
+#define GAP_STEP (GAP_CODE_WIDTH / (double)DF_FORMAT_FROM_DEFINES().max_code)
 #elif DF_KIND == 1 && DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH
 #define GAP_STEP 0.0
 #endif
-#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER) && PLANE_FORM == 0
+#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER)
 #define GAP_CERT 1
 #else
 #define GAP_CERT 0
