@@ -111,41 +111,69 @@ static inline int3 triangle_vertices(int t, int flip) {
   return (t & 1) ? (int3)(a, c, d) : (int3)(a, b, c);
 }
 
+// Whether the strip of points within w of the line through the origin along (dx, dy) (length l)
+// meets row offset ry, and where: the x offsets (*lo, *hi) it spans there, narrowed.
+static inline int strip_at_row(float dx, float dy, float l, float w, float ry, float* lo,
+                               float* hi) {
+  if (dy == 0.0f) return fabs(ry * dx) < w * l;           /* horizontal: all of the row, or none */
+  const float c = ry * dx / dy, width = w * l / fabs(dy); /* half the strip's width in x */
+  *lo = fmax(*lo, c - width);
+  *hi = fmin(*hi, c + width);
+  return 1;
+}
+
 // Where covers_kernel's argument fails near a sliver (a triangle with an angle below ~6 degrees):
-// a pixel centre within the edge tests' rounding error (< 0.006 px) of two edges meeting at vertex
-// V at angle a lies within 0.0125 / sin(a) of V (with the factor two covers_kernel keeps), and
-// no pixel centre is near two edges of a triangle anywhere else. So the bands of the kernel rows
-// holding a pixel centre within max(1/8, 0.0125 / sin a) of a vertex, in x and in y, are set in
-// *slivers and left out of the certificate; the rest of the kernel keeps it. A vertex on the
-// viewport's edge, where clipping makes most slivers, is half a pixel from every pixel centre in
-// one coordinate, so it costs nothing down to angles of about 1.4 degrees. sin a = |det| / (|e1|
-// |e2|) for the edges at V, taken 1 % smaller; a degenerate triangle (det 0 or not a number)
-// marks every row of its box. A band past V_MAX_BANDS clears *shapely.
+// a pixel centre within the edge tests' rounding error (< 0.006 px) of both edges meeting at
+// vertex V at angle a, a thin rhombus about V along the angle's bisector, reaching 0.006 /
+// sin(a/2) from V; no pixel centre is near two edges of a triangle anywhere else. So the bands of
+// the kernel rows holding a pixel centre within 0.0125 px of both edge lines (twice the error, as
+// covers_kernel keeps; the rhombus then reaches less than 0.025 / sin a), or within 1/8 of V in x
+// and y (covers_kernel's vertex rule), are set in *slivers and left out of the certificate; the
+// rest of the kernel keeps it. Most slivers, the clip stage's fans along the viewport's edge, then
+// cost nothing: their rhombi are thinner than the distance between pixel centres. sin a = |det| /
+// (|e1| |e2|) for the edges at V, taken 1 % smaller; a degenerate triangle (det 0 or not a
+// number) marks every row of its box. A band past V_MAX_BANDS clears *shapely.
 static inline void mark_sliver(const float* x, const float* y, float det, float ox, float oy,
                                uint kw, uint kh, uint band_rows, uint* slivers, uint* shapely) {
   for (int v = 0; v < 3; ++v) {
     const int a = (v + 1) % 3, b = (v + 2) % 3;
     const float ax = x[a] - x[v], ay = y[a] - y[v], bx = x[b] - x[v], by = y[b] - y[v];
-    const float sin_v = 0.99f * fabs(det) / (sqrt(ax * ax + ay * ay) * sqrt(bx * bx + by * by));
-    const float r = sin_v > 0.0f ? fmax(0.125f, 0.0125f / sin_v) : INFINITY;
-    const float rx = isfinite(r) ? r : fmax(fmax(fabs(ax), fabs(bx)), 1.0f) + 1.0f;
-    const float ry = isfinite(r) ? r : fmax(fmax(fabs(ay), fabs(by)), 1.0f) + 1.0f;
+    const float la = sqrt(ax * ax + ay * ay), lb = sqrt(bx * bx + by * by);
+    const float sin_v = 0.99f * fabs(det) / (la * lb);
+    const int degenerate = !(sin_v > 0.0f);
+    const float reach = fmax(0.125f, 0.025f / sin_v);
+    const float rx = !degenerate ? reach : fmax(fmax(fabs(ax), fabs(bx)), 1.0f) + 1.0f;
+    const float ry = !degenerate ? reach : fmax(fmax(fabs(ay), fabs(by)), 1.0f) + 1.0f;
     if (!(rx < 16384.0f && ry < 16384.0f)) { /* not a number, or beyond any kernel */
       *shapely = 0u;
       return;
     }
-    /* pixel centres ox + i + 0.5 within rx of x[v], and rows within ry of y[v] */
-    const int i0 = max((int)ceil(x[v] - rx - ox - 0.5f), 0);
-    const int i1 = min((int)floor(x[v] + rx - ox - 0.5f), (int)kw - 1);
+    /* rows within ry of y[v]; of a degenerate triangle every one, else those the rhombus or the
+     * 1/8 square about V meets at a pixel centre */
     const int j0 = max((int)ceil(y[v] - ry - oy - 0.5f), 0);
     const int j1 = min((int)floor(y[v] + ry - oy - 0.5f), (int)kh - 1);
-    if (i0 > i1 || j0 > j1) continue;
-    if ((uint)j1 / band_rows >= V_MAX_BANDS) {
-      *shapely = 0u;
-      return;
+    for (int j = j0; j <= j1; ++j) {
+      const float dy = oy + (float)j + 0.5f - y[v];
+      float lo = -rx, hi = rx;
+      int hit = degenerate;
+      if (!hit && strip_at_row(ax, ay, la, 0.0125f, dy, &lo, &hi) &&
+          strip_at_row(bx, by, lb, 0.0125f, dy, &lo, &hi)) {
+        const int i0 = max((int)ceil(x[v] + lo - ox - 0.5f), 0);
+        const int i1 = min((int)floor(x[v] + hi - ox - 0.5f), (int)kw - 1);
+        hit = i0 <= i1;
+      }
+      if (!hit && fabs(dy) < 0.125f) {
+        const int i0 = max((int)ceil(x[v] - 0.125f - ox - 0.5f), 0);
+        const int i1 = min((int)floor(x[v] + 0.125f - ox - 0.5f), (int)kw - 1);
+        hit = i0 <= i1;
+      }
+      if (!hit) continue;
+      if ((uint)j / band_rows >= V_MAX_BANDS) {
+        *shapely = 0u;
+        return;
+      }
+      *slivers |= 1u << ((uint)j / band_rows);
     }
-    for (int band = j0 / (int)band_rows; band <= j1 / (int)band_rows; ++band)
-      *slivers |= 1u << band;
   }
 }
 
