@@ -366,9 +366,11 @@ __kernel void mts_frame_bounds(
   float moved = INFINITY;
   uint oriented = 0u;
   if (verdict != D_CLEAN && !((a_vflags[ap] | vflags[pf]) & V_NONFINITE)) {
-    const float py0 = origin_y + (float)r0 + 0.5f, py1 = origin_y + (float)(r1 - 1) + 0.5f;
-    oriented = b_keeps_a_edges(ref, TB, py0, py1) ? DV_ORIENTED : 0u;
-    moved = b_moved_from_a(ref, TB, py0, py1);
+    int first, end;
+    records_meeting(ref, origin_y + (float)r0 + 0.5f, origin_y + (float)(r1 - 1) + 0.5f, &first,
+                    &end);
+    oriented = b_keeps_a_edges(ref, TB, first, end) ? DV_ORIENTED : 0u;
+    moved = b_moved_from_a(ref, TB, first, end);
   }
   ((__global float*)out)[DW_MOVED] = moved;
   out[DW_VERDICT] = verdict | oriented;

@@ -68,6 +68,23 @@ static inline void insertion_sort(int* key, int* p1, int* p2, int n) {
   }
 }
 
+// The triangle records kernel rows with pixel centres py0..py1 can meet in plane T: those of the
+// quad rows whose y-range holds one of them, a run of records from *first to before *end (one or
+// two quad rows for one row; which of their triangles meet it, row_segments decides).
+static inline void records_meeting(__global const float* T, float py0, float py1, int* first,
+                                   int* end) {
+  *first = 0;
+  *end = 0;
+  int found = 0;
+  for (int qj = 0; qj < GRID; ++qj) {
+    if (T[Q_YRANGE + 2 * qj] <= py1 && py0 <= T[Q_YRANGE + 2 * qj + 1]) {
+      if (!found) *first = Q_SLOTS * qj;
+      found = 1;
+      *end = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj];
+    }
+  }
+}
+
 #define MAX_SEG (2 * NT + 2)
 static inline int row_segments(__global const float* T, float py, float ox, int W, int* seg_x,
                                int* seg_t) {
@@ -79,17 +96,10 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   __global const float* SA = T + NT * TRI_STRIDE;
   int elo[NE_PAD], ehi[NE_PAD];
   const float px_first = ox + 0.5f, px_last = ox + (float)(W - 1) + 0.5f;
-  /* only the edges of the quad rows whose y-range holds the row: a run of indices (one or two
-   * rows of quads); which of their triangles meet the row is decided below */
-  int t_first = NT, t_last = -1;
-  for (int qj = 0; qj < GRID; ++qj) {
-    if (T[Q_YRANGE + 2 * qj] <= py && py <= T[Q_YRANGE + 2 * qj + 1]) {
-      t_first = min(t_first, Q_SLOTS * qj);
-      t_last = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj] - 1;
-    }
-  }
-  const int g_first = (3 * t_first) / 16 * 16, g_end = 3 * (t_last + 1);
-  for (int g = g_first; g < g_end; g += 16) {
+  /* only the edges of the records the row can meet */
+  int t_first, t_end;
+  records_meeting(T, py, py, &t_first, &t_end);
+  for (int g = 3 * t_first / 16 * 16; g < 3 * t_end; g += 16) {
     const float16 ax = vload16(0, SA + E_AX * NE_PAD + g), ay = vload16(0, SA + E_AY * NE_PAD + g);
     const float16 dx = vload16(0, SA + E_DX * NE_PAD + g), dy = vload16(0, SA + E_DY * NE_PAD + g);
     const float16 dxdy = vload16(0, SA + E_DXDY * NE_PAD + g);
@@ -131,7 +141,7 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
     vstore16(hi16, 0, ehi + g);
   }
   int lo[NT], hi[NT], tri[NT], n = 0;
-  for (int t = t_first; t <= t_last; ++t) {
+  for (int t = t_first; t < t_end; ++t) {
     __global const float* R = T + t * TRI_STRIDE;
     const uint bits = TB[t * TRI_STRIDE + T_BITS];
     if (!(bits & 64u) || !(R[T_YMIN] <= py && py <= R[T_YMAX])) continue;
@@ -248,38 +258,20 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
   return 0.99f * margin;
 }
 
-// The triangle records a kernel row with pixel centres py0..py1 can meet in plane T: those of
-// the quad rows whose y-range holds one of them, a run of records from (*first) to (*end), as
-// row_segments takes them row by row.
-static inline void records_meeting(__global const float* T, float py0, float py1, int* first,
-                                   int* end) {
-  *first = 0;
-  *end = 0;
-  int found = 0;
-  for (int qj = 0; qj < GRID; ++qj) {
-    if (T[Q_YRANGE + 2 * qj] <= py1 && py0 <= T[Q_YRANGE + 2 * qj + 1]) {
-      if (!found) *first = Q_SLOTS * qj;
-      found = 1;
-      *end = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj];
-    }
-  }
-}
-
-// How far plane B's triangle records lie from plane A's, as the d of coverage_margin, over the
-// records A's rows py0..py1 can meet (records_meeting): the largest difference of an edge's anchor
-// (ax, ay), of half its direction (dx, dy) and of a triangle's y-range, rounded up. For edges
-// between the same vertices (b_keeps_a_edges) this is at most how far B's vertices lie from A's,
-// plus the rounding of dx and dy; it reads what the edge tests read, so it covers the clip
-// stage's new vertices too. A difference between unequal infinities or with a NaN is infinite.
+// How far plane B's triangle records lie from plane A's, as the d of coverage_margin, over
+// records first..end - 1 (those A's rows of a band can meet, records_meeting): the largest
+// difference of an edge's anchor (ax, ay), of half its direction (dx, dy) and of a triangle's
+// y-range, rounded up. For edges between the same vertices (b_keeps_a_edges) this is at most how
+// far B's vertices lie from A's, plus the rounding of dx and dy; it reads what the edge tests read,
+// so it covers the clip stage's new vertices too. A difference between unequal infinities or with a
+// NaN is infinite.
 static inline float16 moved16(float16 a, float16 b) {
   const float16 d = fabs(b - a);
   return a == b ? (float16)0.0f : d <= INFINITY ? d : (float16)INFINITY;
 }
 
-static inline float b_moved_from_a(__global const float* TA, __global const float* TB, float py0,
-                                   float py1) {
-  int first, end;
-  records_meeting(TA, py0, py1, &first, &end);
+static inline float b_moved_from_a(__global const float* TA, __global const float* TB, int first,
+                                   int end) {
   __global const float* EA = TA + NT * TRI_STRIDE;
   __global const float* EB = TB + NT * TRI_STRIDE;
   float16 m = (float16)0.0f;
@@ -305,13 +297,11 @@ static inline float b_moved_from_a(__global const float* TA, __global const floa
   return 1.0001f * r;
 }
 
-// Whether every edge of plane B among the records A's rows py0..py1 can meet joins the same two
-// vertices as A's (the clip stage's fans alike, however they fill the records) with A's
-// orientation: its edge test negated alike.
-static inline int b_keeps_a_edges(__global const float* TA, __global const float* TB, float py0,
-                                  float py1) {
-  int first, end;
-  records_meeting(TA, py0, py1, &first, &end);
+// Whether every edge of plane B among records first..end - 1 joins the same two vertices as A's
+// (the clip stage's fans alike, however they fill the records) with A's orientation: its edge
+// test negated alike.
+static inline int b_keeps_a_edges(__global const float* TA, __global const float* TB, int first,
+                                  int end) {
   __global const uint* a = (__global const uint*)(TA + NT * TRI_STRIDE) + E_BITS * NE_PAD;
   __global const uint* b = (__global const uint*)(TB + NT * TRI_STRIDE) + E_BITS * NE_PAD;
   uint16 differ = (uint16)0u;
