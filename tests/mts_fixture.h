@@ -1,8 +1,10 @@
 // Shared helpers for tests that run the MTS evaluator on the PoCL device.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "host/model/profile.h"
 #include "host/model/scene.h"
 #include "host/mts/mts_search.h"
 #include "host/runtime/opencl_runtime.h"
@@ -22,6 +24,15 @@ inline std::vector<MtsRow> mts_rows(const Scene& scene, Technique t, const std::
   const EvalPair pair{t, format, range};
   MtsEvaluator ev(runtime(), scene, pair);
   return search_pair(ev, scene, pair, distances);
+}
+
+// The llvmpipe profile's scene settings, with its clip stage or without it (pipeline.clip=none):
+// its arithmetic alone.
+inline std::vector<std::string> llvmpipe_sets(bool clip) {
+  std::vector<std::string> sets;
+  for (const std::string& s : profile("llvmpipe").sets)
+    sets.push_back(clip || s != "pipeline.clip=llvmpipe" ? s : "pipeline.clip=none");
+  return sets;
 }
 
 inline std::vector<double> powers_of_two(int from, int to) {

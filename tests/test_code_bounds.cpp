@@ -29,9 +29,9 @@ TEST_CASE("bands decided from code bounds and coverage taken from plane A change
           "[mts][bounds]") {
   // margin 0.9: the planes leave the kernel's border uncovered, so no band may be decided (a square
   // viewport: the plane is sized to the vertical field of view)
-  // and under llvmpipe's forms, which the bounds take as they are (the gap certificate is off),
-  // without its clip stage and with it (its fans' slivers cost the certificate the bands near
-  // them), and with vertices snapped to 1/16 pixel
+  // and under llvmpipe's forms, which the bounds take as they are, without its clip stage and with
+  // it (its fans' slivers cost the certificate the bands near them), and with vertices snapped to
+  // 1/16 pixel
   for (const std::string margin : {"1.1", "0.9", "1.1 llvmpipe", "1.1 llvmpipe clip", "1.1 snap"}) {
     const bool llvmpipe = margin.find("llvmpipe") != std::string::npos;
     const bool clip = margin.find("clip") != std::string::npos;
@@ -39,8 +39,7 @@ TEST_CASE("bands decided from code bounds and coverage taken from plane A change
                                      "plane_margin=" + margin.substr(0, 3)};
     if (margin.find("snap") != std::string::npos) sets.push_back("pipeline.snap=4");
     if (llvmpipe)
-      for (const std::string& s : profile("llvmpipe").sets)
-        sets.push_back(clip || s != "pipeline.clip=llvmpipe" ? s : "pipeline.clip=none");
+      for (const std::string& s : llvmpipe_sets(clip)) sets.push_back(s);
     const Scene scene = load_scene("", sets);
     for (const auto& [t, format, range] :
          {std::tuple{Technique::standard, "unorm24", DepthRange::gl},

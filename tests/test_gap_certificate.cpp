@@ -9,7 +9,6 @@
 #include <string>
 #include <tuple>
 
-#include "host/model/profile.h"
 #include "mts_fixture.h"
 
 using namespace depthprec;
@@ -24,8 +23,7 @@ TEST_CASE("the gap certificate changes no probe result from just below the MTS u
   const bool llvmpipe = profile_name != "ideal", clip = profile_name == "llvmpipe";
   std::vector<std::string> sets = {"kernel=[64,64]", "viewport=[64,64]", "frames=16"};
   if (llvmpipe)
-    for (const std::string& s : profile("llvmpipe").sets)
-      sets.push_back(clip || s != "pipeline.clip=llvmpipe" ? s : "pipeline.clip=none");
+    for (const std::string& s : llvmpipe_sets(clip)) sets.push_back(s);
   const Scene scene = load_scene("", sets);
   for (const auto& [t, format, range] :
        {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
