@@ -234,27 +234,38 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
   __global const uint* SB = (__global const uint*)SA + E_BITS * NE_PAD;
   const float eps = 0x1.0p-24f;
   float margin = INFINITY;
+  /* Per segment its triangle's three edges (contiguous in the edge records) at both ends, in
+   * lanes 0-5 of a float8 (lanes 6, 7 repeat lanes 0, 1). The square-root term is monotone in r,
+   * so one square root of the smallest r serves every test. */
+  float8 q = (float8)INFINITY, r_min = (float8)INFINITY;
   for (int k = 0; k < n; ++k) {
     const int t = seg_t[k];
     if (t < 0) return 0.0f;
     __global const float* R = T + t * TRI_STRIDE;
     margin = fmin(margin, fmin(py - R[T_YMIN], R[T_YMAX] - py));
-    for (int e = 0; e < 3; ++e) {
-      const int j = 3 * t + e;
-      const float ax = SA[E_AX * NE_PAD + j], ay = SA[E_AY * NE_PAD + j];
-      const float dx = SA[E_DX * NE_PAD + j], dy = SA[E_DY * NE_PAD + j];
-      for (int end = 0; end < 2; ++end) {
-        const float px = ox + (float)(end ? seg_x[k + 1] - 1 : seg_x[k]) + 0.5f;
-        const float u = py - ay, v = px - ax;
-        float E = dx * u - dy * v;
-        if (SB[j] & 1u) E = -E;
-        const float r = E - 16.0f * eps * (fabs(dx * u) + fabs(dy * v));
-        if (!(r > 0.0f)) return 0.0f;
-        const float c = 1.01f * (fabs(dx) + fabs(dy) + 2.0f * fabs(u) + 2.0f * fabs(v));
-        margin = fmin(margin, fmin(r / (2.2f * c), 0.99f * sqrt(r / 8.4f)));
-      }
-    }
+    const float px0 = ox + (float)seg_x[k] + 0.5f, px1 = ox + (float)(seg_x[k + 1] - 1) + 0.5f;
+#define EDGES8(F, FIELD)                                        \
+  ({                                                            \
+    const F##3 v3_ = vload3(0, (FIELD) + 3 * t);                \
+    (F##8)(v3_, v3_, v3_.s01);                                  \
+  })
+    const float8 ax = EDGES8(float, SA + E_AX * NE_PAD), ay = EDGES8(float, SA + E_AY * NE_PAD);
+    const float8 dx = EDGES8(float, SA + E_DX * NE_PAD), dy = EDGES8(float, SA + E_DY * NE_PAD);
+    const uint8 bits = EDGES8(uint, SB);
+#undef EDGES8
+    const float8 px = (float8)(px0, px0, px0, px1, px1, px1, px0, px0);
+    const float8 u = py - ay, v = px - ax;
+    float8 E = dx * u - dy * v;
+    E = (bits & 1u) != 0u ? -E : E;
+    const float8 r = E - 16.0f * eps * (fabs(dx * u) + fabs(dy * v));
+    if (any(!(r > 0.0f))) return 0.0f;
+    const float8 c = 1.01f * (fabs(dx) + fabs(dy) + 2.0f * fabs(u) + 2.0f * fabs(v));
+    q = fmin(q, r / (2.2f * c));
+    r_min = fmin(r_min, r);
   }
+  const float4 q4 = fmin(q.lo, q.hi), r4 = fmin(r_min.lo, r_min.hi);
+  const float2 q2 = fmin(q4.lo, q4.hi), r2 = fmin(r4.lo, r4.hi);
+  margin = fmin(margin, fmin(fmin(q2.x, q2.y), 0.99f * sqrt(fmin(r2.x, r2.y) / 8.4f)));
   return 0.99f * margin;
 }
 
