@@ -238,6 +238,7 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
    * lanes 0-5 of a float8 (lanes 6, 7 repeat lanes 0, 1). The square-root term is monotone in r,
    * so one square root of the smallest r serves every test. */
   float8 q = (float8)INFINITY, r_min = (float8)INFINITY;
+  int8 at_bound = (int8)0; /* tests at their rounding bound: checked once, after the loop */
   for (int k = 0; k < n; ++k) {
     const int t = seg_t[k];
     if (t < 0) return 0.0f;
@@ -258,11 +259,12 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
     float8 E = dx * u - dy * v;
     E = (bits & 1u) != 0u ? -E : E;
     const float8 r = E - 16.0f * eps * (fabs(dx * u) + fabs(dy * v));
-    if (any(!(r > 0.0f))) return 0.0f;
+    at_bound |= !(r > 0.0f);
     const float8 c = 1.01f * (fabs(dx) + fabs(dy) + 2.0f * fabs(u) + 2.0f * fabs(v));
     q = fmin(q, r / (2.2f * c));
     r_min = fmin(r_min, r);
   }
+  if (any(at_bound)) return 0.0f;
   const float4 q4 = fmin(q.lo, q.hi), r4 = fmin(r_min.lo, r_min.hi);
   const float2 q2 = fmin(q4.lo, q4.hi), r2 = fmin(r4.lo, r4.hi);
   margin = fmin(margin, fmin(fmin(q2.x, q2.y), 0.99f * sqrt(fmin(r2.x, r2.y) / 8.4f)));
