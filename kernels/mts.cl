@@ -15,7 +15,10 @@
 //   CONTRACT           1: the compiler may fuse a*b+c; 0: every operation rounds on its own
 //   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
 //   PLANE_FORM         0: planes anchored at a vertex (below); 1: llvmpipe's, referred to the
-//                      framebuffer origin and evaluated with fma (host/model/scene.h PlaneForm)
+//                      framebuffer origin and evaluated with fma; 2: softpipe's, referred to
+//                      the origin and evaluated per 2x2 quad by increments, which is not
+//                      monotone along a row, so the shortcuts that assume it are off
+//                      (host/model/scene.h PlaneForm)
 //   VIEWPORT_FMA       1: window coordinates as fma(ndc, scale, translate)
 //   VERTEX_FMA         1: matrix rows fused as llvmpipe's shader fuses them (common.cl mat_vec)
 //   LLVMPIPE_LOG       1: the shaders' log is llvmpipe's (kernels/llvmpipe_log.h); 0: OpenCL's

@@ -102,6 +102,29 @@ TEST_CASE("with snapped vertices the kernel follows the reference", "[mts][refer
   }
 }
 
+// softpipe's plane (pipeline.plane = origin_quads), stepped across 2x2 quads: the kernel follows
+// the reference, codes and probe outcomes, with the kernel at an odd offset in the viewport (so
+// its first column and row are the odd ones of their quads) and with the clip stage's fans.
+TEST_CASE("with quad-stepped planes the kernel follows the reference", "[mts][reference][quads]") {
+  for (const auto& [viewport, clip] :
+       {std::pair{"[51,43]", "none"}, std::pair{"[48,40]", "llvmpipe"}}) {
+    const Scene scene =
+        load_scene("", {"kernel=[48,40]", std::string("viewport=") + viewport, "frames=12",
+                        "pipeline.plane=origin_quads", std::string("pipeline.clip=") + clip});
+    for (const auto& [t, format, range] :
+         {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+          std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+          std::tuple{Technique::linear, "float32", DepthRange::gl}}) {
+      const EvalPair pair{t, format, range};
+      INFO(pair.label() << " viewport " << viewport << " clip " << clip);
+      CHECK(check_codes(
+                scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
+                [](size_t k) { return static_cast<int>(3 * k); }, false) > 0);
+      check_outcomes(scene, pair, {1.005, 7.0, 3000.0}, {1e-7, 1e-5, 1e-3, 0.1});
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("snapping moves window coordinates to the 2^-n pixel grid, half to even", "[snap]") {

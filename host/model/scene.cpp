@@ -253,8 +253,10 @@ Divide parse_divide(const std::string& s) {
                               {{"reciprocal", Divide::reciprocal}, {"exact", Divide::exact}});
 }
 PlaneForm parse_plane_form(const std::string& s) {
-  return named_choice<PlaneForm>(
-      "plane", s, {{"vertex", PlaneForm::vertex}, {"origin_fma", PlaneForm::origin_fma}});
+  return named_choice<PlaneForm>("plane", s,
+                                 {{"vertex", PlaneForm::vertex},
+                                  {"origin_fma", PlaneForm::origin_fma},
+                                  {"origin_quads", PlaneForm::origin_quads}});
 }
 ViewportForm parse_viewport_form(const std::string& s) {
   return named_choice<ViewportForm>(

@@ -25,8 +25,11 @@ enum class Divide { reciprocal, exact };
 // pixel (c0 + dzdx (px - x0)) + dzdy (py - y0); origin_fma: as Mesa's llvmpipe does (22.3,
 // lp_state_setup.c): gradients as differences times 1/area, the value a0 referred to the
 // framebuffer origin, each pixel fma(dzdy, y, fma(dzdx, x, a0)) at integer pixel coordinates,
-// the vertices reordered (v1, v0, v2) when the triangle's area is negative.
-enum class PlaneForm { vertex, origin_fma };
+// the vertices reordered (v1, v0, v2) when the triangle's area is negative; origin_quads: as
+// Mesa's softpipe does (sp_setup.c, sp_quad_depth_test.c): anchored at the vertex of least y,
+// gradients times 1/area, a0 at the origin, evaluated per 2x2 quad of pixels from its even
+// corner by increments, z0 = (a0 + dzdx qx) + dzdy qy, z0 + dzdx, z0 + dzdy, (z0 + dzdx) + dzdy.
+enum class PlaneForm { vertex, origin_fma, origin_quads };
 // The viewport transform: separate multiply and add, or fused (fma(ndc, scale, translate), as
 // llvmpipe's generated vertex code does on an FMA CPU).
 enum class ViewportForm { separate, fma };

@@ -207,6 +207,42 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       tri.y0 = 0.5f;
       plane(u0.d, u1.d, u2.d, tri.d0, tri.dzdx, tri.dzdy);
       plane(u0.q, u1.q, u2.q, tri.q0, tri.dqdx, tri.dqdy);
+    } else if (s.pipeline.plane == PlaneForm::origin_quads) {
+      // softpipe's set-up: sorted by y as setup_sort_vertices does, ebot = vmid - vmin, emaj =
+      // vmax - vmin, gradients times 1/area, the value at the origin from vmin (x0 = y0 = 0.5).
+      const float y0 = v0.y, y1 = v1.y, y2 = v2.y;
+      const Vertex* lo = &v0;
+      const Vertex* mid = &v1;
+      const Vertex* hi = &v2;
+      if (y0 <= y1) {
+        if (y1 <= y2) {
+        } else if (y2 <= y0) {
+          lo = &v2, mid = &v0, hi = &v1;
+        } else {
+          mid = &v2, hi = &v1;
+        }
+      } else if (y0 <= y2) {
+        lo = &v1, mid = &v0;
+      } else if (y2 <= y1) {
+        lo = &v2, hi = &v0;
+      } else {
+        lo = &v1, mid = &v2, hi = &v0;
+      }
+      const float bot_dx = mid->x - lo->x, bot_dy = mid->y - lo->y;
+      const float maj_dx = hi->x - lo->x, maj_dy = hi->y - lo->y;
+      const float ooa = 1.0f / (maj_dx * bot_dy - bot_dx * maj_dy);
+      const float xc = lo->x - 0.5f, yc = lo->y - 0.5f;
+      const auto plane = [&](float lov, float midv, float hiv, float& a0, float& dadx,
+                             float& dady) {
+        const float bot = midv - lov, maj = hiv - lov;
+        dadx = (bot_dy * maj - bot * maj_dy) * ooa;
+        dady = (maj_dx * bot - maj * bot_dx) * ooa;
+        a0 = lov - (dadx * xc + dady * yc);
+      };
+      tri.x0 = 0.5f;
+      tri.y0 = 0.5f;
+      plane(lo->d, mid->d, hi->d, tri.d0, tri.dzdx, tri.dzdy);
+      plane(lo->q, mid->q, hi->q, tri.q0, tri.dqdx, tri.dqdy);
     } else {
       const float e1d = v1.d - v0.d, e2d = v2.d - v0.d, e1q = v1.q - v0.q, e2q = v2.q - v0.q;
       tri.x0 = v0.x;
@@ -293,8 +329,20 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
   const float tx = px - t.x0, ty = py - t.y0;
   // The plane at the pixel, in the set-up's form (docs/spec.md 2.4).
   const auto at = [&](float c0, float dx, float dy) {
-    return s.pipeline.plane == PlaneForm::origin_fma ? std::fma(dy, ty, std::fma(dx, tx, c0))
-                                                     : (c0 + dx * tx) + dy * ty;
+    switch (s.pipeline.plane) {
+      case PlaneForm::origin_fma:
+        return std::fma(dy, ty, std::fma(dx, tx, c0));
+      case PlaneForm::origin_quads: {  // from the 2x2 quad's even corner, then increments
+        const bool odd_x = static_cast<int>(tx) & 1, odd_y = static_cast<int>(ty) & 1;
+        const float z0 =
+            (c0 + dx * (tx - (odd_x ? 1.0f : 0.0f))) + dy * (ty - (odd_y ? 1.0f : 0.0f));
+        const float z1 = odd_x ? z0 + dx : z0;
+        return odd_y ? z1 + dy : z1;
+      }
+      case PlaneForm::vertex:
+        break;
+    }
+    return (c0 + dx * tx) + dy * ty;
   };
   float d;
   if (ti.from == DepthFrom::fragment) {

@@ -86,7 +86,7 @@ const std::vector<DriverSetting>& driver_settings() {
        differs<&Pipeline::denormals>, nullptr},
       {"contraction=true", "the driver's shader compiler decides contraction into FMA",
        differs<&Pipeline::contraction>, nullptr},
-      {"plane=origin_fma", "the driver sets up and interpolates its own depth planes",
+      {"plane", "the driver sets up and interpolates its own depth planes",
        differs<&Pipeline::plane>, to_default<&Pipeline::plane>},
       {"viewport=fma", "the driver does the viewport transform itself",
        differs<&Pipeline::viewport>, to_default<&Pipeline::viewport>},

@@ -33,7 +33,7 @@ namespace depthprec {
 // (rendered_counterpart). The others (divide, rounding, denormals, contraction) are refused there
 // too: an emulation that sets them has no rendered counterpart.
 struct DriverSetting {
-  const char* setting;  // as named in the refusal, e.g. "plane=origin_fma"
+  const char* setting;  // as named in the refusal, e.g. "viewport=fma"
   const char* why;
   bool (*changed)(const Pipeline&);
   void (*reset)(Pipeline&);  // nullptr: not an implementation form

@@ -38,13 +38,15 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
       frag, pair.depth_range == DepthRange::gl ? 1 : 0, ti.greater ? 1 : 0,
       p.divide == Divide::exact ? 1 : 0, p.compose == Compose::premultiplied ? 1 : 0,
       p.contraction ? 1 : 0, log_slack, v.cache_a_codes ? 1 : 0,
-      p.plane == PlaneForm::origin_fma ? 1 : 0, p.viewport == ViewportForm::fma ? 1 : 0,
-      p.vertex == VertexForm::fma ? 1 : 0, p.log == LogForm::llvmpipe ? 1 : 0, p.clip_slots(),
-      p.snap_bits, f.defines());
+      p.plane == PlaneForm::origin_fma     ? 1
+      : p.plane == PlaneForm::origin_quads ? 2
+                                           : 0,
+      p.viewport == ViewportForm::fma ? 1 : 0, p.vertex == VertexForm::fma ? 1 : 0,
+      p.log == LogForm::llvmpipe ? 1 : 0, p.clip_slots(), p.snap_bits, f.defines());
   v.label = fmt::format("{}{}{}/{}/{}/{}{}{}", to_string(ti.from), frag ? ":" : "",
                         to_string(ti.fragment), ti.greater ? "GEQUAL" : "LEQUAL",
                         to_string(pair.depth_range), f.name(),
-                        p.plane == PlaneForm::origin_fma || p.viewport == ViewportForm::fma ||
+                        p.plane != PlaneForm::vertex || p.viewport == ViewportForm::fma ||
                                 p.vertex == VertexForm::fma || p.log == LogForm::llvmpipe ||
                                 p.clip == ClipForm::llvmpipe
                             ? "/llvmpipe-forms"

@@ -23,7 +23,8 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
   code_bounds_t b;
   b.lo = 0xffffffffUL;
   b.hi = 0UL;
-  b.bad = 0;
+  b.bad = !PLANE_MONOTONE; /* extremes need not lie at the corners: no bounds */
+  if (b.bad) return b;
   float c0[16], sl[16], x0[16], rt[16], dy[16], y[16], px[16];
   int n = 0;
   for (int t = 0; t <= NT; ++t) {
@@ -113,7 +114,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 #elif DF_KIND == 1 && DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH
 #define GAP_STEP 0.0
 #endif
-#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER)
+#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER) && PLANE_MONOTONE
 #define GAP_CERT 1
 #else
 #define GAP_CERT 0

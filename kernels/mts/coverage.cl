@@ -245,10 +245,10 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
     __global const float* R = T + t * TRI_STRIDE;
     margin = fmin(margin, fmin(py - R[T_YMIN], R[T_YMAX] - py));
     const float px0 = ox + (float)seg_x[k] + 0.5f, px1 = ox + (float)(seg_x[k + 1] - 1) + 0.5f;
-#define EDGES8(F, FIELD)                                        \
-  ({                                                            \
-    const F##3 v3_ = vload3(0, (FIELD) + 3 * t);                \
-    (F##8)(v3_, v3_, v3_.s01);                                  \
+#define EDGES8(F, FIELD)                         \
+  ({                                             \
+    const F##3 v3_ = vload3(0, (FIELD) + 3 * t); \
+    (F##8)(v3_, v3_, v3_.s01);                   \
   })
     const float8 ax = EDGES8(float, SA + E_AX * NE_PAD), ay = EDGES8(float, SA + E_AY * NE_PAD);
     const float8 dx = EDGES8(float, SA + E_DX * NE_PAD), dy = EDGES8(float, SA + E_DY * NE_PAD);

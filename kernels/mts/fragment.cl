@@ -3,7 +3,9 @@
 // A triangle's interpolation set up for one row. PLANE_FORM 0: depth (or 1/w) = (c0 + slope *
 // (px - x0)) + row_term, row_term = dzdy * (py - y0). PLANE_FORM 1 (llvmpipe): fma(dy, y,
 // fma(slope, px - x0, c0)), y = py - y0: x0 = y0 = 0.5 make px - x0 and y the integer pixel
-// coordinates.
+// coordinates. PLANE_FORM 2 (softpipe): per 2x2 quad from its even corner (qx, qy), z0 = (c0 +
+// slope qx) + row_term, row_term = dy qy, then + slope on odd columns and + dy on odd rows, in
+// that order; y is the pixel's integer row, whose parity says which.
 typedef struct {
   float c0, slope, x0, row_term, dy, y;
 } row_plane_t;
@@ -22,9 +24,18 @@ static inline row_plane_t row_plane(__global const float* T, int t, float py) {
   rp.slope = R[T_DZDX];
   rp.dy = R[T_DZDY];
 #endif
+#if PLANE_FORM == 2
+  rp.row_term = rp.dy * (rp.y - (float)((int)rp.y & 1)); /* the quad's even row */
+#else
   rp.row_term = rp.dy * rp.y;
+#endif
   return rp;
 }
+
+// Whether each plane's depth is monotone along a row, as every rounding step of a per-pixel form
+// is: the corner bounds, the gap certificate and the decisions from a piece's ends rest on it.
+// Quad increments (PLANE_FORM 2) are not: a pixel's value depends on its column's parity.
+#define PLANE_MONOTONE (PLANE_FORM != 2)
 
 // Row planes of 16 lanes: one triangle broadcast, or one triangle per lane (per piece).
 typedef struct {
@@ -46,6 +57,13 @@ static inline row_plane16_t broadcast16(row_plane_t rp) {
 static inline float16 plane_at16(row_plane16_t rp, float16 px) {
 #if PLANE_FORM == 1
   return fma(rp.dy, rp.y, fma(rp.slope, px - rp.x0, rp.c0));
+#elif PLANE_FORM == 2
+  const float16 x = px - rp.x0;
+  const int16 odd_x = (convert_int16(x) & 1) != 0, odd_y = (convert_int16(rp.y) & 1) != 0;
+  const float16 z0 =
+      (rp.c0 + rp.slope * (x - select((float16)0.0f, (float16)1.0f, odd_x))) + rp.row_term;
+  const float16 z1 = select(z0, z0 + rp.slope, odd_x);
+  return select(z1, z1 + rp.dy, odd_y);
 #else
   return (rp.c0 + rp.slope * (px - rp.x0)) + rp.row_term;
 #endif

@@ -210,7 +210,9 @@ __kernel void mts_raster(
       const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
       const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
       const ulong16 slack = (ulong16)LOG_SLACK_OR_0;
-#if COMPARE_GREATER
+#if !PLANE_MONOTONE
+      const int16 excluded = (int16)0;
+#elif COMPARE_GREATER
       const int16 excluded = convert_int16(convert_ulong16(max(b0.code, b1.code)) + slack <
                                            convert_ulong16(min(a0.code, a1.code)));
 #else
@@ -232,7 +234,7 @@ __kernel void mts_raster(
           v = 0u;
         }
         verdict[i] = v;
-        ends_ok[i] = !nfk[k] && !clk[k];
+        ends_ok[i] = PLANE_MONOTONE && !nfk[k] && !clk[k];
       }
     }
 

@@ -253,6 +253,48 @@ static inline void setup_triangle(__global float* T, int t, const int* id, const
     R[T_DQDX] = dqdx;
     R[T_DQDY] = dqdy;
   }
+#elif PLANE_FORM == 2
+  {
+    /* softpipe (sp_setup.c): vertices sorted by y as setup_sort_vertices does (ties keep its
+     * order), ebot = vmid - vmin, emaj = vmax - vmin, gradients times 1/area, the value at the
+     * framebuffer origin from vmin (tri_linear_coeff). Evaluated per 2x2 quad (row_plane). */
+    int lo, mid, hi;
+    if (y[0] <= y[1]) {
+      if (y[1] <= y[2]) {
+        lo = 0, mid = 1, hi = 2;
+      } else if (y[2] <= y[0]) {
+        lo = 2, mid = 0, hi = 1;
+      } else {
+        lo = 0, mid = 2, hi = 1;
+      }
+    } else {
+      if (y[0] <= y[2]) {
+        lo = 1, mid = 0, hi = 2;
+      } else if (y[2] <= y[1]) {
+        lo = 2, mid = 1, hi = 0;
+      } else {
+        lo = 1, mid = 2, hi = 0;
+      }
+    }
+    const float bot_dx = x[mid] - x[lo], bot_dy = y[mid] - y[lo];
+    const float maj_dx = x[hi] - x[lo], maj_dy = y[hi] - y[lo];
+    const float ooa = 1.0f / (maj_dx * bot_dy - bot_dx * maj_dy);
+    const float xc = x[lo] - 0.5f, yc = y[lo] - 0.5f;
+    const float botdz = d[mid] - d[lo], majdz = d[hi] - d[lo];
+    const float dzdx = (bot_dy * majdz - botdz * maj_dy) * ooa;
+    const float dzdy = (maj_dx * botdz - majdz * bot_dx) * ooa;
+    const float botdq = q[mid] - q[lo], majdq = q[hi] - q[lo];
+    const float dqdx = (bot_dy * majdq - botdq * maj_dy) * ooa;
+    const float dqdy = (maj_dx * botdq - majdq * bot_dx) * ooa;
+    R[T_X0] = 0.5f;
+    R[T_Y0] = 0.5f;
+    R[T_D0] = d[lo] - (dzdx * xc + dzdy * yc);
+    R[T_DZDX] = dzdx;
+    R[T_DZDY] = dzdy;
+    R[T_Q0] = q[lo] - (dqdx * xc + dqdy * yc);
+    R[T_DQDX] = dqdx;
+    R[T_DQDY] = dqdy;
+  }
 #else
   const float e1d = d[1] - d[0], e2d = d[2] - d[0];
   const float e1q = q[1] - q[0], e2q = q[2] - q[0];
