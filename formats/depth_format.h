@@ -32,6 +32,12 @@
  * Only those three widths have an llvmpipe form. */
 #define DF_CONVERT_EXACT 0u
 #define DF_CONVERT_LLVMPIPE 1u
+/* Or as Mesa's softpipe does (sp_quad_depth_test.c, convert_quad_depth): the product truncated,
+ *   unorm16  (unsigned)fl32(d * 65535)
+ *   unorm24  (unsigned)fl32(d * 16777215)
+ *   unorm32  (unsigned)fl64(d * 4294967295)
+ * again for those three widths only. */
+#define DF_CONVERT_SOFTPIPE 2u
 
 typedef struct df_format {
   df_u32 kind;     /* DF_KIND_UNORM or DF_KIND_FLOAT */
@@ -94,10 +100,13 @@ DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_styl
 DF_FN df_u32 df_order_exact_from(df_format f) {
   /* llvmpipe's unorm24, rint(fl32(d (2^24 - 1))): from 0.5 on, fl32(k - d) lies within a unit
    * of k and rounds to k - 1 (0.5 itself stores 2^23, as 0.5 + 2^-24 does): the same T as
-   * round to nearest even. */
+   * round to nearest even. softpipe's, trunc(fl32(d (2^24 - 1))), stores k - 1 from 0.5 + 2^-24
+   * on but 2^23 - 1 at 0.5, as its predecessor does: truncation's T. */
   if (f.kind == DF_KIND_UNORM && f.bits == 24u)
-    return f.rounding == DF_ROUND_NEAREST_EVEN || f.convert == DF_CONVERT_LLVMPIPE ? 0x3f000002u
-                                                                                   : 0x3f000001u;
+    return f.convert == DF_CONVERT_LLVMPIPE ||
+                   (f.rounding == DF_ROUND_NEAREST_EVEN && f.convert == DF_CONVERT_EXACT)
+               ? 0x3f000002u
+               : 0x3f000001u;
   return 0xffffffffu;
 }
 
@@ -172,6 +181,21 @@ DF_FN df_u32 df_encode_unorm_llvmpipe(float d, df_format f) {
   return (t << 1) - (t >> 31);
 }
 
+/* softpipe's unorm conversion (DF_CONVERT_SOFTPIPE) of 0 < d < 1. unorm32's binary64 product in
+ * integers: d = m 2^-s exactly, m (2^32 - 1) has at most 56 bits, rounded to 53 (half to even)
+ * as the binary64 product is, then truncated by the shift. */
+DF_FN df_u32 df_encode_unorm_softpipe(float d, df_format f) {
+  if (f.bits == 16u) return (df_u32)(d * 65535.0f);
+  if (f.bits == 24u) return (df_u32)(d * 16777215.0f);
+  const df_u32 u = df_float_bits(d), ex = u >> 23;
+  const df_u64 m = ex ? ((u & 0x7fffffu) | 0x800000u) : (u & 0x7fffffu);
+  const df_u32 s = 150u - (ex ? ex : 1u);
+  df_u64 p = m * (df_u64)0xffffffffu;
+  const df_u32 extra = (p >> 55) ? 3u : (p >> 54) ? 2u : (p >> 53) ? 1u : 0u;
+  if (extra) p = df_shift_round(p, extra, DF_ROUND_NEAREST_EVEN) << extra;
+  return s > 56u ? 0u : (df_u32)(p >> s);
+}
+
 /* Storage code of a binary32 window depth. */
 DF_FN df_u32 df_encode(float d, df_format f) {
   df_u32 u = df_float_bits(d);
@@ -180,6 +204,8 @@ DF_FN df_u32 df_encode(float d, df_format f) {
   if (u == 0x7f800000u) return f.max_code;
   if (f.kind == DF_KIND_UNORM && f.convert == DF_CONVERT_LLVMPIPE)
     return u == 0u ? 0u : (u >= 0x3f800000u ? f.max_code : df_encode_unorm_llvmpipe(d, f));
+  if (f.kind == DF_KIND_UNORM && f.convert == DF_CONVERT_SOFTPIPE)
+    return u == 0u ? 0u : (u >= 0x3f800000u ? f.max_code : df_encode_unorm_softpipe(d, f));
   return f.kind == DF_KIND_UNORM ? df_encode_unorm(u, f) : df_encode_float(u, f);
 }
 
@@ -255,12 +281,30 @@ DF_FN uint16 df_encode_unorm_llvmpipe16_unit(float16 d, df_format f) {
   return convert_uint16(r);
 }
 
+/* softpipe's conversion (df_encode_unorm_softpipe) of 16 depths in [-0, 1]: convert_uint16
+ * truncates as the C cast does; unorm32 lane by lane. */
+DF_FN uint16 df_encode_unorm_softpipe16_unit(float16 d, df_format f) {
+  if (f.bits == 16u) return convert_uint16(d * 65535.0f);
+  if (f.bits == 24u) return convert_uint16(d * 16777215.0f);
+  float a[16];
+  uint c[16];
+  vstore16(d, 0, a);
+  for (int k = 0; k < 16; ++k) c[k] = a[k] > 0.0f ? df_encode_unorm_softpipe(a[k], f) : 0u;
+  return vload16(0, c);
+}
+
+/* The unorm conversion of 16 depths in [-0, 1] for a format with a driver's conversion. */
+DF_FN uint16 df_encode_unorm_driver16_unit(float16 d, df_format f) {
+  return f.convert == DF_CONVERT_SOFTPIPE ? df_encode_unorm_softpipe16_unit(d, f)
+                                          : df_encode_unorm_llvmpipe16_unit(d, f);
+}
+
 DF_FN uint16 df_encode16(float16 d, df_format f) {
   if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT) {
     const uint16 u = as_uint16(d);
     const int16 zero = (u >> 31) != (uint16)0 || (u & (uint16)0x7fffffffu) > (uint16)0x7f800000u;
     const int16 big = !zero && d >= 1.0f; /* and +inf */
-    const uint16 q = df_encode_unorm_llvmpipe16_unit((zero || big) ? (float16)0.0f : d, f);
+    const uint16 q = df_encode_unorm_driver16_unit((zero || big) ? (float16)0.0f : d, f);
     return big ? (uint16)f.max_code : (zero ? (uint16)0 : q);
   }
 #if defined(cl_khr_fp64)
@@ -287,7 +331,7 @@ DF_FN uint16 df_encode16(float16 d, df_format f) {
  * of the pixel loop. The exhaustive format proof compares it with df_encode on [0, 1] and -0. */
 DF_FN uint16 df_encode16_unit(float16 d, df_format f) {
   if (f.kind == DF_KIND_UNORM && f.convert != DF_CONVERT_EXACT)
-    return df_encode_unorm_llvmpipe16_unit(d, f);
+    return df_encode_unorm_driver16_unit(d, f);
 #if defined(cl_khr_fp64)
   if (f.kind == DF_KIND_UNORM && f.bits <= 29u) return df_encode_unorm_f64_16_unit(d, f);
 #endif

@@ -232,6 +232,11 @@ TEST_CASE("a profile sets its implementation forms as --sets do, and render refu
   const auto render = run_cli("render --profile llvmpipe" + small);
   CHECK(render.exit_code == 3);
   CHECK_THAT(render.output, Contains("pipeline.plane: the driver sets up"));
+  // softpipe's depth bias is no rule of --r-unorm: bias asks for one instead of guessing
+  const auto bias = run_cli("bias --profile softpipe" + small);
+  CHECK(bias.exit_code == 3);
+  CHECK_THAT(bias.output, Contains("choose one with --r-unorm"));
+  CHECK(run_cli("bias --profile softpipe --r-unorm step" + small).exit_code == 0);
 }
 
 TEST_CASE(

@@ -41,6 +41,28 @@ TEST_CASE("device and host encoders agree on sampled inputs", "[formats][device]
   }
 }
 
+TEST_CASE("device and host encoders agree under the drivers' unorm conversions",
+          "[formats][device]") {
+  // llvmpipe's and softpipe's binary32 (and, for softpipe's unorm32, binary64) conversions: the
+  // 16-lane encoder, the scalar one and the host's, over 2^16 consecutive inputs in each binade
+  // from 2^-8 to 1
+  for (const Conversion c : {Conversion::llvmpipe, Conversion::softpipe})
+    for (const char* name : {"unorm16", "unorm24", "unorm32"}) {
+      const auto f = StorageFormat::parse(name, Rounding::nearest_even, Denormals::keep, c);
+      for (uint32_t first = 0x3b800000u; first < 0x3f800000u; first += 0x00800000u) {
+        std::vector<uint32_t> dev;
+        REQUIRE(device_encode_range(runtime(), f, first, 1u << 16, dev) == 0);
+        for (uint32_t i = 0; i < dev.size(); ++i) {
+          float d;
+          const uint32_t bits = first + i;
+          std::memcpy(&d, &bits, sizeof d);
+          INFO(name << " " << to_string(c) << " bits " << bits);
+          REQUIRE(dev[i] == f.encode(d));
+        }
+      }
+    }
+}
+
 TEST_CASE("device encoder handles values outside 0..1 like the host", "[formats][device]") {
   const std::vector<float> specials = {-1.0f,    -0.0f,     0.0f, 1.0f,   1.5f,       3e38f,
                                        INFINITY, -INFINITY, NAN,  1e-45f, 0.99999994f};

@@ -201,6 +201,36 @@ TEST_CASE("binary64 encode: the binary32 codes for binary32 inputs, correctly ro
 }
 
 TEST_CASE(
+    "softpipe's unorm conversion is its C expression: a truncated binary32 or binary64 product",
+    "[formats]") {
+  // formats/depth_format.h computes unorm32's binary64 product in integers; here, as softpipe
+  // writes it (sp_quad_depth_test.c), for every 61st binary32 in (0, 1) and the last ones
+  const auto u16 = StorageFormat::parse("unorm16", Rounding::nearest_even, Denormals::keep,
+                                        Conversion::softpipe);
+  const auto u24 = StorageFormat::parse("unorm24", Rounding::nearest_even, Denormals::keep,
+                                        Conversion::softpipe);
+  const auto u32 = StorageFormat::parse("unorm32", Rounding::nearest_even, Denormals::keep,
+                                        Conversion::softpipe);
+  uint64_t bad = 0, checked = 0;
+  const auto check = [&](uint32_t u) {
+    const float d = from_bits(u);
+    bad += u16.encode(d) != static_cast<uint32_t>(d * 65535.0f);
+    bad += u24.encode(d) != static_cast<uint32_t>(d * 16777215.0f);
+    bad += u32.encode(d) != static_cast<uint32_t>(static_cast<double>(d) * 4294967295.0);
+    ++checked;
+  };
+  for (uint32_t u = 1; u < 0x3f800000u; u += 61) check(u);
+  for (uint32_t u = 0x3f800000u - 4096; u < 0x3f800000u; ++u) check(u);
+  INFO(checked << " depths");
+  CHECK(bad == 0);
+  // and it differs from the correctly rounded code where the product's fraction is a half or more
+  CHECK(u24.encode(0.5f) == 8388607u);
+  CHECK(StorageFormat::parse("unorm24").encode(0.5f) == 8388608u);
+  CHECK(u16.encode(0.5f) == 32767u);
+  CHECK(StorageFormat::parse("unorm16").encode(0.5f) == 32768u);
+}
+
+TEST_CASE(
     "from df_order_exact_from on, codes follow binary32 order: a depth test needs no encoding",
     "[formats]") {
   // Every binary32 from T's predecessor to 1: codes strictly increasing. With d >= T > d', that
@@ -208,13 +238,15 @@ TEST_CASE(
   // One step lower (T's predecessor itself as T) must fail: T is the least such pattern.
   int with_region = 0;
   for (const char* name : {"unorm16", "unorm24", "unorm32", "float32", "float16", "e4m12"}) {
-    for (const Rounding r : {Rounding::nearest_even, Rounding::truncate, Rounding(-1)}) {
-      // Rounding(-1): llvmpipe's conversion (nearest even) where the format has one
-      const bool llvmpipe = static_cast<int>(r) == -1;
-      if (llvmpipe && std::string(name).rfind("unorm", 0) != 0) continue;
-      const auto f = llvmpipe ? StorageFormat::parse(name, Rounding::nearest_even, Denormals::keep,
-                                                     Conversion::llvmpipe)
-                              : StorageFormat::parse(name, r);
+    for (const Rounding r :
+         {Rounding::nearest_even, Rounding::truncate, Rounding(-1), Rounding(-2)}) {
+      // Rounding(-1), (-2): llvmpipe's and softpipe's conversions where the format has them
+      const int driver = -static_cast<int>(r);
+      if (driver > 0 && std::string(name).rfind("unorm", 0) != 0) continue;
+      const auto f = driver > 0 ? StorageFormat::parse(
+                                      name, Rounding::nearest_even, Denormals::keep,
+                                      driver == 1 ? Conversion::llvmpipe : Conversion::softpipe)
+                                : StorageFormat::parse(name, r);
       const uint32_t from = df_order_exact_from(f.spec());
       INFO(name << (r == Rounding::truncate ? " truncate" : " nearest") << " from " << from);
       if (from > 0x3f800000u) continue;
@@ -226,5 +258,5 @@ TEST_CASE(
       CHECK(f.encode(from_bits(from - 1)) == f.encode(from_bits(from - 2)));
     }
   }
-  CHECK(with_region == 3);  // unorm24: both roundings, and llvmpipe's conversion
+  CHECK(with_region == 4);  // unorm24: both roundings, llvmpipe's and softpipe's conversions
 }

@@ -58,8 +58,15 @@ BiasOptions bias_options_of(const BiasCliOptions& o) {
   b.api = parse_bias_api(o.api);
   if (!o.r_unorm.empty())
     b.unorm_r = parse_unorm_r(o.r_unorm);
-  else if (!o.scene.profile.empty() && o.source == "emulated")  // the profile's choice of r
-    b.unorm_r = parse_unorm_r(profile(o.scene.profile).bias_unorm_r);
+  else if (!o.scene.profile.empty() && o.source == "emulated") {  // the profile's choice of r
+    const char* r = profile(o.scene.profile).bias_unorm_r;
+    if (!r)
+      throw InputError(fmt::format(
+          "--profile {}: its depth bias is not modelled (no rule of --r-unorm is the driver's); "
+          "choose one with --r-unorm",
+          o.scene.profile));
+    b.unorm_r = parse_unorm_r(r);
+  }
   b.representation = parse_vulkan_representation(o.representation);
   b.slope = parse_slope_form(o.slope);
   b.clamp = o.clamp;

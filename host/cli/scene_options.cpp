@@ -48,9 +48,10 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--denormals", denormals, "keep or flush");
   cmd.add_option("--log-k", log_k, "k of the log techniques");
   cmd.add_option("--profile", profile,
-                 "Implementation profile: ideal (docs/spec.md 2) or llvmpipe (Mesa's fused vertex "
+                 "Implementation profile: ideal (docs/spec.md 2), llvmpipe (Mesa's fused vertex "
                  "products, log, clip stage, depth-plane set-up, FMA viewport and unorm "
-                 "conversions); sets pipeline.vertex, pipeline.log, pipeline.clip, "
+                 "conversions) or softpipe (llvmpipe's vertex stage, its own quad-stepped planes "
+                 "and truncated unorm codes); sets pipeline.vertex, pipeline.log, pipeline.clip, "
                  "pipeline.plane, pipeline.viewport, pipeline.conversion and pipeline.snap");
 }
 

@@ -26,6 +26,18 @@ const std::vector<Profile>& profiles() {
         "pipeline.log=llvmpipe", "pipeline.clip=llvmpipe", "pipeline.conversion=llvmpipe",
         "pipeline.snap=none"},
        "double_step"},
+      // Mesa 22.3's softpipe (docs/validation.md, "softpipe"): llvmpipe's draw module (its vertex
+      // stage, viewport and clip stage), its own plane set-up stepped across 2x2 quads, truncated
+      // unorm codes. Not modelled: its float edge-walking coverage, its shaders' log (the log
+      // techniques differ), its depth bias (r = 1e-7 or 2e-5, no rule of --r-unorm).
+      {"softpipe",
+       "Mesa's softpipe (22.3): llvmpipe's vertex stage, viewport and clip stage, depth planes "
+       "from the lowest vertex stepped across 2x2 quads, truncated unorm conversions; not its "
+       "coverage, its shaders' log or its depth bias",
+       {"pipeline.plane=origin_quads", "pipeline.viewport=fma", "pipeline.vertex=fma",
+        "pipeline.log=llvmpipe", "pipeline.clip=llvmpipe", "pipeline.conversion=softpipe",
+        "pipeline.snap=none"},
+       nullptr},
   };
   return table;
 }

@@ -13,7 +13,7 @@ struct Profile {
   const char* name;
   const char* what;               // one line for --help and docs
   std::vector<std::string> sets;  // "pipeline.plane=origin_fma", ...
-  const char* bias_unorm_r;       // `bias`'s r for unorm buffers (--r-unorm) under it
+  const char* bias_unorm_r;       // `bias`'s r for unorm buffers (--r-unorm); null: not modelled
 };
 
 // A profile's setting "pipeline.plane=origin_fma" as ("plane", "origin_fma").
@@ -22,6 +22,6 @@ std::pair<std::string, std::string> pipeline_setting(const std::string& set);
 const std::vector<Profile>& profiles();
 // Throws InputError listing the profiles.
 const Profile& profile(const std::string& name);
-std::string profile_names();  // "ideal, llvmpipe"
+std::string profile_names();  // "ideal, llvmpipe, softpipe"
 
 }  // namespace depthprec

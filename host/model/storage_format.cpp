@@ -37,12 +37,14 @@ Denormals parse_denormals(const std::string& s) {
 }
 
 const char* to_string(Conversion c) {
-  return c == Conversion::exact ? "exact" : "llvmpipe";
+  return c == Conversion::exact ? "exact" : c == Conversion::llvmpipe ? "llvmpipe" : "softpipe";
 }
 
 Conversion parse_conversion(const std::string& s) {
-  return named_choice<Conversion>(
-      "conversion", s, {{"exact", Conversion::exact}, {"llvmpipe", Conversion::llvmpipe}});
+  return named_choice<Conversion>("conversion", s,
+                                  {{"exact", Conversion::exact},
+                                   {"llvmpipe", Conversion::llvmpipe},
+                                   {"softpipe", Conversion::softpipe}});
 }
 
 StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, Denormals denormals,
@@ -60,18 +62,20 @@ StorageFormat StorageFormat::parse(const std::string& name, Rounding rounding, D
       throw InputError(
           fmt::format("storage format '{}': unorm takes 1 to 32 bits, not {}", name, m[1].str()));
     f.spec_ = df_make_unorm(static_cast<df_u32>(b), r, fl);
-    if (conversion == Conversion::llvmpipe) {
+    if (conversion != Conversion::exact) {
+      const char* driver = to_string(conversion);
       if (b != 16 && b != 24 && b != 32)
         throw InputError(fmt::format(
-            "storage format '{}': pipeline.conversion llvmpipe exists for unorm16, unorm24 and "
-            "unorm32 only (the depth formats llvmpipe stores)",
-            name));
+            "storage format '{}': pipeline.conversion {} exists for unorm16, unorm24 and "
+            "unorm32 only (the depth formats {} stores)",
+            name, driver, driver));
       if (rounding != Rounding::nearest_even)
-        throw InputError(fmt::format(
-            "storage format '{}': pipeline.conversion llvmpipe rounds as llvmpipe does; "
-            "pipeline.rounding must stay nearest_even",
-            name));
-      f.spec_ = df_with_convert(f.spec_, DF_CONVERT_LLVMPIPE);
+        throw InputError(
+            fmt::format("storage format '{}': pipeline.conversion {} rounds as {} does; "
+                        "pipeline.rounding must stay nearest_even",
+                        name, driver, driver));
+      f.spec_ = df_with_convert(
+          f.spec_, conversion == Conversion::llvmpipe ? DF_CONVERT_LLVMPIPE : DF_CONVERT_SOFTPIPE);
     }
   } else if (name == "float32") {
     f.spec_ = df_make_float(8, 23, 1, r, fl);

@@ -12,7 +12,7 @@ namespace depthprec {
 enum class Rounding { nearest_even, truncate };
 enum class Denormals { keep, flush };
 // How the pipeline computes a unorm code (formats/depth_format.h DF_CONVERT_*).
-enum class Conversion { exact, llvmpipe };
+enum class Conversion { exact, llvmpipe, softpipe };
 
 const char* to_string(Rounding r);
 const char* to_string(Denormals d);

@@ -100,7 +100,10 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // are monotone too: unorm16 rint(fl(d (1 - 2^-16)) 2^16) within 1/2 + 2^16 u of d N, so w < 1 +
 // 2^-7; unorm24 rint(fl(d (2^24 - 1))) within 3/4 (the product rounds by at most 1/4 below 2^23,
 // where rint adds up to 1/2, and by 1/2 from 2^23 on, where it is an integer already), w = 3/2;
-// unorm32 2 trunc(d 2^31) - d N in (-2, 1], w = 3. Any positive amount for float32 (codes are the
+// unorm32 2 trunc(d 2^31) - d N in (-2, 1], w = 3; softpipe's (DF_CONVERT 2) truncate a product
+// that rounds by at most half its ulp, r, so code - d N lies in (-1 - r, r]: unorm16 r <= 2^-9,
+// w = 1 + 2^-8; unorm24 r <= 1/2, w = 2; unorm32 (binary64) r <= 2^-22, w < 1 + 2^-20. Any
+// positive amount for float32 (codes are the
 // bit patterns, monotone in d). GEQUAL mirrors it (hi_B below lo_A). Other formats, and
 // fragment-stage depth (not an interpolated plane), are not certified this way.
 //
@@ -108,8 +111,13 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // a reference plane R of q; d = h(q) is then a decreasing, convex function of q (frag_gap_clear),
 // and only LEQUAL set-ups use it.
 #if DF_KIND == 0
-#define GAP_CODE_WIDTH \
-  (DF_CONVERT == 0 ? 1.0 : DF_BITS == 16 ? 1.0078125 : DF_BITS == 24 ? 1.5 : 3.0)
+#if DF_CONVERT == 0
+#define GAP_CODE_WIDTH 1.0
+#elif DF_CONVERT == 1
+#define GAP_CODE_WIDTH (DF_BITS == 16 ? 1.0078125 : DF_BITS == 24 ? 1.5 : 3.0)
+#else
+#define GAP_CODE_WIDTH (DF_BITS == 16 ? 1.00390625 : DF_BITS == 24 ? 2.0 : 1.000001)
+#endif
 #define GAP_STEP (GAP_CODE_WIDTH / (double)DF_FORMAT_FROM_DEFINES().max_code)
 #elif DF_KIND == 1 && DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH
 #define GAP_STEP 0.0
