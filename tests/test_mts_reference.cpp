@@ -81,6 +81,22 @@ void check_outcomes(const Scene& scene, const EvalPair& pair, const std::vector<
   }
 }
 
+// Codes and probe outcomes of a projection pair (both depth ranges, unorm24 and float32) and a
+// fragment-depth one, at distances from the near plane to 2^20.
+void check_three_pairs(const Scene& scene) {
+  for (const auto& [t, format, range] :
+       {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+        std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+        std::tuple{Technique::linear, "float32", DepthRange::gl}}) {
+    const EvalPair pair{t, format, range};
+    INFO(pair.label());
+    CHECK(check_codes(
+              scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
+              [](size_t k) { return static_cast<int>(3 * k); }, false) > 0);
+    check_outcomes(scene, pair, {1.005, 7.0, 3000.0}, {1e-7, 1e-5, 1e-3, 0.1});
+  }
+}
+
 // Sub-pixel snapping (pipeline.snap): the kernel follows the reference, codes and probe outcomes,
 // with 8 bits on the grid's vertices, and with 4 on the new vertices of llvmpipe's clip stage too.
 TEST_CASE("with snapped vertices the kernel follows the reference", "[mts][reference][snap]") {
@@ -88,17 +104,8 @@ TEST_CASE("with snapped vertices the kernel follows the reference", "[mts][refer
     const Scene scene = load_scene(
         "", {"kernel=[48,40]", "viewport=[48,40]", "frames=12",
              std::string("pipeline.snap=") + bits, std::string("pipeline.clip=") + clip});
-    for (const auto& [t, format, range] :
-         {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
-          std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
-          std::tuple{Technique::linear, "float32", DepthRange::gl}}) {
-      const EvalPair pair{t, format, range};
-      INFO(pair.label() << " snap " << bits << " clip " << clip);
-      CHECK(check_codes(
-                scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
-                [](size_t k) { return static_cast<int>(3 * k); }, false) > 0);
-      check_outcomes(scene, pair, {1.005, 7.0, 3000.0}, {1e-7, 1e-5, 1e-3, 0.1});
-    }
+    INFO("snap " << bits << " clip " << clip);
+    check_three_pairs(scene);
   }
 }
 
@@ -111,17 +118,8 @@ TEST_CASE("with quad-stepped planes the kernel follows the reference", "[mts][re
     const Scene scene =
         load_scene("", {"kernel=[48,40]", std::string("viewport=") + viewport, "frames=12",
                         "pipeline.plane=origin_quads", std::string("pipeline.clip=") + clip});
-    for (const auto& [t, format, range] :
-         {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
-          std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
-          std::tuple{Technique::linear, "float32", DepthRange::gl}}) {
-      const EvalPair pair{t, format, range};
-      INFO(pair.label() << " viewport " << viewport << " clip " << clip);
-      CHECK(check_codes(
-                scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
-                [](size_t k) { return static_cast<int>(3 * k); }, false) > 0);
-      check_outcomes(scene, pair, {1.005, 7.0, 3000.0}, {1e-7, 1e-5, 1e-3, 0.1});
-    }
+    INFO("viewport " << viewport << " clip " << clip);
+    check_three_pairs(scene);
   }
 }
 

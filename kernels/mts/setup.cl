@@ -177,6 +177,23 @@ static inline void mark_sliver(const float* x, const float* y, float det, float 
   }
 }
 
+#if PLANE_FORM != 0
+// The depth and 1/w planes of a record referred to the framebuffer origin, as llvmpipe and softpipe
+// refer them: the anchor vertex's value minus the gradients times its offset (xc, yc) from the
+// origin pixel's centre; evaluated at integer pixel coordinates, so x0 = y0 = 1/2.
+static inline void store_origin_planes(__global float* R, float xc, float yc, float d0, float dzdx,
+                                       float dzdy, float q0, float dqdx, float dqdy) {
+  R[T_X0] = 0.5f;
+  R[T_Y0] = 0.5f;
+  R[T_D0] = d0 - (dzdx * xc + dzdy * yc);
+  R[T_DZDX] = dzdx;
+  R[T_DZDY] = dzdy;
+  R[T_Q0] = q0 - (dqdx * xc + dqdy * yc);
+  R[T_DQDX] = dqdx;
+  R[T_DQDY] = dqdy;
+}
+#endif
+
 // One triangle record (slot t of plane T) from its vertices: ids (an edge is evaluated from its
 // lower-id vertex, so two triangles sharing it compute the same value), window x, y, depth and
 // 1/w. Edges, orientation and ownership bits, the depth and 1/w planes in the set-up's form, the
@@ -244,14 +261,7 @@ static inline void setup_triangle(__global float* T, int t, const int* id, const
     const float dzdx = dz01 * dy20o - dz20 * dy01o, dzdy = dz20 * dx01o - dz01 * dx20o;
     const float dq01 = q[j0] - q[j1], dq20 = q[j2] - q[j0];
     const float dqdx = dq01 * dy20o - dq20 * dy01o, dqdy = dq20 * dx01o - dq01 * dx20o;
-    R[T_X0] = 0.5f;
-    R[T_Y0] = 0.5f;
-    R[T_D0] = d[j0] - (dzdx * x0c + dzdy * y0c);
-    R[T_DZDX] = dzdx;
-    R[T_DZDY] = dzdy;
-    R[T_Q0] = q[j0] - (dqdx * x0c + dqdy * y0c);
-    R[T_DQDX] = dqdx;
-    R[T_DQDY] = dqdy;
+    store_origin_planes(R, x0c, y0c, d[j0], dzdx, dzdy, q[j0], dqdx, dqdy);
   }
 #elif PLANE_FORM == 2
   {
@@ -286,14 +296,7 @@ static inline void setup_triangle(__global float* T, int t, const int* id, const
     const float botdq = q[mid] - q[lo], majdq = q[hi] - q[lo];
     const float dqdx = (bot_dy * majdq - botdq * maj_dy) * ooa;
     const float dqdy = (maj_dx * botdq - majdq * bot_dx) * ooa;
-    R[T_X0] = 0.5f;
-    R[T_Y0] = 0.5f;
-    R[T_D0] = d[lo] - (dzdx * xc + dzdy * yc);
-    R[T_DZDX] = dzdx;
-    R[T_DZDY] = dzdy;
-    R[T_Q0] = q[lo] - (dqdx * xc + dqdy * yc);
-    R[T_DQDX] = dqdx;
-    R[T_DQDY] = dqdy;
+    store_origin_planes(R, xc, yc, d[lo], dzdx, dzdy, q[lo], dqdx, dqdy);
   }
 #else
   const float e1d = d[1] - d[0], e2d = d[2] - d[0];
