@@ -18,12 +18,16 @@ TEST_CASE("the gap certificate changes no probe result from just below the MTS u
           "[mts][bounds]") {
   // and under llvmpipe's profile: its plane form and unorm conversions, without its clip stage and
   // with it (whose slivers withhold the coverage certificate from the bands near them: in this
-  // kernel of two bands, from many)
-  const std::string profile_name = GENERATE("ideal", "llvmpipe without clip", "llvmpipe");
-  const bool llvmpipe = profile_name != "ideal", clip = profile_name == "llvmpipe";
+  // kernel of two bands, from many); and softpipe's truncating unorm conversion, whose code width
+  // is 2 for unorm24 (its quad-stepped planes have no certificate at all)
+  const std::string profile_name =
+      GENERATE("ideal", "llvmpipe without clip", "llvmpipe", "softpipe conversion");
+  const bool llvmpipe = profile_name.rfind("llvmpipe", 0) == 0, clip = profile_name == "llvmpipe";
   std::vector<std::string> sets = {"kernel=[64,64]", "viewport=[64,64]", "frames=16"};
   if (llvmpipe)
     for (const std::string& s : llvmpipe_sets(clip)) sets.push_back(s);
+  const bool softpipe = profile_name == "softpipe conversion";
+  if (softpipe) sets.push_back("pipeline.conversion=softpipe");
   const Scene scene = load_scene("", sets);
   for (const auto& [t, format, range] :
        {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
@@ -58,7 +62,8 @@ TEST_CASE("the gap certificate changes no probe result from just below the MTS u
         const uint64_t pairs = with.fragment_pairs() - pairs_before;
         INFO(pair.label() << " " << profile_name << ": " << decided << " of " << pairs
                           << " pairs decided without rasterising above the MTS");
-        CHECK(decided > (clip ? pairs / 8 : pairs / 2));
+        // (a coarser code width leaves the certificate less room: softpipe's unorm24 48 %)
+        CHECK(decided > (clip ? pairs / 8 : softpipe ? pairs / 3 : pairs / 2));
       }
     }
   }

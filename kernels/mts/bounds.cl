@@ -103,9 +103,9 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // unorm32 2 trunc(d 2^31) - d N in (-2, 1], w = 3; softpipe's (DF_CONVERT 2) truncate a product
 // that rounds by at most half its ulp, r, so code - d N lies in (-1 - r, r]: unorm16 r <= 2^-9,
 // w = 1 + 2^-8; unorm24 r <= 1/2, w = 2; unorm32 (binary64) r <= 2^-22, w < 1 + 2^-20. Any
-// positive amount for float32 (codes are the
-// bit patterns, monotone in d). GEQUAL mirrors it (hi_B below lo_A). Other formats, and
-// fragment-stage depth (not an interpolated plane), are not certified this way.
+// positive amount for float32 (codes are the bit patterns, monotone in d). GEQUAL mirrors it (hi_B
+// below lo_A). Other formats, and fragment-stage depth (not an interpolated plane), are not
+// certified this way.
 //
 // Fragment-stage depth (DEPTH_FROM 2) interpolates q = 1/w the same way, so lo/hi bound q against
 // a reference plane R of q; d = h(q) is then a decreasing, convex function of q (frag_gap_clear),
