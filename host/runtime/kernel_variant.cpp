@@ -43,14 +43,17 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
                                            : 0,
       p.viewport == ViewportForm::fma ? 1 : 0, p.vertex == VertexForm::fma ? 1 : 0,
       p.log == LogForm::llvmpipe ? 1 : 0, p.clip_slots(), p.snap_bits, f.defines());
+  // A variant with a driver's forms names the profile they are (or "custom-forms").
+  const bool driver_forms = p.plane != PlaneForm::vertex || p.viewport == ViewportForm::fma ||
+                            p.vertex == VertexForm::fma || p.log == LogForm::llvmpipe ||
+                            p.clip == ClipForm::llvmpipe || p.conversion != Conversion::exact;
+  const std::string profile = scene.json.contains("pipeline")
+                                  ? scene.json["pipeline"].value("profile", "custom")
+                                  : "custom";
   v.label = fmt::format("{}{}{}/{}/{}/{}{}{}", to_string(ti.from), frag ? ":" : "",
                         to_string(ti.fragment), ti.greater ? "GEQUAL" : "LEQUAL",
                         to_string(pair.depth_range), f.name(),
-                        p.plane != PlaneForm::vertex || p.viewport == ViewportForm::fma ||
-                                p.vertex == VertexForm::fma || p.log == LogForm::llvmpipe ||
-                                p.clip == ClipForm::llvmpipe
-                            ? "/llvmpipe-forms"
-                            : "",
+                        driver_forms ? "/" + (profile == "custom" ? "custom-forms" : profile) : "",
                         p.snap_bits ? fmt::format("/snap{}", p.snap_bits) : "");
   return v;
 }
