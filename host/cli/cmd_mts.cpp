@@ -311,7 +311,10 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
       "Examples:\n"
       "  depthprec render -t standard -f unorm24 --distances 16,1024 --frames 20\n"
       "  depthprec render --format-out json -o rendered.json      (the default scene, minutes)\n"
-      "  LIBGL_ALWAYS_SOFTWARE=1 depthprec render ...             (llvmpipe on a GPU machine)");
+      "  LIBGL_ALWAYS_SOFTWARE=1 depthprec render ...             (llvmpipe on a GPU machine)\n"
+      "  GALLIUM_DRIVER=softpipe MESA_GL_VERSION_OVERRIDE=4.5 MESA_GLSL_VERSION_OVERRIDE=450\n"
+      "    depthprec compare --profile softpipe ...               (Mesa's softpipe, emulated\n"
+      "                                                            with its profile)");
   render->scene.add_to(*rcmd, true);
   render->out.add_to(*rcmd);
   render->batch.add_to(*rcmd, kMtsUnits);
