@@ -33,11 +33,9 @@ __kernel void mts_coverage_audit(
     differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
   /* as mts_frame_bounds finds them for the row's band */
   const uint r0 = row / band_rows * band_rows, r1 = min(kernel_h, r0 + band_rows);
-  int first, end;
-  records_meeting(TA, origin_y + (float)r0 + 0.5f, origin_y + (float)(r1 - 1) + 0.5f, &first, &end);
-  const int same =
-      b_coverage_is_a(b_moved_from_a(TA, TB, first, end), b_keeps_a_edges(TA, TB, first, end), TB,
-                      vflags[pf], (int)row, band_rows, rec);
+  float moved;
+  const uint oriented = band_b_against_a(TA, TB, origin_y, (int)r0, (int)r1, &moved);
+  const int same = b_coverage_is_a(moved, oriented, TB, vflags[pf], (int)row, band_rows, rec);
   out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
 }
 

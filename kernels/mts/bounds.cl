@@ -374,13 +374,8 @@ __kernel void mts_frame_bounds(
                                     origin_y, kernel_w, r0, r1, band);
   float moved = INFINITY;
   uint oriented = 0u;
-  if (verdict != D_CLEAN && !((a_vflags[ap] | vflags[pf]) & V_NONFINITE)) {
-    int first, end;
-    records_meeting(ref, origin_y + (float)r0 + 0.5f, origin_y + (float)(r1 - 1) + 0.5f, &first,
-                    &end);
-    oriented = b_keeps_a_edges(ref, TB, first, end) ? DV_ORIENTED : 0u;
-    moved = b_moved_from_a(ref, TB, first, end);
-  }
+  if (verdict != D_CLEAN && !((a_vflags[ap] | vflags[pf]) & V_NONFINITE))
+    oriented = band_b_against_a(ref, TB, origin_y, r0, r1, &moved);
   ((__global float*)out)[DW_MOVED] = moved;
   out[DW_VERDICT] = verdict | oriented;
 }

@@ -323,6 +323,17 @@ static inline int b_keeps_a_edges(__global const float* TA, __global const float
   return !any(differ != (uint16)0u);
 }
 
+// For the rows [r0, r1) of a band, over the records they can meet in plane A (records_meeting):
+// whether plane B's edges are A's (b_keeps_a_edges, returned as DV_ORIENTED or 0) and how far
+// they moved (b_moved_from_a, *moved), as b_coverage_is_a asks for every row of the band.
+static inline uint band_b_against_a(__global const float* TA, __global const float* TB,
+                                    float origin_y, int r0, int r1, float* moved) {
+  int first, end;
+  records_meeting(TA, origin_y + (float)r0 + 0.5f, origin_y + (float)(r1 - 1) + 0.5f, &first, &end);
+  *moved = b_moved_from_a(TA, TB, first, end);
+  return b_keeps_a_edges(TA, TB, first, end) ? DV_ORIENTED : 0u;
+}
+
 // Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
 // the row through exactly one triangle (row_covered; a frame with a vertex near a pixel centre
 // loses only that pixel's row), B within A's coverage margin (coverage_margin: moved is

@@ -122,6 +122,11 @@ static inline int strip_at_row(float dx, float dy, float l, float w, float ry, f
   return 1;
 }
 
+// Whether the span [x_lo, x_hi] of a row holds a kernel pixel centre (ox + i + 0.5, i < kw).
+static inline int holds_pixel_column(float x_lo, float x_hi, float ox, uint kw) {
+  return max((int)ceil(x_lo - ox - 0.5f), 0) <= min((int)floor(x_hi - ox - 0.5f), (int)kw - 1);
+}
+
 // Where covers_kernel's argument fails near a sliver (a triangle with an angle below ~6 degrees):
 // a pixel centre within the edge tests' rounding error (< 0.006 px) of both edges meeting at
 // vertex V at angle a, a thin rhombus about V along the angle's bisector, reaching 0.006 /
@@ -157,16 +162,9 @@ static inline void mark_sliver(const float* x, const float* y, float det, float 
       float lo = -rx, hi = rx;
       int hit = degenerate;
       if (!hit && strip_at_row(ax, ay, la, 0.0125f, dy, &lo, &hi) &&
-          strip_at_row(bx, by, lb, 0.0125f, dy, &lo, &hi)) {
-        const int i0 = max((int)ceil(x[v] + lo - ox - 0.5f), 0);
-        const int i1 = min((int)floor(x[v] + hi - ox - 0.5f), (int)kw - 1);
-        hit = i0 <= i1;
-      }
-      if (!hit && fabs(dy) < 0.125f) {
-        const int i0 = max((int)ceil(x[v] - 0.125f - ox - 0.5f), 0);
-        const int i1 = min((int)floor(x[v] + 0.125f - ox - 0.5f), (int)kw - 1);
-        hit = i0 <= i1;
-      }
+          strip_at_row(bx, by, lb, 0.0125f, dy, &lo, &hi))
+        hit = holds_pixel_column(x[v] + lo, x[v] + hi, ox, kw);
+      if (!hit && fabs(dy) < 0.125f) hit = holds_pixel_column(x[v] - 0.125f, x[v] + 0.125f, ox, kw);
       if (!hit) continue;
       if ((uint)j / band_rows >= V_MAX_BANDS) {
         *shapely = 0u;
