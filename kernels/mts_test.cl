@@ -7,7 +7,9 @@
 // Audit of the coverage shortcut, for the tests: per (probe, frame, row) of a launch laid out as
 // mts_raster's, bit 0: plane B's own coverage (row_segments) differs from plane A's cached one;
 // bit 1: b_coverage_is_a says they are the same; bit 2: both (the shortcut would be wrong);
-// bit 3: the row is cached.
+// bit 3: the row is cached; bit 4: plane A's own coverage differs from its cached record (wrong
+// whenever it happens); bit 5: the record's margin is not A's own coverage_margin (the row took
+// the reference's segments, mts_a_rows).
 __kernel void mts_coverage_audit(
     __global const float* restrict tris, __global const uint* restrict vflags,
     __global const float* restrict a_tris, __global const uint* restrict a_vflags,
@@ -25,9 +27,14 @@ __kernel void mts_coverage_audit(
   out[id] = 0u;
   const int n = (int)rec[RW_N];
   if (n == 0 || ((a_vflags[ap] | vflags[pf]) & V_NONFINITE)) return;
+  const float py = origin_y + (float)row + 0.5f;
   int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
-  const int nb =
-      row_segments(TB, origin_y + (float)row + 0.5f, origin_x, (int)kernel_w, seg_x, seg_t);
+  int a_differs = row_segments(TA, py, origin_x, (int)kernel_w, seg_x, seg_t) != n;
+  for (int k = 0; k < n && !a_differs; ++k)
+    a_differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
+  const int own_margin = !a_differs && coverage_margin(TA, py, origin_x, n, seg_x, seg_t) ==
+                                           ((__global const float*)rec)[RW_MARGIN];
+  const int nb = row_segments(TB, py, origin_x, (int)kernel_w, seg_x, seg_t);
   int differs = nb != n;
   for (int k = 0; k < n && !differs; ++k)
     differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
@@ -36,7 +43,8 @@ __kernel void mts_coverage_audit(
   float moved;
   const uint oriented = band_b_against_a(TA, TB, origin_y, (int)r0, (int)r1, &moved);
   const int same = b_coverage_is_a(moved, oriented, TB, vflags[pf], (int)row, band_rows, rec);
-  out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u);
+  out[id] = 8u | (differs ? 1u : 0u) | (same ? 2u : 0u) | (differs && same ? 4u : 0u) |
+            (a_differs ? 16u : 0u) | (own_margin ? 0u : 32u);
 }
 
 // Stored codes and fragment status of both planes at every kernel pixel of one (probe, frame),

@@ -201,6 +201,11 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     a_.codes =
         cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
                    sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
+    a_.ref_tris =
+        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * frames * plane_floats_);
+    a_.ref_rows =
+        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * frames * kh * row_words_);
+    a_.has_ref = false;
   }
   ++a_.clock;
   constexpr cl_uint kNotHeld = std::numeric_limits<cl_uint>::max();
@@ -247,10 +252,18 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     const auto first_plane = static_cast<cl_uint>(slot * frames);
     const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
     set_args(a_rows_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
-             origin_y(), a_.rows, a_.codes, static_cast<cl_uint>(frames * kh));
+             origin_y(), a_.rows, a_.codes, static_cast<cl_uint>(frames * kh), a_.ref_tris,
+             a_.ref_rows, static_cast<cl_uint>(a_.has_ref), kBandRows);
     cl::Event rows_done, bands_done;
     rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh),
                                      cl::NDRange(kLocal), nullptr, &rows_done);
+    if (!a_.has_ref) {  // this distance is the reference for the distances filled after it
+      const size_t tri_bytes = sizeof(float) * frames * plane_floats_;
+      const size_t row_bytes = sizeof(uint32_t) * frames * kh * row_words_;
+      rt_.queue().enqueueCopyBuffer(a_.tris, a_.ref_tris, tri_bytes * slot, 0, tri_bytes);
+      rt_.queue().enqueueCopyBuffer(a_.rows, a_.ref_rows, row_bytes * slot, 0, row_bytes);
+      a_.has_ref = true;
+    }
     set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
              origin_y(), bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
     rt_.queue().enqueueNDRangeKernel(a_bands_, cl::NullRange, padded(frames * bands()),
@@ -323,6 +336,8 @@ CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
     a.b_differs += w & 1;
     a.certified += (w >> 1) & 1;
     a.certified_but_differs += (w >> 2) & 1;
+    a.a_differs += (w >> 4) & 1;
+    a.from_reference += (w >> 5) & 1;
   }
   return a;
 }

@@ -42,6 +42,8 @@ struct CoverageAudit {
   uint64_t b_differs = 0;              // rows where plane B's own coverage differs from plane A's
   uint64_t certified = 0;              // rows the shortcut would take B's coverage from A's
   uint64_t certified_but_differs = 0;  // both: the shortcut would be wrong (must be 0)
+  uint64_t a_differs = 0;       // rows whose record is not plane A's own coverage (must be 0)
+  uint64_t from_reference = 0;  // rows that took the reference distance's segments
 };
 
 class MtsEvaluator : public ProbeEvaluator {
@@ -142,6 +144,10 @@ class MtsEvaluator : public ProbeEvaluator {
     std::vector<uint64_t> last_use;
     uint64_t clock = 0;
     cl::Buffer consts, tris, vflags, rows, bands, codes;
+    // The first distance filled, every frame: rows at later distances take its segments where
+    // they provably are theirs (kernels/mts/plane_a.cl, row_from_reference).
+    cl::Buffer ref_tris, ref_rows;
+    bool has_ref = false;
   } a_;
   bool shortcuts_ = true;
   // Frame order: a probe visits the frames cyclically from the one that decided the last fighting

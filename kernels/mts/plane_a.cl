@@ -1,11 +1,46 @@
 // The plane-A cache's row records.
 
-// Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane.
+// Plane A projects to the same window triangles at every distance in exact arithmetic (it is
+// scaled with its distance), so a row's coverage at one distance is, most of the time, its
+// coverage at the first distance the cache filled (the reference, ref_*: every frame of it). The
+// argument of coverage_margin shows when: plane A here keeps the reference's edges
+// (b_keeps_a_edges), lies less than the reference row's margin from it (b_moved_from_a over the
+// records the row meets) and owns each pixel of the row through one triangle (row_covered). The row
+// then takes the reference's segments, and its margin for plane B is what is left of the
+// reference's: a B within it of this plane lies within the reference's margin of the reference (the
+// movements add), so B's coverage is the reference's too. Else the row is computed as at the
+// reference.
+static inline int row_from_reference(__global const float* T, uint vf, __global const float* R,
+                                     __global const uint* ref_rec, int row, uint band_rows,
+                                     float py, int* seg_x, int* seg_t, float* margin) {
+  const int n = (int)ref_rec[RW_N];
+  if (n == 0 || !row_covered(T, vf, row, band_rows)) return 0;
+  int first, end;
+  records_meeting(R, py, py, &first, &end);
+  if (!b_keeps_a_edges(R, T, first, end)) return 0;
+  /* margin - moved, rounded down: the exact sum of this plane's movement and B's stays below the
+   * reference's margin */
+  const float left =
+      (((__global const float*)ref_rec)[RW_MARGIN] - b_moved_from_a(R, T, first, end)) *
+      (1.0f - 0x1.0p-20f);
+  if (!(left > 0.0f)) return 0;
+  for (int k = 0; k <= n; ++k) seg_x[k] = (int)ref_rec[RW_X + k];
+  for (int k = 0; k < n; ++k) seg_t[k] = (int)ref_rec[RW_T + k];
+  *margin = left;
+  return n;
+}
+
+// Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane; a
+// plane's frame is its index among the per_probe planes of its distance, and the reference's
+// planes and rows are indexed by frame (use_ref 0: this fill is the reference).
 __kernel void mts_a_rows(__global const float* restrict probes, __global const float* restrict tris,
                          __global const uint* restrict vflags, const uint first_plane,
                          const uint per_probe, const uint kernel_w, const uint kernel_h,
                          const float origin_x, const float origin_y, __global uint* restrict rows,
-                         __global uint* restrict codes, const uint items) {
+                         __global uint* restrict codes, const uint items,
+                         __global const float* restrict ref_tris,
+                         __global const uint* restrict ref_rows, const uint use_ref,
+                         const uint band_rows) {
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint plane = first_plane + id / kernel_h, row = id % kernel_h;
@@ -17,10 +52,21 @@ __kernel void mts_a_rows(__global const float* restrict probes, __global const f
   }
   const float py = origin_y + (float)row + 0.5f;
   int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
-  const int n = row_segments(T, py, origin_x, (int)kernel_w, seg_x, seg_t);
-  if (n > MAXC) {
-    out[RW_N] = 0u;
-    return;
+  float margin = 0.0f;
+  int n = 0;
+  if (use_ref) {
+    const uint frame = plane % per_probe;
+    n = row_from_reference(T, vflags[plane], ref_tris + (size_t)frame * PLANE_STRIDE,
+                           ref_rows + ((size_t)frame * kernel_h + row) * ROW_WORDS, (int)row,
+                           band_rows, py, seg_x, seg_t, &margin);
+  }
+  const int from_ref = n > 0;
+  if (!from_ref) {
+    n = row_segments(T, py, origin_x, (int)kernel_w, seg_x, seg_t);
+    if (n > MAXC) {
+      out[RW_N] = 0u;
+      return;
+    }
   }
 #if CACHE_A_CODES
   __global const float* P = probes + (plane / per_probe) * PROBE_STRIDE;
@@ -36,5 +82,6 @@ __kernel void mts_a_rows(__global const float* restrict probes, __global const f
   for (int k = 0; k <= n; ++k) out[RW_X + k] = (uint)seg_x[k];
   for (int k = 0; k < n; ++k) out[RW_T + k] = (uint)seg_t[k];
   /* A's own certification is not needed: only B's ownership enters the proof (coverage_margin) */
-  ((__global float*)out)[RW_MARGIN] = coverage_margin(T, py, origin_x, n, seg_x, seg_t);
+  ((__global float*)out)[RW_MARGIN] =
+      from_ref ? margin : coverage_margin(T, py, origin_x, n, seg_x, seg_t);
 }
