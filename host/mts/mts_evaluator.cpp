@@ -23,11 +23,12 @@ constexpr uint32_t kVertexNonFinite = V_NONFINITE;
 constexpr cl_uint kBandRows = 32;
 
 // The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
-// this (all frames of each) and at most kMaxSlots. The search keeps no more distances in flight
-// than that (distances_at_once), so none is evicted while it is still probed: memory stays
-// within the budget whatever the frames or distances, at the default table's speed (12.4 s with
-// 1 GiB, 11.9 s with 192 MiB; docs/performance.md).
-constexpr size_t kPlaneACacheBytes = size_t{192} << 20;
+// its share of this (all frames of each; the pairs a run evaluates side by side share it) and at
+// most kMaxSlots. The search keeps no more distances in flight than that (distances_at_once), so
+// none is evicted while it is still probed: memory stays within the budget whatever the frames
+// or distances. A small window costs no speed: the default table took 12.0 s with one job at 64
+// MiB and at 192 MiB, 11.1 s with two jobs at 64 MiB each (docs/performance.md).
+constexpr size_t kPlaneACacheBytes = size_t{128} << 20;
 constexpr size_t kMaxSlots = 64;
 
 constexpr size_t kLocal = kWorkGroup;  // host/runtime/opencl_runtime.h
@@ -127,8 +128,12 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   row_words_ = ROW_WORDS;
   band_words_ = BAND_WORDS;
   decided_words_ = DECIDED_WORDS;
-  max_slots_ =
-      std::clamp<size_t>(kPlaneACacheBytes / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
+  share_plane_a_budget(1);
+}
+
+void MtsEvaluator::share_plane_a_budget(int evaluators) {
+  const size_t share = kPlaneACacheBytes / static_cast<size_t>(std::max(1, evaluators));
+  max_slots_ = std::clamp<size_t>(share / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
 }
 
 const cl::Program& MtsEvaluator::test_program() const {

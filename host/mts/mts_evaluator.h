@@ -84,6 +84,9 @@ class MtsEvaluator : public ProbeEvaluator {
   uint64_t rows_with_coverage_of_a() const { return rows_reused_; }
   // Distances the plane-A cache may hold at once (cache_plane_a): its memory budget's share.
   size_t max_plane_a_slots() const { return max_slots_; }
+  // Shares the plane-A cache's budget with this many evaluators in all (pairs run side by side);
+  // before the first run.
+  void share_plane_a_budget(int evaluators);
 
  private:
   // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to

@@ -196,10 +196,16 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     if (control.on_row) control.on_row(r);
   };
 
+  // Pairs are taken in scene order, so a pair waits only for earlier ones, each finished or in
+  // progress on another job: no cycle. The calling thread is one of the jobs.
+  const int jobs =
+      control.attribute ? 1 : static_cast<int>(std::min<size_t>(std::max(1, control.jobs), np));
+
   // Search a pair's distances in one evaluator; rows go to on_row as they finish.
   const auto compute = [&](size_t p, const std::vector<double>& zs) {
     const EvalPair& pair = scene.evaluate[p];
     MtsEvaluator ev(rt, scene, pair);
+    ev.share_plane_a_budget(jobs);
     if (work[p].logs_variant)
       pair_log[p].push_back(fmt::format("kernel variant {}: {} {}", ev.variant().label,
                                         ev.variant().program, ev.variant().options));
@@ -292,10 +298,6 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
       pair_finished.notify_all();
     }
   };
-  // Pairs are taken in scene order, so a pair waits only for earlier ones, each finished or in
-  // progress on another job: no cycle. The calling thread is one of the jobs.
-  const int jobs =
-      control.attribute ? 1 : static_cast<int>(std::min<size_t>(std::max(1, control.jobs), np));
   std::vector<std::thread> helpers;
   for (int j = 1; j < jobs; ++j) helpers.emplace_back(job);
   job();

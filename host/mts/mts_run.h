@@ -26,10 +26,9 @@ struct RunControl {
   // Pairs evaluated side by side, each by its own host thread and queue: the device's cores stay
   // busy while one pair's launch drains or its host waits. Rows are the same for any number;
   // measured times then include the other pairs' share of the device. Attribution runs one.
-  // 1: since the kernels decide most probes from code bounds, PoCL keeps both cores busy from
-  // one queue -- the default table takes 12.1 s with 1 job and 12.1 s with 3, which double the
-  // memory (docs/performance.md).
-  int jobs = 1;
+  // The jobs share the plane-A cache's budget. 2: the default table takes 11.1 s and 300 MB with
+  // two jobs, 12.0 s and 215-350 MB with one (docs/performance.md).
+  int jobs = 2;
 };
 
 // The units of an MTS batch (mts, table, render, compare): a row key per (pair, distance), in
