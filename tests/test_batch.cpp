@@ -1,5 +1,7 @@
 // No lost results: a batch killed mid-way keeps its finished rows, --resume completes it to the
 // same bytes as an uninterrupted run, and shards merge to the same bytes too.
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -167,6 +169,37 @@ TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
   const auto merge = run_cli("merge /nonexistent/part.json");
   CHECK(merge.exit_code == 3);
   CHECK_THAT(merge.output, Contains("cannot read"));
+}
+
+// An output that is a device or a pipe (-o /dev/null, a FIFO) is written in place: replacing it
+// through a temporary file would, as root, leave a regular file where /dev/null was. Nor is a
+// journal made beside it. A FIFO stands for /dev/null here, so a regression breaks no device.
+TEST_CASE("an output that is a pipe is written into in place and gets no journal", "[batch]") {
+  const std::string fifo = "/tmp/depthprec_test_output.fifo";
+  std::remove(fifo.c_str());
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  // Open for reading first (without blocking), so the run's writer does not wait for a reader;
+  // one row of JSON fits in the pipe's buffer.
+  const int fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  REQUIRE(fd >= 0);
+  const auto r = run_cli(
+      "mts -t standard -f unorm24 --distances 64 --kernel 16x16 --frames 2 "
+      "--no-timing --format-out json -q -o " +
+      fifo);
+  std::string got;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) got.append(buf, static_cast<size_t>(n));
+  ::close(fd);
+  struct stat st {};
+  REQUIRE(::stat(fifo.c_str(), &st) == 0);
+  CHECK(S_ISFIFO(st.st_mode));
+  CHECK(r.exit_code == 0);
+  CHECK(nlohmann::json::parse(got, nullptr, false).value("kind", "") == "mts");
+  CHECK(::access((fifo + ".rows.jsonl").c_str(), F_OK) != 0);
+  const auto resume = run_cli("mts -t standard -f unorm24 --distances 64 --resume -o " + fifo);
+  CHECK(resume.exit_code == 2);
+  CHECK_THAT(resume.output, Contains("a regular file"));
+  std::remove(fifo.c_str());
 }
 
 // lj-table, tradeoff, cost, pipelines, advise, bias, render and compare are batches

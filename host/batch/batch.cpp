@@ -10,6 +10,7 @@
 #include "host/base/version.h"
 #include "host/output/json_header.h"
 #include "host/output/progress.h"
+#include "host/output/report.h"
 
 namespace depthprec {
 
@@ -46,10 +47,11 @@ std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,
 }
 
 RowJournal::RowJournal(const std::string& output, bool resume, const nlohmann::json& identity) {
-  if (output.empty()) {
+  if (output.empty() || is_stream_output(output)) {
     if (resume)
       throw Error(ExitCode::usage,
-                  "--resume needs --output FILE: the journal of finished rows lives beside it");
+                  "--resume needs --output FILE, a regular file: the journal of finished rows "
+                  "lives beside it");
     return;
   }
   path_ = output + ".rows.jsonl";

@@ -24,8 +24,9 @@ struct Shard {
 
 class RowJournal {
  public:
-  // output "": no journal (then resume is a usage error). Without resume, an existing journal
-  // is refused (it holds an interrupted run's rows); with it, its complete lines are read.
+  // output "" or a device or pipe (is_stream_output): no journal (then resume is a usage error).
+  // Without resume, an existing journal is refused (it holds an interrupted run's rows); with it,
+  // its complete lines are read.
   // identity: what makes this run's rows what they are (program version, command, scene,
   // options that change a row, shard). A new journal starts with it; a resumed one must start
   // with the same, else it is refused naming the first field that differs -- rows of another

@@ -1,12 +1,14 @@
 #include "host/output/report.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -303,8 +305,20 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   return md ? out : wrap_text(out);
 }
 
+bool is_stream_output(const std::string& path) {
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  return !ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) &&
+         !std::filesystem::is_directory(st);
+}
+
 void check_writable(const std::string& path) {
   if (path.empty()) return;
+  if (is_stream_output(path)) {  // opening a FIFO would wait for its reader
+    if (::access(path.c_str(), W_OK) != 0)
+      throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+    return;
+  }
   const std::string tmp = path + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f)
@@ -319,12 +333,13 @@ void write_output(const std::string& path, const std::string& text) {
     std::fflush(stdout);
     return;
   }
-  const std::string tmp = path + ".tmp";
+  const bool in_place = is_stream_output(path);
+  const std::string tmp = in_place ? path : path + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f)
     throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), path.c_str()) != 0)
+  if (std::fclose(f) != 0 || !ok || (!in_place && std::rename(tmp.c_str(), path.c_str()) != 0))
     throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
 }
 

@@ -58,8 +58,12 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
 std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
                          const std::string& format);
 
-// Writes text to path atomically (temporary file, then rename), or to stdout when path is "".
-// Throws OutputError naming the path.
+// Whether path is a device or a pipe (/dev/null, /dev/stdout, a FIFO): written in place, never
+// replaced through a temporary file (as root, a rename over /dev/null would put a regular file
+// there), and with no journal beside it.
+bool is_stream_output(const std::string& path);
+// Writes text to path atomically (temporary file, then rename), a stream output in place, or to
+// stdout when path is "". Throws OutputError naming the path.
 void write_output(const std::string& path, const std::string& text);
 // Fails early, before a long run, when path cannot be written.
 void check_writable(const std::string& path);
