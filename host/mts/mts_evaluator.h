@@ -64,8 +64,8 @@ class MtsEvaluator : public ProbeEvaluator {
   size_t distances_at_once() const override { return max_slots_; }
   FrameCodes codes(const Probe& probe, int frame);  // needs Kernels::with_tests
   // For the tests: checks the coverage shortcut of mts_raster against plane B's own coverage on
-  // every cached row of every frame of the probes (at most max_plane_a_slots() of them). Needs
-  // Kernels::with_tests.
+  // every cached row of every frame of the probes (their distances in groups of
+  // max_plane_a_slots()). Needs Kernels::with_tests.
   CoverageAudit audit_coverage(const std::vector<Probe>& probes);
 
   const KernelVariant& variant() const { return variant_; }
@@ -117,6 +117,8 @@ class MtsEvaluator : public ProbeEvaluator {
                  const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
                  std::vector<bool>& decided);
   size_t a_slot_bytes() const;
+  // audit_coverage for probes whose distances the plane-A cache holds at once.
+  CoverageAudit audit_cached(const std::vector<Probe>& probes);
   // Grows the plane-A cache (emptying it) to hold the probes' distances, within max_slots_;
   // returns how many distinct distances the probes have.
   size_t reserve_plane_a(const std::vector<Probe>& probes);
