@@ -171,6 +171,28 @@ TEST_CASE("batch option errors are usage errors", "[batch][errors]") {
   CHECK_THAT(merge.output, Contains("cannot read"));
 }
 
+// With fewer pairs than jobs a pair's distances are split between jobs, each part with its own
+// evaluator (and plane-A cache and reference distance): the rows stay the same, and -v still says
+// one line of the pair, with its parts' counts summed.
+TEST_CASE("a lone pair split between jobs gives the bytes of one job", "[batch]") {
+  const std::string args =
+      "mts -t standard -f unorm24 --distances 2,64,2048,65536,1048576 --kernel 40x40 --frames 10 "
+      "--no-timing --format-out json";
+  std::string first;
+  for (const int jobs : {1, 2, 3}) {
+    const std::string out = fresh("/tmp/depthprec_test_split" + std::to_string(jobs) + ".json");
+    const auto r = run_cli("-v " + args + " --jobs " + std::to_string(jobs) + " -o " + out);
+    REQUIRE(r.exit_code == 0);
+    INFO("--jobs " << jobs);
+    CHECK_THAT(r.output, Contains("standard/unorm24/gl: 5 distances, "));
+    CHECK(r.output.find("standard/unorm24/gl:") == r.output.rfind("standard/unorm24/gl:"));
+    if (jobs == 1)
+      first = slurp(out);
+    else
+      CHECK(slurp(out) == first);
+  }
+}
+
 // An output that is a device or a pipe (-o /dev/null, a FIFO) is written in place: replacing it
 // through a temporary file would, as root, leave a regular file where /dev/null was. Nor is a
 // journal made beside it. A FIFO stands for /dev/null here, so a regression breaks no device.

@@ -196,19 +196,50 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     if (control.on_row) control.on_row(r);
   };
 
-  // Pairs are taken in scene order, so a pair waits only for earlier ones, each finished or in
+  // With fewer pairs to compute than jobs (one pair, say) a pair's distances are split between
+  // jobs, every k-th to a part, so each part holds near and far distances alike; each part has
+  // an evaluator of its own. A row does not depend on which distances share its launches.
+  size_t computing = 0;
+  for (const PairWork& w : work) computing += w.fresh.empty() ? 0 : 1;
+  const size_t parts_per_pair = std::max<size_t>(
+      1, static_cast<size_t>(std::max(1, control.jobs)) / std::max<size_t>(1, computing));
+  struct Unit {
+    size_t pair;
+    std::vector<double> zs;
+  };
+  std::vector<Unit> units;
+  std::vector<size_t> parts_left(np, 0);
+  for (size_t p = 0; p < np; ++p) {
+    const size_t k =
+        control.attribute ? 1 : std::clamp<size_t>(work[p].fresh.size(), 1, parts_per_pair);
+    for (size_t i = 0; i < k; ++i) {
+      Unit u{p, {}};
+      for (size_t d = i; d < work[p].fresh.size(); d += k) u.zs.push_back(work[p].fresh[d]);
+      units.push_back(std::move(u));
+    }
+    parts_left[p] = k;
+  }
+  // Units are taken in scene order, so a pair waits only for earlier ones, each finished or in
   // progress on another job: no cycle. The calling thread is one of the jobs.
-  const int jobs =
-      control.attribute ? 1 : static_cast<int>(std::min<size_t>(std::max(1, control.jobs), np));
+  const int jobs = control.attribute
+                       ? 1
+                       : static_cast<int>(std::min<size_t>(
+                             static_cast<size_t>(std::max(1, control.jobs)), units.size()));
+  // What the -v line says of a pair: its parts' evaluators summed.
+  struct PairStats {
+    size_t distances = 0;
+    uint64_t pairs = 0, launches = 0, after_decision = 0, by_bounds = 0, rows_rasterised = 0,
+             rows_reused = 0;
+    std::array<uint64_t, 4> by_outcome{};
+    double wall = 0, kernel = 0;
+  };
+  std::vector<PairStats> stats(np);
 
-  // Search a pair's distances in one evaluator; rows go to on_row as they finish.
+  // Search some of a pair's distances in one evaluator; rows go to on_row as they finish.
   const auto compute = [&](size_t p, const std::vector<double>& zs) {
     const EvalPair& pair = scene.evaluate[p];
     MtsEvaluator ev(rt, scene, pair);
     ev.share_plane_a_budget(jobs);
-    if (work[p].logs_variant)
-      pair_log[p].push_back(fmt::format("kernel variant {}: {} {}", ev.variant().label,
-                                        ev.variant().program, ev.variant().options));
     auto rows =
         search_pair(ev, scene, pair, zs,
                     control.attribute ? std::function<void(const MtsRow&)>() : on_row, stop);
@@ -218,21 +249,18 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
       attribute_rows(rt, scene, pair, rows, arithmetic_cache, stop);
       for (const auto& r : rows) on_row(r);
     }
-    const auto& w = ev.pairs_by_outcome();
-    const double all = std::max<double>(1.0, static_cast<double>(ev.fragment_pairs()));
-    pair_log[p].push_back(fmt::format(
-        "{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
-        "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
-        "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without rasterising "
-        "{:.0f} %; "
-        "rasterised rows with plane B's coverage taken from A's {:.0f} %",
-        pair.label(), rows.size(), ev.fragment_pairs(), ev.launches(), ev.wall_seconds(),
-        ev.kernel_seconds(), 100 * w[0] / all, 100 * w[1] / all,
-        100 * ev.pairs_after_decision() / all, 100 * (w[2] + w[3]) / all,
-        100 * ev.pairs_decided_by_bounds() / all,
-        100.0 * static_cast<double>(ev.rows_with_coverage_of_a()) /
-            std::max<double>(1.0, static_cast<double>(ev.rows_rasterised()))));
     std::lock_guard<std::mutex> lock(m);
+    PairStats& st = stats[p];
+    st.distances += rows.size();
+    st.pairs += ev.fragment_pairs();
+    st.launches += ev.launches();
+    st.after_decision += ev.pairs_after_decision();
+    st.by_bounds += ev.pairs_decided_by_bounds();
+    st.rows_rasterised += ev.rows_rasterised();
+    st.rows_reused += ev.rows_with_coverage_of_a();
+    for (size_t i = 0; i < st.by_outcome.size(); ++i) st.by_outcome[i] += ev.pairs_by_outcome()[i];
+    st.wall += ev.wall_seconds();
+    st.kernel += ev.kernel_seconds();
     run.info.launches += ev.launches();
     run.info.evaluated_pairs += ev.fragment_pairs();
     run.info.kernel_seconds += ev.kernel_seconds();
@@ -241,13 +269,34 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     pair_rows[p].insert(pair_rows[p].end(), rows.begin(), rows.end());
   };
 
-  const auto evaluate_pair = [&](size_t p) {
+  // Once every part of pair p has run: its -v lines, then the rows an identical computation gives,
+  // taken over once their pairs are done, with no work of their own. The row is the
+  // computation's, work included, so it reads the same whichever pair (or shard) ran it; only its
+  // measured time is this run's: none.
+  const auto finish_pair = [&](size_t p) {
     const EvalPair& pair = scene.evaluate[p];
-    if (!work[p].fresh.empty()) compute(p, work[p].fresh);
+    if (!work[p].fresh.empty()) {
+      std::lock_guard<std::mutex> lock(m);
+      if (work[p].logs_variant) {
+        const KernelVariant v = mts_variant(scene, pair);
+        pair_log[p].push_back(
+            fmt::format("kernel variant {}: {} {}", v.label, v.program, v.options));
+      }
+      const PairStats& st = stats[p];
+      const auto& w = st.by_outcome;
+      const double all = std::max<double>(1.0, static_cast<double>(st.pairs));
+      pair_log[p].push_back(fmt::format(
+          "{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
+          "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
+          "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without "
+          "rasterising {:.0f} %; rasterised rows with plane B's coverage taken from A's {:.0f} %",
+          pair.label(), st.distances, st.pairs, st.launches, st.wall, st.kernel, 100 * w[0] / all,
+          100 * w[1] / all, 100 * st.after_decision / all, 100 * (w[2] + w[3]) / all,
+          100 * st.by_bounds / all,
+          100.0 * static_cast<double>(st.rows_reused) /
+              std::max<double>(1.0, static_cast<double>(st.rows_rasterised))));
+    }
     if (work[p].shared.empty()) return;
-    // Rows an identical computation gives: taken over once their pairs are done, with no work of
-    // their own. The row is the computation's, work included, so it reads the same whichever
-    // pair (or shard) ran it; only its measured time is this run's: none.
     std::vector<MtsRow> taken;
     {
       std::unique_lock<std::mutex> lock(m);
@@ -280,15 +329,28 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     for (const auto& r : taken) on_row(r);
   };
 
-  std::atomic<size_t> next_pair{0};
+  const auto fail = [&]() {
+    std::lock_guard<std::mutex> lock(m);
+    if (!failure) failure = std::current_exception();
+    failed = true;
+  };
+  std::atomic<size_t> next_unit{0};
   const auto job = [&]() {
-    for (size_t p = next_pair++; p < np; p = next_pair++) {
+    for (size_t u = next_unit++; u < units.size(); u = next_unit++) {
+      const size_t p = units[u].pair;
       try {
-        evaluate_pair(p);
+        if (!units[u].zs.empty()) compute(p, units[u].zs);
       } catch (...) {
+        fail();
+      }
+      {
         std::lock_guard<std::mutex> lock(m);
-        if (!failure) failure = std::current_exception();
-        failed = true;
+        if (--parts_left[p] > 0) continue;
+      }
+      try {
+        finish_pair(p);
+      } catch (...) {
+        fail();
       }
       std::lock_guard<std::mutex> lock(m);
       finished[p] = 1;
