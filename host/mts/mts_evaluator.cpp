@@ -315,29 +315,34 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes,
 
 CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
   reserve_plane_a(probes);
-  // In groups of probes whose distances fit in the cache at once, in order.
   CoverageAudit total;
-  std::vector<Probe> group;
-  std::vector<double> zs;
-  const auto audit_group = [&]() {
-    const CoverageAudit a = audit_cached(group);
-    total.rows += a.rows;
-    total.b_differs += a.b_differs;
-    total.certified += a.certified;
-    total.certified_but_differs += a.certified_but_differs;
-    total.a_differs += a.a_differs;
-    total.from_reference += a.from_reference;
-    group.clear();
-    zs.clear();
-  };
-  for (const Probe& p : probes) {
-    const bool known = std::find(zs.begin(), zs.end(), p.z) != zs.end();
-    if (!known && zs.size() == a_.capacity) audit_group();
-    if (!known) zs.push_back(p.z);
-    group.push_back(p);
+  for (const std::vector<size_t>& group : cache_groups(probes)) {
+    std::vector<Probe> held;
+    for (const size_t i : group) held.push_back(probes[i]);
+    total += audit_cached(held);
   }
-  if (!group.empty()) audit_group();
   return total;
+}
+
+std::vector<std::vector<size_t>> MtsEvaluator::cache_groups(
+    const std::vector<Probe>& probes) const {
+  std::vector<std::vector<size_t>> groups;
+  std::vector<double> zs;
+  std::vector<bool> pending(probes.size(), true);
+  for (size_t first = 0; first < probes.size(); ++first) {
+    if (!pending[first]) continue;
+    zs.clear();
+    std::vector<size_t>& group = groups.emplace_back();
+    for (size_t i = first; i < probes.size(); ++i) {
+      if (!pending[i]) continue;
+      const bool known = std::find(zs.begin(), zs.end(), probes[i].z) != zs.end();
+      if (!known && zs.size() == a_.capacity) continue;
+      if (!known) zs.push_back(probes[i].z);
+      group.push_back(i);
+      pending[i] = false;
+    }
+  }
+  return groups;
 }
 
 CoverageAudit MtsEvaluator::audit_cached(const std::vector<Probe>& probes) {
@@ -382,22 +387,8 @@ std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
     if (it != last_fight_frame_.end()) first_visited[i] = it->second;
   }
   // Probes whose distances fit in the plane-A cache at once go through the frames together.
-  std::vector<double> zs;
-  std::vector<bool> pending(probes.size(), true);
-  for (size_t first = 0; first < probes.size(); ++first) {
-    if (!pending[first]) continue;
-    zs.clear();
-    std::vector<size_t> group;
-    for (size_t i = first; i < probes.size(); ++i) {
-      if (!pending[i]) continue;
-      const bool known = std::find(zs.begin(), zs.end(), probes[i].z) != zs.end();
-      if (!known && zs.size() == a_.capacity) continue;
-      if (!known) zs.push_back(probes[i].z);
-      group.push_back(i);
-      pending[i] = false;
-    }
+  for (const std::vector<size_t>& group : cache_groups(probes))
     run_group(probes, group, first_visited, results, decided);
-  }
   finish_outcomes(results, decided);
   for (const auto& r : results) by_outcome_[static_cast<size_t>(r.outcome)] += r.fragment_pairs;
   return results;

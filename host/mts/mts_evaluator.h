@@ -44,6 +44,15 @@ struct CoverageAudit {
   uint64_t certified_but_differs = 0;  // both: the shortcut would be wrong (must be 0)
   uint64_t a_differs = 0;       // rows whose record is not plane A's own coverage (must be 0)
   uint64_t from_reference = 0;  // rows that took the reference distance's segments
+  CoverageAudit& operator+=(const CoverageAudit& o) {
+    rows += o.rows;
+    b_differs += o.b_differs;
+    certified += o.certified;
+    certified_but_differs += o.certified_but_differs;
+    a_differs += o.a_differs;
+    from_reference += o.from_reference;
+    return *this;
+  }
 };
 
 class MtsEvaluator : public ProbeEvaluator {
@@ -119,6 +128,9 @@ class MtsEvaluator : public ProbeEvaluator {
   size_t a_slot_bytes() const;
   // audit_coverage for probes whose distances the plane-A cache holds at once.
   CoverageAudit audit_cached(const std::vector<Probe>& probes);
+  // The probes (indices) in groups whose distances the plane-A cache holds at once, each group
+  // starting at the first probe not yet taken.
+  std::vector<std::vector<size_t>> cache_groups(const std::vector<Probe>& probes) const;
   // Grows the plane-A cache (emptying it) to hold the probes' distances, within max_slots_;
   // returns how many distinct distances the probes have.
   size_t reserve_plane_a(const std::vector<Probe>& probes);
