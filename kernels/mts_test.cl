@@ -10,6 +10,15 @@
 // bit 3: the row is cached; bit 4: plane A's own coverage differs from its cached record (wrong
 // whenever it happens); bit 5: the record's margin is not A's own coverage_margin (the row took
 // the reference's segments, mts_a_rows).
+// Whether n segments found for a row differ from a cached row record's.
+static inline int segments_differ(int n, const int* seg_x, const int* seg_t,
+                                  __global const uint* rec) {
+  int differs = n != (int)rec[RW_N];
+  for (int k = 0; k < n && !differs; ++k)
+    differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
+  return differs;
+}
+
 __kernel void mts_coverage_audit(
     __global const float* restrict tris, __global const uint* restrict vflags,
     __global const float* restrict a_tris, __global const uint* restrict a_vflags,
@@ -29,15 +38,12 @@ __kernel void mts_coverage_audit(
   if (n == 0 || ((a_vflags[ap] | vflags[pf]) & V_NONFINITE)) return;
   const float py = origin_y + (float)row + 0.5f;
   int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
-  int a_differs = row_segments(TA, py, origin_x, (int)kernel_w, seg_x, seg_t) != n;
-  for (int k = 0; k < n && !a_differs; ++k)
-    a_differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
+  const int a_differs = segments_differ(row_segments(TA, py, origin_x, (int)kernel_w, seg_x, seg_t),
+                                        seg_x, seg_t, rec);
   const int own_margin = !a_differs && coverage_margin(TA, py, origin_x, n, seg_x, seg_t) ==
                                            ((__global const float*)rec)[RW_MARGIN];
-  const int nb = row_segments(TB, py, origin_x, (int)kernel_w, seg_x, seg_t);
-  int differs = nb != n;
-  for (int k = 0; k < n && !differs; ++k)
-    differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
+  const int differs = segments_differ(row_segments(TB, py, origin_x, (int)kernel_w, seg_x, seg_t),
+                                      seg_x, seg_t, rec);
   /* as mts_frame_bounds finds them for the row's band */
   const uint r0 = row / band_rows * band_rows, r1 = min(kernel_h, r0 + band_rows);
   float moved;

@@ -211,6 +211,14 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   return ns;
 }
 
+// The segments of a cached row record (mts_a_rows) into seg_x, seg_t; returns their number.
+static inline int record_segments(__global const uint* rec, int* seg_x, int* seg_t) {
+  const int n = (int)rec[RW_N];
+  for (int k = 0; k <= n; ++k) seg_x[k] = (int)rec[RW_X + k];
+  for (int k = 0; k < n; ++k) seg_t[k] = (int)rec[RW_T + k];
+  return n;
+}
+
 // Plane B is plane A moved along the view direction and scaled with its distance, so both project
 // to the same window triangles in exact arithmetic; in binary32 B's vertices lie some delta
 // (~1e-4 px) from A's. Returns a margin: for any B whose edges join A's vertices and lie within

@@ -24,10 +24,8 @@ static inline int row_from_reference(__global const float* T, uint vf, __global 
       (((__global const float*)ref_rec)[RW_MARGIN] - b_moved_from_a(R, T, first, end)) *
       (1.0f - 0x1.0p-20f);
   if (!(left > 0.0f)) return 0;
-  for (int k = 0; k <= n; ++k) seg_x[k] = (int)ref_rec[RW_X + k];
-  for (int k = 0; k < n; ++k) seg_t[k] = (int)ref_rec[RW_T + k];
   *margin = left;
-  return n;
+  return record_segments(ref_rec, seg_x, seg_t);
 }
 
 // Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane; a

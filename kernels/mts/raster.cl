@@ -117,13 +117,8 @@ __kernel void mts_raster(
     }
   }
   int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
-  int na = (int)rec[RW_N];
-  if (cached) {
-    for (int k = 0; k <= na; ++k) seg_xa[k] = (int)rec[RW_X + k];
-    for (int k = 0; k < na; ++k) seg_ta[k] = (int)rec[RW_T + k];
-  } else {
-    na = row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
-  }
+  const int na = cached ? record_segments(rec, seg_xa, seg_ta)
+                        : row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
 
   /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
   int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
