@@ -231,6 +231,13 @@ DF_FN df_u32 df_encode(float d, df_format f) {
     return zero != (U)0 ? (U)0 : (big != (U)0 ? (U)f.max_code : q);                            \
   }
 
+/* Formats whose 16-lane encoders (OpenCL only, below) are df_encode lane by lane (the float formats
+ * other than binary32): for them a comparison of the lanes with df_encode compares a function with
+ * itself. */
+DF_FN int df_encode16_is_scalar(df_format f) {
+  return f.kind == DF_KIND_FLOAT && !df_is_binary32(f);
+}
+
 #if defined(DF_OPENCL)
 DF_DEFINE_ENCODE_UNORM_BF(df_encode_unorm_bf16, ulong16)
 
@@ -260,12 +267,6 @@ DF_FN uint16 df_encode_unorm_f64_16(float16 d, df_format f) {
   return big ? (uint16)f.max_code : (zero ? (uint16)0 : q);
 }
 #endif
-
-/* Formats whose 16-lane encoders below are df_encode lane by lane (the float formats other than
- * binary32): for them a comparison of the lanes with df_encode compares a function with itself. */
-DF_FN int df_encode16_is_scalar(df_format f) {
-  return f.kind == DF_KIND_FLOAT && !df_is_binary32(f);
-}
 
 /* 16 depths at once: branch-free for unorm, the identity for float32 (keeping denormals), lane by
  * lane through the scalar encoder for the other float formats (df_encode16_is_scalar). */

@@ -23,9 +23,14 @@ uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool
   if (f.unorm) {
     const uint64_t max = (uint64_t{1} << f.bits) - 1;
     const long double x = static_cast<long double>(d) * static_cast<long double>(max);
-    const long double r = truncate ? std::trunc(x) : std::rint(x);  // rint: ties to even
-    const auto c = static_cast<uint64_t>(r);
-    return static_cast<uint32_t>(c > max ? max : c);
+    // rint rounds ties to even in the FPU's current mode; truncation of x >= 0 is rint stepped
+    // back where it rounded up (std::trunc would switch the x87 control word twice per input).
+    long double r = std::rint(x);
+    if (truncate && r > x) r -= 1.0L;
+    if (r >= static_cast<long double>(max)) return static_cast<uint32_t>(max);
+    // r is an integer below 2^32, so binary64 holds it and the SSE conversion is exact (a cast
+    // from long double would switch the control word as well).
+    return static_cast<uint32_t>(static_cast<double>(r));
   }
   const uint64_t one = uint64_t{1} << f.M;
   const int top_field = f.ieee ? (1 << f.E) - 2 : (1 << f.E) - 1;
