@@ -2,13 +2,12 @@
 // in front, plane B behind), each a GRID x GRID grid of quads, rasterised at the pixel centres of
 // the measurement kernel only, depth stored in one storage format and tested.
 //
-// One program variant per (technique class, storage format, depth range, pipeline options),
-// chosen by -D defines (host/runtime/kernel_variant.cpp), so the per-pixel loop has no run-time
+// One program variant per (technique class, storage format, pipeline options), chosen by -D
+// defines (host/runtime/kernel_variant.cpp), so the per-pixel loop has no run-time
 // switch; every one of them must be given (a missing define is an #error, not a silent 0):
 //   GRID               quads per plane side (vertices (GRID+1)^2, triangles 2*GRID^2)
 //   DEPTH_FROM         0 projection, 1 vertex-stage log (Gilg eq. 5), 2 fragment-stage depth
 //   FRAG_DEPTH         with DEPTH_FROM 2: 1 linear, 2 w_buffer, 3 log
-//   RANGE_GL           1: d = 0.5 * z_ndc + 0.5 (clip z in [-w, w]); 0: d = z_ndc
 //   COMPARE_GREATER    1: GEQUAL (reversed mappings); 0: LEQUAL
 //   DIVIDE_EXACT       1: z_clip / w_clip correctly rounded; 0: z_clip * fl(1 / w_clip)
 //   COMPOSE_PREMULT    1: the host uploads P*MV, one product per vertex; 0: P * (MV * v)
@@ -26,6 +25,8 @@
 //                      clipped into fans as llvmpipe does (setup.cl clip_fan)
 //   SNAP_BITS          0: window x, y as computed; n: snapped to 2^-n pixel (kernels/snap.h)
 //   DF_*               the storage format (formats/depth_format.h)
+// The depth range is no define: only the vertex stage reads it, from the probe constants
+// (C_DEPTH_GL, kernels/mts_layout.h), so pairs that differ in it alone share one program.
 //
 // Arithmetic forms (the host reference, host/mts/reference_pipeline.cpp, uses the same ones):
 //   matrix * vector     r_i = ((m_i0 x + m_i1 y) + m_i2 z) + m_i3 w (VERTEX_FMA 0)
@@ -44,13 +45,13 @@
 // each needs the one before. The host-kernel binary layout is kernels/mts_layout.h; the kernels
 // only the tests use are in kernels/mts_test.cl, a program of its own.
 
-#if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(RANGE_GL) || \
-    !defined(COMPARE_GREATER) || !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) ||     \
-    !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||            \
-    !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) ||               \
-    !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(SNAP_BITS) || !defined(DF_KIND)
+#if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || \
+    !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) || !defined(CONTRACT) ||                   \
+    !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) || !defined(PLANE_FORM) ||                 \
+    !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) || !defined(LLVMPIPE_LOG) ||                    \
+    !defined(CLIP_SLOTS) || !defined(SNAP_BITS) || !defined(DF_KIND)
 #error \
-    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, RANGE_GL, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA, LLVMPIPE_LOG, CLIP_SLOTS, SNAP_BITS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
+    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA, LLVMPIPE_LOG, CLIP_SLOTS, SNAP_BITS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
 #if CONTRACT

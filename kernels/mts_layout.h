@@ -58,7 +58,7 @@
 #define T_BOX 28  /* int4: the kernel pixels the triangle may own (kernel_pixel_box) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
-#define PROBE_STRIDE 24
+#define PROBE_STRIDE 25
 #define C_NEAR 16
 #define C_FAR 17
 #define C_RANGE 18
@@ -69,6 +69,7 @@
 #define C_BIAS_UNITS 21
 #define C_BIAS_FACTOR 22
 #define C_BIAS_CLAMP 23
+#define C_DEPTH_GL 24 /* 1: OpenGL's depth range, d = z_ndc / 2 + 1/2; 0: d = z_ndc */
 #define MAT_STRIDE 16 /* a 4x4 matrix, row-major */
 
 /* A plane's flags (vflags): non-finite vertices; the coverage certificate (covers_kernel). */

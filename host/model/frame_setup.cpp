@@ -86,6 +86,7 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
   const T k = static_cast<T>(s.params.log_k);
   pc.log_k = static_cast<float>(k);
   pc.log_L = static_cast<float>(std::log(k * f + T(1)));
+  pc.depth_gl = pair.depth_range == DepthRange::gl;
   pc.layer_near = n64;
   pc.layer_far = f64;
   return pc;
@@ -101,6 +102,7 @@ std::array<float, PROBE_STRIDE> ProbeConstants::packed() const {
   out[C_RANGE] = range;
   out[C_LOGK] = log_k;
   out[C_LOGL] = log_L;
+  out[C_DEPTH_GL] = depth_gl ? 1.0f : 0.0f;
   return out;
 }
 

@@ -30,14 +30,14 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   v.program = "kernels/mts.cl";
   v.cache_a_codes = depth_from == 2 && !p.contraction;
   v.options = fmt::format(
-      "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DRANGE_GL={} -DCOMPARE_GREATER={} "
+      "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DCOMPARE_GREATER={} "
       "-DDIVIDE_EXACT={} -DCOMPOSE_PREMULT={} -DCONTRACT={} -DLOG_CODE_SLACK={}UL "
       "-DCACHE_A_CODES={} -DPLANE_FORM={} -DVIEWPORT_FMA={} -DVERTEX_FMA={} -DLLVMPIPE_LOG={} "
       "-DCLIP_SLOTS={} -DSNAP_BITS={} {}",
       base_build_options(p.denormals == Denormals::flush), scene.plane_subdivisions, depth_from,
-      frag, pair.depth_range == DepthRange::gl ? 1 : 0, ti.greater ? 1 : 0,
-      p.divide == Divide::exact ? 1 : 0, p.compose == Compose::premultiplied ? 1 : 0,
-      p.contraction ? 1 : 0, log_slack, v.cache_a_codes ? 1 : 0,
+      frag, ti.greater ? 1 : 0, p.divide == Divide::exact ? 1 : 0,
+      p.compose == Compose::premultiplied ? 1 : 0, p.contraction ? 1 : 0, log_slack,
+      v.cache_a_codes ? 1 : 0,
       p.plane == PlaneForm::origin_fma     ? 1
       : p.plane == PlaneForm::origin_quads ? 2
                                            : 0,

@@ -376,8 +376,8 @@ static inline float clip_dist(float4 c, int k) {
 // sets up its fan in records first, first + 1, ...; returns how many it filled.
 static inline int clip_fan(__global float* T, int t0, int first, const clip_vertex_t* tri,
                            uint mask, float half_w, float half_h, float origin_x, float origin_y,
-                           uint kernel_w, uint kernel_h, uint band_rows, uint* slivers,
-                           uint* shapely) {
+                           uint kernel_w, uint kernel_h, uint band_rows, int depth_gl,
+                           uint* slivers, uint* shapely) {
   clip_vertex_t a[9], b[9];
   clip_vertex_t* in = a;
   clip_vertex_t* out = b;
@@ -416,11 +416,7 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
         const float oow = 1.0f / nv.c.w;
         nv.x = snap_window(nv.c.x * oow * half_w + half_w);
         nv.y = snap_window(nv.c.y * oow * half_h + half_h);
-#if RANGE_GL
-        nv.d = nv.c.z * oow * 0.5f + 0.5f;
-#else
-        nv.d = nv.c.z * oow * 1.0f + 0.0f;
-#endif
+        nv.d = depth_gl ? nv.c.z * oow * 0.5f + 0.5f : nv.c.z * oow * 1.0f + 0.0f;
         nv.q = oow;
         nv.id = next_id++;
         out[m++] = nv;
@@ -453,6 +449,10 @@ static inline void setup_plane(__global const float* P, __global const float* M,
                                uint kernel_h, uint band_rows, __global float* T,
                                __global uint* vflag, int flip) {
   float xw[NV], yw[NV], dw[NV], qw[NV];
+  /* OpenGL's depth range (d = z_ndc / 2 + 1/2) or D3D's and Vulkan's (d = z_ndc): a probe
+   * constant rather than a define, since only this stage reads it and both ranges then share one
+   * program */
+  const int depth_gl = P[C_DEPTH_GL] != 0.0f;
 #if CLIP_SLOTS > 1
   float4 cv[NV]; /* clip coordinates, for the clip stage */
 #endif
@@ -470,11 +470,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #if DEPTH_FROM == 1
       {
         const float t = shader_log(P[C_LOGK] * clip.w + 1.0f);
-#if RANGE_GL
-        clip.z = ((2.0f * t) / P[C_LOGL] - 1.0f) * clip.w;
-#else
-        clip.z = (t / P[C_LOGL]) * clip.w;
-#endif
+        clip.z = depth_gl ? ((2.0f * t) / P[C_LOGL] - 1.0f) * clip.w : (t / P[C_LOGL]) * clip.w;
       }
 #endif
       const float inv_w = 1.0f / clip.w;
@@ -486,19 +482,11 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #if VIEWPORT_FMA
       xw[v] = fma(ndc.x, half_w, half_w);
       yw[v] = fma(ndc.y, half_h, half_h);
-#if RANGE_GL
-      dw[v] = fma(ndc.z, 0.5f, 0.5f);
-#else
-      dw[v] = ndc.z;
-#endif
+      dw[v] = depth_gl ? fma(ndc.z, 0.5f, 0.5f) : ndc.z;
 #else
       xw[v] = ndc.x * half_w + half_w;
       yw[v] = ndc.y * half_h + half_h;
-#if RANGE_GL
-      dw[v] = ndc.z * 0.5f + 0.5f;
-#else
-      dw[v] = ndc.z;
-#endif
+      dw[v] = depth_gl ? ndc.z * 0.5f + 0.5f : ndc.z;
 #endif
       xw[v] = snap_window(xw[v]);
       yw[v] = snap_window(yw[v]);
@@ -538,7 +526,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
         poly[k] = (clip_vertex_t){cv[v], xw[v], yw[v], dw[v], qw[v], v};
       }
       next += clip_fan(T, t0, next, poly, m0 | m1 | m2, half_w, half_h, origin_x, origin_y,
-                       kernel_w, kernel_h, band_rows, &slivers, &shapely);
+                       kernel_w, kernel_h, band_rows, depth_gl, &slivers, &shapely);
     }
 #endif
     if (t0 % (2 * GRID) == 2 * GRID - 1) {
