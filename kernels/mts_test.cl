@@ -1,7 +1,9 @@
-// The MTS program with the kernels only the tests use: stored codes per pixel (mts_codes, compared
-// with the host reference) and the audit of the coverage shortcut (mts_coverage_audit). Built
-// only when a test asks for them (MtsEvaluator::codes, audit_coverage), so production variants
-// carry none of it.
+// The kernels only the tests use: stored codes per pixel (mts_codes, compared with the host
+// reference) and the audit of the coverage shortcut (mts_coverage_audit). A program of its own,
+// built with a variant's defines only when a test asks for them (MtsEvaluator::codes,
+// audit_coverage), so production variants carry none of it; they read the buffers the production
+// program's kernels wrote. PoCL compiles a kernel at its first launch, so the production kernels
+// this program also holds cost it nothing but parsing.
 #include "kernels/mts.cl"
 
 // Audit of the coverage shortcut, for the tests: per (probe, frame, row) of a launch laid out as

@@ -115,8 +115,11 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
       pair_(pair),
       variant_(mts_variant(scene, pair)),
       shortcuts_(shortcuts) {
-  with_tests_ = kernels == Kernels::with_tests;
-  program_ = rt_.program(with_tests_ ? "kernels/mts_test.cl" : variant_.program, variant_.options);
+  program_ = rt_.program(variant_.program, variant_.options);
+  // The test kernels come from a program of their own; every other kernel from the production one,
+  // so a test shares the kernels PoCL compiled for a run of the same variant, and the reverse.
+  if (kernels == Kernels::with_tests)
+    test_program_ = rt_.program("kernels/mts_test.cl", variant_.options);
   setup_ = cl::Kernel(program_, "mts_setup");
   a_rows_ = cl::Kernel(program_, "mts_a_rows");
   a_bands_ = cl::Kernel(program_, "mts_a_bands");
@@ -137,10 +140,10 @@ void MtsEvaluator::share_plane_a_budget(int evaluators) {
 }
 
 const cl::Program& MtsEvaluator::test_program() const {
-  if (!with_tests_)
+  if (!test_program_())
     throw Error(ExitCode::internal,
                 "the test kernels need an MtsEvaluator built with Kernels::with_tests");
-  return program_;
+  return test_program_;
 }
 
 size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {

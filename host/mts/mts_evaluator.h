@@ -62,9 +62,9 @@ class MtsEvaluator : public ProbeEvaluator {
   // B's coverage of a row taken from plane A's within A's coverage margin (b_coverage_is_a); off
   // only to check that they never change a result.
   //
-  // kernels: production programs hold only what a run needs (kernels/mts.cl); with_tests builds
-  // kernels/mts_test.cl instead, the same kernels plus mts_codes and mts_coverage_audit, which
-  // codes() and audit_coverage() need.
+  // kernels: production programs hold only what a run needs (kernels/mts.cl); with_tests also
+  // builds kernels/mts_test.cl with the same defines for mts_codes and mts_coverage_audit, which
+  // codes() and audit_coverage() need. Everything else runs from the production program.
   enum class Kernels { production, with_tests };
   MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true,
                Kernels kernels = Kernels::production);
@@ -145,11 +145,10 @@ class MtsEvaluator : public ProbeEvaluator {
   float origin_x() const { return static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2); }
   float origin_y() const { return static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2); }
 
-  cl::Program program_;
-  bool with_tests_ = false;
+  cl::Program program_, test_program_;  // test_program_: with Kernels::with_tests only
   cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_;
   const cl::Program& test_program()
-      const;                  // program_, or an internal error without the test kernels
+      const;                  // test_program_, or an internal error without the test kernels
   size_t plane_floats_ = 0;   // floats per plane record (kernels/mts_layout.h MTS_PLANE_STRIDE)
   size_t row_words_ = 0;      // words per cached row of plane A (ROW_WORDS)
   size_t band_words_ = 0;     // words per band of plane A (BAND_WORDS)
