@@ -31,12 +31,18 @@ struct Tally {
 void check_span(const std::vector<uint32_t>& codes, uint32_t first, uint32_t begin, uint32_t end,
                 const StorageFormat& f, const test::ReferenceFormat& rf, bool truncate, Tally& t) {
   uint64_t bad_ref = 0, bad_host = 0;
-  for (uint32_t i = begin; i < end; ++i) {
-    const uint32_t bits = first + i;
+  const auto as_float = [](uint32_t bits) {
     float d;
     std::memcpy(&d, &bits, sizeof d);
+    return d;
+  };
+  test::ReferenceWalk reference(rf, truncate, f.denormals() == Denormals::flush,
+                                as_float(first + begin));
+  for (uint32_t i = begin; i < end; ++i) {
+    const uint32_t bits = first + i;
+    const float d = as_float(bits);
     const uint32_t dev = codes[i];
-    const uint32_t ref = test::reference_encode(d, rf, truncate, f.denormals() == Denormals::flush);
+    const uint32_t ref = reference.next(d);
     if (dev != ref) {
       if (++bad_ref <= 3)
         fmt::print(stderr, "  mismatch: d = {:a} ({:#010x}): device {} reference {}\n", d, bits,

@@ -59,4 +59,40 @@ uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool
   return static_cast<uint32_t>(code);
 }
 
+ReferenceWalk::ReferenceWalk(const ReferenceFormat& f, bool truncate, bool flush, float first)
+    : f_(f), truncate_(truncate), flush_(flush) {
+  if (f.unorm) return;  // next() rounds each input directly
+  const int top_field = f.ieee ? (1 << f.E) - 2 : (1 << f.E) - 1;
+  max_code_ = (static_cast<uint64_t>(top_field) << f.M) + ((uint64_t{1} << f.M) - 1);
+  code_ = reference_encode(first, f, truncate, false);
+  lo_ = value(code_);
+  hi_ = code_ < max_code_ ? value(code_ + 1) : INFINITY;
+}
+
+double ReferenceWalk::value(uint64_t code) const {
+  const uint64_t field = code >> f_.M, mant = code & ((uint64_t{1} << f_.M) - 1);
+  if (field == 0) return std::ldexp(static_cast<double>(mant), 1 - f_.bias - f_.M);
+  return std::ldexp(static_cast<double>(mant + (uint64_t{1} << f_.M)),
+                    static_cast<int>(field) - f_.bias - f_.M);
+}
+
+bool ReferenceWalk::beyond(float d) const {
+  if (code_ >= max_code_) return false;
+  const bool next_even = ((code_ + 1) & 1) == 0;
+  const double v = static_cast<double>(d);
+  if (truncate_) return v >= hi_;
+  const double mid = lo_ + (hi_ - lo_) / 2;  // exact: one bit below the finer spacing
+  return v > mid || (v == mid && next_even);
+}
+
+uint32_t ReferenceWalk::next(float d) {
+  if (f_.unorm) return reference_encode(d, f_, truncate_, flush_);
+  while (beyond(d)) {
+    ++code_;
+    lo_ = hi_;
+    hi_ = code_ < max_code_ ? value(code_ + 1) : INFINITY;
+  }
+  return static_cast<uint32_t>(flush_ && code_ < (uint64_t{1} << f_.M) ? 0 : code_);
+}
+
 }  // namespace depthprec::test

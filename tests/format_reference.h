@@ -23,4 +23,26 @@ ReferenceFormat reference_format(const std::string& name);
 
 uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool flush);
 
+// reference_encode's codes for ascending inputs. Float formats by the definition of rounding
+// instead of by scaling: the code whose value is nearest d (ties to the even code) or, truncating,
+// the largest whose value is at most d. The walk keeps the current code and steps to the next
+// while d lies beyond their midpoint (or the next code's value), each code's value exact in
+// binary64 (ldexp): a comparison per input where reference_encode takes frexp, ldexp and a
+// rounding. The first code is reference_encode's. unorm inputs go to reference_encode, whose
+// one product and rounding is already cheap.
+class ReferenceWalk {
+ public:
+  ReferenceWalk(const ReferenceFormat& f, bool truncate, bool flush, float first);
+  // Code of d; d must be no smaller than the previous call's (or first), and in [0, 1].
+  uint32_t next(float d);
+
+ private:
+  double value(uint64_t code) const;  // the code's value, exact
+  bool beyond(float d) const;         // d rounds to code_ + 1 or above
+  ReferenceFormat f_;
+  bool truncate_, flush_;
+  uint64_t code_ = 0, max_code_ = 0;
+  double lo_ = 0, hi_ = 0;  // floats: the values of code_ and code_ + 1
+};
+
 }  // namespace depthprec::test
