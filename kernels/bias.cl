@@ -12,9 +12,8 @@
 // rule, the slope form, strict or or-equal compare).
 
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || \
-    !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) || !defined(CONTRACT) ||                   \
-    !defined(PLANE_FORM) || !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) ||                      \
-    !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(SNAP_BITS) || !defined(DF_KIND)
+    !defined(CONTRACT) || !defined(PLANE_FORM) || !defined(LLVMPIPE_LOG) ||                        \
+    !defined(CLIP_SLOTS) || !defined(DF_KIND)
 #error "kernels/bias.cl needs the defines of kernels/mts.cl (host/runtime/kernel_variant.cpp)"
 #endif
 #if DEPTH_FROM == 2

@@ -9,8 +9,6 @@
 //   DEPTH_FROM         0 projection, 1 vertex-stage log (Gilg eq. 5), 2 fragment-stage depth
 //   FRAG_DEPTH         with DEPTH_FROM 2: 1 linear, 2 w_buffer, 3 log
 //   COMPARE_GREATER    1: GEQUAL (reversed mappings); 0: LEQUAL
-//   DIVIDE_EXACT       1: z_clip / w_clip correctly rounded; 0: z_clip * fl(1 / w_clip)
-//   COMPOSE_PREMULT    1: the host uploads P*MV, one product per vertex; 0: P * (MV * v)
 //   CONTRACT           1: the compiler may fuse a*b+c; 0: every operation rounds on its own
 //   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
 //   PLANE_FORM         0: planes anchored at a vertex (below); 1: llvmpipe's, referred to the
@@ -18,18 +16,18 @@
 //                      the origin and evaluated per 2x2 quad by increments, which is not
 //                      monotone along a row, so the shortcuts that assume it are off
 //                      (host/model/scene.h PlaneForm)
-//   VIEWPORT_FMA       1: window coordinates as fma(ndc, scale, translate)
-//   VERTEX_FMA         1: matrix rows fused as llvmpipe's shader fuses them (common.cl mat_vec)
 //   LLVMPIPE_LOG       1: the shaders' log is llvmpipe's (kernels/llvmpipe_log.h); 0: OpenCL's
 //   CLIP_SLOTS         1: triangles as they are; MTS_CLIP_SLOTS: those crossing the viewport edge
 //                      clipped into fans as llvmpipe does (setup.cl clip_fan)
-//   SNAP_BITS          0: window x, y as computed; n: snapped to 2^-n pixel (kernels/snap.h)
 //   DF_*               the storage format (formats/depth_format.h)
-// The depth range is no define: only the vertex stage reads it, from the probe constants
-// (C_DEPTH_GL, kernels/mts_layout.h), so pairs that differ in it alone share one program.
+// The vertex stage's choices are no defines: the depth range, the division, the composition of
+// the matrices, the fused forms of the matrix rows and the viewport, and sub-pixel snapping are
+// probe constants (C_DEPTH_GL, C_FORMS, C_SNAP_BITS in kernels/mts_layout.h), read by that stage
+// alone, so pairs that differ in them alone share one program. The per-pixel loop's choices stay
+// defines.
 //
 // Arithmetic forms (the host reference, host/mts/reference_pipeline.cpp, uses the same ones):
-//   matrix * vector     r_i = ((m_i0 x + m_i1 y) + m_i2 z) + m_i3 w (VERTEX_FMA 0)
+//   matrix * vector     r_i = ((m_i0 x + m_i1 y) + m_i2 z) + m_i3 w (unless F_VERTEX_FMA)
 //   window x, y         x_w = x_ndc * (W/2) + W/2
 //   edge function       E = dx * (py - ay) - dy * (px - ax), anchored at the lower vertex index
 //                       of the edge so both triangles sharing it compute the same value
@@ -46,12 +44,10 @@
 // only the tests use are in kernels/mts_test.cl, a program of its own.
 
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || \
-    !defined(DIVIDE_EXACT) || !defined(COMPOSE_PREMULT) || !defined(CONTRACT) ||                   \
-    !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) || !defined(PLANE_FORM) ||                 \
-    !defined(VIEWPORT_FMA) || !defined(VERTEX_FMA) || !defined(LLVMPIPE_LOG) ||                    \
-    !defined(CLIP_SLOTS) || !defined(SNAP_BITS) || !defined(DF_KIND)
+    !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||                   \
+    !defined(PLANE_FORM) || !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(DF_KIND)
 #error \
-    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, COMPARE_GREATER, DIVIDE_EXACT, COMPOSE_PREMULT, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, VIEWPORT_FMA, VERTEX_FMA, LLVMPIPE_LOG, CLIP_SLOTS, SNAP_BITS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
+    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, COMPARE_GREATER, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, LLVMPIPE_LOG, CLIP_SLOTS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
 #if CONTRACT

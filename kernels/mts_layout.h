@@ -58,7 +58,7 @@
 #define T_BOX 28  /* int4: the kernel pixels the triangle may own (kernel_pixel_box) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
-#define PROBE_STRIDE 25
+#define PROBE_STRIDE 27
 #define C_NEAR 16
 #define C_FAR 17
 #define C_RANGE 18
@@ -69,8 +69,16 @@
 #define C_BIAS_UNITS 21
 #define C_BIAS_FACTOR 22
 #define C_BIAS_CLAMP 23
-#define C_DEPTH_GL 24 /* 1: OpenGL's depth range, d = z_ndc / 2 + 1/2; 0: d = z_ndc */
-#define MAT_STRIDE 16 /* a 4x4 matrix, row-major */
+/* The vertex stage's choices, read by it alone (kernels/mts/setup.cl), so they are constants of
+ * the probe rather than defines and every choice runs in one program. */
+#define C_DEPTH_GL 24     /* 1: OpenGL's depth range, d = z_ndc / 2 + 1/2; 0: d = z_ndc */
+#define C_FORMS 25        /* the arithmetic forms, F_* bits */
+#define C_SNAP_BITS 26    /* window x, y snapped to 2^-n pixel (kernels/snap.h); 0: as computed */
+#define F_DIVIDE_EXACT 1u /* z_clip / w_clip correctly rounded; else z_clip * fl(1 / w_clip) */
+#define F_COMPOSE_PREMULT 2u /* the host uploads P * MV, one product per vertex; else P (MV v) */
+#define F_VIEWPORT_FMA 4u    /* window coordinates as fma(ndc, scale, translate) */
+#define F_VERTEX_FMA 8u      /* matrix rows fused as llvmpipe's shader fuses them (mat_row) */
+#define MAT_STRIDE 16        /* a 4x4 matrix, row-major */
 
 /* A plane's flags (vflags): non-finite vertices; the coverage certificate (covers_kernel). */
 #define V_NONFINITE 1u

@@ -87,6 +87,12 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
   pc.log_k = static_cast<float>(k);
   pc.log_L = static_cast<float>(std::log(k * f + T(1)));
   pc.depth_gl = pair.depth_range == DepthRange::gl;
+  const Pipeline& pipe = s.pipeline;
+  pc.forms = (pipe.divide == Divide::exact ? F_DIVIDE_EXACT : 0u) |
+             (pipe.compose == Compose::premultiplied ? F_COMPOSE_PREMULT : 0u) |
+             (pipe.viewport == ViewportForm::fma ? F_VIEWPORT_FMA : 0u) |
+             (pipe.vertex == VertexForm::fma ? F_VERTEX_FMA : 0u);
+  pc.snap_bits = pipe.snap_bits;
   pc.layer_near = n64;
   pc.layer_far = f64;
   return pc;
@@ -103,6 +109,8 @@ std::array<float, PROBE_STRIDE> ProbeConstants::packed() const {
   out[C_LOGK] = log_k;
   out[C_LOGL] = log_L;
   out[C_DEPTH_GL] = depth_gl ? 1.0f : 0.0f;
+  out[C_FORMS] = static_cast<float>(forms);
+  out[C_SNAP_BITS] = static_cast<float>(snap_bits);
   return out;
 }
 

@@ -40,6 +40,8 @@ struct ProbeConstants {
   std::array<double, 16> P_full{};  // P in the matrix precision before rounding to binary32
   float near = 0, far = 0, range = 0, log_k = 0, log_L = 0;
   bool depth_gl = false;                 // the pair's depth range is OpenGL's (C_DEPTH_GL)
+  unsigned forms = 0;                    // the pipeline's vertex-stage forms, F_* bits (C_FORMS)
+  int snap_bits = 0;                     // the pipeline's sub-pixel snapping (C_SNAP_BITS)
   double layer_near = 0, layer_far = 0;  // the sub-frustum used (layered), else near/far
   std::array<float, PROBE_STRIDE> packed() const;
 };

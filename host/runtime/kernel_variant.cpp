@@ -30,19 +30,15 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   v.program = "kernels/mts.cl";
   v.cache_a_codes = depth_from == 2 && !p.contraction;
   v.options = fmt::format(
-      "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DCOMPARE_GREATER={} "
-      "-DDIVIDE_EXACT={} -DCOMPOSE_PREMULT={} -DCONTRACT={} -DLOG_CODE_SLACK={}UL "
-      "-DCACHE_A_CODES={} -DPLANE_FORM={} -DVIEWPORT_FMA={} -DVERTEX_FMA={} -DLLVMPIPE_LOG={} "
-      "-DCLIP_SLOTS={} -DSNAP_BITS={} {}",
+      "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DCOMPARE_GREATER={} -DCONTRACT={} "
+      "-DLOG_CODE_SLACK={}UL -DCACHE_A_CODES={} -DPLANE_FORM={} -DLLVMPIPE_LOG={} "
+      "-DCLIP_SLOTS={} {}",
       base_build_options(p.denormals == Denormals::flush), scene.plane_subdivisions, depth_from,
-      frag, ti.greater ? 1 : 0, p.divide == Divide::exact ? 1 : 0,
-      p.compose == Compose::premultiplied ? 1 : 0, p.contraction ? 1 : 0, log_slack,
-      v.cache_a_codes ? 1 : 0,
+      frag, ti.greater ? 1 : 0, p.contraction ? 1 : 0, log_slack, v.cache_a_codes ? 1 : 0,
       p.plane == PlaneForm::origin_fma     ? 1
       : p.plane == PlaneForm::origin_quads ? 2
                                            : 0,
-      p.viewport == ViewportForm::fma ? 1 : 0, p.vertex == VertexForm::fma ? 1 : 0,
-      p.log == LogForm::llvmpipe ? 1 : 0, p.clip_slots(), p.snap_bits, f.defines());
+      p.log == LogForm::llvmpipe ? 1 : 0, p.clip_slots(), f.defines());
   // A variant with a driver's forms names the profile they are (or "custom-forms").
   const bool driver_forms = p.plane != PlaneForm::vertex || p.viewport == ViewportForm::fma ||
                             p.vertex == VertexForm::fma || p.log == LogForm::llvmpipe ||

@@ -11,31 +11,26 @@
 #define V_BAD_ROW MTS_V_BAD_ROW(GRID, CLIP_SLOTS)
 #define PLANE_STRIDE MTS_PLANE_STRIDE(GRID, CLIP_SLOTS)
 
-// m * v row by row, in the form VERTEX_FMA names (host/model/frame_setup.h mat_row_dot): a
+// m * v row by row, fused (F_VERTEX_FMA) or not (host/model/frame_setup.h mat_row_dot): a
 // computed vector v, or a plane's object position (x, y, 0, 1), whose constant z and w a shader
 // compiler folds away (object_row_dot).
-static inline float mat_row(__global const float* m, float4 v) {
-#if VERTEX_FMA
-  return fma(m[3], v.w, fma(m[2], v.z, fma(m[1], v.y, m[0] * v.x)));
-#else
-  return ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
-#endif
+static inline float mat_row(__global const float* m, float4 v, int fused) {
+  return fused ? fma(m[3], v.w, fma(m[2], v.z, fma(m[1], v.y, m[0] * v.x)))
+               : ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
 }
 
-static inline float obj_row(__global const float* m, float4 obj) {
-#if VERTEX_FMA
-  return fma(m[1], obj.y, fma(m[0], obj.x, m[3]));
-#else
-  return mat_row(m, obj);
-#endif
+static inline float obj_row(__global const float* m, float4 obj, int fused) {
+  return fused ? fma(m[1], obj.y, fma(m[0], obj.x, m[3])) : mat_row(m, obj, 0);
 }
 
-static inline float4 mat_vec(__global const float* m, float4 v) {
-  return (float4)(mat_row(m, v), mat_row(m + 4, v), mat_row(m + 8, v), mat_row(m + 12, v));
+static inline float4 mat_vec(__global const float* m, float4 v, int fused) {
+  return (float4)(mat_row(m, v, fused), mat_row(m + 4, v, fused), mat_row(m + 8, v, fused),
+                  mat_row(m + 12, v, fused));
 }
 
-static inline float4 obj_vec(__global const float* m, float4 obj) {
-  return (float4)(obj_row(m, obj), obj_row(m + 4, obj), obj_row(m + 8, obj), obj_row(m + 12, obj));
+static inline float4 obj_vec(__global const float* m, float4 obj, int fused) {
+  return (float4)(obj_row(m, obj, fused), obj_row(m + 4, obj, fused), obj_row(m + 8, obj, fused),
+                  obj_row(m + 12, obj, fused));
 }
 
 // The shaders' natural log, of one value and of 16 (LLVMPIPE_LOG, kernels/llvmpipe_log.h).

@@ -2,7 +2,6 @@
 
 // Window x and y as the rasterizer stores them (pipeline.snap, kernels/snap.h).
 DP_SNAP_WINDOW_DEFINE(snap_window_bits, fabs, rint)
-#define snap_window(x) snap_window_bits((x), SNAP_BITS)
 
 // A certificate that the plane's rasterisation owns every kernel pixel centre (no pixel
 // uncovered), so a frame can be decided from code bounds without walking its rows
@@ -377,7 +376,7 @@ static inline float clip_dist(float4 c, int k) {
 static inline int clip_fan(__global float* T, int t0, int first, const clip_vertex_t* tri,
                            uint mask, float half_w, float half_h, float origin_x, float origin_y,
                            uint kernel_w, uint kernel_h, uint band_rows, int depth_gl,
-                           uint* slivers, uint* shapely) {
+                           int snap_bits, uint* slivers, uint* shapely) {
   clip_vertex_t a[9], b[9];
   clip_vertex_t* in = a;
   clip_vertex_t* out = b;
@@ -414,8 +413,8 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
         clip_vertex_t nv;
         nv.c = o.c + t * (v_in.c - o.c);
         const float oow = 1.0f / nv.c.w;
-        nv.x = snap_window(nv.c.x * oow * half_w + half_w);
-        nv.y = snap_window(nv.c.y * oow * half_h + half_h);
+        nv.x = snap_window_bits(nv.c.x * oow * half_w + half_w, snap_bits);
+        nv.y = snap_window_bits(nv.c.y * oow * half_h + half_h, snap_bits);
         nv.d = depth_gl ? nv.c.z * oow * 0.5f + 0.5f : nv.c.z * oow * 1.0f + 0.0f;
         nv.q = oow;
         nv.id = next_id++;
@@ -449,10 +448,14 @@ static inline void setup_plane(__global const float* P, __global const float* M,
                                uint kernel_h, uint band_rows, __global float* T,
                                __global uint* vflag, int flip) {
   float xw[NV], yw[NV], dw[NV], qw[NV];
-  /* OpenGL's depth range (d = z_ndc / 2 + 1/2) or D3D's and Vulkan's (d = z_ndc): a probe
-   * constant rather than a define, since only this stage reads it and both ranges then share one
-   * program */
+  /* the probe constants this stage alone reads (kernels/mts_layout.h) */
   const int depth_gl = P[C_DEPTH_GL] != 0.0f;
+  const uint forms = (uint)P[C_FORMS];
+  const int snap_bits = (int)P[C_SNAP_BITS];
+  const int divide_exact = (forms & F_DIVIDE_EXACT) != 0u;
+  const int premultiplied = (forms & F_COMPOSE_PREMULT) != 0u;
+  const int viewport_fma = (forms & F_VIEWPORT_FMA) != 0u;
+  const int vertex_fma = (forms & F_VERTEX_FMA) != 0u;
 #if CLIP_SLOTS > 1
   float4 cv[NV]; /* clip coordinates, for the clip stage */
 #endif
@@ -462,11 +465,8 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       const int v = j * (GRID + 1) + i;
       const float4 obj =
           (float4)((float)i / (float)GRID - 0.5f, (float)j / (float)GRID - 0.5f, 0.0f, 1.0f);
-#if COMPOSE_PREMULT
-      float4 clip = obj_vec(M, obj);
-#else
-      float4 clip = mat_vec(P, obj_vec(M, obj));
-#endif
+      float4 clip = premultiplied ? obj_vec(M, obj, vertex_fma)
+                                  : mat_vec(P, obj_vec(M, obj, vertex_fma), vertex_fma);
 #if DEPTH_FROM == 1
       {
         const float t = shader_log(P[C_LOGK] * clip.w + 1.0f);
@@ -474,22 +474,19 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       }
 #endif
       const float inv_w = 1.0f / clip.w;
-#if DIVIDE_EXACT
-      const float3 ndc = (float3)(clip.x / clip.w, clip.y / clip.w, clip.z / clip.w);
-#else
-      const float3 ndc = (float3)(clip.x * inv_w, clip.y * inv_w, clip.z * inv_w);
-#endif
-#if VIEWPORT_FMA
-      xw[v] = fma(ndc.x, half_w, half_w);
-      yw[v] = fma(ndc.y, half_h, half_h);
-      dw[v] = depth_gl ? fma(ndc.z, 0.5f, 0.5f) : ndc.z;
-#else
-      xw[v] = ndc.x * half_w + half_w;
-      yw[v] = ndc.y * half_h + half_h;
-      dw[v] = depth_gl ? ndc.z * 0.5f + 0.5f : ndc.z;
-#endif
-      xw[v] = snap_window(xw[v]);
-      yw[v] = snap_window(yw[v]);
+      const float3 ndc = divide_exact ? (float3)(clip.x / clip.w, clip.y / clip.w, clip.z / clip.w)
+                                      : (float3)(clip.x * inv_w, clip.y * inv_w, clip.z * inv_w);
+      if (viewport_fma) {
+        xw[v] = fma(ndc.x, half_w, half_w);
+        yw[v] = fma(ndc.y, half_h, half_h);
+        dw[v] = depth_gl ? fma(ndc.z, 0.5f, 0.5f) : ndc.z;
+      } else {
+        xw[v] = ndc.x * half_w + half_w;
+        yw[v] = ndc.y * half_h + half_h;
+        dw[v] = depth_gl ? ndc.z * 0.5f + 0.5f : ndc.z;
+      }
+      xw[v] = snap_window_bits(xw[v], snap_bits);
+      yw[v] = snap_window_bits(yw[v], snap_bits);
       qw[v] = inv_w;
 #if CLIP_SLOTS > 1
       cv[v] = clip;
@@ -526,7 +523,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
         poly[k] = (clip_vertex_t){cv[v], xw[v], yw[v], dw[v], qw[v], v};
       }
       next += clip_fan(T, t0, next, poly, m0 | m1 | m2, half_w, half_h, origin_x, origin_y,
-                       kernel_w, kernel_h, band_rows, depth_gl, &slivers, &shapely);
+                       kernel_w, kernel_h, band_rows, depth_gl, snap_bits, &slivers, &shapely);
     }
 #endif
     if (t0 % (2 * GRID) == 2 * GRID - 1) {
