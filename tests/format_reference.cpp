@@ -20,6 +20,14 @@ ReferenceFormat reference_format(const std::string& name) {
 
 uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool flush) {
   if (!(d > 0.0f)) return 0;  // 0, negatives, NaN
+  if (f.unorm && f.bits <= 29) {
+    // d (2^b - 1): a 24-bit significand times a b-bit integer, exact in binary64's 53 bits
+    const uint64_t max = (uint64_t{1} << f.bits) - 1;
+    const double x = static_cast<double>(d) * static_cast<double>(max);
+    double r = std::rint(x);  // ties to even, in SSE (the library's rint)
+    if (truncate && r > x) r -= 1.0;
+    return static_cast<uint32_t>(r >= static_cast<double>(max) ? max : r);
+  }
   if (f.unorm) {
     const uint64_t max = (uint64_t{1} << f.bits) - 1;
     const long double x = static_cast<long double>(d) * static_cast<long double>(max);

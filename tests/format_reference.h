@@ -1,7 +1,7 @@
 // An independent reference for storage-format encoding, written without formats/depth_format.h:
-// it rounds with the FPU (x87 long double for unorm, where d * (2^b - 1) needs up to 56 bits and
-// long double's 64-bit significand holds it exactly; binary64 scaling by powers of two for
-// floats, which is exact) instead of integer shift-and-round.
+// it rounds with the FPU (for unorm d * (2^b - 1) in binary64 up to 29 bits, in x87 long double
+// beyond, whose 64-bit significand holds the 56 bits unorm32 needs; binary64 scaling by powers of
+// two for floats, which is exact) instead of integer shift-and-round.
 #pragma once
 
 #include <cstdint>
