@@ -22,13 +22,12 @@ __kernel void encode16_differs(const uint first_bits, const uint count,
                                __global const uint* restrict codes,
                                __global uint* restrict vector_differs) {
   const uint base = get_global_id(0) * 16u;
-  const uint16 bits =
-      (uint16)(first_bits + base) + (uint16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const uint16 lane = (uint16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const uint16 bits = (uint16)(first_bits + base) + lane;
   const uint16 v = df_encode16(as_float16(bits), DF_FORMAT_FROM_DEFINES());
   const int16 unit_domain = bits <= (uint16)0x3f800000u || bits == (uint16)0x80000000u;
   const uint16 w =
       df_encode16_unit(as_float16(unit_domain ? bits : (uint16)0u), DF_FORMAT_FROM_DEFINES());
-  const uint16 lane = (uint16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   uint16 c = (uint16)0u;
   if (base + 16u <= count) {
     c = vload16(0, codes + base);

@@ -6,12 +6,6 @@
 // this program also holds cost it nothing but parsing.
 #include "kernels/mts.cl"
 
-// Audit of the coverage shortcut, for the tests: per (probe, frame, row) of a launch laid out as
-// mts_raster's, bit 0: plane B's own coverage (row_segments) differs from plane A's cached one;
-// bit 1: b_coverage_is_a says they are the same; bit 2: both (the shortcut would be wrong);
-// bit 3: the row is cached; bit 4: plane A's own coverage differs from its cached record (wrong
-// whenever it happens); bit 5: the record's margin is not A's own coverage_margin (the row took
-// the reference's segments, mts_a_rows).
 // Whether n segments found for a row differ from a cached row record's.
 static inline int segments_differ(int n, const int* seg_x, const int* seg_t,
                                   __global const uint* rec) {
@@ -21,6 +15,12 @@ static inline int segments_differ(int n, const int* seg_x, const int* seg_t,
   return differs;
 }
 
+// Audit of the coverage shortcut, for the tests: per (probe, frame, row) of a launch laid out as
+// mts_raster's, bit 0: plane B's own coverage (row_segments) differs from plane A's cached one;
+// bit 1: b_coverage_is_a says they are the same; bit 2: both (the shortcut would be wrong);
+// bit 3: the row is cached; bit 4: plane A's own coverage differs from its cached record (wrong
+// whenever it happens); bit 5: the record's margin is not A's own coverage_margin (the row took
+// the reference's segments, mts_a_rows).
 __kernel void mts_coverage_audit(
     __global const float* restrict tris, __global const uint* restrict vflags,
     __global const float* restrict a_tris, __global const uint* restrict a_vflags,

@@ -18,31 +18,43 @@ ReferenceFormat reference_format(const std::string& name) {
   throw std::invalid_argument("no reference description for " + name);
 }
 
+namespace {
+
+// The largest exponent field of a float format: IEEE style reserves the all-ones one.
+int top_field(const ReferenceFormat& f) {
+  return f.ieee ? (1 << f.E) - 2 : (1 << f.E) - 1;
+}
+
+uint64_t float_max_code(const ReferenceFormat& f) {
+  return (static_cast<uint64_t>(top_field(f)) << f.M) + ((uint64_t{1} << f.M) - 1);
+}
+
+// unorm's code of d > 0 in T, binary64 or x87 long double, wide enough that d (2^b - 1) is exact
+// (a 24-bit significand times a b-bit integer). rint rounds ties to even in the FPU's current
+// mode; truncation of x >= 0 is rint stepped back where it rounded up (std::trunc, and a cast from
+// long double, would switch the x87 control word twice per input). r is then an integer below
+// 2^32, which binary64 holds, so the SSE conversion is exact.
+template <class T>
+uint32_t round_unorm(float d, uint64_t max, bool truncate) {
+  const T x = static_cast<T>(d) * static_cast<T>(max);
+  T r = std::rint(x);
+  if (truncate && r > x) r -= 1;
+  if (r >= static_cast<T>(max)) return static_cast<uint32_t>(max);
+  return static_cast<uint32_t>(static_cast<double>(r));
+}
+
+}  // namespace
+
 uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool flush) {
   if (!(d > 0.0f)) return 0;  // 0, negatives, NaN
-  if (f.unorm && f.bits <= 29) {
-    // d (2^b - 1): a 24-bit significand times a b-bit integer, exact in binary64's 53 bits
-    const uint64_t max = (uint64_t{1} << f.bits) - 1;
-    const double x = static_cast<double>(d) * static_cast<double>(max);
-    double r = std::rint(x);  // ties to even, in SSE (the library's rint)
-    if (truncate && r > x) r -= 1.0;
-    return static_cast<uint32_t>(r >= static_cast<double>(max) ? max : r);
-  }
   if (f.unorm) {
     const uint64_t max = (uint64_t{1} << f.bits) - 1;
-    const long double x = static_cast<long double>(d) * static_cast<long double>(max);
-    // rint rounds ties to even in the FPU's current mode; truncation of x >= 0 is rint stepped
-    // back where it rounded up (std::trunc would switch the x87 control word twice per input).
-    long double r = std::rint(x);
-    if (truncate && r > x) r -= 1.0L;
-    if (r >= static_cast<long double>(max)) return static_cast<uint32_t>(max);
-    // r is an integer below 2^32, so binary64 holds it and the SSE conversion is exact (a cast
-    // from long double would switch the control word as well).
-    return static_cast<uint32_t>(static_cast<double>(r));
+    // binary64's 53 bits hold the product up to 29 bits; unorm32's 56 need long double's 64
+    return f.bits <= 29 ? round_unorm<double>(d, max, truncate)
+                        : round_unorm<long double>(d, max, truncate);
   }
   const uint64_t one = uint64_t{1} << f.M;
-  const int top_field = f.ieee ? (1 << f.E) - 2 : (1 << f.E) - 1;
-  const uint64_t max_code = (static_cast<uint64_t>(top_field) << f.M) + (one - 1);
+  const uint64_t max_code = float_max_code(f);
   int e = 0;
   std::frexp(static_cast<double>(d), &e);
   int p = e - 1;
@@ -60,7 +72,7 @@ uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool
       qp += 1;
     }
     const int field = qp + f.bias;
-    code = field > top_field ? max_code : (static_cast<uint64_t>(field) << f.M) + (mant - one);
+    code = field > top_field(f) ? max_code : (static_cast<uint64_t>(field) << f.M) + (mant - one);
   }
   if (code > max_code) code = max_code;
   if (flush && code < one) code = 0;
@@ -70,8 +82,7 @@ uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool
 ReferenceWalk::ReferenceWalk(const ReferenceFormat& f, bool truncate, bool flush, float first)
     : f_(f), truncate_(truncate), flush_(flush) {
   if (f.unorm) return;  // next() rounds each input directly
-  const int top_field = f.ieee ? (1 << f.E) - 2 : (1 << f.E) - 1;
-  max_code_ = (static_cast<uint64_t>(top_field) << f.M) + ((uint64_t{1} << f.M) - 1);
+  max_code_ = float_max_code(f);
   code_ = reference_encode(first, f, truncate, false);
   lo_ = value(code_);
   hi_ = code_ < max_code_ ? value(code_ + 1) : INFINITY;
