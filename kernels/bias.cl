@@ -20,11 +20,7 @@
 #error "depth bias does not apply to depth written by the fragment stage (host/bias/bias_rule.h)"
 #endif
 
-#if CONTRACT
-#pragma OPENCL FP_CONTRACT ON
-#else
-#pragma OPENCL FP_CONTRACT OFF
-#endif
+#include "kernels/mts/contract.h" /* CONTRACT: the FP_CONTRACT pragma */
 
 // clang-format off
 #include "formats/depth_format.h"
@@ -33,6 +29,7 @@
 #include "kernels/snap.h"
 #include "kernels/bias_formula.h"
 #include "kernels/mts/common.cl"
+#include "kernels/mts/plane_records.cl"
 #include "kernels/mts/setup.cl"
 #include "kernels/mts/coverage.cl"
 #include "kernels/mts/fragment.cl"

@@ -18,7 +18,7 @@
 //                      (host/model/scene.h PlaneForm)
 //   LLVMPIPE_LOG       1: the shaders' log is llvmpipe's (kernels/llvmpipe_log.h); 0: OpenCL's
 //   CLIP_SLOTS         1: triangles as they are; MTS_CLIP_SLOTS: those crossing the viewport edge
-//                      clipped into fans as llvmpipe does (setup.cl clip_fan)
+//                      clipped into fans as llvmpipe does (mts/setup.cl clip_fan)
 //   DF_*               the storage format (formats/depth_format.h)
 // The vertex stage's choices are no defines: the depth range, the division, the composition of
 // the matrices, the fused forms of the matrix rows and the viewport, and sub-pixel snapping are
@@ -40,8 +40,11 @@
 //   1/w (perspective)   the same plane equation over q = 1/w_clip; w = 1 / q
 //
 // This file is the program's entry: it checks the defines and includes the parts in the order
-// each needs the one before. The host-kernel binary layout is kernels/mts_layout.h; the kernels
-// only the tests use are in kernels/mts_test.cl, a program of its own.
+// each needs the one before. The set-up that writes the planes' records (mts_setup) is a program
+// of its own, kernels/mts_setup.cl, built with the subset of these defines it reads, so the
+// variants that share a technique class share its build. The host-kernel binary layout is
+// kernels/mts_layout.h; the kernels only the tests use are in kernels/mts_test.cl, also a program
+// of its own.
 
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || \
     !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||                   \
@@ -50,20 +53,15 @@
     "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, COMPARE_GREATER, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, LLVMPIPE_LOG, CLIP_SLOTS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
 #endif
 
-#if CONTRACT
-#pragma OPENCL FP_CONTRACT ON
-#else
-#pragma OPENCL FP_CONTRACT OFF
-#endif
+#include "kernels/mts/contract.h" /* CONTRACT: the FP_CONTRACT pragma */
 
 // The order is the point: each part uses the ones above it.
 // clang-format off
 #include "formats/depth_format.h"   /* storage formats, shared with the host */
 #include "kernels/mts_layout.h"     /* buffer layout, shared with the host */
 #include "kernels/llvmpipe_log.h"   /* llvmpipe's log, shared with the host */
-#include "kernels/snap.h"           /* sub-pixel snapping, shared with the host */
 #include "kernels/mts/common.cl"    /* layout names at this GRID, mat_vec, any16 */
-#include "kernels/mts/setup.cl"     /* mts_setup: vertex stage, triangle set-up, coverage certificate */
+#include "kernels/mts/plane_records.cl" /* the coverage certificate, a triangle's pixel box */
 #include "kernels/mts/coverage.cl"  /* row_segments: covering triangles along a row; coverage reuse */
 #include "kernels/mts/fragment.cl"  /* depth and codes of 16 pixels; the fight test */
 #include "kernels/mts/plane_a.cl"   /* mts_a_rows: the plane-A cache's row records */

@@ -120,7 +120,7 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   // so a test shares the kernels PoCL compiled for a run of the same variant, and the reverse.
   if (kernels == Kernels::with_tests)
     test_program_ = rt_.program("kernels/mts_test.cl", variant_.options);
-  setup_ = cl::Kernel(program_, "mts_setup");
+  setup_ = cl::Kernel(rt_.program(variant_.setup_program, variant_.setup_options), "mts_setup");
   a_rows_ = cl::Kernel(program_, "mts_a_rows");
   a_bands_ = cl::Kernel(program_, "mts_a_bands");
   raster_ = cl::Kernel(program_, "mts_raster");

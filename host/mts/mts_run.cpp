@@ -279,8 +279,8 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
       std::lock_guard<std::mutex> lock(m);
       if (work[p].logs_variant) {
         const KernelVariant v = mts_variant(scene, pair);
-        pair_log[p].push_back(
-            fmt::format("kernel variant {}: {} {}", v.label, v.program, v.options));
+        pair_log[p].push_back(fmt::format("kernel variant {}: {} {}; set-up {} {}", v.label,
+                                          v.program, v.options, v.setup_program, v.setup_options));
       }
       const PairStats& st = stats[p];
       const auto& w = st.by_outcome;

@@ -29,16 +29,25 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   KernelVariant v;
   v.program = "kernels/mts.cl";
   v.cache_a_codes = depth_from == 2 && !p.contraction;
+  const int plane_form = p.plane == PlaneForm::origin_fma     ? 1
+                         : p.plane == PlaneForm::origin_quads ? 2
+                                                              : 0;
+  const int llvmpipe_log = p.log == LogForm::llvmpipe ? 1 : 0;
+  const std::string base = base_build_options(p.denormals == Denormals::flush);
   v.options = fmt::format(
       "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DCOMPARE_GREATER={} -DCONTRACT={} "
       "-DLOG_CODE_SLACK={}UL -DCACHE_A_CODES={} -DPLANE_FORM={} -DLLVMPIPE_LOG={} "
       "-DCLIP_SLOTS={} {}",
-      base_build_options(p.denormals == Denormals::flush), scene.plane_subdivisions, depth_from,
-      frag, ti.greater ? 1 : 0, p.contraction ? 1 : 0, log_slack, v.cache_a_codes ? 1 : 0,
-      p.plane == PlaneForm::origin_fma     ? 1
-      : p.plane == PlaneForm::origin_quads ? 2
-                                           : 0,
-      p.log == LogForm::llvmpipe ? 1 : 0, p.clip_slots(), f.defines());
+      base, scene.plane_subdivisions, depth_from, frag, ti.greater ? 1 : 0, p.contraction ? 1 : 0,
+      log_slack, v.cache_a_codes ? 1 : 0, plane_form, llvmpipe_log, p.clip_slots(), f.defines());
+  // The set-up takes a log only for vertex-stage log depth, so elsewhere the log's form is left
+  // out of its key.
+  v.setup_program = "kernels/mts_setup.cl";
+  v.setup_options = fmt::format(
+      "{} -DGRID={} -DDEPTH_FROM={} -DCONTRACT={} -DPLANE_FORM={} -DLLVMPIPE_LOG={} "
+      "-DCLIP_SLOTS={}",
+      base, scene.plane_subdivisions, depth_from, p.contraction ? 1 : 0, plane_form,
+      depth_from == 1 ? llvmpipe_log : 0, p.clip_slots());
   // A variant with a driver's forms names the profile they are (or "custom-forms").
   const bool driver_forms = p.plane != PlaneForm::vertex || p.viewport == ViewportForm::fma ||
                             p.vertex == VertexForm::fma || p.log == LogForm::llvmpipe ||

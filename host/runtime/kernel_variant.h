@@ -11,7 +11,11 @@ namespace depthprec {
 struct KernelVariant {
   std::string program;  // embedded source path
   std::string options;  // full build options, defines included
-  std::string label;    // short human name, e.g. "projection/LEQUAL/gl/unorm24"
+  // mts_setup's program (kernels/mts_setup.cl) and its options: the defines it reads, a subset of
+  // options', so variants that differ in format, compare or fragment stage share one build.
+  std::string setup_program;
+  std::string setup_options;
+  std::string label;  // short human name, e.g. "projection/LEQUAL/gl/unorm24"
   // mts_raster reads plane A's codes from the plane-A cache instead of computing them
   // (CACHE_A_CODES, kernels/mts_layout.h): where the depth path is costly enough (fragment-stage
   // depth, a division or a log per fragment) to pay for the cache's memory traffic, and never with

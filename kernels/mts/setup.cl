@@ -67,38 +67,6 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
   return V_COVERS | (sliver_bands ? V_SLIVERS : 0u) | (bad_bands << V_BAND_SHIFT);
 }
 
-// Every pixel of the band (or of the whole kernel) is owned by exactly one triangle.
-static inline int band_covered(uint vf, uint band) {
-  return (vf & V_COVERS) && (band >= V_MAX_BANDS || !((vf >> (V_BAND_SHIFT + band)) & 1u));
-}
-
-// Every pixel of kernel row `row` of plane T (flags vf) is owned by exactly one triangle: the
-// certificate of band_covered, down to the one row a vertex near a pixel centre spoils; in a plane
-// with sliver triangles, whose bands are known but not their rows, only outside those bands.
-static inline int row_covered(__global const float* T, uint vf, int row, uint band_rows) {
-  __global const int16* bad = (__global const int16*)((__global const int*)T + V_BAD_ROW);
-  int16 hit = (int16)0;
-  for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
-  return (vf & V_COVERS) && (!(vf & V_SLIVERS) || band_covered(vf, (uint)row / band_rows)) &&
-         !any16(hit);
-}
-
-// The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
-// within its bounding box widened by one pixel (an edge test can pass only within its rounding
-// error outside the exact triangle). Empty when i0 > i1 or j0 > j1.
-static inline int4 kernel_pixel_box(__global const float* R, float ox, float oy, int W, int H) {
-  float xmin = INFINITY, xmax = -INFINITY;
-  for (int e = 0; e < 3; ++e) {
-    const float ax = R[T_EDGES + 4 * e], bx = ax + R[T_EDGES + 4 * e + 2];
-    xmin = fmin(xmin, fmin(ax, bx));
-    xmax = fmax(xmax, fmax(ax, bx));
-  }
-  return (int4)(max((int)ceil(fmax(xmin - 1.0f - ox - 0.5f, -1.0f)), 0),
-                min((int)floor(fmin(xmax + 1.0f - ox - 0.5f, (float)W)), W - 1),
-                max((int)ceil(fmax(R[T_YMIN] - 1.0f - oy - 0.5f, -1.0f)), 0),
-                min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)H)), H - 1));
-}
-
 // The vertices of triangle t of the plane grid: quad t / 2, split along the diagonal from its
 // lower-left corner a to c (flip 0: triangles (a, b, c) and (a, c, d), the measured planes), or
 // from b to d (flip 1: (a, b, d) and (b, c, d), the same quad tessellated the other way: the
@@ -551,19 +519,4 @@ static inline void setup_plane(__global const float* P, __global const float* M,
   __global uint* SA = (__global uint*)T + NT * TRI_STRIDE;
   for (int k = NE; k < NE_PAD; ++k)
     for (int a = 0; a <= E_BITS; ++a) SA[a * NE_PAD + k] = SA[a * NE_PAD];
-}
-
-// Global id: the plane's index in mats; it is written to tris and vflags at first_plane + id, and
-// its probe constants are those of (first_plane + id) / per_probe.
-__kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
-                        const uint per_probe, const float half_w, const float half_h,
-                        const float origin_x, const float origin_y, const uint kernel_w,
-                        const uint kernel_h, const uint band_rows, __global float* restrict tris,
-                        __global uint* restrict vflags, const uint first_plane, const uint count) {
-  const uint k = get_global_id(0);
-  if (k >= count) return;
-  const uint id = first_plane + k;
-  setup_plane(probes + (id / per_probe) * PROBE_STRIDE, mats + k * MAT_STRIDE, half_w, half_h,
-              origin_x, origin_y, kernel_w, kernel_h, band_rows, tris + (size_t)id * PLANE_STRIDE,
-              vflags + id, 0);
 }
