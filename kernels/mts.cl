@@ -39,31 +39,17 @@
 //                       det
 //   1/w (perspective)   the same plane equation over q = 1/w_clip; w = 1 / q
 //
-// This file is the program's entry: it checks the defines and includes the parts in the order
-// each needs the one before. The set-up that writes the planes' records (mts_setup) is a program
-// of its own, kernels/mts_setup.cl, built with the subset of these defines it reads, so the
-// variants that share a technique class share its build. The host-kernel binary layout is
-// kernels/mts_layout.h; the kernels only the tests use are in kernels/mts_test.cl, also a program
-// of its own.
+// This file is the program's entry: kernels/mts/pipeline.cl checks the defines and includes the
+// parts every kernel builds on, then the kernels' parts follow, each needing the ones before. The
+// set-up that writes the planes' records (mts_setup) is a program of its own, kernels/mts_setup.cl,
+// built with the subset of these defines it reads, so the variants that share a technique class
+// share its build. The host-kernel binary layout is kernels/mts_layout.h; the kernels only the
+// tests use are in kernels/mts_test.cl, also a program of its own.
 
-#if !defined(GRID) || !defined(DEPTH_FROM) || !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || \
-    !defined(CONTRACT) || !defined(LOG_CODE_SLACK) || !defined(CACHE_A_CODES) ||                   \
-    !defined(PLANE_FORM) || !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(DF_KIND)
-#error \
-    "kernels/mts.cl needs GRID, DEPTH_FROM, FRAG_DEPTH, COMPARE_GREATER, CONTRACT, LOG_CODE_SLACK, CACHE_A_CODES, PLANE_FORM, LLVMPIPE_LOG, CLIP_SLOTS and the DF_* format defines (host/runtime/kernel_variant.cpp)"
-#endif
+#include "kernels/mts/pipeline.cl" /* the defines checked; formats, layout, coverage, fragments */
 
-#include "kernels/mts/contract.h" /* CONTRACT: the FP_CONTRACT pragma */
-
-// The order is the point: each part uses the ones above it.
+// The kernels, each part using the ones above it.
 // clang-format off
-#include "formats/depth_format.h"   /* storage formats, shared with the host */
-#include "kernels/mts_layout.h"     /* buffer layout, shared with the host */
-#include "kernels/llvmpipe_log.h"   /* llvmpipe's log, shared with the host */
-#include "kernels/mts/common.cl"    /* layout names at this GRID, mat_vec, any16 */
-#include "kernels/mts/plane_records.cl" /* the coverage certificate, a triangle's pixel box */
-#include "kernels/mts/coverage.cl"  /* row_segments: covering triangles along a row; coverage reuse */
-#include "kernels/mts/fragment.cl"  /* depth and codes of 16 pixels; the fight test */
 #include "kernels/mts/plane_a.cl"   /* mts_a_rows: the plane-A cache's row records */
 #include "kernels/mts/bounds.cl"    /* mts_a_bands, mts_frame_bounds: bands decided from code bounds */
 #include "kernels/mts/raster.cl"    /* mts_raster: the per-row fight search */

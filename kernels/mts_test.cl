@@ -2,9 +2,8 @@
 // reference) and the audit of the coverage shortcut (mts_coverage_audit). A program of its own,
 // built with a variant's defines only when a test asks for them (MtsEvaluator::codes,
 // audit_coverage), so production variants carry none of it; they read the buffers the production
-// program's kernels wrote. PoCL compiles a kernel at its first launch, so the production kernels
-// this program also holds cost it nothing but parsing.
-#include "kernels/mts.cl"
+// program's kernels wrote. It holds the pipeline's parts but none of the production kernels.
+#include "kernels/mts/pipeline.cl"
 
 // Whether n segments found for a row differ from a cached row record's.
 static inline int segments_differ(int n, const int* seg_x, const int* seg_t,

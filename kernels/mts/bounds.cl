@@ -291,18 +291,6 @@ __kernel void mts_a_bands(__global const float* restrict probes,
 #endif
 }
 
-// Where plane A of (probe, visit) sits in the plane-A cache: a_slots holds per probe its slot and
-// the frame its visit starts at (host/mts/mts_evaluator.h, frame order); each slot holds all
-// frames_total frames of its distance; the launch covers visits first_frame.. of each probe. The
-// start frame and first_frame + visit both lie below frames_total, so one subtraction wraps their
-// sum (no division: mts_raster runs this per kernel row).
-static inline uint a_plane(__global const uint* a_slots, uint probe, uint visit, uint first_frame,
-                           uint frames_total) {
-  const uint f = a_slots[2u * probe + 1u] + first_frame + visit;
-  return a_slots[2u * probe] * frames_total + (f >= frames_total ? f - frames_total : f);
-}
-#define A_PLANE(pf) a_plane(a_slots, (pf) / frames, (pf) % frames, first_frame, frames_total)
-
 // The verdict of one band of a (probe, frame): D_CLEAN when both planes certainly own every pixel
 // of the band (band_covered) and their code bounds over it exclude a fight: LEQUAL: B's smallest
 // code above A's largest (log depth: by LOG_CODE_SLACK more, as for pieces), or, where that fails,

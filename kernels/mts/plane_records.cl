@@ -1,5 +1,6 @@
 // What the kernels after the set-up read from a plane's records (kernels/mts/setup.cl writes
-// them): the coverage certificate per band and per row, and the kernel pixels a triangle may own.
+// them): the coverage certificate per band and per row, the kernel pixels a triangle may own, and
+// where plane A's records sit in the plane-A cache.
 // Shared by the set-up program (kernels/mts_setup.cl) and the per-pixel ones (kernels/mts.cl,
 // kernels/bias.cl).
 
@@ -34,3 +35,15 @@ static inline int4 kernel_pixel_box(__global const float* R, float ox, float oy,
                 max((int)ceil(fmax(R[T_YMIN] - 1.0f - oy - 0.5f, -1.0f)), 0),
                 min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)H)), H - 1));
 }
+
+// Where plane A of (probe, visit) sits in the plane-A cache: a_slots holds per probe its slot and
+// the frame its visit starts at (host/mts/mts_evaluator.h, frame order); each slot holds all
+// frames_total frames of its distance; the launch covers visits first_frame.. of each probe. The
+// start frame and first_frame + visit both lie below frames_total, so one subtraction wraps their
+// sum (no division: mts_raster runs this per kernel row).
+static inline uint a_plane(__global const uint* a_slots, uint probe, uint visit, uint first_frame,
+                           uint frames_total) {
+  const uint f = a_slots[2u * probe + 1u] + first_frame + visit;
+  return a_slots[2u * probe] * frames_total + (f >= frames_total ? f - frames_total : f);
+}
+#define A_PLANE(pf) a_plane(a_slots, (pf) / frames, (pf) % frames, first_frame, frames_total)
