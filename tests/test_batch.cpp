@@ -193,6 +193,39 @@ TEST_CASE("a lone pair split between jobs gives the bytes of one job", "[batch]"
   }
 }
 
+// Jobs side by side launch the same kernels over grids of many widths. PoCL 3.1 aborted such runs
+// ("pocl_release_dlhandle_cache: Assertion `found->ref_count > 0' failed") unless the kernels are
+// primed first (MtsEvaluator::prime_launches): this run aborted 8 times in 8 before, so four
+// passing runs leave a regression about one chance in 4,000.
+TEST_CASE("many jobs launching the same kernels run to the end with the bytes of one job",
+          "[batch]") {
+  const std::string args =
+      "mts -t standard,reversed -f float32 --frames 30 --no-timing "
+      "--format-out json";
+  const std::string one = fresh("/tmp/depthprec_test_prime1.json");
+  REQUIRE(run_cli(args + " --jobs 1 -o " + one).exit_code == 0);
+  for (int run = 0; run < 4; ++run) {
+    const std::string out = fresh("/tmp/depthprec_test_prime6.json");
+    const auto r = run_cli(args + " --jobs 6 -o " + out);
+    INFO("run " << run << ": " << r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK(slurp(out) == slurp(one));
+  }
+  // Every launch checks that it is no wider than the kernels were primed for
+  // (MtsEvaluator::widest_launch): more stiffness probes per distance, more frames than a batch
+  // and more bands than the default scene's stay within it.
+  const std::string wide =
+      "mts -t linear -f unorm24 --kernel 64x300 --frames 70 --distances "
+      "2,16,128,1024,8192 --set stiffness_probes=3 --no-timing "
+      "--format-out json";
+  REQUIRE(run_cli(wide + " --jobs 1 -o " + one).exit_code == 0);
+  const std::string out = fresh("/tmp/depthprec_test_prime4.json");
+  const auto r = run_cli(wide + " --jobs 4 -o " + out);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(slurp(out) == slurp(one));
+}
+
 // An output that is a device or a pipe (-o /dev/null, a FIFO) is written in place: replacing it
 // through a temporary file would, as root, leave a regular file where /dev/null was. Nor is a
 // journal made beside it. A FIFO stands for /dev/null here, so a regression breaks no device.

@@ -1,5 +1,7 @@
 #include "host/mts/mts_evaluator.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -36,11 +38,49 @@ cl::NDRange padded(size_t n) {
   return cl::NDRange(padded_size(n));
 }
 
+constexpr int kMaxBatchFrames = 64;  // batch_frames' largest batch
+
+cl_uint band_count(const Scene& scene) {
+  return (static_cast<cl_uint>(scene.kernel_h) + kBandRows - 1) / kBandRows;
+}
+
+// Floats per plane record (kernels/mts_layout.h, the buffer layout the kernels include too).
+size_t plane_record_floats(const Scene& scene) {
+  return MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions),
+                          static_cast<size_t>(scene.pipeline.clip_slots()));
+}
+
+// Bytes of one plane-A cache slot: one distance, every frame (MtsEvaluator::cache_plane_a).
+size_t plane_a_slot_bytes(const Scene& scene, bool cache_codes) {
+  const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h);
+  const size_t plane_floats = plane_record_floats(scene);
+  const size_t code_words = cache_codes ? static_cast<size_t>(scene.kernel_w) + CODE_ROW_PAD : 0;
+  return sizeof(float) * (kProbeStride + f * plane_floats) +
+         sizeof(uint32_t) * f *
+             (1 + kh * (ROW_WORDS + code_words) + BAND_WORDS * band_count(scene));
+}
+
+// Distances the plane-A cache holds at once with its budget shared by `evaluators`.
+size_t plane_a_slots(const Scene& scene, bool cache_codes, int evaluators) {
+  const size_t share = kPlaneACacheBytes / static_cast<size_t>(std::max(1, evaluators));
+  return std::clamp<size_t>(share / std::max<size_t>(plane_a_slot_bytes(scene, cache_codes), 1), 1,
+                            kMaxSlots);
+}
+
 }  // namespace
 
 int batch_frames(int done, int total) {
-  const int want = done == 0 ? 4 : done < 20 ? 16 : 64;
+  const int want = done == 0 ? 4 : done < 20 ? 16 : kMaxBatchFrames;
   return std::min(want, total - done);
+}
+
+void LaunchPrimer::once(const std::string& kernel, const std::function<void()>& prime) {
+  std::once_flag* flag = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    flag = &flags_[kernel];  // a map's elements stay where they are
+  }
+  std::call_once(*flag, prime);
 }
 
 std::vector<size_t> undecided(const std::vector<bool>& decided) {
@@ -125,9 +165,7 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   a_bands_ = cl::Kernel(program_, "mts_a_bands");
   raster_ = cl::Kernel(program_, "mts_raster");
   bounds_ = cl::Kernel(program_, "mts_frame_bounds");
-  // The buffer layout is kernels/mts_layout.h, which the kernels include too.
-  plane_floats_ = MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions),
-                                   static_cast<size_t>(scene.pipeline.clip_slots()));
+  plane_floats_ = plane_record_floats(scene);
   row_words_ = ROW_WORDS;
   band_words_ = BAND_WORDS;
   decided_words_ = DECIDED_WORDS;
@@ -135,8 +173,62 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
 }
 
 void MtsEvaluator::share_plane_a_budget(int evaluators) {
-  const size_t share = kPlaneACacheBytes / static_cast<size_t>(std::max(1, evaluators));
-  max_slots_ = std::clamp<size_t>(share / std::max<size_t>(a_slot_bytes(), 1), 1, kMaxSlots);
+  max_slots_ = plane_a_slots(scene_, variant_.cache_a_codes, evaluators);
+}
+
+size_t MtsEvaluator::widest_launch(const Scene& scene, const EvalPair& pair, int evaluators) {
+  const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h),
+               bands = band_count(scene);
+  // A launch of run() takes the probes of at most distances_at_once() distances (search_pair's
+  // window), one bisection probe or the stiffness probes of each, over at most kMaxBatchFrames
+  // frames; the plane-A cache's launches take every frame of one distance.
+  const size_t probes = plane_a_slots(scene, mts_variant(scene, pair).cache_a_codes, evaluators) *
+                        static_cast<size_t>(std::max(1, 2 * scene.stiffness_probes));
+  const size_t planes = probes * std::min<size_t>(f, kMaxBatchFrames);
+  return padded_size(std::max({f * kh, f * bands, planes * bands, kh, probes}));
+}
+
+void MtsEvaluator::prime_launches(size_t width, LaunchPrimer& primer) {
+  width = padded_size(width);
+  const cl::Buffer none(rt_.context(), CL_MEM_READ_WRITE, 64);
+  const cl_uint no = 0;  // items, count, kernel rows: every work-item returns at once
+  const float at = 0.0f;
+  const std::string program = variant_.program + " " + variant_.options + " ";
+  const auto prime = [&](cl::Kernel& k, const std::string& key, const cl::NDRange& global,
+                         const cl::NDRange& local) {
+    primer.once(key, [&] {
+      rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, global, local);
+      rt_.queue().finish();
+    });
+  };
+  set_args(setup_, none, none, cl_uint{1}, at, at, at, at, no, no, kBandRows, none, none, no, no);
+  prime(setup_, variant_.setup_program + " " + variant_.setup_options + " mts_setup",
+        cl::NDRange(width), cl::NDRange(kLocal));
+  set_args(a_rows_, none, none, none, no, no, no, no, at, at, none, none, no, none, none, no,
+           kBandRows);
+  prime(a_rows_, program + "mts_a_rows", cl::NDRange(width), cl::NDRange(kLocal));
+  set_args(a_bands_, none, none, none, no, no, no, no, at, at, no, kBandRows, none, no);
+  prime(a_bands_, program + "mts_a_bands", cl::NDRange(width), cl::NDRange(kLocal));
+  set_args(bounds_, none, none, none, none, none, none, none, no, no, no, no, at, at, no, no,
+           kBandRows, none, no);
+  prime(bounds_, program + "mts_frame_bounds", cl::NDRange(width), cl::NDRange(kLocal));
+  set_args(raster_, none, none, none, none, none, none, none, no, none, no, no, no, at, at, no,
+           none, no, kBandRows, no, none);
+  prime(raster_, program + "mts_raster", cl::NDRange(width, 1, 1), cl::NDRange(kLocal, 1, 1));
+  primed_width_ = width;
+}
+
+void MtsEvaluator::launch(cl::Kernel& k, const cl::NDRange& global, const cl::NDRange& local,
+                          cl::Event* done) {
+  for (size_t d = 0; primed_width_ && d < global.dimensions(); ++d)
+    if (global.get()[d] > primed_width_)
+      throw Error(
+          ExitCode::internal,
+          fmt::format("{}: a grid {} work-items wide, wider than the {} its kernels were "
+                      "primed for (MtsEvaluator::widest_launch)",
+                      k.getInfo<CL_KERNEL_FUNCTION_NAME>(), global.get()[d], primed_width_));
+  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, global, local, nullptr, done);
+  ++launches_;
 }
 
 const cl::Program& MtsEvaluator::test_program() const {
@@ -165,13 +257,7 @@ size_t MtsEvaluator::code_row_words() const {
 }
 
 cl_uint MtsEvaluator::bands() const {
-  return (static_cast<cl_uint>(scene_.kernel_h) + kBandRows - 1) / kBandRows;
-}
-
-size_t MtsEvaluator::a_slot_bytes() const {
-  const size_t f = static_cast<size_t>(scene_.frames), kh = static_cast<size_t>(scene_.kernel_h);
-  return sizeof(float) * (kProbeStride + f * plane_floats_) +
-         sizeof(uint32_t) * f * (1 + kh * (row_words_ + code_row_words()) + band_words_ * bands());
+  return band_count(scene_);
 }
 
 cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats,
@@ -184,9 +270,7 @@ cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>
            static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), kBandRows,
            tris, vflags, first_plane, static_cast<cl_uint>(planes));
   cl::Event done;
-  rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, padded(planes), cl::NDRange(kLocal),
-                                   nullptr, &done);
-  ++launches_;
+  launch(setup_, padded(planes), cl::NDRange(kLocal), &done);
   return done;
 }
 
@@ -263,8 +347,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
              origin_y(), a_.rows, a_.codes, static_cast<cl_uint>(frames * kh), a_.ref_tris,
              a_.ref_rows, static_cast<cl_uint>(a_.has_ref), kBandRows);
     cl::Event rows_done, bands_done;
-    rt_.queue().enqueueNDRangeKernel(a_rows_, cl::NullRange, padded(frames * kh),
-                                     cl::NDRange(kLocal), nullptr, &rows_done);
+    launch(a_rows_, padded(frames * kh), cl::NDRange(kLocal), &rows_done);
     if (!a_.has_ref) {  // this distance is the reference for the distances filled after it
       const size_t tri_bytes = sizeof(float) * frames * plane_floats_;
       const size_t row_bytes = sizeof(uint32_t) * frames * kh * row_words_;
@@ -274,10 +357,8 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     }
     set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
              origin_y(), bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
-    rt_.queue().enqueueNDRangeKernel(a_bands_, cl::NullRange, padded(frames * bands()),
-                                     cl::NDRange(kLocal), nullptr, &bands_done);
+    launch(a_bands_, padded(frames * bands()), cl::NDRange(kLocal), &bands_done);
     bands_done.wait();
-    launches_ += 2;
     launches[i] = 3;
     kernel_seconds +=
         device_seconds(set_up) + device_seconds(rows_done) + device_seconds(bands_done);
@@ -427,9 +508,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
                static_cast<cl_uint>(done), static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
                static_cast<cl_uint>(frames), bands(), kBandRows, decided_bands,
                static_cast<cl_uint>(band_items));
-      rt_.queue().enqueueNDRangeKernel(bounds_, cl::NullRange, padded(band_items),
-                                       cl::NDRange(kLocal), nullptr, &bounds_done);
-      ++launches_;
+      launch(bounds_, padded(band_items), cl::NDRange(kLocal), &bounds_done);
     } else {
       rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0,
                                     sizeof(uint32_t) * band_items * decided_words_, nullptr,
@@ -442,10 +521,8 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
              oy, static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
              static_cast<cl_uint>(shortcuts_), result);
     cl::Event raster_done;
-    rt_.queue().enqueueNDRangeKernel(
-        raster_, cl::NullRange,
-        cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
-        cl::NDRange(kLocal, 1, 1), nullptr, &raster_done);
+    launch(raster_, cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
+           cl::NDRange(kLocal, 1, 1), &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     for (const uint32_t v : rows) {
       if (v & kBounds)
@@ -454,7 +531,6 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
         ++rows_rasterised_;
       if (v & kReused) ++rows_reused_;
     }
-    ++launches_;
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ksecs += device_seconds(setup_done) + device_seconds(bounds_done) + device_seconds(raster_done);

@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,19 @@ struct CoverageAudit {
   }
 };
 
+// The kernels primed in one run (MtsEvaluator::prime_launches): each once, and a job that needs
+// one another job is priming waits until that is done.
+class LaunchPrimer {
+ public:
+  // Runs prime() unless it ran for `kernel` (its program, options and name) already; returns
+  // once it has run.
+  void once(const std::string& kernel, const std::function<void()>& prime);
+
+ private:
+  std::mutex m_;
+  std::map<std::string, std::once_flag> flags_;
+};
+
 class MtsEvaluator : public ProbeEvaluator {
  public:
   // shortcuts: work the kernels save only where a certificate says the answer stays the same —
@@ -97,6 +112,22 @@ class MtsEvaluator : public ProbeEvaluator {
   // before the first run.
   void share_plane_a_budget(int evaluators);
 
+  // Evaluators running side by side (run_scene's jobs) must not make PoCL's CPU driver load a
+  // kernel's work-group function anew while other launches of it are in flight. PoCL 3.1 keeps
+  // the functions it loaded in entries per kernel and local size, each good for grids up to the
+  // width of the launch that made it; a wider launch adds an entry in front, and a launch that
+  // finishes releases the first entry of its kernel and local size, not necessarily the one it
+  // took. A launch in flight while a wider one adds an entry can so release that entry once too
+  // often, and PoCL aborts (lib/CL/devices/common.c, pocl_release_dlhandle_cache: "Assertion
+  // `found->ref_count > 0' failed"): 10 of 12 runs of `mts -t standard,reversed -f float32
+  // --frames 30 --jobs 6` did. prime_launches(w) launches each of its kernels not primed yet in
+  // this run (LaunchPrimer) once over a grid of width w, every work-item returning at once, so
+  // that one entry serves every later launch up to w. run_scene's jobs call it before their
+  // first launch, with w at least every evaluator's widest_launch, and every launch after it
+  // checks that it is no wider. The priming launches compute nothing and are not counted.
+  static size_t widest_launch(const Scene& scene, const EvalPair& pair, int evaluators);
+  void prime_launches(size_t width, LaunchPrimer& primer);
+
  private:
   // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
   // tris and vflags from first_plane on; plane k uses the probe constants (consts) of
@@ -125,7 +156,6 @@ class MtsEvaluator : public ProbeEvaluator {
   void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
                  const std::vector<int>& first_visited, std::vector<ProbeResult>& results,
                  std::vector<bool>& decided);
-  size_t a_slot_bytes() const;
   // audit_coverage for probes whose distances the plane-A cache holds at once.
   CoverageAudit audit_cached(const std::vector<Probe>& probes);
   // The probes (indices) in groups whose distances the plane-A cache holds at once, each group
@@ -177,6 +207,11 @@ class MtsEvaluator : public ProbeEvaluator {
            rows_reused_ = 0;
   std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
+  size_t primed_width_ = 0;  // prime_launches' width; 0: not primed (one job)
+  // Enqueues kernel k over global (local: kLocal in the first dimension), after checking the
+  // grid against primed_width_.
+  void launch(cl::Kernel& k, const cl::NDRange& global, const cl::NDRange& local,
+              cl::Event* done = nullptr);
 };
 
 }  // namespace depthprec
