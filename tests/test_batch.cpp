@@ -212,7 +212,7 @@ TEST_CASE("many jobs launching the same kernels run to the end with the bytes of
     CHECK(slurp(out) == slurp(one));
   }
   // Every launch checks that it is no wider than the kernels were primed for
-  // (MtsEvaluator::widest_launch): more stiffness probes per distance, more frames than a batch
+  // (MtsEvaluator::widest_launches): more stiffness probes per distance, more frames than a batch
   // and more bands than the default scene's stay within it.
   const std::string wide =
       "mts -t linear -f unorm24 --kernel 64x300 --frames 70 --distances "

@@ -176,7 +176,17 @@ void MtsEvaluator::share_plane_a_budget(int evaluators) {
   max_slots_ = plane_a_slots(scene_, variant_.cache_a_codes, evaluators);
 }
 
-size_t MtsEvaluator::widest_launch(const Scene& scene, const EvalPair& pair, int evaluators) {
+MtsEvaluator::LaunchWidths& MtsEvaluator::LaunchWidths::operator|=(const LaunchWidths& o) {
+  setup = std::max(setup, o.setup);
+  a_rows = std::max(a_rows, o.a_rows);
+  a_bands = std::max(a_bands, o.a_bands);
+  bounds = std::max(bounds, o.bounds);
+  raster = std::max(raster, o.raster);
+  return *this;
+}
+
+MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene, const EvalPair& pair,
+                                                         int evaluators) {
   const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h),
                bands = band_count(scene);
   // A launch of run() takes the probes of at most distances_at_once() distances (search_pair's
@@ -184,49 +194,55 @@ size_t MtsEvaluator::widest_launch(const Scene& scene, const EvalPair& pair, int
   // frames; the plane-A cache's launches take every frame of one distance.
   const size_t probes = plane_a_slots(scene, mts_variant(scene, pair).cache_a_codes, evaluators) *
                         static_cast<size_t>(std::max(1, 2 * scene.stiffness_probes));
-  const size_t planes = probes * std::min<size_t>(f, kMaxBatchFrames);
-  return padded_size(std::max({f * kh, f * bands, planes * bands, kh, probes}));
+  const size_t frames = std::min<size_t>(f, kMaxBatchFrames), planes = probes * frames;
+  LaunchWidths w;
+  w.setup = padded_size(std::max(f, planes));
+  w.a_rows = padded_size(f * kh);
+  w.a_bands = padded_size(f * bands);
+  w.bounds = padded_size(planes * bands);
+  w.raster = std::max({padded_size(kh), frames, probes});  // (kernel rows, frames, probes)
+  return w;
 }
 
-void MtsEvaluator::prime_launches(size_t width, LaunchPrimer& primer) {
-  width = padded_size(width);
+void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& primer) {
   const cl::Buffer none(rt_.context(), CL_MEM_READ_WRITE, 64);
   const cl_uint no = 0;  // items, count, kernel rows: every work-item returns at once
   const float at = 0.0f;
   const std::string program = variant_.program + " " + variant_.options + " ";
-  const auto prime = [&](cl::Kernel& k, const std::string& key, const cl::NDRange& global,
-                         const cl::NDRange& local) {
+  const auto prime = [&](cl::Kernel& k, const std::string& key, size_t width, int dimensions) {
     primer.once(key, [&] {
-      rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, global, local);
+      const size_t w = padded_size(width);
+      rt_.queue().enqueueNDRangeKernel(
+          k, cl::NullRange, dimensions == 3 ? cl::NDRange(w, 1, 1) : cl::NDRange(w),
+          dimensions == 3 ? cl::NDRange(kLocal, 1, 1) : cl::NDRange(kLocal));
       rt_.queue().finish();
     });
   };
   set_args(setup_, none, none, cl_uint{1}, at, at, at, at, no, no, kBandRows, none, none, no, no);
-  prime(setup_, variant_.setup_program + " " + variant_.setup_options + " mts_setup",
-        cl::NDRange(width), cl::NDRange(kLocal));
+  prime(setup_, variant_.setup_program + " " + variant_.setup_options + " mts_setup", widths.setup,
+        1);
   set_args(a_rows_, none, none, none, no, no, no, no, at, at, none, none, no, none, none, no,
            kBandRows);
-  prime(a_rows_, program + "mts_a_rows", cl::NDRange(width), cl::NDRange(kLocal));
+  prime(a_rows_, program + "mts_a_rows", widths.a_rows, 1);
   set_args(a_bands_, none, none, none, no, no, no, no, at, at, no, kBandRows, none, no);
-  prime(a_bands_, program + "mts_a_bands", cl::NDRange(width), cl::NDRange(kLocal));
+  prime(a_bands_, program + "mts_a_bands", widths.a_bands, 1);
   set_args(bounds_, none, none, none, none, none, none, none, no, no, no, no, at, at, no, no,
            kBandRows, none, no);
-  prime(bounds_, program + "mts_frame_bounds", cl::NDRange(width), cl::NDRange(kLocal));
+  prime(bounds_, program + "mts_frame_bounds", widths.bounds, 1);
   set_args(raster_, none, none, none, none, none, none, none, no, none, no, no, no, at, at, no,
            none, no, kBandRows, no, none);
-  prime(raster_, program + "mts_raster", cl::NDRange(width, 1, 1), cl::NDRange(kLocal, 1, 1));
-  primed_width_ = width;
+  prime(raster_, program + "mts_raster", widths.raster, 3);
+  primed_ = widths;
 }
 
-void MtsEvaluator::launch(cl::Kernel& k, const cl::NDRange& global, const cl::NDRange& local,
-                          cl::Event* done) {
-  for (size_t d = 0; primed_width_ && d < global.dimensions(); ++d)
-    if (global.get()[d] > primed_width_)
-      throw Error(
-          ExitCode::internal,
-          fmt::format("{}: a grid {} work-items wide, wider than the {} its kernels were "
-                      "primed for (MtsEvaluator::widest_launch)",
-                      k.getInfo<CL_KERNEL_FUNCTION_NAME>(), global.get()[d], primed_width_));
+void MtsEvaluator::launch(cl::Kernel& k, size_t primed, const cl::NDRange& global,
+                          const cl::NDRange& local, cl::Event* done) {
+  for (size_t d = 0; primed && d < global.dimensions(); ++d)
+    if (global.get()[d] > primed)
+      throw Error(ExitCode::internal,
+                  fmt::format("{}: a grid {} work-items wide, wider than the {} it was primed for "
+                              "(MtsEvaluator::widest_launches)",
+                              k.getInfo<CL_KERNEL_FUNCTION_NAME>(), global.get()[d], primed));
   rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, global, local, nullptr, done);
   ++launches_;
 }
@@ -270,7 +286,7 @@ cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>
            static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), kBandRows,
            tris, vflags, first_plane, static_cast<cl_uint>(planes));
   cl::Event done;
-  launch(setup_, padded(planes), cl::NDRange(kLocal), &done);
+  launch(setup_, primed_.setup, padded(planes), cl::NDRange(kLocal), &done);
   return done;
 }
 
@@ -347,7 +363,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
              origin_y(), a_.rows, a_.codes, static_cast<cl_uint>(frames * kh), a_.ref_tris,
              a_.ref_rows, static_cast<cl_uint>(a_.has_ref), kBandRows);
     cl::Event rows_done, bands_done;
-    launch(a_rows_, padded(frames * kh), cl::NDRange(kLocal), &rows_done);
+    launch(a_rows_, primed_.a_rows, padded(frames * kh), cl::NDRange(kLocal), &rows_done);
     if (!a_.has_ref) {  // this distance is the reference for the distances filled after it
       const size_t tri_bytes = sizeof(float) * frames * plane_floats_;
       const size_t row_bytes = sizeof(uint32_t) * frames * kh * row_words_;
@@ -357,7 +373,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     }
     set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
              origin_y(), bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
-    launch(a_bands_, padded(frames * bands()), cl::NDRange(kLocal), &bands_done);
+    launch(a_bands_, primed_.a_bands, padded(frames * bands()), cl::NDRange(kLocal), &bands_done);
     bands_done.wait();
     launches[i] = 3;
     kernel_seconds +=
@@ -508,7 +524,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
                static_cast<cl_uint>(done), static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
                static_cast<cl_uint>(frames), bands(), kBandRows, decided_bands,
                static_cast<cl_uint>(band_items));
-      launch(bounds_, padded(band_items), cl::NDRange(kLocal), &bounds_done);
+      launch(bounds_, primed_.bounds, padded(band_items), cl::NDRange(kLocal), &bounds_done);
     } else {
       rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0,
                                     sizeof(uint32_t) * band_items * decided_words_, nullptr,
@@ -521,7 +537,8 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
              oy, static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
              static_cast<cl_uint>(shortcuts_), result);
     cl::Event raster_done;
-    launch(raster_, cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
+    launch(raster_, primed_.raster,
+           cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
            cl::NDRange(kLocal, 1, 1), &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     for (const uint32_t v : rows) {

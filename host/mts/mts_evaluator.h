@@ -120,13 +120,18 @@ class MtsEvaluator : public ProbeEvaluator {
   // took. A launch in flight while a wider one adds an entry can so release that entry once too
   // often, and PoCL aborts (lib/CL/devices/common.c, pocl_release_dlhandle_cache: "Assertion
   // `found->ref_count > 0' failed"): 10 of 12 runs of `mts -t standard,reversed -f float32
-  // --frames 30 --jobs 6` did. prime_launches(w) launches each of its kernels not primed yet in
-  // this run (LaunchPrimer) once over a grid of width w, every work-item returning at once, so
-  // that one entry serves every later launch up to w. run_scene's jobs call it before their
-  // first launch, with w at least every evaluator's widest_launch, and every launch after it
-  // checks that it is no wider. The priming launches compute nothing and are not counted.
-  static size_t widest_launch(const Scene& scene, const EvalPair& pair, int evaluators);
-  void prime_launches(size_t width, LaunchPrimer& primer);
+  // --frames 30 --jobs 6` did. prime_launches launches each of its kernels not primed yet in
+  // this run (LaunchPrimer) once over a grid as wide as any of its later launches, every
+  // work-item returning at once, so that one entry serves them all. run_scene's jobs call it
+  // before their first launch, with the widest launches of every evaluator of the run, and every
+  // launch after it checks that it is no wider. The priming launches compute nothing and are not
+  // counted.
+  struct LaunchWidths {  // the widest grid dimension of each kernel's launches, in work-items
+    size_t setup = 0, a_rows = 0, a_bands = 0, bounds = 0, raster = 0;
+    LaunchWidths& operator|=(const LaunchWidths& o);  // the wider of each
+  };
+  static LaunchWidths widest_launches(const Scene& scene, const EvalPair& pair, int evaluators);
+  void prime_launches(const LaunchWidths& widths, LaunchPrimer& primer);
 
  private:
   // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
@@ -207,10 +212,10 @@ class MtsEvaluator : public ProbeEvaluator {
            rows_reused_ = 0;
   std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
-  size_t primed_width_ = 0;  // prime_launches' width; 0: not primed (one job)
-  // Enqueues kernel k over global (local: kLocal in the first dimension), after checking the
-  // grid against primed_width_.
-  void launch(cl::Kernel& k, const cl::NDRange& global, const cl::NDRange& local,
+  LaunchWidths primed_;  // prime_launches' widths; 0: not primed (one job)
+  // Enqueues kernel k over global (local: kLocal in the first dimension), after checking that no
+  // dimension is wider than primed (0: no check).
+  void launch(cl::Kernel& k, size_t primed, const cl::NDRange& global, const cl::NDRange& local,
               cl::Event* done = nullptr);
 };
 

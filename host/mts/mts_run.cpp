@@ -237,17 +237,16 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
   // Jobs side by side first prime the kernels they launch, wide enough for every launch of the
   // run (MtsEvaluator::prime_launches: PoCL 3.1 aborts otherwise).
   LaunchPrimer primer;
-  size_t prime_width = 0;
+  MtsEvaluator::LaunchWidths prime_widths;
   for (const Unit& u : units)
-    prime_width =
-        std::max(prime_width, MtsEvaluator::widest_launch(scene, scene.evaluate[u.pair], jobs));
+    prime_widths |= MtsEvaluator::widest_launches(scene, scene.evaluate[u.pair], jobs);
 
   // Search some of a pair's distances in one evaluator; rows go to on_row as they finish.
   const auto compute = [&](size_t p, const std::vector<double>& zs) {
     const EvalPair& pair = scene.evaluate[p];
     MtsEvaluator ev(rt, scene, pair);
     ev.share_plane_a_budget(jobs);
-    if (jobs > 1) ev.prime_launches(prime_width, primer);
+    if (jobs > 1) ev.prime_launches(prime_widths, primer);
     auto rows =
         search_pair(ev, scene, pair, zs,
                     control.attribute ? std::function<void(const MtsRow&)>() : on_row, stop);
