@@ -195,8 +195,9 @@ TEST_CASE("a lone pair split between jobs gives the bytes of one job", "[batch]"
 
 // Jobs side by side launch the same kernels over grids of many widths. PoCL 3.1 aborted such runs
 // ("pocl_release_dlhandle_cache: Assertion `found->ref_count > 0' failed") unless the kernels are
-// primed first (MtsEvaluator::prime_launches): this run aborted 8 times in 8 before, so four
-// passing runs leave a regression about one chance in 4,000.
+// primed first (MtsEvaluator::prime_launches): this run aborted 8 times in 8 before, and the same
+// command with its output on stdout 10 in 12, so four passing runs leave a regression about one
+// chance in 1,300.
 TEST_CASE("many jobs launching the same kernels run to the end with the bytes of one job",
           "[batch]") {
   const std::string args =

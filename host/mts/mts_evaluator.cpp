@@ -50,14 +50,18 @@ size_t plane_record_floats(const Scene& scene) {
                           static_cast<size_t>(scene.pipeline.clip_slots()));
 }
 
+// Words per kernel row of plane A's cached codes (0: not cached).
+size_t code_row_words(const Scene& scene, bool cache_codes) {
+  return cache_codes ? static_cast<size_t>(scene.kernel_w) + CODE_ROW_PAD : 0;
+}
+
 // Bytes of one plane-A cache slot: one distance, every frame (MtsEvaluator::cache_plane_a).
 size_t plane_a_slot_bytes(const Scene& scene, bool cache_codes) {
   const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h);
-  const size_t plane_floats = plane_record_floats(scene);
-  const size_t code_words = cache_codes ? static_cast<size_t>(scene.kernel_w) + CODE_ROW_PAD : 0;
-  return sizeof(float) * (kProbeStride + f * plane_floats) +
+  return sizeof(float) * (kProbeStride + f * plane_record_floats(scene)) +
          sizeof(uint32_t) * f *
-             (1 + kh * (ROW_WORDS + code_words) + BAND_WORDS * band_count(scene));
+             (1 + kh * (ROW_WORDS + code_row_words(scene, cache_codes)) +
+              BAND_WORDS * band_count(scene));
 }
 
 // Distances the plane-A cache holds at once with its budget shared by `evaluators`.
@@ -208,9 +212,9 @@ void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& prim
   const cl::Buffer none(rt_.context(), CL_MEM_READ_WRITE, 64);
   const cl_uint no = 0;  // items, count, kernel rows: every work-item returns at once
   const float at = 0.0f;
-  const std::string program = variant_.program + " " + variant_.options + " ";
-  const auto prime = [&](cl::Kernel& k, const std::string& key, size_t width, int dimensions) {
-    primer.once(key, [&] {
+  // once per kernel of a program build: its source, options and name
+  const auto prime = [&](cl::Kernel& k, const std::string& program, size_t width, int dimensions) {
+    primer.once(program + " " + k.getInfo<CL_KERNEL_FUNCTION_NAME>(), [&] {
       const size_t w = padded_size(width);
       rt_.queue().enqueueNDRangeKernel(
           k, cl::NullRange, dimensions == 3 ? cl::NDRange(w, 1, 1) : cl::NDRange(w),
@@ -218,20 +222,20 @@ void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& prim
       rt_.queue().finish();
     });
   };
+  const std::string program = variant_.program + " " + variant_.options;
   set_args(setup_, none, none, cl_uint{1}, at, at, at, at, no, no, kBandRows, none, none, no, no);
-  prime(setup_, variant_.setup_program + " " + variant_.setup_options + " mts_setup", widths.setup,
-        1);
+  prime(setup_, variant_.setup_program + " " + variant_.setup_options, widths.setup, 1);
   set_args(a_rows_, none, none, none, no, no, no, no, at, at, none, none, no, none, none, no,
            kBandRows);
-  prime(a_rows_, program + "mts_a_rows", widths.a_rows, 1);
+  prime(a_rows_, program, widths.a_rows, 1);
   set_args(a_bands_, none, none, none, no, no, no, no, at, at, no, kBandRows, none, no);
-  prime(a_bands_, program + "mts_a_bands", widths.a_bands, 1);
+  prime(a_bands_, program, widths.a_bands, 1);
   set_args(bounds_, none, none, none, none, none, none, none, no, no, no, no, at, at, no, no,
            kBandRows, none, no);
-  prime(bounds_, program + "mts_frame_bounds", widths.bounds, 1);
+  prime(bounds_, program, widths.bounds, 1);
   set_args(raster_, none, none, none, none, none, none, none, no, none, no, no, no, at, at, no,
            none, no, kBandRows, no, none);
-  prime(raster_, program + "mts_raster", widths.raster, 3);
+  prime(raster_, program, widths.raster, 3);
   primed_ = widths;
 }
 
@@ -269,7 +273,7 @@ size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {
 }
 
 size_t MtsEvaluator::code_row_words() const {
-  return variant_.cache_a_codes ? static_cast<size_t>(scene_.kernel_w) + CODE_ROW_PAD : 0;
+  return depthprec::code_row_words(scene_, variant_.cache_a_codes);
 }
 
 cl_uint MtsEvaluator::bands() const {
