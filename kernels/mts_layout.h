@@ -33,10 +33,14 @@
 #define MTS_Q_YRANGE(g, s) (MTS_NT(g, s) * TRI_STRIDE + 6 * MTS_NE_PAD(g, s))
 #define MTS_NV_PAD(g) ((MTS_NV(g) + 15) / 16 * 16)
 #define MTS_Q_USED(g, s) (MTS_Q_YRANGE(g, s) + 2 * (g))
+/* Then per row of quads (grid int pairs) the first and last kernel row its records' pixel boxes
+ * reach (kernel_pixel_box; first > last: none), so a band's code bounds visit only the quad rows
+ * that can meet it. */
+#define MTS_Q_BOX_ROWS(g, s) (MTS_Q_USED(g, s) + (g))
 /* Then, from a multiple of 16 ints on (so they load as aligned int16, and every plane record
  * starts at one), per vertex the kernel row of the pixel centre it lies near (int; -1: none, or
  * padding): the rows covers_kernel's certificate does not hold for (row_covered). */
-#define MTS_V_BAD_ROW(g, s) ((MTS_Q_USED(g, s) + (g) + 15) / 16 * 16)
+#define MTS_V_BAD_ROW(g, s) ((MTS_Q_BOX_ROWS(g, s) + 2 * (g) + 15) / 16 * 16)
 #define MTS_PLANE_STRIDE(g, s) (MTS_V_BAD_ROW(g, s) + MTS_NV_PAD(g))
 
 /* Triangle record offsets */

@@ -26,9 +26,10 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
   b.bad = !PLANE_MONOTONE; /* extremes need not lie at the corners: no bounds */
   if (b.bad) return b;
   float c0[16], sl[16], x0[16], rt[16], dy[16], y[16], px[16];
-  int n = 0;
-  for (int t = 0; t <= NT; ++t) {
-    if (t < NT) {
+  int n = 0, first, end;
+  records_boxed_in_rows(T, r0, r1, &first, &end);
+  for (int t = first; t <= end; ++t) {
+    if (t < end) {
       const int4 box = pixel_box(T + t * TRI_STRIDE, r0, r1);
       const int i0 = box.s0, i1 = box.s1, j0 = box.s2, j1 = box.s3;
       if (i0 > i1 || j0 > j1) continue;
@@ -45,7 +46,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
         ++n;
       }
     }
-    if (n == 16 || (t == NT && n > 0)) {
+    if (n == 16 || (t == end && n > 0)) {
       for (int k = n; k < 16; ++k) { /* pad with the first corner */
         c0[k] = c0[0];
         sl[k] = sl[0];
@@ -63,7 +64,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
       rp.dy = vload16(0, dy);
       rp.y = vload16(0, y);
       const frag16_t f = fragment16(rp, P, vload16(0, px));
-      b.bad |= any(f.nonfinite | f.clipped);
+      b.bad |= any16(f.nonfinite | f.clipped);
       /* halving reductions: 16 -> 8 -> 4 -> 2 -> 1 lanes */
       const uint8 lo8 = min(f.code.lo, f.code.hi), hi8 = max(f.code.lo, f.code.hi);
       const uint4 lo4 = min(lo8.lo, lo8.hi), hi4 = max(hi8.lo, hi8.hi);
@@ -164,9 +165,10 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
   double lo = INFINITY, hi = -INFINITY;
   int bad = 0;
   float f[80], px[16], py[16];
-  int n = 0;
-  for (int t = 0; t <= NT; ++t) {
-    if (t < NT) {
+  int n = 0, first, end;
+  records_boxed_in_rows(T, r0, r1, &first, &end);
+  for (int t = first; t <= end; ++t) {
+    if (t < end) {
       __global const float* R = T + t * TRI_STRIDE;
       const int4 box = pixel_box(R, r0, r1);
       if (box.s0 > box.s1 || box.s2 > box.s3) continue;
@@ -181,7 +183,7 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
         ++n;
       }
     }
-    if (n == 16 || (t == NT && n > 0)) {
+    if (n == 16 || (t == end && n > 0)) {
       for (int k = n; k < 16; ++k) { /* pad with the first corner */
         for (int j = 0; j < 80; j += 16) f[j + k] = f[j];
         px[k] = px[0];

@@ -36,6 +36,23 @@ static inline int4 kernel_pixel_box(__global const float* R, float ox, float oy,
                 min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)H)), H - 1));
 }
 
+// The records of plane T whose pixel boxes can reach kernel rows [r0, r1): first..end - 1, from
+// the first to the last quad row whose records' boxes reach them (Q_BOX_ROWS, set up from the
+// boxes themselves), so every record outside the run has a box that misses the rows.
+static inline void records_boxed_in_rows(__global const float* T, int r0, int r1, int* first,
+                                         int* end) {
+  *first = 0;
+  *end = 0;
+  int found = 0;
+  for (int qj = 0; qj < GRID; ++qj) {
+    const int2 rows = vload2(0, (__global const int*)T + Q_BOX_ROWS + 2 * qj);
+    if (rows.s0 > r1 - 1 || rows.s1 < r0) continue;
+    if (!found) *first = Q_SLOTS * qj;
+    found = 1;
+    *end = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj];
+  }
+}
+
 // Where plane A of (probe, visit) sits in the plane-A cache: a_slots holds per probe its slot and
 // the frame its visit starts at (host/mts/mts_evaluator.h, frame order); each slot holds all
 // frames_total frames of its distance; the launch covers visits first_frame.. of each probe. The

@@ -508,12 +508,19 @@ static inline void setup_plane(__global const float* P, __global const float* M,
     ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
   for (int qj = 0; qj < GRID; ++qj) {
     float lo = INFINITY, hi = -INFINITY;
+    int box_lo = INT_MAX, box_hi = -1;
     for (int t = Q_SLOTS * qj; t < Q_SLOTS * qj + ((__global int*)T)[Q_USED + qj]; ++t) {
       lo = fmin(lo, T[t * TRI_STRIDE + T_YMIN]);
       hi = fmax(hi, T[t * TRI_STRIDE + T_YMAX]);
+      const int4 box = vload4(0, (__global const int*)T + t * TRI_STRIDE + T_BOX);
+      if (box.s0 <= box.s1 && box.s2 <= box.s3) {
+        box_lo = min(box_lo, box.s2);
+        box_hi = max(box_hi, box.s3);
+      }
     }
     T[Q_YRANGE + 2 * qj] = lo;
     T[Q_YRANGE + 2 * qj + 1] = hi;
+    vstore2((int2)(box_lo, box_hi), 0, (__global int*)T + Q_BOX_ROWS + 2 * qj);
   }
   /* the edge arrays' padding repeats triangle 0's edge 0 */
   __global uint* SA = (__global uint*)T + NT * TRI_STRIDE;
