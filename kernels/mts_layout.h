@@ -34,7 +34,7 @@
 #define MTS_NV_PAD(g) ((MTS_NV(g) + 15) / 16 * 16)
 #define MTS_Q_USED(g, s) (MTS_Q_YRANGE(g, s) + 2 * (g))
 /* Then per row of quads (grid int pairs) the first and last kernel row its records' pixel boxes
- * reach (kernel_pixel_box; first > last: none), so a band's code bounds visit only the quad rows
+ * reach (pixel_boxes16; first > last: none), so a band's code bounds visit only the quad rows
  * that can meet it. */
 #define MTS_Q_BOX_ROWS(g, s) (MTS_Q_USED(g, s) + (g))
 /* Then, from a multiple of 16 ints on (so they load as aligned int16, and every plane record
@@ -59,7 +59,7 @@
 #define T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
 #define T_BIAS 26 /* the triangle's depth bias (kernels/bias.cl only) */
 #define T_ZMAX 27 /* the largest |window depth| of its vertices (the float rule of depth bias) */
-#define T_BOX 28  /* int4: the kernel pixels the triangle may own (kernel_pixel_box) */
+#define T_BOX 28  /* int4: the kernel pixels the triangle may own (setup.cl pixel_boxes16) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
 #define PROBE_STRIDE 27

@@ -12,7 +12,7 @@ typedef struct {
 } code_bounds_t;
 
 // The kernel pixels (column i0..i1, row j0..j1) of rows [r0, r1) that triangle R may own
-// (kernel_pixel_box, stored by mts_setup). Empty when i0 > i1 or j0 > j1.
+// (pixel_boxes16, stored by mts_setup). Empty when i0 > i1 or j0 > j1.
 static inline int4 pixel_box(__global const float* R, int r0, int r1) {
   const int4 box = vload4(0, (__global const int*)R + T_BOX);
   return (int4)(box.s0, box.s1, max(box.s2, r0), min(box.s3, r1 - 1));

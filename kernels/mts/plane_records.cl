@@ -1,6 +1,6 @@
 // What the kernels after the set-up read from a plane's records (kernels/mts/setup.cl writes
-// them): the coverage certificate per band and per row, the kernel pixels a triangle may own, and
-// where plane A's records sit in the plane-A cache.
+// them): the coverage certificate per band and per row, the records whose pixel boxes reach a
+// band, and where plane A's records sit in the plane-A cache.
 // Shared by the set-up program (kernels/mts_setup.cl) and the per-pixel ones (kernels/mts.cl,
 // kernels/bias.cl).
 
@@ -18,22 +18,6 @@ static inline int row_covered(__global const float* T, uint vf, int row, uint ba
   for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
   return (vf & V_COVERS) && (!(vf & V_SLIVERS) || band_covered(vf, (uint)row / band_rows)) &&
          !any16(hit);
-}
-
-// The kernel pixels (column i0..i1, row j0..j1) that triangle R may own: those whose centre lies
-// within its bounding box widened by one pixel (an edge test can pass only within its rounding
-// error outside the exact triangle). Empty when i0 > i1 or j0 > j1.
-static inline int4 kernel_pixel_box(__global const float* R, float ox, float oy, int W, int H) {
-  float xmin = INFINITY, xmax = -INFINITY;
-  for (int e = 0; e < 3; ++e) {
-    const float ax = R[T_EDGES + 4 * e], bx = ax + R[T_EDGES + 4 * e + 2];
-    xmin = fmin(xmin, fmin(ax, bx));
-    xmax = fmax(xmax, fmax(ax, bx));
-  }
-  return (int4)(max((int)ceil(fmax(xmin - 1.0f - ox - 0.5f, -1.0f)), 0),
-                min((int)floor(fmin(xmax + 1.0f - ox - 0.5f, (float)W)), W - 1),
-                max((int)ceil(fmax(R[T_YMIN] - 1.0f - oy - 0.5f, -1.0f)), 0),
-                min((int)floor(fmin(R[T_YMAX] + 1.0f - oy - 0.5f, (float)H)), H - 1));
 }
 
 // The records of plane T whose pixel boxes can reach kernel rows [r0, r1): first..end - 1, from

@@ -142,159 +142,334 @@ static inline void mark_sliver(const float* x, const float* y, float det, float 
   }
 }
 
+// Sixteen triangles at once, one per lane: window x, y, depth, 1/w and vertex id of each corner.
+typedef struct {
+  float16 x[3], y[3], d[3], q[3];
+  int16 id[3];
+} triangles16_t;
+
+#define SETUP_LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+
+// Triangles waiting for their set-up, a lane each (corner c of lane k), with the record each goes
+// to: the set-up takes them 16 at a time (setup_pending).
+typedef struct {
+  float x[3][16], y[3][16], d[3][16], q[3][16];
+  int id[3][16];
+  int slot[16];
+  int n;
+} pending_triangles_t;
+
+// 16 x 16 transpose: out[k] lane f = in[f] lane k, by swapping the off-diagonal b x b blocks of
+// every 2b x 2b block for b = 8, 4, 2, 1 (each swap exchanges bit b of the row and column). The
+// shuffles' lane lists are constants (__builtin_shufflevector), so each is one instruction: with
+// masks computed at run time, PoCL's shuffle2 made the set-up slower than storing lane by lane.
+#define SWAP_BLOCKS(m, b)                                          \
+  _Pragma("unroll") for (int i = 0; i < 16; ++i) if (!(i & (b))) { \
+    const uint16 a_ = m[i], c_ = m[i + (b)];                       \
+    m[i] = __builtin_shufflevector(a_, c_, FIRST_##b);             \
+    m[i + (b)] = __builtin_shufflevector(a_, c_, SECOND_##b);      \
+  }
+#define FIRST_8 0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23
+#define SECOND_8 8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26, 27, 28, 29, 30, 31
+#define FIRST_4 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27
+#define SECOND_4 4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31
+#define FIRST_2 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25, 12, 13, 28, 29
+#define SECOND_2 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27, 14, 15, 30, 31
+#define FIRST_1 0, 16, 2, 18, 4, 20, 6, 22, 8, 24, 10, 26, 12, 28, 14, 30
+#define SECOND_1 1, 17, 3, 19, 5, 21, 7, 23, 9, 25, 11, 27, 13, 29, 15, 31
+static inline void transpose16(uint16* m) {
+  SWAP_BLOCKS(m, 8)
+  SWAP_BLOCKS(m, 4)
+  SWAP_BLOCKS(m, 2)
+  SWAP_BLOCKS(m, 1)
+}
+#undef SWAP_BLOCKS
+
+// Triangle records slot[0 .. lanes - 1] from their fields (rec[field], a lane per record):
+// transposed in registers, each record is two 16-word stores rather than 32 scattered ones.
+static inline void write_records16(__global float* T, const int* slot, int lanes, uint16* rec) {
+  transpose16(rec);
+  transpose16(rec + 16);
+  for (int k = 0; k < lanes; ++k) {
+    __global uint* R = (__global uint*)T + slot[k] * TRI_STRIDE;
+    vstore16(rec[k], 0, R);
+    vstore16(rec[16 + k], 0, R + 16);
+  }
+}
+
+// Their edges in the edge arrays (structure of arrays: edge e of record t at 3 t + e), from
+// edges[array][e] (a lane per record): each array's 48 words interleaved in registers.
+static inline void write_edges16(__global float* T, const int* slot, int lanes,
+                                 uint16 edges[6][3]) {
+  /* 16 records in a row (the grid's, without a clip stage): 3 stores per array */
+  const int run = lanes == 16 && slot[15] == slot[0] + 15;
+  for (int a = 0; a < 6; ++a) {
+    /* word w = 16 h + j of out[h] is edge w % 3 of lane w / 3: edges 0 and 1 first, then 2 */
+    const uint16 e0 = edges[a][0], e1 = edges[a][1], e2 = edges[a][2];
+    const uint16 t0 =
+        __builtin_shufflevector(e0, e1, 0, 16, 0, 1, 17, 1, 2, 18, 2, 3, 19, 3, 4, 20, 4, 5);
+    const uint16 t1 =
+        __builtin_shufflevector(e0, e1, 21, 5, 6, 22, 6, 7, 23, 7, 8, 24, 8, 9, 25, 9, 10, 26);
+    const uint16 t2 = __builtin_shufflevector(e0, e1, 10, 11, 27, 11, 12, 28, 12, 13, 29, 13, 14,
+                                              30, 14, 15, 31, 15);
+    const uint16 out[3] = {
+        __builtin_shufflevector(t0, e2, 0, 1, 16, 3, 4, 17, 6, 7, 18, 9, 10, 19, 12, 13, 20, 15),
+        __builtin_shufflevector(t1, e2, 0, 21, 2, 3, 22, 5, 6, 23, 8, 9, 24, 11, 12, 25, 14, 15),
+        __builtin_shufflevector(t2, e2, 26, 1, 2, 27, 4, 5, 28, 7, 8, 29, 10, 11, 30, 13, 14, 31)};
+    __global uint* SA = (__global uint*)T + NT * TRI_STRIDE + a * NE_PAD;
+    if (run) {
+      for (int h = 0; h < 3; ++h) vstore16(out[h], 0, SA + 3 * slot[0] + 16 * h);
+    } else {
+      uint words[48];
+      for (int h = 0; h < 3; ++h) vstore16(out[h], 0, words + 16 * h);
+      for (int k = 0; k < lanes; ++k)
+        for (int e = 0; e < 3; ++e) SA[3 * slot[k] + e] = words[3 * k + e];
+    }
+  }
+}
+
 #if PLANE_FORM != 0
 // The depth and 1/w planes of a record referred to the framebuffer origin, as llvmpipe and softpipe
 // refer them: the anchor vertex's value minus the gradients times its offset (xc, yc) from the
 // origin pixel's centre; evaluated at integer pixel coordinates, so x0 = y0 = 1/2.
-static inline void store_origin_planes(__global float* R, float xc, float yc, float d0, float dzdx,
-                                       float dzdy, float q0, float dqdx, float dqdy) {
-  R[T_X0] = 0.5f;
-  R[T_Y0] = 0.5f;
-  R[T_D0] = d0 - (dzdx * xc + dzdy * yc);
-  R[T_DZDX] = dzdx;
-  R[T_DZDY] = dzdy;
-  R[T_Q0] = q0 - (dqdx * xc + dqdy * yc);
-  R[T_DQDX] = dqdx;
-  R[T_DQDY] = dqdy;
+static inline void origin_planes16(uint16* rec, float16 xc, float16 yc, float16 d0, float16 dzdx,
+                                   float16 dzdy, float16 q0, float16 dqdx, float16 dqdy) {
+  rec[T_X0] = as_uint16((float16)0.5f);
+  rec[T_Y0] = as_uint16((float16)0.5f);
+  rec[T_D0] = as_uint16(d0 - (dzdx * xc + dzdy * yc));
+  rec[T_DZDX] = as_uint16(dzdx);
+  rec[T_DZDY] = as_uint16(dzdy);
+  rec[T_Q0] = as_uint16(q0 - (dqdx * xc + dqdy * yc));
+  rec[T_DQDX] = as_uint16(dqdx);
+  rec[T_DQDY] = as_uint16(dqdy);
+}
+
+// v[i[lane]] per lane, i in 0..2.
+static inline float16 pick16(const float16* v, int16 i) {
+  return select(select(v[0], v[1], i == 1), v[2], i == 2);
 }
 #endif
 
-// One triangle record (slot t of plane T) from its vertices: ids (an edge is evaluated from its
-// lower-id vertex, so two triangles sharing it compute the same value), window x, y, depth and
-// 1/w. Edges, orientation and ownership bits, the depth and 1/w planes in the set-up's form, the
-// y-range, the largest |depth|, the edge arrays and the pixel box. A degenerate triangle, or one
-// with an angle below ~6 degrees, is a sliver (mark_sliver).
+// The kernel pixels (column i0..i1, row j0..j1, as int4 lanes s0..s3) that a triangle may own:
+// those whose centre lies within its bounding box widened by one pixel (an edge test can pass only
+// within its rounding error outside the exact triangle). Empty when i0 > i1 or j0 > j1. The x
+// extent is taken from the edges as the record stores them (anchor, anchor + direction).
+static inline void pixel_boxes16(uint16* rec, const float16* ex, const float16* edx, float16 ymin,
+                                 float16 ymax, float ox, float oy, int W, int H) {
+  float16 xmin = (float16)INFINITY, xmax = (float16)-INFINITY;
+  for (int e = 0; e < 3; ++e) {
+    const float16 ax = ex[e], bx = ax + edx[e];
+    xmin = fmin(xmin, fmin(ax, bx));
+    xmax = fmax(xmax, fmax(ax, bx));
+  }
+  const int16 i0 = max(convert_int16(ceil(fmax(xmin - 1.0f - ox - 0.5f, -1.0f))), 0);
+  const int16 i1 = min(convert_int16(floor(fmin(xmax + 1.0f - ox - 0.5f, (float)W))), W - 1);
+  const int16 j0 = max(convert_int16(ceil(fmax(ymin - 1.0f - oy - 0.5f, -1.0f))), 0);
+  const int16 j1 = min(convert_int16(floor(fmin(ymax + 1.0f - oy - 0.5f, (float)H))), H - 1);
+  rec[T_BOX + 0] = as_uint16(i0);
+  rec[T_BOX + 1] = as_uint16(i1);
+  rec[T_BOX + 2] = as_uint16(j0);
+  rec[T_BOX + 3] = as_uint16(j1);
+}
+
+// Triangle records slot[0 .. lanes - 1] of plane T from lanes 0 .. lanes - 1 of v, each as a
+// scalar set-up would make it, 16 at a time: the set-up is a few hundred operations per triangle,
+// and this way they run in vector lanes (lanes past `lanes` are computed and not stored). Per
+// triangle: vertex ids (an edge is evaluated from its lower-id vertex, so two triangles sharing it
+// compute the same value), window x, y, depth and 1/w give the edges, orientation and ownership
+// bits, the depth and 1/w planes in the set-up's form, the y-range, the largest |depth|, the edge
+// arrays and the pixel box. A degenerate triangle, or one with an angle below ~6 degrees, is a
+// sliver (mark_sliver, one lane at a time: rare).
 #if MTS_NV(GRID) + 8 * NT0 > (1 << 15) /* the grid's vertices, then 8 per clipped triangle */
 #error "vertex ids need more than the 15 bits the edge arrays keep for each (E_ID_SHIFT)"
 #endif
-static inline void setup_triangle(__global float* T, int t, const int* id, const float* x,
-                                  const float* y, const float* d, const float* q, float origin_x,
-                                  float origin_y, uint kernel_w, uint kernel_h, uint band_rows,
-                                  uint* slivers, uint* shapely) {
-  __global float* R = T + t * TRI_STRIDE;
-  /* the edges stay in registers: written to the record and to the edge arrays (SA) from here,
-   * never read back */
-  float ex[3], ey[3], edx[3], edy[3];
-  uint bits = 0u;
+static inline void setup_triangles16(__global float* T, const int* slot, int lanes,
+                                     const triangles16_t* v, float origin_x, float origin_y,
+                                     uint kernel_w, uint kernel_h, uint band_rows, uint* slivers,
+                                     uint* shapely) {
+  const float16 *x = v->x, *y = v->y, *d = v->d, *q = v->q;
+  const int16* id = v->id;
+  uint16 rec[TRI_STRIDE], edges[6][3]; /* the records' fields and edge arrays, a lane each */
+  float16 ex[3], ey[3], edx[3], edy[3];
+  int16 bits = (int16)0;
   for (int e = 0; e < 3; ++e) {
     const int a = e, b = (e + 1) % 3;
-    const int lo = id[a] < id[b] ? a : b, hi = id[a] < id[b] ? b : a;
-    ex[e] = x[lo];
-    ey[e] = y[lo];
-    edx[e] = x[hi] - x[lo];
-    edy[e] = y[hi] - y[lo];
-    R[T_EDGES + 4 * e + 0] = ex[e];
-    R[T_EDGES + 4 * e + 1] = ey[e];
-    R[T_EDGES + 4 * e + 2] = edx[e];
-    R[T_EDGES + 4 * e + 3] = edy[e];
-    if (id[a] > id[b]) bits |= 1u << e;
+    const int16 a_low = id[a] < id[b]; /* the edge runs from its lower-id vertex */
+    ex[e] = select(x[b], x[a], a_low);
+    ey[e] = select(y[b], y[a], a_low);
+    edx[e] = select(x[a], x[b], a_low) - ex[e];
+    edy[e] = select(y[a], y[b], a_low) - ey[e];
+    rec[T_EDGES + 4 * e + 0] = as_uint16(ex[e]);
+    rec[T_EDGES + 4 * e + 1] = as_uint16(ey[e]);
+    rec[T_EDGES + 4 * e + 2] = as_uint16(edx[e]);
+    rec[T_EDGES + 4 * e + 3] = as_uint16(edy[e]);
+    bits |= select((int16)0, (int16)(1 << e), id[a] > id[b]);
   }
   // orientation: edge 0 evaluated at vertex 2
-  float orient = edx[0] * (y[2] - ey[0]) - edy[0] * (x[2] - ex[0]);
-  if (bits & 1u) orient = -orient;
-  if (orient < 0.0f) bits ^= 7u;
-  const int valid = orient != 0.0f && isfinite(orient);
+  float16 orient = edx[0] * (y[2] - ey[0]) - edy[0] * (x[2] - ex[0]);
+  orient = select(orient, -orient, (bits & 1) != 0);
+  bits = select(bits, bits ^ 7, orient < 0.0f);
+  const int16 valid = (orient != 0.0f) & isfinite(orient);
   for (int e = 0; e < 3; ++e) {
-    const float s = (bits >> e) & 1u ? -1.0f : 1.0f;
-    const float dx = s * edx[e], dy = s * edy[e];
-    if (dy < 0.0f || (dy == 0.0f && dx < 0.0f)) bits |= 8u << e;
+    const float16 s = select((float16)1.0f, (float16)-1.0f, ((bits >> e) & 1) != 0);
+    const float16 dx = s * edx[e], dy = s * edy[e];
+    bits |= select((int16)0, (int16)(8 << e), (dy < 0.0f) | ((dy == 0.0f) & (dx < 0.0f)));
   }
-  if (valid) bits |= 64u;
-  const float e1x = x[1] - x[0], e1y = y[1] - y[0];
-  const float e2x = x[2] - x[0], e2y = y[2] - y[0];
-  const float det = e1x * e2y - e2x * e1y;
+  bits |= select((int16)0, (int16)64, valid);
+  const float16 e1x = x[1] - x[0], e1y = y[1] - y[0];
+  const float16 e2x = x[2] - x[0], e2y = y[2] - y[0];
+  const float16 det = e1x * e2y - e2x * e1y;
   {
-    const float e3x = x[2] - x[1], e3y = y[2] - y[1];
-    const float longest =
+    const float16 e3x = x[2] - x[1], e3y = y[2] - y[1];
+    const float16 longest =
         fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
     /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
-    if (!valid || !(fabs(det) >= 0.1f * longest))
-      mark_sliver(x, y, det, origin_x, origin_y, kernel_w, kernel_h, band_rows, slivers, shapely);
+    const int16 sliver = (!valid | !(fabs(det) >= 0.1f * longest)) & (SETUP_LANES < lanes);
+    if (any16(sliver)) {
+      float xs[3][16], ys[3][16], dets[16];
+      int sl[16];
+      for (int c = 0; c < 3; ++c) {
+        vstore16(x[c], 0, xs[c]);
+        vstore16(y[c], 0, ys[c]);
+      }
+      vstore16(det, 0, dets);
+      vstore16(sliver, 0, sl);
+      for (int k = 0; k < lanes; ++k) {
+        if (!sl[k]) continue;
+        const float xk[3] = {xs[0][k], xs[1][k], xs[2][k]}, yk[3] = {ys[0][k], ys[1][k], ys[2][k]};
+        mark_sliver(xk, yk, dets[k], origin_x, origin_y, kernel_w, kernel_h, band_rows, slivers,
+                    shapely);
+      }
+    }
   }
 #if PLANE_FORM == 1
   {
     /* llvmpipe (lp_state_setup.c): the vertices as it passes them, (v1, v0, v2) when the area
      * is negative; gradients as differences times 1/area; the value at the framebuffer origin.
      * Evaluated at integer pixel coordinates (px - 0.5, py - 0.5): T_X0 = T_Y0 = 0.5. */
-    const int j0 = det < 0.0f ? 1 : 0, j1 = det < 0.0f ? 0 : 1, j2 = 2;
-    const float x0c = x[j0] - 0.5f, y0c = y[j0] - 0.5f;
-    const float dx01 = x[j0] - x[j1], dy01 = y[j0] - y[j1];
-    const float dx20 = x[j2] - x[j0], dy20 = y[j2] - y[j0];
-    const float ooa = 1.0f / (dx01 * dy20 - dx20 * dy01);
-    const float dy20o = dy20 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dx01o = dx01 * ooa;
-    const float dz01 = d[j0] - d[j1], dz20 = d[j2] - d[j0];
-    const float dzdx = dz01 * dy20o - dz20 * dy01o, dzdy = dz20 * dx01o - dz01 * dx20o;
-    const float dq01 = q[j0] - q[j1], dq20 = q[j2] - q[j0];
-    const float dqdx = dq01 * dy20o - dq20 * dy01o, dqdy = dq20 * dx01o - dq01 * dx20o;
-    store_origin_planes(R, x0c, y0c, d[j0], dzdx, dzdy, q[j0], dqdx, dqdy);
+    const int16 neg = det < 0.0f; /* j0 = 1, j1 = 0 where set; j2 = 2 */
+    const float16 xj0 = select(x[0], x[1], neg), xj1 = select(x[1], x[0], neg);
+    const float16 yj0 = select(y[0], y[1], neg), yj1 = select(y[1], y[0], neg);
+    const float16 dj0 = select(d[0], d[1], neg), dj1 = select(d[1], d[0], neg);
+    const float16 qj0 = select(q[0], q[1], neg), qj1 = select(q[1], q[0], neg);
+    const float16 x0c = xj0 - 0.5f, y0c = yj0 - 0.5f;
+    const float16 dx01 = xj0 - xj1, dy01 = yj0 - yj1;
+    const float16 dx20 = x[2] - xj0, dy20 = y[2] - yj0;
+    const float16 ooa = 1.0f / (dx01 * dy20 - dx20 * dy01);
+    const float16 dy20o = dy20 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dx01o = dx01 * ooa;
+    const float16 dz01 = dj0 - dj1, dz20 = d[2] - dj0;
+    const float16 dzdx = dz01 * dy20o - dz20 * dy01o, dzdy = dz20 * dx01o - dz01 * dx20o;
+    const float16 dq01 = qj0 - qj1, dq20 = q[2] - qj0;
+    const float16 dqdx = dq01 * dy20o - dq20 * dy01o, dqdy = dq20 * dx01o - dq01 * dx20o;
+    origin_planes16(rec, x0c, y0c, dj0, dzdx, dzdy, qj0, dqdx, dqdy);
   }
 #elif PLANE_FORM == 2
   {
     /* softpipe (sp_setup.c): vertices sorted by y as setup_sort_vertices does (ties keep its
      * order), ebot = vmid - vmin, emaj = vmax - vmin, gradients times 1/area, the value at the
-     * framebuffer origin from vmin (tri_linear_coeff). Evaluated per 2x2 quad (row_plane). */
-    int lo, mid, hi;
-    if (y[0] <= y[1]) {
-      if (y[1] <= y[2]) {
-        lo = 0, mid = 1, hi = 2;
-      } else if (y[2] <= y[0]) {
-        lo = 2, mid = 0, hi = 1;
-      } else {
-        lo = 0, mid = 2, hi = 1;
-      }
-    } else {
-      if (y[0] <= y[2]) {
-        lo = 1, mid = 0, hi = 2;
-      } else if (y[2] <= y[1]) {
-        lo = 2, mid = 1, hi = 0;
-      } else {
-        lo = 1, mid = 2, hi = 0;
-      }
-    }
-    const float bot_dx = x[mid] - x[lo], bot_dy = y[mid] - y[lo];
-    const float maj_dx = x[hi] - x[lo], maj_dy = y[hi] - y[lo];
-    const float ooa = 1.0f / (maj_dx * bot_dy - bot_dx * maj_dy);
-    const float xc = x[lo] - 0.5f, yc = y[lo] - 0.5f;
-    const float botdz = d[mid] - d[lo], majdz = d[hi] - d[lo];
-    const float dzdx = (bot_dy * majdz - botdz * maj_dy) * ooa;
-    const float dzdy = (maj_dx * botdz - majdz * bot_dx) * ooa;
-    const float botdq = q[mid] - q[lo], majdq = q[hi] - q[lo];
-    const float dqdx = (bot_dy * majdq - botdq * maj_dy) * ooa;
-    const float dqdy = (maj_dx * botdq - majdq * bot_dx) * ooa;
-    store_origin_planes(R, xc, yc, d[lo], dzdx, dzdy, q[lo], dqdx, dqdy);
+     * framebuffer origin from vmin (tri_linear_coeff). Evaluated per 2x2 quad (row_plane). Its
+     * branches, lane by lane: y0 <= y1: (0, 1, 2) if y1 <= y2, else (2, 0, 1) if y2 <= y0, else
+     * (0, 2, 1); y0 > y1: (1, 0, 2) if y0 <= y2, else (2, 1, 0) if y2 <= y1, else (1, 2, 0). */
+    const int16 c01 = y[0] <= y[1], c12 = y[1] <= y[2], c20 = y[2] <= y[0];
+    const int16 c02 = y[0] <= y[2], c21 = y[2] <= y[1];
+    const int16 lo = select(select(select((int16)1, (int16)2, c21), (int16)1, c02),
+                            select(select((int16)0, (int16)2, c20), (int16)0, c12), c01);
+    const int16 mid = select(select(select((int16)2, (int16)1, c21), (int16)0, c02),
+                             select(select((int16)2, (int16)0, c20), (int16)1, c12), c01);
+    const int16 hi = select(select(select((int16)0, (int16)0, c21), (int16)2, c02),
+                            select(select((int16)1, (int16)1, c20), (int16)2, c12), c01);
+    const float16 xl = pick16(x, lo), yl = pick16(y, lo), dl = pick16(d, lo), ql = pick16(q, lo);
+    const float16 bot_dx = pick16(x, mid) - xl, bot_dy = pick16(y, mid) - yl;
+    const float16 maj_dx = pick16(x, hi) - xl, maj_dy = pick16(y, hi) - yl;
+    const float16 ooa = 1.0f / (maj_dx * bot_dy - bot_dx * maj_dy);
+    const float16 xc = xl - 0.5f, yc = yl - 0.5f;
+    const float16 botdz = pick16(d, mid) - dl, majdz = pick16(d, hi) - dl;
+    const float16 dzdx = (bot_dy * majdz - botdz * maj_dy) * ooa;
+    const float16 dzdy = (maj_dx * botdz - majdz * bot_dx) * ooa;
+    const float16 botdq = pick16(q, mid) - ql, majdq = pick16(q, hi) - ql;
+    const float16 dqdx = (bot_dy * majdq - botdq * maj_dy) * ooa;
+    const float16 dqdy = (maj_dx * botdq - majdq * bot_dx) * ooa;
+    origin_planes16(rec, xc, yc, dl, dzdx, dzdy, ql, dqdx, dqdy);
   }
 #else
-  const float e1d = d[1] - d[0], e2d = d[2] - d[0];
-  const float e1q = q[1] - q[0], e2q = q[2] - q[0];
-  R[T_X0] = x[0];
-  R[T_Y0] = y[0];
-  R[T_D0] = d[0];
-  R[T_DZDX] = (e1d * e2y - e2d * e1y) / det;
-  R[T_DZDY] = (e2d * e1x - e1d * e2x) / det;
-  R[T_Q0] = q[0];
-  R[T_DQDX] = (e1q * e2y - e2q * e1y) / det;
-  R[T_DQDY] = (e2q * e1x - e1q * e2x) / det;
+  const float16 e1d = d[1] - d[0], e2d = d[2] - d[0];
+  const float16 e1q = q[1] - q[0], e2q = q[2] - q[0];
+  rec[T_X0] = as_uint16(x[0]);
+  rec[T_Y0] = as_uint16(y[0]);
+  rec[T_D0] = as_uint16(d[0]);
+  rec[T_DZDX] = as_uint16((e1d * e2y - e2d * e1y) / det);
+  rec[T_DZDY] = as_uint16((e2d * e1x - e1d * e2x) / det);
+  rec[T_Q0] = as_uint16(q[0]);
+  rec[T_DQDX] = as_uint16((e1q * e2y - e2q * e1y) / det);
+  rec[T_DQDY] = as_uint16((e2q * e1x - e1q * e2x) / det);
 #endif
-  R[T_YMIN] = fmin(fmin(y[0], y[1]), y[2]);
-  R[T_YMAX] = fmax(fmax(y[0], y[1]), y[2]);
-  R[T_ZMAX] = fmax(fmax(fabs(d[0]), fabs(d[1])), fabs(d[2]));
-  __global float* SA = T + NT * TRI_STRIDE;
+  const float16 ymin = fmin(fmin(y[0], y[1]), y[2]), ymax = fmax(fmax(y[0], y[1]), y[2]);
+  rec[T_YMIN] = as_uint16(ymin);
+  rec[T_YMAX] = as_uint16(ymax);
+  rec[T_ZMAX] = as_uint16(fmax(fmax(fabs(d[0]), fabs(d[1])), fabs(d[2])));
   for (int e = 0; e < 3; ++e) {
-    const int k = 3 * t + e;
-    const float dxdy = edx[e] / edy[e];
-    R[T_DXDY + e] = dxdy;
-    SA[E_AX * NE_PAD + k] = ex[e];
-    SA[E_AY * NE_PAD + k] = ey[e];
-    SA[E_DX * NE_PAD + k] = edx[e];
-    SA[E_DY * NE_PAD + k] = edy[e];
-    SA[E_DXDY * NE_PAD + k] = dxdy;
-    ((__global uint*)SA)[E_BITS * NE_PAD + k] =
-        ((bits >> e) & 1u) | (((bits >> (3 + e)) & 1u) << 1) | ((uint)id[e] << E_ID_SHIFT) |
-        ((uint)id[(e + 1) % 3] << (E_ID_SHIFT + 15));
+    const float16 dxdy = edx[e] / edy[e];
+    rec[T_DXDY + e] = as_uint16(dxdy);
+    edges[E_AX][e] = as_uint16(ex[e]);
+    edges[E_AY][e] = as_uint16(ey[e]);
+    edges[E_DX][e] = as_uint16(edx[e]);
+    edges[E_DY][e] = as_uint16(edy[e]);
+    edges[E_DXDY][e] = as_uint16(dxdy);
+    const uint16 ub = as_uint16(bits);
+    edges[E_BITS][e] = ((ub >> e) & 1u) | (((ub >> (3 + e)) & 1u) << 1) |
+                       (as_uint16(id[e]) << E_ID_SHIFT) |
+                       (as_uint16(id[(e + 1) % 3]) << (E_ID_SHIFT + 15));
   }
-  ((__global uint*)R)[T_BITS] = bits;
-  vstore4(kernel_pixel_box(R, origin_x, origin_y, (int)kernel_w, (int)kernel_h), 0,
-          (__global int*)R + T_BOX);
+  rec[T_BITS] = as_uint16(bits);
+  pixel_boxes16(rec, ex, edx, ymin, ymax, origin_x, origin_y, (int)kernel_w, (int)kernel_h);
+  rec[T_BIAS] = (uint16)0u; /* kernels/bias.cl's, set after the set-up */
+  write_records16(T, slot, lanes, rec);
+  write_edges16(T, slot, lanes, edges);
+}
+
+// Sets up the pending triangles, 16 lanes of which the ones past p->n repeat the last (so no lane
+// computes on undefined values), and empties the queue.
+static inline void setup_pending(pending_triangles_t* p, __global float* T, float origin_x,
+                                 float origin_y, uint kernel_w, uint kernel_h, uint band_rows,
+                                 uint* slivers, uint* shapely) {
+  if (p->n == 0) return;
+  triangles16_t v;
+  for (int c = 0; c < 3; ++c) {
+    for (int k = p->n; k < 16; ++k) {
+      p->x[c][k] = p->x[c][p->n - 1];
+      p->y[c][k] = p->y[c][p->n - 1];
+      p->d[c][k] = p->d[c][p->n - 1];
+      p->q[c][k] = p->q[c][p->n - 1];
+      p->id[c][k] = p->id[c][p->n - 1];
+    }
+    v.x[c] = vload16(0, p->x[c]);
+    v.y[c] = vload16(0, p->y[c]);
+    v.d[c] = vload16(0, p->d[c]);
+    v.q[c] = vload16(0, p->q[c]);
+    v.id[c] = vload16(0, p->id[c]);
+  }
+  setup_triangles16(T, p->slot, p->n, &v, origin_x, origin_y, kernel_w, kernel_h, band_rows,
+                    slivers, shapely);
+  p->n = 0;
+}
+
+// Queues the triangle for record `slot` (corners: vertex ids, window x, y, depth, 1/w), setting up
+// the queue when it is full.
+static inline void queue_triangle(pending_triangles_t* p, int slot, const int* id, const float* x,
+                                  const float* y, const float* d, const float* q, __global float* T,
+                                  float origin_x, float origin_y, uint kernel_w, uint kernel_h,
+                                  uint band_rows, uint* slivers, uint* shapely) {
+  const int k = p->n++;
+  p->slot[k] = slot;
+  for (int c = 0; c < 3; ++c) {
+    p->x[c][k] = x[c];
+    p->y[c][k] = y[c];
+    p->d[c][k] = d[c];
+    p->q[c][k] = q[c];
+    p->id[c][k] = id[c];
+  }
+  if (p->n == 16)
+    setup_pending(p, T, origin_x, origin_y, kernel_w, kernel_h, band_rows, slivers, shapely);
 }
 
 // A slot no triangle uses: invalid, empty y-range and pixel box, zero edges.
@@ -340,11 +515,12 @@ static inline float clip_dist(float4 c, int k) {
 }
 
 // Clips grid triangle t0 (its vertices in tri[0..2], mask the union of their clip masks) and
-// sets up its fan in records first, first + 1, ...; returns how many it filled.
+// queues its fan for records first, first + 1, ...; returns how many it takes.
 static inline int clip_fan(__global float* T, int t0, int first, const clip_vertex_t* tri,
                            uint mask, float half_w, float half_h, float origin_x, float origin_y,
                            uint kernel_w, uint kernel_h, uint band_rows, int depth_gl,
-                           int snap_bits, uint* slivers, uint* shapely) {
+                           int snap_bits, pending_triangles_t* pending, uint* slivers,
+                           uint* shapely) {
   clip_vertex_t a[9], b[9];
   clip_vertex_t* in = a;
   clip_vertex_t* out = b;
@@ -402,8 +578,8 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
     const int id[3] = {f[0]->id, f[1]->id, f[2]->id};
     const float x[3] = {f[0]->x, f[1]->x, f[2]->x}, y[3] = {f[0]->y, f[1]->y, f[2]->y};
     const float d[3] = {f[0]->d, f[1]->d, f[2]->d}, q[3] = {f[0]->q, f[1]->q, f[2]->q};
-    setup_triangle(T, first + i - 2, id, x, y, d, q, origin_x, origin_y, kernel_w, kernel_h,
-                   band_rows, slivers, shapely);
+    queue_triangle(pending, first + i - 2, id, x, y, d, q, T, origin_x, origin_y, kernel_w,
+                   kernel_h, band_rows, slivers, shapely);
   }
   return n - 2;
 }
@@ -467,7 +643,9 @@ static inline void setup_plane(__global const float* P, __global const float* M,
   }
   uint shapely = 1u; /* covers_kernel's argument holds at least outside the sliver bands */
   uint slivers = 0u; /* bands of kernel rows near a sliver triangle */
-  int next = 0;      /* the next free record of the current quad row */
+  pending_triangles_t pending; /* set up 16 at a time */
+  pending.n = 0;
+  int next = 0; /* the next free record of the current quad row */
   for (int t0 = 0; t0 < NT0; ++t0) {
     const int qj = t0 / (2 * GRID);
     if (t0 % (2 * GRID) == 0) next = Q_SLOTS * qj;
@@ -481,8 +659,8 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       const float y[3] = {yw[vi[0]], yw[vi[1]], yw[vi[2]]};
       const float d[3] = {dw[vi[0]], dw[vi[1]], dw[vi[2]]};
       const float q[3] = {qw[vi[0]], qw[vi[1]], qw[vi[2]]};
-      setup_triangle(T, next++, vi, x, y, d, q, origin_x, origin_y, kernel_w, kernel_h, band_rows,
-                     &slivers, &shapely);
+      queue_triangle(&pending, next++, vi, x, y, d, q, T, origin_x, origin_y, kernel_w, kernel_h,
+                     band_rows, &slivers, &shapely);
 #if CLIP_SLOTS > 1
     } else if (!(m0 & m1 & m2)) { /* all outside one plane: culled */
       clip_vertex_t poly[3];
@@ -490,8 +668,9 @@ static inline void setup_plane(__global const float* P, __global const float* M,
         const int v = vi[k];
         poly[k] = (clip_vertex_t){cv[v], xw[v], yw[v], dw[v], qw[v], v};
       }
-      next += clip_fan(T, t0, next, poly, m0 | m1 | m2, half_w, half_h, origin_x, origin_y,
-                       kernel_w, kernel_h, band_rows, depth_gl, snap_bits, &slivers, &shapely);
+      next +=
+          clip_fan(T, t0, next, poly, m0 | m1 | m2, half_w, half_h, origin_x, origin_y, kernel_w,
+                   kernel_h, band_rows, depth_gl, snap_bits, &pending, &slivers, &shapely);
     }
 #endif
     if (t0 % (2 * GRID) == 2 * GRID - 1) {
@@ -499,6 +678,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
       for (int k = next; k < Q_SLOTS * (qj + 1); ++k) empty_slot(T, k);
     }
   }
+  setup_pending(&pending, T, origin_x, origin_y, kernel_w, kernel_h, band_rows, &slivers, &shapely);
   const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
   *vflag = nonfinite | (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h,
