@@ -12,26 +12,43 @@
 #define V_BAD_ROW MTS_V_BAD_ROW(GRID, CLIP_SLOTS)
 #define PLANE_STRIDE MTS_PLANE_STRIDE(GRID, CLIP_SLOTS)
 
-// m * v row by row, fused (F_VERTEX_FMA) or not (host/model/frame_setup.h mat_row_dot): a
-// computed vector v, or a plane's object position (x, y, 0, 1), whose constant z and w a shader
-// compiler folds away (object_row_dot).
-static inline float mat_row(__global const float* m, float4 v, int fused) {
-  return fused ? fma(m[3], v.w, fma(m[2], v.z, fma(m[1], v.y, m[0] * v.x)))
-               : ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
+// The lane indices of a 16-lane vector.
+#define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+
+// m * v row by row for 16 vectors in lanes, fused (F_VERTEX_FMA) or not (host/model/frame_setup.h
+// mat_row_dot): a computed vector, or a plane's object position (x, y, 0, 1), whose constant z and
+// w a shader compiler folds away (obj_row16).
+typedef struct {
+  float16 x, y, z, w;
+} vec4x16_t;
+
+static inline float16 mat_row16(__global const float* m, vec4x16_t v, int fused) {
+  return fused
+             ? fma((float16)m[3], v.w, fma((float16)m[2], v.z, fma((float16)m[1], v.y, m[0] * v.x)))
+             : ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
 }
 
-static inline float obj_row(__global const float* m, float4 obj, int fused) {
-  return fused ? fma(m[1], obj.y, fma(m[0], obj.x, m[3])) : mat_row(m, obj, 0);
+static inline float16 obj_row16(__global const float* m, vec4x16_t obj, int fused) {
+  return fused ? fma((float16)m[1], obj.y, fma((float16)m[0], obj.x, (float16)m[3]))
+               : mat_row16(m, obj, 0);
 }
 
-static inline float4 mat_vec(__global const float* m, float4 v, int fused) {
-  return (float4)(mat_row(m, v, fused), mat_row(m + 4, v, fused), mat_row(m + 8, v, fused),
-                  mat_row(m + 12, v, fused));
+static inline vec4x16_t mat_vec16(__global const float* m, vec4x16_t v, int fused) {
+  vec4x16_t r;
+  r.x = mat_row16(m, v, fused);
+  r.y = mat_row16(m + 4, v, fused);
+  r.z = mat_row16(m + 8, v, fused);
+  r.w = mat_row16(m + 12, v, fused);
+  return r;
 }
 
-static inline float4 obj_vec(__global const float* m, float4 obj, int fused) {
-  return (float4)(obj_row(m, obj, fused), obj_row(m + 4, obj, fused), obj_row(m + 8, obj, fused),
-                  obj_row(m + 12, obj, fused));
+static inline vec4x16_t obj_vec16(__global const float* m, vec4x16_t obj, int fused) {
+  vec4x16_t r;
+  r.x = obj_row16(m, obj, fused);
+  r.y = obj_row16(m + 4, obj, fused);
+  r.z = obj_row16(m + 8, obj, fused);
+  r.w = obj_row16(m + 12, obj, fused);
+  return r;
 }
 
 // The shaders' natural log, of one value and of 16 (LLVMPIPE_LOG, kernels/llvmpipe_log.h).

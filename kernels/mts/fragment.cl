@@ -148,8 +148,6 @@ static inline int16 ordered_fights16(float16 da, float16 db) {
 #define LOG_SLACK_OR_0 0UL
 #endif
 
-#define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-
 // Walks the row in pieces where both planes' covering triangles stay the same.
 #define FOR_EACH_PIECE(...)                                  \
   {                                                          \

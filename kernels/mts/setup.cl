@@ -67,17 +67,6 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
   return V_COVERS | (sliver_bands ? V_SLIVERS : 0u) | (bad_bands << V_BAND_SHIFT);
 }
 
-// The vertices of triangle t of the plane grid: quad t / 2, split along the diagonal from its
-// lower-left corner a to c (flip 0: triangles (a, b, c) and (a, c, d), the measured planes), or
-// from b to d (flip 1: (a, b, d) and (b, c, d), the same quad tessellated the other way: the
-// coplanar overlay of depth bias, kernels/bias.cl). Vertex 0 anchors the plane equation.
-static inline int3 triangle_vertices(int t, int flip) {
-  const int quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
-  const int a = qj * (GRID + 1) + qi, b = a + 1, c = a + GRID + 2, d = a + GRID + 1;
-  if (flip) return (t & 1) ? (int3)(b, c, d) : (int3)(a, b, d);
-  return (t & 1) ? (int3)(a, c, d) : (int3)(a, b, c);
-}
-
 // Whether the strip of points within w of the line through the origin along (dx, dy) (length l)
 // meets row offset ry, and where: the x offsets (*lo, *hi) it spans there, narrowed.
 static inline int strip_at_row(float dx, float dy, float l, float w, float ry, float* lo,
@@ -147,17 +136,6 @@ typedef struct {
   float16 x[3], y[3], d[3], q[3];
   int16 id[3];
 } triangles16_t;
-
-#define SETUP_LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-
-// Triangles waiting for their set-up, a lane each (corner c of lane k), with the record each goes
-// to: the set-up takes them 16 at a time (setup_pending).
-typedef struct {
-  float x[3][16], y[3][16], d[3][16], q[3][16];
-  int id[3][16];
-  int slot[16];
-  int n;
-} pending_triangles_t;
 
 // 16 x 16 transpose: out[k] lane f = in[f] lane k, by swapping the off-diagonal b x b blocks of
 // every 2b x 2b block for b = 8, 4, 2, 1 (each swap exchanges bit b of the row and column). The
@@ -324,7 +302,7 @@ static inline void setup_triangles16(__global float* T, const int* slot, int lan
     const float16 longest =
         fmax(fmax(e1x * e1x + e1y * e1y, e2x * e2x + e2y * e2y), e3x * e3x + e3y * e3y);
     /* |det| = l_j l_k sin(angle) >= longest * sin(angle) */
-    const int16 sliver = (!valid | !(fabs(det) >= 0.1f * longest)) & (SETUP_LANES < lanes);
+    const int16 sliver = (!valid | !(fabs(det) >= 0.1f * longest)) & (LANES < lanes);
     if (any16(sliver)) {
       float xs[3][16], ys[3][16], dets[16];
       int sl[16];
@@ -427,6 +405,17 @@ static inline void setup_triangles16(__global float* T, const int* slot, int lan
   write_edges16(T, slot, lanes, edges);
 }
 
+#if CLIP_SLOTS > 1
+// Triangles waiting for their set-up, a lane each (corner c of lane k), with the record each goes
+// to: the set-up takes them 16 at a time (setup_pending). With a clip stage the grid's triangles
+// and the fans take records in the order they come.
+typedef struct {
+  float x[3][16], y[3][16], d[3][16], q[3][16];
+  int id[3][16];
+  int slot[16];
+  int n;
+} pending_triangles_t;
+
 // Sets up the pending triangles, 16 lanes of which the ones past p->n repeat the last (so no lane
 // computes on undefined values), and empties the queue.
 static inline void setup_pending(pending_triangles_t* p, __global float* T, float origin_x,
@@ -484,7 +473,6 @@ static inline void empty_slot(__global float* T, int t) {
     for (int a = 0; a <= E_BITS; ++a) SA[a * NE_PAD + 3 * t + e] = 0.0f;
 }
 
-#if CLIP_SLOTS > 1
 // Triangles crossing the viewport edge, as llvmpipe's clip stage draws them (Mesa 22.3,
 // draw_pipe_clip.c; with a depth buffer bound it has no guard band). A vertex's clip mask is
 // draw_llvm.c's: bit k set when it lies outside plane k of draw's order x <= w, x >= -w, y <= w,
@@ -585,83 +573,170 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
 }
 #endif
 
+// The vertex stage of 16 grid vertices (column i, row j of the plane's grid), a lane each: clip
+// coordinates, then the divide and the window transform to window x, y, depth and 1/w, and
+// whether any of those (depth only where the set-up interpolates it) is not finite.
+typedef struct {
+  vec4x16_t clip;
+  float16 x, y, d, q;
+  int16 nonfinite;
+} vertices16_t;
+
+static inline vertices16_t vertex_stage16(__global const float* P, __global const float* M, int16 i,
+                                          int16 j, float half_w, float half_h) {
+  /* the probe constants this stage alone reads (kernels/mts_layout.h) */
+  const int depth_gl = P[C_DEPTH_GL] != 0.0f;
+  const uint forms = (uint)P[C_FORMS];
+  const int snap_bits = (int)P[C_SNAP_BITS];
+  const int vertex_fma = (forms & F_VERTEX_FMA) != 0u;
+  vec4x16_t obj;
+  obj.x = convert_float16(i) / (float)GRID - 0.5f;
+  obj.y = convert_float16(j) / (float)GRID - 0.5f;
+  obj.z = (float16)0.0f;
+  obj.w = (float16)1.0f;
+  vertices16_t v;
+  v.clip = (forms & F_COMPOSE_PREMULT) ? obj_vec16(M, obj, vertex_fma)
+                                       : mat_vec16(P, obj_vec16(M, obj, vertex_fma), vertex_fma);
+  const vec4x16_t c = v.clip;
+#if DEPTH_FROM == 1
+  {
+    const float16 t = shader_log16(P[C_LOGK] * c.w + 1.0f);
+    v.clip.z = depth_gl ? ((2.0f * t) / P[C_LOGL] - 1.0f) * c.w : (t / P[C_LOGL]) * c.w;
+  }
+#endif
+  const float16 cz = v.clip.z;
+  const float16 inv_w = 1.0f / c.w;
+  float16 nx, ny, nz;
+  if (forms & F_DIVIDE_EXACT) {
+    nx = c.x / c.w;
+    ny = c.y / c.w;
+    nz = cz / c.w;
+  } else {
+    nx = c.x * inv_w;
+    ny = c.y * inv_w;
+    nz = cz * inv_w;
+  }
+  if (forms & F_VIEWPORT_FMA) {
+    v.x = fma(nx, (float16)half_w, (float16)half_w);
+    v.y = fma(ny, (float16)half_h, (float16)half_h);
+    v.d = depth_gl ? fma(nz, (float16)0.5f, (float16)0.5f) : nz;
+  } else {
+    v.x = nx * half_w + half_w;
+    v.y = ny * half_h + half_h;
+    v.d = depth_gl ? nz * 0.5f + 0.5f : nz;
+  }
+  if (snap_bits > 0) { /* lane by lane: the one snapping rule, shared with the host */
+    float x[16], y[16];
+    vstore16(v.x, 0, x);
+    vstore16(v.y, 0, y);
+    for (int k = 0; k < 16; ++k) {
+      x[k] = snap_window_bits(x[k], snap_bits);
+      y[k] = snap_window_bits(y[k], snap_bits);
+    }
+    v.x = vload16(0, x);
+    v.y = vload16(0, y);
+  }
+  v.q = inv_w;
+  v.nonfinite = !isfinite(v.x) | !isfinite(v.y) | !isfinite(v.q);
+#if DEPTH_FROM != 2
+  v.nonfinite |= !isfinite(v.d);
+#endif
+  return v;
+}
+
+// The vertices (a, b, c) of triangles t of the plane grid, a lane each: quad t / 2, split along the
+// diagonal from its lower-left corner a to c (flip 0: triangles (a, b, c) and (a, c, d), the
+// measured planes), or from b to d (flip 1: (a, b, d) and (b, c, d), the same quad tessellated the
+// other way: the coplanar overlay of depth bias, kernels/bias.cl). Vertex 0 anchors the plane
+// equation.
+
+static inline void triangle_vertices16(int16 t, int flip, int16* a, int16* b, int16* c) {
+  const int16 quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
+  const int16 va = qj * (GRID + 1) + qi, vb = va + 1, vc = va + GRID + 2, vd = va + GRID + 1;
+  const int16 odd = (t & 1) != 0;
+  if (flip) { /* (a, b, d) and (b, c, d) */
+    *a = select(va, vb, odd);
+    *b = select(vb, vc, odd);
+  } else { /* (a, b, c) and (a, c, d) */
+    *a = va;
+    *b = select(vb, vc, odd);
+  }
+  *c = flip ? vd : select(vc, vd, odd);
+}
+
 // Vertex stage, divide, window transform and triangle set-up of one plane in one frame into
 // record T and flags *vflag.
 static inline void setup_plane(__global const float* P, __global const float* M, float half_w,
                                float half_h, float origin_x, float origin_y, uint kernel_w,
                                uint kernel_h, uint band_rows, __global float* T,
                                __global uint* vflag, int flip) {
-  float xw[NV], yw[NV], dw[NV], qw[NV];
-  /* the probe constants this stage alone reads (kernels/mts_layout.h) */
-  const int depth_gl = P[C_DEPTH_GL] != 0.0f;
-  const uint forms = (uint)P[C_FORMS];
-  const int snap_bits = (int)P[C_SNAP_BITS];
-  const int divide_exact = (forms & F_DIVIDE_EXACT) != 0u;
-  const int premultiplied = (forms & F_COMPOSE_PREMULT) != 0u;
-  const int viewport_fma = (forms & F_VIEWPORT_FMA) != 0u;
-  const int vertex_fma = (forms & F_VERTEX_FMA) != 0u;
+  float xw[NV_PAD], yw[NV_PAD], dw[NV_PAD], qw[NV_PAD];
 #if CLIP_SLOTS > 1
-  float4 cv[NV]; /* clip coordinates, for the clip stage */
+  const int depth_gl = P[C_DEPTH_GL] != 0.0f;
+  const int snap_bits = (int)P[C_SNAP_BITS];
+  float4 cv[NV_PAD]; /* clip coordinates, for the clip stage */
 #endif
   uint nonfinite = 0u;
-  for (int j = 0; j <= GRID; ++j) {
-    for (int i = 0; i <= GRID; ++i) {
-      const int v = j * (GRID + 1) + i;
-      const float4 obj =
-          (float4)((float)i / (float)GRID - 0.5f, (float)j / (float)GRID - 0.5f, 0.0f, 1.0f);
-      float4 clip = premultiplied ? obj_vec(M, obj, vertex_fma)
-                                  : mat_vec(P, obj_vec(M, obj, vertex_fma), vertex_fma);
-#if DEPTH_FROM == 1
-      {
-        const float t = shader_log(P[C_LOGK] * clip.w + 1.0f);
-        clip.z = depth_gl ? ((2.0f * t) / P[C_LOGL] - 1.0f) * clip.w : (t / P[C_LOGL]) * clip.w;
-      }
-#endif
-      const float inv_w = 1.0f / clip.w;
-      const float3 ndc = divide_exact ? (float3)(clip.x / clip.w, clip.y / clip.w, clip.z / clip.w)
-                                      : (float3)(clip.x * inv_w, clip.y * inv_w, clip.z * inv_w);
-      if (viewport_fma) {
-        xw[v] = fma(ndc.x, half_w, half_w);
-        yw[v] = fma(ndc.y, half_h, half_h);
-        dw[v] = depth_gl ? fma(ndc.z, 0.5f, 0.5f) : ndc.z;
-      } else {
-        xw[v] = ndc.x * half_w + half_w;
-        yw[v] = ndc.y * half_h + half_h;
-        dw[v] = depth_gl ? ndc.z * 0.5f + 0.5f : ndc.z;
-      }
-      xw[v] = snap_window_bits(xw[v], snap_bits);
-      yw[v] = snap_window_bits(yw[v], snap_bits);
-      qw[v] = inv_w;
+  for (int v0 = 0; v0 < NV; v0 += 16) { /* the grid's vertices, 16 at a time */
+    const int16 v = min(v0 + LANES, NV - 1);
+    const vertices16_t vs = vertex_stage16(P, M, v % (GRID + 1), v / (GRID + 1), half_w, half_h);
+    vstore16(vs.x, 0, xw + v0);
+    vstore16(vs.y, 0, yw + v0);
+    vstore16(vs.d, 0, dw + v0);
+    vstore16(vs.q, 0, qw + v0);
+    nonfinite |= any16(vs.nonfinite) ? 1u : 0u; /* lanes past NV repeat vertex NV - 1 */
 #if CLIP_SLOTS > 1
-      cv[v] = clip;
+    float cx[16], cy[16], cz[16], cw[16];
+    vstore16(vs.clip.x, 0, cx);
+    vstore16(vs.clip.y, 0, cy);
+    vstore16(vs.clip.z, 0, cz);
+    vstore16(vs.clip.w, 0, cw);
+    for (int k = 0; k < 16; ++k) cv[v0 + k] = (float4)(cx[k], cy[k], cz[k], cw[k]);
 #endif
-      if (!isfinite(xw[v]) || !isfinite(yw[v]) || !isfinite(qw[v])) nonfinite = 1u;
-#if DEPTH_FROM != 2
-      if (!isfinite(dw[v])) nonfinite = 1u;
-#endif
-    }
   }
   uint shapely = 1u; /* covers_kernel's argument holds at least outside the sliver bands */
   uint slivers = 0u; /* bands of kernel rows near a sliver triangle */
+#if CLIP_SLOTS == 1
+  /* every grid triangle in the record of its own index, 16 at a time, each corner's vertex stage
+   * computed again in its lane (the same operations give the same values) rather than gathered */
+  for (int g = 0; g < NT0; g += 16) {
+    const int lanes = min(16, NT0 - g);
+    int slot[16];
+    for (int k = 0; k < 16; ++k) slot[k] = g + k;
+    int16 corner[3];
+    triangle_vertices16(min(g + LANES, NT0 - 1), flip, &corner[0], &corner[1], &corner[2]);
+    triangles16_t tris;
+    for (int c = 0; c < 3; ++c) {
+      const vertices16_t vs =
+          vertex_stage16(P, M, corner[c] % (GRID + 1), corner[c] / (GRID + 1), half_w, half_h);
+      tris.x[c] = vs.x;
+      tris.y[c] = vs.y;
+      tris.d[c] = vs.d;
+      tris.q[c] = vs.q;
+      tris.id[c] = corner[c];
+    }
+    setup_triangles16(T, slot, lanes, &tris, origin_x, origin_y, kernel_w, kernel_h, band_rows,
+                      &slivers, &shapely);
+  }
+  for (int qj = 0; qj < GRID; ++qj) ((__global int*)T)[Q_USED + qj] = Q_SLOTS;
+#else
   pending_triangles_t pending; /* set up 16 at a time */
   pending.n = 0;
   int next = 0; /* the next free record of the current quad row */
   for (int t0 = 0; t0 < NT0; ++t0) {
     const int qj = t0 / (2 * GRID);
     if (t0 % (2 * GRID) == 0) next = Q_SLOTS * qj;
-    const int3 tv = triangle_vertices(t0, flip);
-    const int vi[3] = {tv.x, tv.y, tv.z};
-#if CLIP_SLOTS > 1
+    int16 corner[3];
+    triangle_vertices16((int16)t0, flip, &corner[0], &corner[1], &corner[2]);
+    const int vi[3] = {corner[0].s0, corner[1].s0, corner[2].s0};
     const uint m0 = clip_mask(cv[vi[0]]), m1 = clip_mask(cv[vi[1]]), m2 = clip_mask(cv[vi[2]]);
     if (!(m0 | m1 | m2)) {
-#endif
       const float x[3] = {xw[vi[0]], xw[vi[1]], xw[vi[2]]};
       const float y[3] = {yw[vi[0]], yw[vi[1]], yw[vi[2]]};
       const float d[3] = {dw[vi[0]], dw[vi[1]], dw[vi[2]]};
       const float q[3] = {qw[vi[0]], qw[vi[1]], qw[vi[2]]};
       queue_triangle(&pending, next++, vi, x, y, d, q, T, origin_x, origin_y, kernel_w, kernel_h,
                      band_rows, &slivers, &shapely);
-#if CLIP_SLOTS > 1
     } else if (!(m0 & m1 & m2)) { /* all outside one plane: culled */
       clip_vertex_t poly[3];
       for (int k = 0; k < 3; ++k) {
@@ -672,13 +747,13 @@ static inline void setup_plane(__global const float* P, __global const float* M,
           clip_fan(T, t0, next, poly, m0 | m1 | m2, half_w, half_h, origin_x, origin_y, kernel_w,
                    kernel_h, band_rows, depth_gl, snap_bits, &pending, &slivers, &shapely);
     }
-#endif
     if (t0 % (2 * GRID) == 2 * GRID - 1) {
       ((__global int*)T)[Q_USED + qj] = next - Q_SLOTS * qj;
       for (int k = next; k < Q_SLOTS * (qj + 1); ++k) empty_slot(T, k);
     }
   }
   setup_pending(&pending, T, origin_x, origin_y, kernel_w, kernel_h, band_rows, &slivers, &shapely);
+#endif
   const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
   *vflag = nonfinite | (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h,
