@@ -33,21 +33,13 @@ static inline float16 obj_row16(__global const float* m, vec4x16_t obj, int fuse
                : mat_row16(m, obj, 0);
 }
 
-static inline vec4x16_t mat_vec16(__global const float* m, vec4x16_t v, int fused) {
+// m * v (object: v is an object position, obj_row16).
+static inline vec4x16_t mat_vec16(__global const float* m, vec4x16_t v, int fused, int object) {
   vec4x16_t r;
-  r.x = mat_row16(m, v, fused);
-  r.y = mat_row16(m + 4, v, fused);
-  r.z = mat_row16(m + 8, v, fused);
-  r.w = mat_row16(m + 12, v, fused);
-  return r;
-}
-
-static inline vec4x16_t obj_vec16(__global const float* m, vec4x16_t obj, int fused) {
-  vec4x16_t r;
-  r.x = obj_row16(m, obj, fused);
-  r.y = obj_row16(m + 4, obj, fused);
-  r.z = obj_row16(m + 8, obj, fused);
-  r.w = obj_row16(m + 12, obj, fused);
+  r.x = object ? obj_row16(m, v, fused) : mat_row16(m, v, fused);
+  r.y = object ? obj_row16(m + 4, v, fused) : mat_row16(m + 4, v, fused);
+  r.z = object ? obj_row16(m + 8, v, fused) : mat_row16(m + 8, v, fused);
+  r.w = object ? obj_row16(m + 12, v, fused) : mat_row16(m + 12, v, fused);
   return r;
 }
 

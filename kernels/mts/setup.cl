@@ -595,8 +595,8 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
   obj.z = (float16)0.0f;
   obj.w = (float16)1.0f;
   vertices16_t v;
-  v.clip = (forms & F_COMPOSE_PREMULT) ? obj_vec16(M, obj, vertex_fma)
-                                       : mat_vec16(P, obj_vec16(M, obj, vertex_fma), vertex_fma);
+  v.clip = mat_vec16(M, obj, vertex_fma, 1);
+  if (!(forms & F_COMPOSE_PREMULT)) v.clip = mat_vec16(P, v.clip, vertex_fma, 0);
   const vec4x16_t c = v.clip;
 #if DEPTH_FROM == 1
   {
