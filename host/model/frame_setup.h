@@ -24,7 +24,7 @@ inline float mat_row_dot(const Mat4f& m, int r, const float v[4],
   return ((row[0] * v[0] + row[1] * v[1]) + row[2] * v[2]) + row[3] * v[3];
 }
 
-// Row r of m times a plane's object position (x, y, 0, 1) (kernels/mts/common.cl obj_vec): as
+// Row r of m times a plane's object position (x, y, 0, 1) (kernels/mts/common.cl obj_row16): as
 // mat_row_dot, except that under VertexForm::fma the compiler, which sees the constant z and w,
 // folds them away and fuses what is left as fma(m1, y, fma(m0, x, m3)).
 inline float object_row_dot(const Mat4f& m, int r, const float obj[4], VertexForm form) {

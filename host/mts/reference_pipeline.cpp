@@ -116,7 +116,7 @@ struct Plane {
 };
 
 // flip: each quad split along its other diagonal (b to d), as kernels/mts/setup.cl's
-// triangle_vertices does for the bias measurement's overlay; bias: its offsets, or none.
+// triangle_vertices16 does for the bias measurement's overlay; bias: its offsets, or none.
 Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, const Mat4f& M,
                   bool flip = false, const BiasTerms* bias = nullptr) {
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));

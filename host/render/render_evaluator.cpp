@@ -152,7 +152,7 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
       xy.push_back(static_cast<float>(j) / static_cast<float>(g) - 0.5f);
     }
   // The bias measurement's overlay splits each quad along the other diagonal, (a, b, d) and
-  // (b, c, d), as kernels/mts/setup.cl's triangle_vertices does.
+  // (b, c, d), as kernels/mts/setup.cl's triangle_vertices16 does.
   std::vector<GLuint> idx, flipped;
   for (int qj = 0; qj < g; ++qj)
     for (int qi = 0; qi < g; ++qi) {
