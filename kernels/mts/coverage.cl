@@ -73,16 +73,10 @@ static inline void insertion_sort(int* key, int* p1, int* p2, int n) {
 // two quad rows for one row; which of their triangles meet it, row_segments decides).
 static inline void records_meeting(__global const float* T, float py0, float py1, int* first,
                                    int* end) {
-  *first = 0;
-  *end = 0;
-  int found = 0;
-  for (int qj = 0; qj < GRID; ++qj) {
-    if (T[Q_YRANGE + 2 * qj] <= py1 && py0 <= T[Q_YRANGE + 2 * qj + 1]) {
-      if (!found) *first = Q_SLOTS * qj;
-      found = 1;
-      *end = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj];
-    }
-  }
+  uint quad_rows = 0u;
+  for (int qj = 0; qj < GRID; ++qj)
+    if (T[Q_YRANGE + 2 * qj] <= py1 && py0 <= T[Q_YRANGE + 2 * qj + 1]) quad_rows |= 1u << qj;
+  quad_row_records(T, quad_rows, first, end);
 }
 
 #define MAX_SEG (2 * NT + 2)

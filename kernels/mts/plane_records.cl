@@ -20,21 +20,29 @@ static inline int row_covered(__global const float* T, uint vf, int row, uint ba
          !any16(hit);
 }
 
-// The records of plane T whose pixel boxes can reach kernel rows [r0, r1): first..end - 1, from
-// the first to the last quad row whose records' boxes reach them (Q_BOX_ROWS, set up from the
-// boxes themselves), so every record outside the run has a box that misses the rows.
-static inline void records_boxed_in_rows(__global const float* T, int r0, int r1, int* first,
-                                         int* end) {
+// The records of plane T from the first to the last quad row with bit qj set in `quad_rows`: a run
+// from *first to before *end (none: 0, 0). A quad row's triangles fill its records in order, so
+// the run holds every record of those quad rows.
+static inline void quad_row_records(__global const float* T, uint quad_rows, int* first, int* end) {
   *first = 0;
   *end = 0;
-  int found = 0;
+  if (!quad_rows) return;
+  const int lo = 31 - (int)clz(quad_rows & (~quad_rows + 1u)), hi = 31 - (int)clz(quad_rows);
+  *first = Q_SLOTS * lo;
+  *end = Q_SLOTS * hi + ((__global const int*)T)[Q_USED + hi];
+}
+
+// The records of plane T whose pixel boxes can reach kernel rows [r0, r1): those of the quad rows
+// whose records' boxes reach them (Q_BOX_ROWS, set up from the boxes themselves), so every record
+// outside the run has a box that misses the rows.
+static inline void records_boxed_in_rows(__global const float* T, int r0, int r1, int* first,
+                                         int* end) {
+  uint quad_rows = 0u;
   for (int qj = 0; qj < GRID; ++qj) {
     const int2 rows = vload2(0, (__global const int*)T + Q_BOX_ROWS + 2 * qj);
-    if (rows.s0 > r1 - 1 || rows.s1 < r0) continue;
-    if (!found) *first = Q_SLOTS * qj;
-    found = 1;
-    *end = Q_SLOTS * qj + ((__global const int*)T)[Q_USED + qj];
+    if (rows.s0 <= r1 - 1 && r0 <= rows.s1) quad_rows |= 1u << qj;
   }
+  quad_row_records(T, quad_rows, first, end);
 }
 
 // Where plane A of (probe, visit) sits in the plane-A cache: a_slots holds per probe its slot and

@@ -228,7 +228,7 @@ static inline float16 pick16(const float16* v, int16 i) {
 }
 #endif
 
-// The kernel pixels (column i0..i1, row j0..j1, as int4 lanes s0..s3) that a triangle may own:
+// The kernel pixels (column i0..i1, row j0..j1: fields T_BOX .. T_BOX + 3) that a triangle may own:
 // those whose centre lies within its bounding box widened by one pixel (an edge test can pass only
 // within its rounding error outside the exact triangle). Empty when i0 > i1 or j0 > j1. The x
 // extent is taken from the edges as the record stores them (anchor, anchor + direction).
@@ -385,6 +385,7 @@ static inline void setup_triangles16(__global float* T, const int* slot, int lan
   rec[T_YMIN] = as_uint16(ymin);
   rec[T_YMAX] = as_uint16(ymax);
   rec[T_ZMAX] = as_uint16(fmax(fmax(fabs(d[0]), fabs(d[1])), fabs(d[2])));
+  const uint16 ub = as_uint16(bits);
   for (int e = 0; e < 3; ++e) {
     const float16 dxdy = edx[e] / edy[e];
     rec[T_DXDY + e] = as_uint16(dxdy);
@@ -393,7 +394,6 @@ static inline void setup_triangles16(__global float* T, const int* slot, int lan
     edges[E_DX][e] = as_uint16(edx[e]);
     edges[E_DY][e] = as_uint16(edy[e]);
     edges[E_DXDY][e] = as_uint16(dxdy);
-    const uint16 ub = as_uint16(bits);
     edges[E_BITS][e] = ((ub >> e) & 1u) | (((ub >> (3 + e)) & 1u) << 1) |
                        (as_uint16(id[e]) << E_ID_SHIFT) |
                        (as_uint16(id[(e + 1) % 3]) << (E_ID_SHIFT + 15));
@@ -573,7 +573,7 @@ static inline int clip_fan(__global float* T, int t0, int first, const clip_vert
 }
 #endif
 
-// The vertex stage of 16 grid vertices (column i, row j of the plane's grid), a lane each: clip
+// The vertex stage of 16 grid vertices (index j (GRID + 1) + i: column i, row j), a lane each: clip
 // coordinates, then the divide and the window transform to window x, y, depth and 1/w, and
 // whether any of those (depth only where the set-up interpolates it) is not finite.
 typedef struct {
@@ -582,16 +582,16 @@ typedef struct {
   int16 nonfinite;
 } vertices16_t;
 
-static inline vertices16_t vertex_stage16(__global const float* P, __global const float* M, int16 i,
-                                          int16 j, float half_w, float half_h) {
+static inline vertices16_t vertex_stage16(__global const float* P, __global const float* M,
+                                          int16 vertex, float half_w, float half_h) {
   /* the probe constants this stage alone reads (kernels/mts_layout.h) */
   const int depth_gl = P[C_DEPTH_GL] != 0.0f;
   const uint forms = (uint)P[C_FORMS];
   const int snap_bits = (int)P[C_SNAP_BITS];
   const int vertex_fma = (forms & F_VERTEX_FMA) != 0u;
   vec4x16_t obj;
-  obj.x = convert_float16(i) / (float)GRID - 0.5f;
-  obj.y = convert_float16(j) / (float)GRID - 0.5f;
+  obj.x = convert_float16(vertex % (GRID + 1)) / (float)GRID - 0.5f;
+  obj.y = convert_float16(vertex / (GRID + 1)) / (float)GRID - 0.5f;
   obj.z = (float16)0.0f;
   obj.w = (float16)1.0f;
   vertices16_t v;
@@ -649,7 +649,6 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
 // measured planes), or from b to d (flip 1: (a, b, d) and (b, c, d), the same quad tessellated the
 // other way: the coplanar overlay of depth bias, kernels/bias.cl). Vertex 0 anchors the plane
 // equation.
-
 static inline void triangle_vertices16(int16 t, int flip, int16* a, int16* b, int16* c) {
   const int16 quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
   const int16 va = qj * (GRID + 1) + qi, vb = va + 1, vc = va + GRID + 2, vd = va + GRID + 1;
@@ -678,8 +677,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #endif
   uint nonfinite = 0u;
   for (int v0 = 0; v0 < NV; v0 += 16) { /* the grid's vertices, 16 at a time */
-    const int16 v = min(v0 + LANES, NV - 1);
-    const vertices16_t vs = vertex_stage16(P, M, v % (GRID + 1), v / (GRID + 1), half_w, half_h);
+    const vertices16_t vs = vertex_stage16(P, M, min(v0 + LANES, NV - 1), half_w, half_h);
     vstore16(vs.x, 0, xw + v0);
     vstore16(vs.y, 0, yw + v0);
     vstore16(vs.d, 0, dw + v0);
@@ -707,8 +705,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
     triangle_vertices16(min(g + LANES, NT0 - 1), flip, &corner[0], &corner[1], &corner[2]);
     triangles16_t tris;
     for (int c = 0; c < 3; ++c) {
-      const vertices16_t vs =
-          vertex_stage16(P, M, corner[c] % (GRID + 1), corner[c] / (GRID + 1), half_w, half_h);
+      const vertices16_t vs = vertex_stage16(P, M, corner[c], half_w, half_h);
       tris.x[c] = vs.x;
       tris.y[c] = vs.y;
       tris.d[c] = vs.d;
