@@ -121,11 +121,14 @@
 
 /* mts_frame_bounds' words per band of a (probe, frame), read by mts_raster: the verdict (D_*, the
  * bits D_MASK) with bit DV_ORIENTED: plane B's edges that the band's rows can meet join A's
- * vertices with A's orientation (b_keeps_a_edges); and how far they lie from A's (b_moved_from_a,
- * a float; infinite in a band decided clean, where mts_raster does not ask). */
+ * vertices with A's orientation (b_keeps_a_edges); how far they lie from A's (b_moved_from_a,
+ * a float; infinite in a band decided clean, where mts_raster does not ask); and the rows the
+ * verdict leaves out, a bit per row from the band's first (band_bad_rows of A and B): a vertex
+ * near a pixel centre there, so they are rasterised as D_RASTER rows whatever the verdict. */
 #define DW_VERDICT 0
 #define DW_MOVED 1
-#define DECIDED_WORDS 2
+#define DW_BAD_ROWS 2
+#define DECIDED_WORDS 3
 #define D_MASK 3u
 #define DV_ORIENTED 4u
 #define D_RASTER 0u  /* rasterise, deciding pieces from their end codes first */

@@ -107,3 +107,23 @@ TEST_CASE("plane B's coverage is taken from plane A's only where it is the same"
     CHECK(a.certified > a.rows / 2);  // and the shortcut still serves most rows
   }
 }
+
+TEST_CASE("a vertex near a pixel centre takes only its own row out of its band's verdict",
+          "[mts][bounds]") {
+  // The plane faces the camera (no rotation) and the viewport is 201 pixels wide, so the grid's
+  // centre vertex projects onto the centre of pixel (100, 100) and no other vertex comes near a
+  // pixel centre (the grid's spacing, 201 * 1.1 / 4 = 55.3 px, leaves the rest 0.2-0.3 px off).
+  // At s = z every band is clean from its code bounds; row 100 alone may have a pixel with two
+  // owners or none, so it is rasterised, and the other 31 rows of its band are not.
+  const Scene scene = load_scene(
+      "", {"kernel=[201,201]", "viewport=[201,201]", "frames=1", "rotation_range_deg=0"});
+  const EvalPair pair{Technique::standard, "unorm24", DepthRange::gl};
+  MtsEvaluator with(runtime(), scene, pair), without(runtime(), scene, pair, false);
+  const std::vector<Probe> probes = {{1.005, 1.005}};
+  const auto a = with.run(probes), b = without.run(probes);
+  CHECK(to_string(a[0].outcome) == std::string(to_string(b[0].outcome)));
+  CHECK(a[0].outcome == Outcome::clean);
+  CHECK(a[0].fragment_pairs == b[0].fragment_pairs);
+  CHECK(with.rows_rasterised() == 1);
+  CHECK(with.pairs_decided_by_bounds() == 200u * 201u);
+}

@@ -23,6 +23,8 @@ constexpr uint32_t kVertexNonFinite = V_NONFINITE;
 // range grows with its height, so smaller bands are decided closer to the MTS but cost more
 // bounds work per row.
 constexpr cl_uint kBandRows = 32;
+static_assert(kBandRows <= 32,
+              "a band's rows left out of its verdict are bits of one word (DW_BAD_ROWS)");
 
 // The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
 // its share of this (all frames of each; the pairs a run evaluates side by side share it) and at

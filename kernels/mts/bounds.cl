@@ -293,11 +293,12 @@ __kernel void mts_a_bands(__global const float* restrict probes,
 #endif
 }
 
-// The verdict of one band of a (probe, frame): D_CLEAN when both planes certainly own every pixel
-// of the band (band_covered) and their code bounds over it exclude a fight: LEQUAL: B's smallest
-// code above A's largest (log depth: by LOG_CODE_SLACK more, as for pieces), or, where that fails,
-// the gap certificate (plane_gap_range, frag_gap_clear). Otherwise D_RASTER, or D_INSIDE /
-// D_ORDERED where the bounds show both planes finite and unclipped over the band.
+// The verdict of one band of a (probe, frame), for its rows but those band_bad_rows names: D_CLEAN
+// when both planes certainly own every pixel of those rows (band_covered) and their code bounds
+// over it exclude a fight: LEQUAL: B's smallest code above A's largest (log depth: by
+// LOG_CODE_SLACK more, as for pieces), or, where that fails, the gap certificate (plane_gap_range,
+// frag_gap_clear). Otherwise D_RASTER, or D_INSIDE / D_ORDERED where the bounds show both planes
+// finite and unclipped over the band.
 static inline uint band_verdict(__global const float* P, __global const float* TB,
                                 __global const float* ref, uint vflags_b, uint vflags_a,
                                 __global const uint* a, float origin_x, float origin_y,
@@ -368,4 +369,5 @@ __kernel void mts_frame_bounds(
     oriented = band_b_against_a(ref, TB, origin_y, r0, r1, &moved);
   ((__global float*)out)[DW_MOVED] = moved;
   out[DW_VERDICT] = verdict | oriented;
+  out[DW_BAD_ROWS] = band_bad_rows(TB, r0, r1) | band_bad_rows(ref, r0, r1);
 }

@@ -4,7 +4,8 @@
 // Shared by the set-up program (kernels/mts_setup.cl) and the per-pixel ones (kernels/mts.cl,
 // kernels/bias.cl).
 
-// Every pixel of the band (or of the whole kernel) is owned by exactly one triangle.
+// Every pixel of the band (or of the whole kernel) is owned by exactly one triangle, but for the
+// rows band_bad_rows names.
 static inline int band_covered(uint vf, uint band) {
   return (vf & V_COVERS) && (band >= V_MAX_BANDS || !((vf >> (V_BAND_SHIFT + band)) & 1u));
 }
@@ -18,6 +19,16 @@ static inline int row_covered(__global const float* T, uint vf, int row, uint ba
   for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
   return (vf & V_COVERS) && (!(vf & V_SLIVERS) || band_covered(vf, (uint)row / band_rows)) &&
          !any16(hit);
+}
+
+// The rows of [r0, r1) (at most 32) where a vertex of plane T lies near a pixel centre, as bits
+// from r0: the only rows of a band_covered band whose pixels may not have exactly one owner.
+static inline uint band_bad_rows(__global const float* T, int r0, int r1) {
+  __global const int* bad = (__global const int*)T + V_BAD_ROW;
+  uint rows = 0u;
+  for (int v = 0; v < NV; ++v)
+    if (bad[v] >= r0 && bad[v] < r1) rows |= 1u << (bad[v] - r0);
+  return rows;
 }
 
 // The records of plane T from the first to the last quad row with bit qj set in `quad_rows`: a run

@@ -77,7 +77,9 @@ __kernel void mts_raster(
     return;
   }
   __global const uint* dec = decided + (size_t)(pf * bands + row / band_rows) * DECIDED_WORDS;
-  const uint band_verdict = dec[DW_VERDICT] & D_MASK;
+  /* a row with a vertex near a pixel centre is outside its band's verdict */
+  const uint band_verdict =
+      (dec[DW_BAD_ROWS] >> (row % band_rows)) & 1u ? D_RASTER : dec[DW_VERDICT] & D_MASK;
   if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
     result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
     return;

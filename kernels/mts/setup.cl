@@ -14,25 +14,20 @@ DP_SNAP_WINDOW_DEFINE(snap_window_bits, fabs, rint)
 // pixel centre in both x and y; all coordinates below 8192 in magnitude (edge-test error below
 // 0.006 px) and no triangle angle below ~6 degrees (mts_setup), so a pixel centre 1/8 px from a
 // vertex is > 0.0125 px from that vertex's other edges. docs/mts.md ("Shortcuts") has the argument.
-// A vertex near a pixel centre only spoils the certificate for the one pixel near it, so such
-// bands are named in the flags (bit V_BAND_SHIFT + band, bands of band_rows rows, the first 24
-// bands; a vertex in a later one clears V_COVERS) and the rest stay certified; and the pixel's
-// row is written to bad_row[vertex] (-1 for a vertex near no pixel centre) for row_covered.
+// A vertex near a pixel centre only spoils the certificate for the one pixel near it, so the
+// rest stays certified and the pixel's row is written to bad_row[vertex] (-1 for a vertex near no
+// pixel centre) for row_covered and band_bad_rows. Bands a sliver spoils, whose rows are not
+// known, are named in the flags (bit V_BAND_SHIFT + band, bands of band_rows rows).
 static inline uint covers_kernel(const float* xw, const float* yw, float ox, float oy, uint kw,
-                                 uint kh, uint band_rows, uint sliver_bands, int* bad_row) {
-  uint bad_bands = sliver_bands;
+                                 uint kh, uint sliver_bands, int* bad_row) {
   const float x0 = ox, x1 = ox + (float)kw, y0 = oy, y1 = oy + (float)kh; /* pixel area */
   for (int v = 0; v < NV; ++v) bad_row[v] = -1;
   for (int v = 0; v < NV; ++v) {
     if (!(fabs(xw[v]) <= 8192.0f && fabs(yw[v]) <= 8192.0f)) return 0u;
     if (xw[v] < x0 - 1.0f || xw[v] > x1 + 1.0f || yw[v] < y0 - 1.0f || yw[v] > y1 + 1.0f) continue;
     const float fx = xw[v] - ox - 0.5f, fy = yw[v] - oy - 0.5f;
-    if (fabs(fx - rint(fx)) < 0.125f && fabs(fy - rint(fy)) < 0.125f) {
+    if (fabs(fx - rint(fx)) < 0.125f && fabs(fy - rint(fy)) < 0.125f)
       bad_row[v] = clamp((int)rint(fy), 0, (int)kh - 1);
-      const uint band = (uint)bad_row[v] / band_rows;
-      if (band >= V_MAX_BANDS) return 0u;
-      bad_bands |= 1u << band;
-    }
   }
   /* the reference point: the mean of the four corner vertices, inside the outline */
   const int c[4] = {0, GRID, NV - 1, NV - 1 - GRID};
@@ -64,7 +59,7 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
       }
     }
   }
-  return V_COVERS | (sliver_bands ? V_SLIVERS : 0u) | (bad_bands << V_BAND_SHIFT);
+  return V_COVERS | (sliver_bands ? V_SLIVERS : 0u) | (sliver_bands << V_BAND_SHIFT);
 }
 
 // Whether the strip of points within w of the line through the origin along (dx, dy) (length l)
@@ -754,7 +749,7 @@ static inline void setup_plane(__global const float* P, __global const float* M,
   const int certify = !nonfinite && shapely; /* covers_kernel's preconditions */
   int bad_row[NV];
   *vflag = nonfinite | (certify ? covers_kernel(xw, yw, origin_x, origin_y, kernel_w, kernel_h,
-                                                band_rows, slivers, bad_row)
+                                                slivers, bad_row)
                                 : 0u);
   for (int v = 0; v < NV_PAD; ++v)
     ((__global int*)T)[V_BAD_ROW + v] = v < NV && certify ? bad_row[v] : -1;
