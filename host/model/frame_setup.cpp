@@ -39,10 +39,16 @@ Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
 // tilt (radians) turns the plane about x on top of the frame's rotation; its side along y then
 // grows so that its far half, seen obliquely, still reaches past the view's edge:
 // h cos t / (D + h sin t) >= tan(fov/2) for the half side h.
+// The distance a plane is built from in precision T: with tilt 0, all that D enters as.
+template <class T>
+T model_distance(double D) {
+  return static_cast<T>(D);
+}
+
 template <class T>
 Mat<T> model(const Scene& s, double D, int frame, double tilt = 0) {
   const auto ang = frame_angles(s, frame);
-  const T dist = static_cast<T>(D);
+  const T dist = model_distance<T>(D);
   const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
   const T side = static_cast<T>(s.plane_margin) * T(2) * dist * std::tan(half_fov);
   const double ax = tilt == 0 ? ang[0] : ang[0] + tilt;
@@ -153,6 +159,11 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) P[c][r] = pc.P_full[r * 4 + c];
   return to_row_major(Mat<double>(P * M));
+}
+
+double plane_matrix_distance(const Scene& s, double D) {
+  return s.pipeline.matrix_precision == MatrixPrecision::single ? model_distance<float>(D)
+                                                                : model_distance<double>(D);
 }
 
 std::array<double, 16> model_matrix_f64(const Scene& s, double D, int frame) {

@@ -58,6 +58,11 @@ std::array<double, 3> frame_angles(const Scene& scene, int frame);
 Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame,
                    double tilt = 0);
 
+// The distance plane_matrix builds a plane from when tilt is 0: D rounded to binary32 under
+// matrix_precision float, D itself under double. Two distances with the same value give the same
+// matrix in every frame.
+double plane_matrix_distance(const Scene& scene, double D);
+
 // The model matrix of a plane at distance D in frame k in binary64, never rounded: the exact
 // geometry of the storage-limited pipeline. Row-major.
 std::array<double, 16> model_matrix_f64(const Scene& scene, double D, int frame);

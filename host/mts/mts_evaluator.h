@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "host/model/frame_setup.h"
@@ -84,6 +85,7 @@ class MtsEvaluator : public ProbeEvaluator {
   MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true,
                Kernels kernels = Kernels::production);
 
+  // A probe that repeats an earlier one's computation takes its result (probes_repeated).
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   size_t distances_at_once() const override { return max_slots_; }
   FrameCodes codes(const Probe& probe, int frame);  // needs Kernels::with_tests
@@ -106,6 +108,8 @@ class MtsEvaluator : public ProbeEvaluator {
   // Rasterised kernel rows, and those of them whose plane-B coverage was plane A's.
   uint64_t rows_rasterised() const { return rows_rasterised_; }
   uint64_t rows_with_coverage_of_a() const { return rows_reused_; }
+  // Probes that took an earlier probe's result (full_runs_) instead of being rendered.
+  uint64_t probes_repeated() const { return repeats_; }
   // Distances the plane-A cache may hold at once (cache_plane_a): its memory budget's share.
   size_t max_plane_a_slots() const { return max_slots_; }
   // Shares the plane-A cache's budget with this many evaluators in all (pairs run side by side);
@@ -156,6 +160,18 @@ class MtsEvaluator : public ProbeEvaluator {
                           const std::vector<cl_uint>& slots, const std::vector<int>& first_visited,
                           int first_frame, int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
                           cl::Buffer& tris, cl::Buffer& vflags);
+  // Renders the probes: their results, and which were decided before their last frame (a fight or
+  // a non-finite frame).
+  std::vector<ProbeResult> run_fresh(const std::vector<Probe>& probes, std::vector<bool>& decided);
+  // What a probe's computation depends on besides the evaluator's scene and pair: its distance z
+  // (plane A, the probe constants) and the distance plane B is built from (its matrices in every
+  // frame).
+  std::pair<double, double> plane_b_key(const Probe& probe) const;
+  // Marks plane A of these distances, where held, used now (the cache's least-recently-used
+  // order).
+  void touch_plane_a(const std::vector<double>& zs);
+  // The launches of a probe rendered through every frame, plane A already held.
+  uint64_t full_run_launches() const;
   // Renders the probes of group (distances that fit in the cache together) frame batch by frame
   // batch.
   void run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
@@ -208,8 +224,15 @@ class MtsEvaluator : public ProbeEvaluator {
   // its frames decides it, and so its frames count and a non_finite or clipped seen before the
   // fight, does (docs/mts.md, frame order).
   std::map<double, int> last_fight_frame_;
+  // Probes that went through every frame (clean, clipped or uncovered), by plane_b_key. Plane B's
+  // distance is a binary32, so a search whose bracket spans a few of its ulps asks for the same
+  // plane B again and again while it bisects to a fraction of the MTS (and its stiffness probes
+  // ask for the MTS's own plane B): such a probe takes the earlier one's result, work counts
+  // included, as a row taken over from an identical computation does (run_scene). A probe a fight
+  // decided is rendered again: which frame decides it depends on the frame order.
+  std::map<std::pair<double, double>, ProbeResult> full_runs_;
   uint64_t pairs_ = 0, launches_ = 0, after_decision_ = 0, by_bounds_ = 0, rows_rasterised_ = 0,
-           rows_reused_ = 0;
+           rows_reused_ = 0, repeats_ = 0;
   std::array<uint64_t, 4> by_outcome_{};
   double kernel_seconds_ = 0, wall_seconds_ = 0;
   LaunchWidths primed_;  // prime_launches' widths; 0: not primed (one job)

@@ -229,7 +229,7 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
   struct PairStats {
     size_t distances = 0;
     uint64_t pairs = 0, launches = 0, after_decision = 0, by_bounds = 0, rows_rasterised = 0,
-             rows_reused = 0;
+             rows_reused = 0, repeats = 0;
     std::array<uint64_t, 4> by_outcome{};
     double wall = 0, kernel = 0;
   };
@@ -265,6 +265,7 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     st.by_bounds += ev.pairs_decided_by_bounds();
     st.rows_rasterised += ev.rows_rasterised();
     st.rows_reused += ev.rows_with_coverage_of_a();
+    st.repeats += ev.probes_repeated();
     for (size_t i = 0; i < st.by_outcome.size(); ++i) st.by_outcome[i] += ev.pairs_by_outcome()[i];
     st.wall += ev.wall_seconds();
     st.kernel += ev.kernel_seconds();
@@ -296,12 +297,14 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
           "{}: {} distances, {} fragment pairs, {} launches, {:.2f} s ({:.2f} s in kernels); "
           "pairs on clean probes {:.0f} %, fighting {:.0f} % (of which past the deciding frame "
           "{:.0f} %), clipped or non-finite {:.0f} %; decided from code bounds without "
-          "rasterising {:.0f} %; rasterised rows with plane B's coverage taken from A's {:.0f} %",
+          "rasterising {:.0f} %; rasterised rows with plane B's coverage taken from A's {:.0f} %; "
+          "probes taken from an earlier one with the same plane B {}",
           pair.label(), st.distances, st.pairs, st.launches, st.wall, st.kernel, 100 * w[0] / all,
           100 * w[1] / all, 100 * st.after_decision / all, 100 * (w[2] + w[3]) / all,
           100 * st.by_bounds / all,
           100.0 * static_cast<double>(st.rows_reused) /
-              std::max<double>(1.0, static_cast<double>(st.rows_rasterised))));
+              std::max<double>(1.0, static_cast<double>(st.rows_rasterised)),
+          st.repeats));
     }
     if (work[p].shared.empty()) return;
     std::vector<MtsRow> taken;
