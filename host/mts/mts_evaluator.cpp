@@ -206,7 +206,7 @@ MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene, con
   w.a_rows = padded_size(f * kh);
   w.a_bands = padded_size(f * bands);
   w.bounds = padded_size(planes * bands);
-  w.raster = std::max({padded_size(kh), frames, probes});  // (kernel rows, frames, probes)
+  w.raster = std::max({padded_size(bands), frames, probes});  // (bands, frames, probes)
   return w;
 }
 
@@ -596,7 +596,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
              static_cast<cl_uint>(shortcuts_), result);
     cl::Event raster_done;
     launch(raster_, primed_.raster,
-           cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),
+           cl::NDRange(padded_size(bands()), static_cast<size_t>(frames), active.size()),
            cl::NDRange(kLocal, 1, 1), &raster_done);
     rt_.queue().enqueueReadBuffer(result, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     for (const uint32_t v : rows) {

@@ -54,9 +54,8 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 // ends of both planes. Pieces are then taken left to right and the row stops after the first that
 // fights. In a band mts_frame_bounds certified inside (D_INSIDE, D_ORDERED) there is no end pass,
 // and the whole row is evaluated first with one reduction; only a row that fights is then taken
-// piece by piece. Global id: (row, visit, probe); results at (probe * frames + visit) * kernel_h +
-// row.
-__kernel void mts_raster(
+// piece by piece. Results at (probe * frames + visit) * kernel_h + row.
+static inline void raster_row(
     __global const float* restrict probes, __global const float* restrict tris,
     __global const uint* restrict vflags, __global const float* restrict a_tris,
     __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
@@ -64,10 +63,8 @@ __kernel void mts_raster(
     __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
     const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
     __global const uint* restrict decided, const uint bands, const uint band_rows,
-    const uint shortcuts, __global uint* restrict result) {
-  /* a 3-D range (row, visit, probe), so no work-item divides to find them */
-  const uint row = get_global_id(0), visit = get_global_id(1), probe = get_global_id(2);
-  if (row >= kernel_h) return;
+    const uint shortcuts, __global uint* restrict result, const uint row, const uint visit,
+    const uint probe) {
   const uint pf = probe * frames + visit;
   const uint id = pf * kernel_h + row;
   __global const float* P = probes + probe * PROBE_STRIDE;
@@ -267,4 +264,25 @@ __kernel void mts_raster(
     if (piece & R_FIGHT) break;
   }
   result[id] = flags | (b_is_a ? R_REUSED : 0u) | (count << R_COUNT_SHIFT);
+}
+
+// mts_raster's work-items take a band of rows each, so a band decided clean from code bounds (most
+// of a search's descent) costs one work-item instead of one per row. Global id: (band, visit,
+// probe).
+__kernel void mts_raster(
+    __global const float* restrict probes, __global const float* restrict tris,
+    __global const uint* restrict vflags, __global const float* restrict a_tris,
+    __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
+    __global const uint* restrict a_slots, const uint first_frame,
+    __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
+    const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
+    __global const uint* restrict decided, const uint bands, const uint band_rows,
+    const uint shortcuts, __global uint* restrict result) {
+  const uint band = get_global_id(0), visit = get_global_id(1), probe = get_global_id(2);
+  if (band >= bands) return;
+  const uint r1 = min(kernel_h, (band + 1u) * band_rows);
+  for (uint row = band * band_rows; row < r1; ++row)
+    raster_row(probes, tris, vflags, a_tris, a_vflags, a_rows, a_slots, first_frame, a_codes,
+               frames_total, kernel_w, kernel_h, origin_x, origin_y, frames, decided, bands,
+               band_rows, shortcuts, result, row, visit, probe);
 }
