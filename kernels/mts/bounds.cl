@@ -25,7 +25,8 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
   b.hi = 0UL;
   b.bad = !PLANE_MONOTONE; /* extremes need not lie at the corners: no bounds */
   if (b.bad) return b;
-  float c0[16], sl[16], x0[16], rt[16], dy[16], y[16], px[16];
+  row_plane_lanes_t l;
+  float px[16];
   int n = 0, first, end;
   records_boxed_in_rows(T, r0, r1, &first, &end);
   for (int t = first; t <= end; ++t) {
@@ -35,35 +36,22 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
       if (i0 > i1 || j0 > j1) continue;
       for (int q = 0; q < 4; ++q) {
         const float py = oy + (float)((q & 2) ? j1 : j0) + 0.5f;
-        const row_plane_t rp = row_plane(T, t, py);
-        c0[n] = rp.c0;
-        sl[n] = rp.slope;
-        x0[n] = rp.x0;
-        rt[n] = rp.row_term;
-        dy[n] = rp.dy;
-        y[n] = rp.y;
+        set_lane(&l, n, row_plane(T, t, py));
         px[n] = ox + (float)((q & 1) ? i1 : i0) + 0.5f;
         ++n;
       }
     }
     if (n == 16 || (t == end && n > 0)) {
       for (int k = n; k < 16; ++k) { /* pad with the first corner */
-        c0[k] = c0[0];
-        sl[k] = sl[0];
-        x0[k] = x0[0];
-        rt[k] = rt[0];
-        dy[k] = dy[0];
-        y[k] = y[0];
+        l.c0[k] = l.c0[0];
+        l.slope[k] = l.slope[0];
+        l.x0[k] = l.x0[0];
+        l.row_term[k] = l.row_term[0];
+        l.dy[k] = l.dy[0];
+        l.y[k] = l.y[0];
         px[k] = px[0];
       }
-      row_plane16_t rp;
-      rp.c0 = vload16(0, c0);
-      rp.slope = vload16(0, sl);
-      rp.x0 = vload16(0, x0);
-      rp.row_term = vload16(0, rt);
-      rp.dy = vload16(0, dy);
-      rp.y = vload16(0, y);
-      const frag16_t f = fragment16(rp, P, vload16(0, px));
+      const frag16_t f = fragment16(load_lanes(&l), P, vload16(0, px));
       b.bad |= any16(f.nonfinite | f.clipped);
       /* halving reductions: 16 -> 8 -> 4 -> 2 -> 1 lanes */
       const uint8 lo8 = min(f.code.lo, f.code.hi), hi8 = max(f.code.lo, f.code.hi);

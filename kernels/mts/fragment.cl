@@ -53,6 +53,32 @@ static inline row_plane16_t broadcast16(row_plane_t rp) {
   return r;
 }
 
+// Row planes gathered one lane at a time (a piece's or a box corner's each), then taken as
+// vectors.
+typedef struct {
+  float c0[16], slope[16], x0[16], row_term[16], dy[16], y[16];
+} row_plane_lanes_t;
+
+static inline void set_lane(row_plane_lanes_t* l, int k, row_plane_t rp) {
+  l->c0[k] = rp.c0;
+  l->slope[k] = rp.slope;
+  l->x0[k] = rp.x0;
+  l->row_term[k] = rp.row_term;
+  l->dy[k] = rp.dy;
+  l->y[k] = rp.y;
+}
+
+static inline row_plane16_t load_lanes(const row_plane_lanes_t* l) {
+  row_plane16_t r;
+  r.c0 = vload16(0, l->c0);
+  r.slope = vload16(0, l->slope);
+  r.x0 = vload16(0, l->x0);
+  r.row_term = vload16(0, l->row_term);
+  r.dy = vload16(0, l->dy);
+  r.y = vload16(0, l->y);
+  return r;
+}
+
 // The interpolated plane at 16 pixel centres, every lane rounding on its own.
 static inline float16 plane_at16(row_plane16_t rp, float16 px) {
 #if PLANE_FORM == 1

@@ -42,7 +42,7 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 #undef PX16
 }
 
-// One kernel row of one (probe, frame). The row splits into pieces where both planes' covering
+// The kernel rows of one (probe, frame). A row splits into pieces where both planes' covering
 // triangles stay the same; within a piece each plane's depth is one plane equation, monotone in
 // px (every rounding step of it is monotone), and so is its stored code. The ends of all pieces
 // are evaluated together, 16 pieces per vector: a piece whose end codes already exclude a fight
@@ -54,221 +54,9 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 // ends of both planes. Pieces are then taken left to right and the row stops after the first that
 // fights. In a band mts_frame_bounds certified inside (D_INSIDE, D_ORDERED) there is no end pass,
 // and the whole row is evaluated first with one reduction; only a row that fights is then taken
-// piece by piece. Results at (probe * frames + visit) * kernel_h + row.
-static inline void raster_row(
-    __global const float* restrict probes, __global const float* restrict tris,
-    __global const uint* restrict vflags, __global const float* restrict a_tris,
-    __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
-    __global const uint* restrict a_slots, const uint first_frame,
-    __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
-    const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
-    __global const uint* restrict decided, const uint bands, const uint band_rows,
-    const uint shortcuts, __global uint* restrict result, const uint row, const uint visit,
-    const uint probe) {
-  const uint pf = probe * frames + visit;
-  const uint id = pf * kernel_h + row;
-  __global const float* P = probes + probe * PROBE_STRIDE;
-  const uint ap = a_plane(a_slots, probe, visit, first_frame, frames_total);
-  if ((a_vflags[ap] | vflags[pf]) & V_NONFINITE) {
-    result[id] = R_NONFINITE;
-    return;
-  }
-  __global const uint* dec = decided + (size_t)(pf * bands + row / band_rows) * DECIDED_WORDS;
-  /* a row with a vertex near a pixel centre is outside its band's verdict */
-  const uint band_verdict =
-      (dec[DW_BAD_ROWS] >> (row % band_rows)) & 1u ? D_RASTER : dec[DW_VERDICT] & D_MASK;
-  if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
-    result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
-    return;
-  }
-  __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
-  __global const float* TBp = tris + (size_t)pf * PLANE_STRIDE;
-  const int W = (int)kernel_w;
-  const float py = origin_y + (float)row + 0.5f;
-  __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
-  const int cached = rec[RW_N] > 0u;
-  const int b_is_a =
-      shortcuts && cached &&
-      b_coverage_is_a(((__global const float*)dec)[DW_MOVED], dec[DW_VERDICT] & DV_ORIENTED, TBp,
-                      vflags[pf], (int)row, band_rows, rec);
-  const int inside = band_verdict == D_INSIDE || band_verdict == D_ORDERED;
-  const int ordered = band_verdict == D_ORDERED;
-#if CACHE_A_CODES
-  __global const uint* ca =
-      cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + CODE_ROW_PAD) : 0;
-#else
-  __global const uint* ca = 0;
-#endif
-  if (inside && b_is_a) {
-    /* The common row near the MTS: every piece covered and inside, and the pieces are plane A's
-     * cached segments, taken straight from the record, one reduction for the whole row. A row
-     * that fights goes on below, which finds its first fighting piece (and so its count). */
-    const int n = (int)rec[RW_N];
-    int16 fight = (int16)0;
-    for (int k = 0; k < n; ++k) {
-      const int t = (int)rec[RW_T + k];
-      fight |= inside_piece16(broadcast16(row_plane(TA, t, py)), broadcast16(row_plane(TBp, t, py)),
-                              P, origin_x, (int)rec[RW_X + k], (int)rec[RW_X + k + 1], ordered, ca);
-    }
-    if (!any16(fight)) {
-      result[id] = R_REUSED | ((rec[RW_X + n] - rec[RW_X]) << R_COUNT_SHIFT);
-      return;
-    }
-  }
-  int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
-  const int na = cached ? record_segments(rec, seg_xa, seg_ta)
-                        : row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
-
-  /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
-  int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
-  uint verdict[MAX_PIECES];
-  int ends_ok[MAX_PIECES]; /* both planes finite and unclipped at both ends, so inside too */
-  int np = 0;
-  if (b_is_a) { /* B's segments are A's: the pieces are A's segments, no merge needed */
-    for (int k = 0; k < na; ++k)
-      if (seg_xa[k + 1] > seg_xa[k]) {
-        px_start[np] = seg_xa[k];
-        px_end[np] = seg_xa[k + 1];
-        p_ta[np] = p_tb[np] = seg_ta[k];
-        ++np;
-      }
-  } else {
-    row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
-    FOR_EACH_PIECE({
-      px_start[np] = x;
-      px_end[np] = x_end;
-      p_ta[np] = ta;
-      p_tb[np] = tb;
-      ++np;
-    })
-  }
-  if (inside) {
-    if (!b_is_a) { /* as above, over the merged pieces (b_is_a rows here are known to fight) */
-      int16 fight = (int16)0;
-      uint all = 0u;
-      for (int i = 0; i < np; ++i) {
-        fight |= inside_piece16(broadcast16(row_plane(TA, p_ta[i], py)),
-                                broadcast16(row_plane(TBp, p_tb[i], py)), P, origin_x, px_start[i],
-                                px_end[i], ordered, ca);
-        all += (uint)(px_end[i] - px_start[i]);
-      }
-      if (!any16(fight)) {
-        result[id] = all << R_COUNT_SHIFT;
-        return;
-      }
-    }
-    for (int i = 0; i < np; ++i) { /* a row that fights: its pieces one by one, below */
-      verdict[i] = ~0u;
-      ends_ok[i] = 1;
-    }
-  } else
-    for (int g = 0; g < np; g += 16) {
-      float c0a[16], sla[16], x0a[16], rta[16], dya[16], ya[16], c0b[16], slb[16], x0b[16], rtb[16],
-          dyb[16], yb[16], e0[16], e1[16];
-      for (int k = 0; k < 16; ++k) {
-        const int i = min(g + k, np - 1);
-        const row_plane_t ra = row_plane(TA, max(p_ta[i], 0), py),
-                          rb = row_plane(TBp, max(p_tb[i], 0), py);
-        c0a[k] = ra.c0;
-        sla[k] = ra.slope;
-        x0a[k] = ra.x0;
-        rta[k] = ra.row_term;
-        dya[k] = ra.dy;
-        ya[k] = ra.y;
-        c0b[k] = rb.c0;
-        slb[k] = rb.slope;
-        x0b[k] = rb.x0;
-        rtb[k] = rb.row_term;
-        dyb[k] = rb.dy;
-        yb[k] = rb.y;
-        e0[k] = origin_x + (float)px_start[i] + 0.5f;
-        e1[k] = origin_x + (float)(px_end[i] - 1) + 0.5f;
-      }
-      row_plane16_t ra, rb;
-      ra.c0 = vload16(0, c0a);
-      ra.slope = vload16(0, sla);
-      ra.x0 = vload16(0, x0a);
-      ra.row_term = vload16(0, rta);
-      ra.dy = vload16(0, dya);
-      ra.y = vload16(0, ya);
-      rb.c0 = vload16(0, c0b);
-      rb.slope = vload16(0, slb);
-      rb.x0 = vload16(0, x0b);
-      rb.row_term = vload16(0, rtb);
-      rb.dy = vload16(0, dyb);
-      rb.y = vload16(0, yb);
-      const float16 p0 = vload16(0, e0), p1 = vload16(0, e1);
-      const frag16_t a0 = fragment16(ra, P, p0), a1 = fragment16(ra, P, p1);
-      const frag16_t b0 = fragment16(rb, P, p0), b1 = fragment16(rb, P, p1);
-      const int16 nf = a0.nonfinite | a1.nonfinite | b0.nonfinite | b1.nonfinite;
-      const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
-      const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
-      const ulong16 slack = (ulong16)LOG_SLACK_OR_0;
-#if !PLANE_MONOTONE
-      const int16 excluded = (int16)0;
-#elif COMPARE_GREATER
-      const int16 excluded = convert_int16(convert_ulong16(max(b0.code, b1.code)) + slack <
-                                           convert_ulong16(min(a0.code, a1.code)));
-#else
-      const int16 excluded = convert_int16(convert_ulong16(min(b0.code, b1.code)) >
-                                           convert_ulong16(max(a0.code, a1.code)) + slack);
-#endif
-      int nfk[16], clk[16], fek[16], exk[16];
-      vstore16(nf, 0, nfk);
-      vstore16(cl, 0, clk);
-      vstore16(fight_ends, 0, fek);
-      vstore16(excluded, 0, exk);
-      for (int k = 0; k < 16 && g + k < np; ++k) {
-        const int i = g + k;
-        const int len = px_end[i] - px_start[i];
-        uint v = ~0u;
-        if (len <= 2) { /* the ends are the whole piece */
-          v = nfk[k] ? R_NONFINITE : clk[k] ? R_CLIPPED : fek[k] ? R_FIGHT : 0u;
-        } else if (!nfk[k] && !clk[k] && exk[k]) {
-          v = 0u;
-        }
-        verdict[i] = v;
-        ends_ok[i] = PLANE_MONOTONE && !nfk[k] && !clk[k];
-      }
-    }
-
-  uint flags = 0u, count = 0u;
-  for (int i = 0; i < np; ++i) {
-    const int x = px_start[i], x_end = px_end[i];
-    count += (uint)(x_end - x);
-    if (p_ta[i] < 0 || p_tb[i] < 0) {
-      flags |= R_UNCOVERED;
-      continue;
-    }
-    uint piece = verdict[i];
-    if (piece == ~0u) {
-      piece = 0u;
-      const row_plane16_t ra = broadcast16(row_plane(TA, p_ta[i], py));
-      const row_plane16_t rb = broadcast16(row_plane(TBp, p_tb[i], py));
-      if (ends_ok[i]) { /* only the codes matter: one reduction per piece */
-        piece = any16(inside_piece16(ra, rb, P, origin_x, x, x_end, ordered, ca)) ? R_FIGHT : 0u;
-      } else
-        for (int i0 = x; i0 < x_end; i0 += 16) {
-          const int16 idx = i0 + LANES;
-          const int16 active = idx < x_end;
-          const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
-          const frag16_t fa = fragment16(ra, P, px), fb = fragment16(rb, P, px);
-          const int16 nf = active & (fa.nonfinite | fb.nonfinite);
-          const int16 cl = active & ~nf & (fa.clipped | fb.clipped);
-          const int16 ok = active & ~(fa.nonfinite | fb.nonfinite | fa.clipped | fb.clipped);
-          piece |= (any16(nf) ? R_NONFINITE : 0u) | (any16(cl) ? R_CLIPPED : 0u) |
-                   (any16(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
-        }
-    }
-    flags |= piece;
-    if (piece & R_FIGHT) break;
-  }
-  result[id] = flags | (b_is_a ? R_REUSED : 0u) | (count << R_COUNT_SHIFT);
-}
-
-// mts_raster's work-items take a band of rows each, so a band decided clean from code bounds (most
-// of a search's descent) costs one work-item instead of one per row. Global id: (band, visit,
-// probe).
+// piece by piece. A work-item takes a band's rows one after the other, so a band decided clean
+// from code bounds (most of a search's descent) costs one work-item, not one per row. Global id:
+// (band, visit, probe); results at (probe * frames + visit) * kernel_h + row.
 __kernel void mts_raster(
     __global const float* restrict probes, __global const float* restrict tris,
     __global const uint* restrict vflags, __global const float* restrict a_tris,
@@ -281,8 +69,182 @@ __kernel void mts_raster(
   const uint band = get_global_id(0), visit = get_global_id(1), probe = get_global_id(2);
   if (band >= bands) return;
   const uint r1 = min(kernel_h, (band + 1u) * band_rows);
-  for (uint row = band * band_rows; row < r1; ++row)
-    raster_row(probes, tris, vflags, a_tris, a_vflags, a_rows, a_slots, first_frame, a_codes,
-               frames_total, kernel_w, kernel_h, origin_x, origin_y, frames, decided, bands,
-               band_rows, shortcuts, result, row, visit, probe);
+  for (uint row = band * band_rows; row < r1; ++row) {
+    const uint pf = probe * frames + visit;
+    const uint id = pf * kernel_h + row;
+    __global const float* P = probes + probe * PROBE_STRIDE;
+    const uint ap = a_plane(a_slots, probe, visit, first_frame, frames_total);
+    if ((a_vflags[ap] | vflags[pf]) & V_NONFINITE) {
+      result[id] = R_NONFINITE;
+      continue;
+    }
+    __global const uint* dec = decided + (size_t)(pf * bands + row / band_rows) * DECIDED_WORDS;
+    /* a row with a vertex near a pixel centre is outside its band's verdict */
+    const uint band_verdict =
+        (dec[DW_BAD_ROWS] >> (row % band_rows)) & 1u ? D_RASTER : dec[DW_VERDICT] & D_MASK;
+    if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
+      result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
+      continue;
+    }
+    __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
+    __global const float* TBp = tris + (size_t)pf * PLANE_STRIDE;
+    const int W = (int)kernel_w;
+    const float py = origin_y + (float)row + 0.5f;
+    __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
+    const int cached = rec[RW_N] > 0u;
+    const int b_is_a =
+        shortcuts && cached &&
+        b_coverage_is_a(((__global const float*)dec)[DW_MOVED], dec[DW_VERDICT] & DV_ORIENTED, TBp,
+                        vflags[pf], (int)row, band_rows, rec);
+    const int inside = band_verdict == D_INSIDE || band_verdict == D_ORDERED;
+    const int ordered = band_verdict == D_ORDERED;
+#if CACHE_A_CODES
+    __global const uint* ca =
+        cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + CODE_ROW_PAD) : 0;
+#else
+    __global const uint* ca = 0;
+#endif
+    if (inside && b_is_a) {
+      /* The common row near the MTS: every piece covered and inside, and the pieces are plane A's
+       * cached segments, taken straight from the record, one reduction for the whole row. A row
+       * that fights goes on below, which finds its first fighting piece (and so its count). */
+      const int n = (int)rec[RW_N];
+      int16 fight = (int16)0;
+      for (int k = 0; k < n; ++k) {
+        const int t = (int)rec[RW_T + k];
+        fight |=
+            inside_piece16(broadcast16(row_plane(TA, t, py)), broadcast16(row_plane(TBp, t, py)), P,
+                           origin_x, (int)rec[RW_X + k], (int)rec[RW_X + k + 1], ordered, ca);
+      }
+      if (!any16(fight)) {
+        result[id] = R_REUSED | ((rec[RW_X + n] - rec[RW_X]) << R_COUNT_SHIFT);
+        continue;
+      }
+    }
+    int seg_xa[MAX_SEG + 1], seg_ta[MAX_SEG], seg_xb[MAX_SEG + 1], seg_tb[MAX_SEG];
+    const int na = cached ? record_segments(rec, seg_xa, seg_ta)
+                          : row_segments(TA, py, origin_x, W, seg_xa, seg_ta);
+
+    /* the pieces, and the end-point verdict of each: R_* bits, or ~0u for "look inside" */
+    int px_start[MAX_PIECES], px_end[MAX_PIECES], p_ta[MAX_PIECES], p_tb[MAX_PIECES];
+    uint verdict[MAX_PIECES];
+    int ends_ok[MAX_PIECES]; /* both planes finite and unclipped at both ends, so inside too */
+    int np = 0;
+    if (b_is_a) { /* B's segments are A's: the pieces are A's segments, no merge needed */
+      for (int k = 0; k < na; ++k)
+        if (seg_xa[k + 1] > seg_xa[k]) {
+          px_start[np] = seg_xa[k];
+          px_end[np] = seg_xa[k + 1];
+          p_ta[np] = p_tb[np] = seg_ta[k];
+          ++np;
+        }
+    } else {
+      row_segments(TBp, py, origin_x, W, seg_xb, seg_tb);
+      FOR_EACH_PIECE({
+        px_start[np] = x;
+        px_end[np] = x_end;
+        p_ta[np] = ta;
+        p_tb[np] = tb;
+        ++np;
+      })
+    }
+    if (inside) {
+      if (!b_is_a) { /* as above, over the merged pieces (b_is_a rows here are known to fight) */
+        int16 fight = (int16)0;
+        uint all = 0u;
+        for (int i = 0; i < np; ++i) {
+          fight |= inside_piece16(broadcast16(row_plane(TA, p_ta[i], py)),
+                                  broadcast16(row_plane(TBp, p_tb[i], py)), P, origin_x,
+                                  px_start[i], px_end[i], ordered, ca);
+          all += (uint)(px_end[i] - px_start[i]);
+        }
+        if (!any16(fight)) {
+          result[id] = all << R_COUNT_SHIFT;
+          continue;
+        }
+      }
+      for (int i = 0; i < np; ++i) { /* a row that fights: its pieces one by one, below */
+        verdict[i] = ~0u;
+        ends_ok[i] = 1;
+      }
+    } else
+      for (int g = 0; g < np; g += 16) {
+        row_plane_lanes_t la, lb;
+        float e0[16], e1[16];
+        for (int k = 0; k < 16; ++k) {
+          const int i = min(g + k, np - 1);
+          set_lane(&la, k, row_plane(TA, max(p_ta[i], 0), py));
+          set_lane(&lb, k, row_plane(TBp, max(p_tb[i], 0), py));
+          e0[k] = origin_x + (float)px_start[i] + 0.5f;
+          e1[k] = origin_x + (float)(px_end[i] - 1) + 0.5f;
+        }
+        const row_plane16_t ra = load_lanes(&la), rb = load_lanes(&lb);
+        const float16 p0 = vload16(0, e0), p1 = vload16(0, e1);
+        const frag16_t a0 = fragment16(ra, P, p0), a1 = fragment16(ra, P, p1);
+        const frag16_t b0 = fragment16(rb, P, p0), b1 = fragment16(rb, P, p1);
+        const int16 nf = a0.nonfinite | a1.nonfinite | b0.nonfinite | b1.nonfinite;
+        const int16 cl = a0.clipped | a1.clipped | b0.clipped | b1.clipped;
+        const int16 fight_ends = fights16(a0.code, b0.code) | fights16(a1.code, b1.code);
+        const ulong16 slack = (ulong16)LOG_SLACK_OR_0;
+#if !PLANE_MONOTONE
+        const int16 excluded = (int16)0;
+#elif COMPARE_GREATER
+        const int16 excluded = convert_int16(convert_ulong16(max(b0.code, b1.code)) + slack <
+                                             convert_ulong16(min(a0.code, a1.code)));
+#else
+        const int16 excluded = convert_int16(convert_ulong16(min(b0.code, b1.code)) >
+                                             convert_ulong16(max(a0.code, a1.code)) + slack);
+#endif
+        int nfk[16], clk[16], fek[16], exk[16];
+        vstore16(nf, 0, nfk);
+        vstore16(cl, 0, clk);
+        vstore16(fight_ends, 0, fek);
+        vstore16(excluded, 0, exk);
+        for (int k = 0; k < 16 && g + k < np; ++k) {
+          const int i = g + k;
+          const int len = px_end[i] - px_start[i];
+          uint v = ~0u;
+          if (len <= 2) { /* the ends are the whole piece */
+            v = nfk[k] ? R_NONFINITE : clk[k] ? R_CLIPPED : fek[k] ? R_FIGHT : 0u;
+          } else if (!nfk[k] && !clk[k] && exk[k]) {
+            v = 0u;
+          }
+          verdict[i] = v;
+          ends_ok[i] = PLANE_MONOTONE && !nfk[k] && !clk[k];
+        }
+      }
+
+    uint flags = 0u, count = 0u;
+    for (int i = 0; i < np; ++i) {
+      const int x = px_start[i], x_end = px_end[i];
+      count += (uint)(x_end - x);
+      if (p_ta[i] < 0 || p_tb[i] < 0) {
+        flags |= R_UNCOVERED;
+        continue;
+      }
+      uint piece = verdict[i];
+      if (piece == ~0u) {
+        piece = 0u;
+        const row_plane16_t ra = broadcast16(row_plane(TA, p_ta[i], py));
+        const row_plane16_t rb = broadcast16(row_plane(TBp, p_tb[i], py));
+        if (ends_ok[i]) { /* only the codes matter: one reduction per piece */
+          piece = any16(inside_piece16(ra, rb, P, origin_x, x, x_end, ordered, ca)) ? R_FIGHT : 0u;
+        } else
+          for (int i0 = x; i0 < x_end; i0 += 16) {
+            const int16 idx = i0 + LANES;
+            const int16 active = idx < x_end;
+            const float16 px = (origin_x + convert_float16(idx)) + 0.5f;
+            const frag16_t fa = fragment16(ra, P, px), fb = fragment16(rb, P, px);
+            const int16 nf = active & (fa.nonfinite | fb.nonfinite);
+            const int16 cl = active & ~nf & (fa.clipped | fb.clipped);
+            const int16 ok = active & ~(fa.nonfinite | fb.nonfinite | fa.clipped | fb.clipped);
+            piece |= (any16(nf) ? R_NONFINITE : 0u) | (any16(cl) ? R_CLIPPED : 0u) |
+                     (any16(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
+          }
+      }
+      flags |= piece;
+      if (piece & R_FIGHT) break;
+    }
+    result[id] = flags | (b_is_a ? R_REUSED : 0u) | (count << R_COUNT_SHIFT);
+  }
 }
