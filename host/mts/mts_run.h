@@ -27,8 +27,8 @@ struct RunControl {
   // busy while one pair's launch drains or its host waits. Rows are the same for any number;
   // measured times then include the other pairs' share of the device. Attribution runs one.
   // The jobs share the plane-A cache's budget; with fewer pairs than jobs a pair's distances are
-  // split between them. 2: the default table takes 11.1 s and 300 MB with two jobs, 12.0 s and
-  // 215-350 MB with one; one pair 0.52-0.57 s against 0.57-0.60 s (docs/performance.md).
+  // split between them. 2: the default table takes 6.0 s with two jobs against 6.8 s with one,
+  // 280-300 MB either way (docs/performance.md).
   int jobs = 2;
 };
 
