@@ -36,15 +36,15 @@ Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
   return P;
 }
 
-// tilt (radians) turns the plane about x on top of the frame's rotation; its side along y then
-// grows so that its far half, seen obliquely, still reaches past the view's edge:
-// h cos t / (D + h sin t) >= tan(fov/2) for the half side h.
 // The distance a plane is built from in precision T: with tilt 0, all that D enters as.
 template <class T>
 T model_distance(double D) {
   return static_cast<T>(D);
 }
 
+// tilt (radians) turns the plane about x on top of the frame's rotation; its side along y then
+// grows so that its far half, seen obliquely, still reaches past the view's edge:
+// h cos t / (D + h sin t) >= tan(fov/2) for the half side h.
 template <class T>
 Mat<T> model(const Scene& s, double D, int frame, double tilt = 0) {
   const auto ang = frame_angles(s, frame);

@@ -524,10 +524,14 @@ void MtsEvaluator::touch_plane_a(const std::vector<double>& zs) {
   }
 }
 
+uint64_t MtsEvaluator::launches_per_batch() const {
+  return shortcuts_ ? 3 : 2;  // set-up, band bounds (with shortcuts), raster
+}
+
 uint64_t MtsEvaluator::full_run_launches() const {
   uint64_t batches = 0;
   for (int done = 0; done < scene_.frames; done += batch_frames(done, scene_.frames)) ++batches;
-  return batches * (shortcuts_ ? 3 : 2);  // as run_group counts them
+  return batches * launches_per_batch();
 }
 
 std::pair<double, double> MtsEvaluator::plane_b_key(const Probe& probe) const {
@@ -627,7 +631,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
       results[active[i]].seconds += secs * share;
       results[active[i]].kernel_seconds += ksecs * share;
       // set-up, bounds and raster, and the plane-A cache's launches when this batch filled it
-      results[active[i]].launches += (shortcuts_ ? 3 : 2) + cache_launches[i];
+      results[active[i]].launches += launches_per_batch() + cache_launches[i];
     }
     pairs_ += launch_pairs;
     done += frames;

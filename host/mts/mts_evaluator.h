@@ -170,6 +170,8 @@ class MtsEvaluator : public ProbeEvaluator {
   // Marks plane A of these distances, where held, used now (the cache's least-recently-used
   // order).
   void touch_plane_a(const std::vector<double>& zs);
+  // The launches of one batch of frames of a probe, plane A already held.
+  uint64_t launches_per_batch() const;
   // The launches of a probe rendered through every frame, plane A already held.
   uint64_t full_run_launches() const;
   // Renders the probes of group (distances that fit in the cache together) frame batch by frame

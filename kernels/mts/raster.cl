@@ -68,27 +68,28 @@ __kernel void mts_raster(
     const uint shortcuts, __global uint* restrict result) {
   const uint band = get_global_id(0), visit = get_global_id(1), probe = get_global_id(2);
   if (band >= bands) return;
-  const uint r1 = min(kernel_h, (band + 1u) * band_rows);
-  for (uint row = band * band_rows; row < r1; ++row) {
-    const uint pf = probe * frames + visit;
+  const uint r0 = band * band_rows, r1 = min(kernel_h, r0 + band_rows);
+  const uint pf = probe * frames + visit;
+  const uint ap = a_plane(a_slots, probe, visit, first_frame, frames_total);
+  const int nonfinite = (a_vflags[ap] | vflags[pf]) & V_NONFINITE;
+  __global const float* P = probes + probe * PROBE_STRIDE;
+  __global const uint* dec = decided + (size_t)(pf * bands + band) * DECIDED_WORDS;
+  __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
+  __global const float* TBp = tris + (size_t)pf * PLANE_STRIDE;
+  const int W = (int)kernel_w;
+  for (uint row = r0; row < r1; ++row) {
     const uint id = pf * kernel_h + row;
-    __global const float* P = probes + probe * PROBE_STRIDE;
-    const uint ap = a_plane(a_slots, probe, visit, first_frame, frames_total);
-    if ((a_vflags[ap] | vflags[pf]) & V_NONFINITE) {
+    if (nonfinite) {
       result[id] = R_NONFINITE;
       continue;
     }
-    __global const uint* dec = decided + (size_t)(pf * bands + row / band_rows) * DECIDED_WORDS;
     /* a row with a vertex near a pixel centre is outside its band's verdict */
     const uint band_verdict =
-        (dec[DW_BAD_ROWS] >> (row % band_rows)) & 1u ? D_RASTER : dec[DW_VERDICT] & D_MASK;
+        (dec[DW_BAD_ROWS] >> (row - r0)) & 1u ? D_RASTER : dec[DW_VERDICT] & D_MASK;
     if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
       result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
       continue;
     }
-    __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
-    __global const float* TBp = tris + (size_t)pf * PLANE_STRIDE;
-    const int W = (int)kernel_w;
     const float py = origin_y + (float)row + 0.5f;
     __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
     const int cached = rec[RW_N] > 0u;
