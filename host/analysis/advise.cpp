@@ -10,12 +10,18 @@
 #include "host/base/json_number.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
+#include "host/mts/worst_case.h"
 
 namespace depthprec {
 
 // The largest near plane tried is the nearest content's distance over this: the scene's planes
 // are tilted and span more than the view, so at z_min they reach a little nearer than z_min.
 constexpr double kNearestContentMargin = 1.01;
+
+// Under worst-case sampling an answer must also hold this many times farther on its safe side
+// (a larger near plane, a smaller far plane): the MTS is not monotone in the planes, and a user
+// rounds and adjusts what advise prints.
+constexpr double kSafetyFactors[] = {1.0, 1.01, 1.1, 2.0};
 
 void validate(const AdviseRequest& r, const Scene& scene) {
   if (!(r.z_min > 0) || !std::isfinite(r.z_max) || !(r.z_max >= r.z_min))
@@ -94,8 +100,40 @@ bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, con
                 double n, double f) {
   const Scene s = with_near(scene, n, f);
   MtsEvaluator ev(rt, s, pair);
-  for (const MtsRow& row : search_pair(ev, s, pair, advise_distances(r)))
+  std::vector<MtsRow> rows = search_pair(ev, s, pair, advise_distances(r));
+  if (s.sampling == Sampling::worst_case)
+    refine_worst_case(
+        [&rt, &pair](const Scene& rs, const std::function<void(ProbeEvaluator&)>& use) {
+          MtsEvaluator round_ev(rt, rs, pair);
+          use(round_ev);
+        },
+        s, pair, rows);
+  for (const MtsRow& row : rows)
     if (row.verdict() != Verdict::resolved || row.mts > r.separation_at(row.z)) return false;
+  return true;
+}
+
+double round_printed(double v, bool up) {
+  if (!(v > 0) || !std::isfinite(v)) return v;
+  const double unit = std::pow(10.0, std::floor(std::log10(v)) - 3);
+  const double q = v / unit;
+  // q is within an ulp or so of a whole number when v already prints as itself
+  const double whole = std::abs(q - std::round(q)) < 1e-9 * q ? std::round(q)
+                       : up                                   ? std::ceil(q)
+                                                              : std::floor(q);
+  double out = std::strtod(fmt::format("{:.4g}", whole * unit).c_str(), nullptr);
+  if (up ? out < v : out > v) out = std::nextafter(out, up ? INFINITY : 0.0);
+  return out;
+}
+
+bool holds_beyond(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                  const AdviseRequest& r, double n, double f, bool near_side, double limit) {
+  for (const double k : kSafetyFactors) {
+    const double v = near_side ? n * k : f / k;
+    if (near_side ? v > limit : v < limit) break;  // past the last value worth checking
+    if (!(near_side ? mts_within(rt, scene, pair, r, v, f) : mts_within(rt, scene, pair, r, n, v)))
+      return false;
+  }
   return true;
 }
 
@@ -126,6 +164,18 @@ static void far_search(OpenClRuntime& rt, const Scene& scene, const EvalPair& pa
     above = f;
     f = std::max(base_far, f / (1 + r.near_precision));
     ++lowered;
+  }
+  // Worst-case sampling: the far plane as printed (rounded down) and the values below it
+  // down to base_far must hold; where one does not, the far plane comes in in growing steps.
+  if (scene.sampling == Sampling::worst_case && f > base_far) {
+    double step = r.near_precision;
+    for (f = round_printed(f, false); f > base_far; f = round_printed(f / (1 + step), false)) {
+      if (holds_beyond(rt, scene, pair, r, n, f, false, base_far)) break;
+      above = f;
+      step *= 2;
+      ++lowered;
+    }
+    f = std::max(f, base_far);
   }
   j["largest_far"] = f;
   j["far_holds_to_ceiling"] = above == 0;
@@ -180,6 +230,19 @@ static nlohmann::json near_answer(OpenClRuntime& rt, const Scene& scene, const E
       n = std::min(top, n * (1 + r.near_precision));
       ++raised;
       within = mts_within(rt, scene, pair, r, n, f);
+    }
+    // Worst-case sampling: the near plane as printed (rounded up to the digits text shows) must
+    // hold, and so must the nearer-safe values beyond it; where one does not, the near plane
+    // moves up in growing steps until all do.
+    if (within && scene.sampling == Sampling::worst_case) {
+      double step = r.near_precision;
+      for (n = round_printed(n, true); n <= top; n = round_printed(n * (1 + step), true)) {
+        if (holds_beyond(rt, scene, pair, r, n, f, true, top)) break;
+        below = n;
+        step *= 2;
+        ++raised;
+      }
+      within = n <= top;
     }
     if (within) {
       if (raised) {

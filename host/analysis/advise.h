@@ -45,10 +45,19 @@ Scene with_near(const Scene& scene, double n, double f = 0);
 bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
                 double n, double* worst = nullptr, double f = 0);
 
-// Whether the MTS search (as `mts` runs it) at near n gives every checked distance an MTS within
-// the separation.
+// Whether the MTS search (as `mts` runs it, under the scene's sampling) at near n gives every
+// checked distance an MTS within the separation.
 bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
                 double n, double f = 0);
+
+// v rounded to the four significant digits text output shows, up or down (a value that prints as
+// itself, on the safe side of v).
+double round_printed(double v, bool up);
+
+// Whether the set-up holds (mts_within) at near n, far f and beyond them on the safe side: near
+// n times 1, 1.01, 1.1 and 2 (near_side; up to limit), or far f divided by them (down to limit).
+bool holds_beyond(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                  const AdviseRequest& r, double n, double f, bool near_side, double limit);
 
 // One pair's answer: technique, format, depth_range, smallest_near (absent when not even a near
 // plane next to the content holds), next_near (the largest near found to fail, absent when the

@@ -46,8 +46,7 @@ T model_distance(double D) {
 // grows so that its far half, seen obliquely, still reaches past the view's edge:
 // h cos t / (D + h sin t) >= tan(fov/2) for the half side h.
 template <class T>
-Mat<T> model(const Scene& s, double D, int frame, double tilt = 0) {
-  const auto ang = frame_angles(s, frame);
+Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
   const T dist = model_distance<T>(D);
   const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
   const T side = static_cast<T>(s.plane_margin) * T(2) * dist * std::tan(half_fov);
@@ -120,7 +119,13 @@ std::array<float, PROBE_STRIDE> ProbeConstants::packed() const {
   return out;
 }
 
-std::array<double, 3> frame_angles(const Scene& s, int frame) {
+Angles frame_orientation(const Scene& s, double z, int frame) {
+  const auto it = s.orientations.find(z);
+  return it == s.orientations.end() ? frame_angles(s, frame)
+                                    : it->second.at(static_cast<size_t>(frame));
+}
+
+Angles frame_angles(const Scene& s, int frame) {
   const double a = frame * s.delta_a;
   std::array<double, 3> out{};
   for (int i = 0; i < 3; ++i)
@@ -138,22 +143,24 @@ ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z) {
     f = l.far;
     geometry.technique = s.params.layer_mapping;
   }
-  return s.pipeline.matrix_precision == MatrixPrecision::single
-             ? constants<float>(s, geometry, n, f)
-             : constants<double>(s, geometry, n, f);
+  ProbeConstants pc = s.pipeline.matrix_precision == MatrixPrecision::single
+                          ? constants<float>(s, geometry, n, f)
+                          : constants<double>(s, geometry, n, f);
+  pc.z = z;
+  return pc;
 }
 
 Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame, double tilt) {
   const bool premult = s.pipeline.compose == Compose::premultiplied;
   if (s.pipeline.matrix_precision == MatrixPrecision::single) {
-    const Mat<float> M = model<float>(s, D, frame, tilt);
+    const Mat<float> M = model<float>(s, D, frame_orientation(s, pc.z, frame), tilt);
     if (!premult) return to_row_major(M);
     Mat<float> P;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c) P[c][r] = pc.P[r * 4 + c];
     return to_row_major(Mat<float>(P * M));
   }
-  const Mat<double> M = model<double>(s, D, frame, tilt);
+  const Mat<double> M = model<double>(s, D, frame_orientation(s, pc.z, frame), tilt);
   if (!premult) return to_row_major(M);
   Mat<double> P;  // the binary64 P, so P * MV is rounded once, at the end
   for (int r = 0; r < 4; ++r)
@@ -166,8 +173,8 @@ double plane_matrix_distance(const Scene& s, double D) {
                                                                 : model_distance<double>(D);
 }
 
-std::array<double, 16> model_matrix_f64(const Scene& s, double D, int frame) {
-  const Mat<double> M = model<double>(s, D, frame);
+std::array<double, 16> model_matrix_f64(const Scene& s, double z, double D, int frame) {
+  const Mat<double> M = model<double>(s, D, frame_orientation(s, z, frame));
   std::array<double, 16> out{};
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) out[r * 4 + c] = M[c][r];

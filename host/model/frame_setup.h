@@ -43,13 +43,18 @@ struct ProbeConstants {
   unsigned forms = 0;                    // the pipeline's vertex-stage forms, F_* bits (C_FORMS)
   int snap_bits = 0;                     // the pipeline's sub-pixel snapping (C_SNAP_BITS)
   double layer_near = 0, layer_far = 0;  // the sub-frustum used (layered), else near/far
+  double z = 0;  // plane A's distance: the frames' orientations are per distance (Scene)
   std::array<float, PROBE_STRIDE> packed() const;
 };
 
 ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z);
 
-// The rotation angles of frame k in radians (binary64; the animation input, not GPU arithmetic).
-std::array<double, 3> frame_angles(const Scene& scene, int frame);
+// The rotation angles of frame k of the paper's path in radians (binary64; the animation input,
+// not GPU arithmetic).
+Angles frame_angles(const Scene& scene, int frame);
+// The rotation angles of frame k at plane A's distance z: the scene's orientations there, where
+// it lists them (worst-case sampling), else the path's.
+Angles frame_orientation(const Scene& scene, double z, int frame);
 
 // Model-view of a plane at requested distance D (binary64: z for plane A, z + s for plane B) in
 // frame k; with compose = premultiplied, P * MV instead. tilt (radians, `bias --tilt`) turns the
@@ -63,9 +68,9 @@ Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int f
 // matrix in every frame.
 double plane_matrix_distance(const Scene& scene, double D);
 
-// The model matrix of a plane at distance D in frame k in binary64, never rounded: the exact
-// geometry of the storage-limited pipeline. Row-major.
-std::array<double, 16> model_matrix_f64(const Scene& scene, double D, int frame);
+// The model matrix of a plane at distance D in frame k of plane A's distance z in binary64, never
+// rounded: the exact geometry of the storage-limited pipeline. Row-major.
+std::array<double, 16> model_matrix_f64(const Scene& scene, double z, double D, int frame);
 
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);

@@ -46,6 +46,8 @@ const std::set<std::string> kTopKeys = {"name",
                                         "rel_precision",
                                         "max_separation_factor",
                                         "stiffness_probes",
+                                        "sampling",
+                                        "worst_case",
                                         "pipeline",
                                         "log_k",
                                         "layers",
@@ -57,6 +59,8 @@ const std::set<std::string> kPipelineKeys = {
     "denormals",   "contraction",      "plane",   "viewport", "conversion",
     "vertex",      "profile",          "log",     "clip",     "snap"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
+const std::set<std::string> kWorstCaseKeys = {"min_rounds", "max_rounds", "round_size",
+                                              "tolerance"};
 
 // "line L, column C" of a byte offset in text (1-based, as editors count).
 std::string position_of(const std::string& text, size_t offset) {
@@ -114,6 +118,8 @@ void check_user_keys(const json& j, const std::string& source, const std::string
   check_known_keys(j, kTopKeys, "the scene", source, text);
   if (j.contains("pipeline"))
     check_known_keys(j["pipeline"], kPipelineKeys, "pipeline", source, text);
+  if (j.contains("worst_case"))
+    check_known_keys(j["worst_case"], kWorstCaseKeys, "worst_case", source, text);
   if (j.contains("evaluate") && j["evaluate"].is_array())
     for (const auto& p : j["evaluate"])
       check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
@@ -269,6 +275,10 @@ ClipForm parse_clip_form(const std::string& s) {
 LogForm parse_log_form(const std::string& s) {
   return named_choice<LogForm>("log", s,
                                {{"library", LogForm::library}, {"llvmpipe", LogForm::llvmpipe}});
+}
+Sampling parse_sampling(const std::string& s) {
+  return named_choice<Sampling>("sampling", s,
+                                {{"worst_case", Sampling::worst_case}, {"paper", Sampling::paper}});
 }
 VertexForm parse_vertex_form(const std::string& s) {
   return named_choice<VertexForm>("vertex", s,
@@ -458,6 +468,10 @@ Scene scene_from_json(const json& j, const std::string& source) {
   return s;
 }
 
+const char* to_string(Sampling s) {
+  return s == Sampling::paper ? "paper" : "worst_case";
+}
+
 namespace {
 
 Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
@@ -517,6 +531,21 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.max_separation_factor = r.positive("max_separation_factor");
   if (s.max_separation_factor < 1) r.fail("max_separation_factor", "must be >= 1");
   s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
+  s.sampling = r.choice("sampling", parse_sampling);
+  s.worst_case.max_rounds = r.integer("worst_case.max_rounds", 1, 16);
+  s.worst_case.min_rounds = r.integer("worst_case.min_rounds", 1, s.worst_case.max_rounds);
+  s.worst_case.round_size = r.integer("worst_case.round_size", 1, 1000000);
+  // Rounds double: the last one renders round_size * 2^(max_rounds - 1) frames per probe.
+  if ((static_cast<long long>(s.worst_case.round_size) << (s.worst_case.max_rounds - 1)) > 1000000)
+    r.fail("worst_case.max_rounds",
+           fmt::format("with round_size {} the last round would sample {} orientations; at most "
+                       "1000000 (rounds double)",
+                       s.worst_case.round_size,
+                       static_cast<long long>(s.worst_case.round_size)
+                           << (s.worst_case.max_rounds - 1)));
+  s.worst_case.tolerance = r.number("worst_case.tolerance");
+  if (!(s.worst_case.tolerance >= 0 && s.worst_case.tolerance < 1))
+    r.fail("worst_case.tolerance", "must be 0..1 (a relative rise of the MTS, e.g. 0.01)");
 
   s.pipeline.depth_range =
       r.choice("pipeline.depth_range", [](const std::string& v) -> std::optional<DepthRange> {

@@ -80,6 +80,22 @@ struct EvalPair {
 // The label of a JSON record that carries a pair's fields: "reversed/float32/zero_to_one".
 std::string pair_label(const nlohmann::json& record);
 
+// Rotation angles (radians) about x, y and z of a plane's frame: R = Rx Ry Rz (docs/spec.md 5.1).
+using Angles = std::array<double, 3>;
+
+// How an MTS is sampled over orientations (docs/mts.md, "The worst case"): the paper's frames
+// alone, or the worst case over the rotation cube the paper's path samples.
+enum class Sampling { paper, worst_case };
+const char* to_string(Sampling s);  // "paper", "worst_case"
+
+// When worst_case sampling stops refining a row (docs/mts.md, "The worst case").
+struct WorstCaseSettings {
+  int min_rounds = 0;    // rounds every resolved row runs, whatever they find
+  int max_rounds = 0;    // rounds after the paper's frames, at most
+  int round_size = 0;    // orientations per round
+  double tolerance = 0;  // a refinement that raises the MTS by at most this (relative) ends it
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -97,6 +113,12 @@ struct Scene {
   double rel_precision = 0;
   double max_separation_factor = 0;
   int stiffness_probes = 0;  // per side of each resolved MTS (docs/stability.md)
+  Sampling sampling = Sampling::worst_case;
+  WorstCaseSettings worst_case;
+  // Frames whose orientations are not the paper's path: per distance of plane A, `frames`
+  // angle triples (worst_case's rounds set them; no scene file does). A distance not listed
+  // takes the path (frame_angles).
+  std::map<double, std::vector<Angles>> orientations;
   Pipeline pipeline;
   TechniqueParams params;
   std::vector<EvalPair> evaluate;

@@ -619,9 +619,11 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     const std::vector<uint64_t> probe_pairs =
         fold_launch(rows, active, done, frames, kh, results, decided, after_decision_);
     for (const size_t i : active)
-      if (decided[i])  // a fight or a non-finite frame: the next probes of this distance start
-                       // there
-        last_fight_frame_[probes[i].z] = (first_visited[i] + results[i].frames - 1) % scene_.frames;
+      if (decided[i]) {  // a fight or a non-finite frame: the next probes of this distance
+                         // start there
+        results[i].deciding_frame = (first_visited[i] + results[i].frames - 1) % scene_.frames;
+        last_fight_frame_[probes[i].z] = results[i].deciding_frame;
+      }
     uint64_t launch_pairs = 0;
     for (const uint64_t n : probe_pairs) launch_pairs += n;
     for (size_t i = 0; i < active.size(); ++i) {

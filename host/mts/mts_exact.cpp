@@ -43,7 +43,7 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
       const ProbeConstants pc = probe_constants(scene_, pair_, pr.z);
       for (int f = 0; f < frames; ++f)
         for (int p = 0; p < 2; ++p) {
-          const auto M = model_matrix_f64(scene_, p == 0 ? pr.z : pr.z + pr.s, done + f);
+          const auto M = model_matrix_f64(scene_, pr.z, p == 0 ? pr.z : pr.z + pr.s, done + f);
           double* dst = planes.data() + ((i * frames + f) * 2 + p) * 16;
           for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 3; ++r)
@@ -68,6 +68,8 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     uint64_t after_decision = 0;  // work the -v breakdown counts for the emulated pipeline only
     fold_launch(rows, active, done, frames, kh, results, decided, after_decision);
+    for (const size_t i : active)
+      if (decided[i]) results[i].deciding_frame = results[i].frames - 1;  // frames in order
     for (const size_t i : active) {
       results[i].seconds += secs / static_cast<double>(active.size());
       results[i].launches += 1;

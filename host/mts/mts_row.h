@@ -66,6 +66,12 @@ struct MtsRow {
   // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
   // upper MTS (every clean answer lies above it). 0 / +inf when there is none.
   double fight_max = 0, clean_min = std::numeric_limits<double>::infinity();
+  // Worst-case sampling (docs/mts.md, "The worst case"): the MTS over the scene's frames alone
+  // (the paper's; equal to mts under sampling paper), how many orientations the answer rests on,
+  // and the relative rise of the MTS in the last refinement (0 when it found nothing higher).
+  double mts_paper = std::numeric_limits<double>::quiet_NaN();
+  uint64_t orientations = 0;
+  double convergence = 0;
   // MTS attribution (table --attribute; NaN when not computed): the MTS of the storage-limited
   // pipeline (exact up to binary64, then stored) and of the arithmetic-limited one (the binary32
   // pipeline, no storage quantisation); the vertex bound is the third factor.

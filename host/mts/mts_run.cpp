@@ -17,6 +17,7 @@
 #include "host/model/frame_setup.h"
 #include "host/mts/mts_exact.h"
 #include "host/mts/mts_search.h"
+#include "host/mts/worst_case.h"
 #include "host/output/row_json.h"
 #include "host/runtime/kernel_variant.h"
 
@@ -238,27 +239,19 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
   // run (MtsEvaluator::prime_launches: PoCL 3.1 aborts otherwise).
   LaunchPrimer primer;
   MtsEvaluator::LaunchWidths prime_widths;
-  for (const Unit& u : units)
+  Scene round_scene = scene;  // worst-case sampling's rounds, in chunks of round_size
+  round_scene.frames = scene.worst_case.round_size;
+  for (const Unit& u : units) {
     prime_widths |= MtsEvaluator::widest_launches(scene, scene.evaluate[u.pair], jobs);
+    if (scene.sampling == Sampling::worst_case)
+      prime_widths |= MtsEvaluator::widest_launches(round_scene, scene.evaluate[u.pair], jobs);
+  }
 
   // Search some of a pair's distances in one evaluator; rows go to on_row as they finish.
-  const auto compute = [&](size_t p, const std::vector<double>& zs) {
-    const EvalPair& pair = scene.evaluate[p];
-    MtsEvaluator ev(rt, scene, pair);
-    ev.share_plane_a_budget(jobs);
-    if (jobs > 1) ev.prime_launches(prime_widths, primer);
-    auto rows =
-        search_pair(ev, scene, pair, zs,
-                    control.attribute ? std::function<void(const MtsRow&)>() : on_row, stop);
-    if (control.attribute) {
-      // The arithmetic cache makes a row's attribution depend on which pairs ran before it:
-      // attribution runs one job (RunControl::jobs), so that order is the scene's.
-      attribute_rows(rt, scene, pair, rows, arithmetic_cache, stop);
-      for (const auto& r : rows) on_row(r);
-    }
+  // One evaluator's statistics into its pair's and the run's.
+  const auto add_stats = [&](size_t p, const MtsEvaluator& ev) {
     std::lock_guard<std::mutex> lock(m);
     PairStats& st = stats[p];
-    st.distances += rows.size();
     st.pairs += ev.fragment_pairs();
     st.launches += ev.launches();
     st.after_decision += ev.pairs_after_decision();
@@ -272,6 +265,37 @@ MtsRun run_scene(OpenClRuntime& rt, const Scene& scene,
     run.info.launches += ev.launches();
     run.info.evaluated_pairs += ev.fragment_pairs();
     run.info.kernel_seconds += ev.kernel_seconds();
+  };
+  const bool worst_case = scene.sampling == Sampling::worst_case;
+  // Search some of a pair's distances in one evaluator (and under worst-case sampling refine
+  // them, an evaluator per round); rows go to on_row as they finish.
+  const auto compute = [&](size_t p, const std::vector<double>& zs) {
+    const EvalPair& pair = scene.evaluate[p];
+    const auto with_evaluator = [&](const Scene& s,
+                                    const std::function<void(ProbeEvaluator&)>& use) {
+      MtsEvaluator ev(rt, s, pair);
+      ev.share_plane_a_budget(jobs);
+      if (jobs > 1) ev.prime_launches(prime_widths, primer);
+      use(ev);
+      add_stats(p, ev);
+    };
+    const bool rows_later = control.attribute || worst_case;
+    std::vector<MtsRow> rows;
+    with_evaluator(scene, [&](ProbeEvaluator& ev) {
+      rows = search_pair(ev, scene, pair, zs,
+                         rows_later ? std::function<void(const MtsRow&)>() : on_row, stop);
+    });
+    if (worst_case) refine_worst_case(with_evaluator, scene, pair, rows, stop);
+    if (worst_case && !control.attribute)
+      for (const auto& r : rows) on_row(r);
+    if (control.attribute) {
+      // The arithmetic cache makes a row's attribution depend on which pairs ran before it:
+      // attribution runs one job (RunControl::jobs), so that order is the scene's.
+      attribute_rows(rt, scene, pair, rows, arithmetic_cache, stop);
+      for (const auto& r : rows) on_row(r);
+    }
+    std::lock_guard<std::mutex> lock(m);
+    stats[p].distances += rows.size();
     for (const auto& r : rows)
       computed.emplace(computation_key(scene, pair, r.z, control.attribute), r);
     pair_rows[p].insert(pair_rows[p].end(), rows.begin(), rows.end());

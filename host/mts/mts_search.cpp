@@ -23,6 +23,13 @@ Bisection::Bisection(double z, double rel_precision, double max_separation_facto
       coincide_(coincide_below),
       next_(z) {}
 
+Bisection::Bisection(double z, double rel_precision, double max_separation_factor,
+                     double coincide_below, double lo, double hi)
+    : Bisection(z, rel_precision, max_separation_factor, coincide_below) {
+  lo_ = lo;
+  next_ = hi;
+}
+
 void Bisection::record(Outcome o) {
   history_.emplace_back(next_, o);
   ++probes_;
@@ -164,8 +171,11 @@ std::vector<double> stiffness_separations(double lo, double hi, double r, int n)
 std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
                                 const std::vector<double>& distances,
                                 const std::function<void(const MtsRow&)>& on_row,
-                                const std::function<bool()>& stop) {
+                                const std::function<bool()>& stop,
+                                const std::vector<SearchStart>& starts) {
   std::vector<Bisection> searches;
+  if (!starts.empty() && starts.size() != distances.size())
+    throw Error(ExitCode::internal, "search_pair: one start per distance, or none");
   std::vector<MtsRow> rows(distances.size());
   // Per distance: 0 bisecting, 1 stiffness probes to run, 2 finished.
   std::vector<int> phase(distances.size(), 0);
@@ -177,8 +187,12 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       rows[i].profile = scene.json["pipeline"].value("profile", "custom");
     rows[i].z = distances[i];
     rows[i].vertex_bound = vertex_bound(distances[i]);
-    searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor,
-                          rows[i].vertex_bound);
+    if (starts.empty())
+      searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor,
+                            rows[i].vertex_bound);
+    else
+      searches.emplace_back(distances[i], scene.rel_precision, scene.max_separation_factor,
+                            rows[i].vertex_bound, starts[i].lo, starts[i].hi);
     if (has_far_plane(pair.technique) && distances[i] > scene.far) {
       rows[i].beyond_far = true;  // plane A itself is clipped: nothing to search
       phase[i] = 2;
@@ -215,10 +229,12 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       for (const auto& [s, o] : b.history()) note(s, o);
       for (const auto& [s, o] : extra[i]) note(s, o);
       row.non_monotone = b.non_monotone() || row.fight_max > row.clean_min;
+      row.orientations = static_cast<uint64_t>(scene.frames);
     } else {
       row.unresolvable = true;
       row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
     }
+    row.mts_paper = row.mts;
     if (on_row) on_row(row);
   };
   for (size_t i = 0; i < distances.size(); ++i)
@@ -277,7 +293,9 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
         phase[i] = 2;
         finish(i);
       } else if (phase[i] == 0 && searches[i].done()) {
-        const bool stiff = searches[i].resolved() && scene.stiffness_probes > 0;
+        // A continued search that stayed in its bracket probed nothing new near it.
+        const bool rose = starts.empty() || searches[i].lo() > starts[i].lo;
+        const bool stiff = searches[i].resolved() && scene.stiffness_probes > 0 && rose;
         phase[i] = stiff ? 1 : 2;
         if (!stiff) finish(i);
       }

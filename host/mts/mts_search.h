@@ -31,6 +31,11 @@ class Bisection {
  public:
   // coincide_below: separations below it put plane B on plane A (the vertex bound).
   Bisection(double z, double rel_precision, double max_separation_factor, double coincide_below);
+  // A search that continues a known bracket over other frames (worst-case sampling): lo fought
+  // in earlier frames, so it counts as fighting here too; the first probe is at hi, and the
+  // search doubles from there while it fights.
+  Bisection(double z, double rel_precision, double max_separation_factor, double coincide_below,
+            double lo, double hi);
   bool done() const { return done_; }
   double next() const { return next_; }  // the separation to probe now
   void record(Outcome o);
@@ -57,13 +62,21 @@ class Bisection {
   std::vector<std::pair<double, Outcome>> history_;
 };
 
+// Where a distance's search starts when it continues an earlier one (worst-case sampling).
+struct SearchStart {
+  double lo, hi;  // the bracket found so far: lo fought, hi did not
+};
+
 // Searches every distance of one pair, all distances' probes batched into shared launches.
 // on_row is called as each distance finishes (in finishing order); the return is in the order
 // of `distances`. When stop() turns true the search ends after the current launch round with an
 // Error(ExitCode::interrupted): rows already passed to on_row are the finished ones.
+// starts (empty, or one per distance): each distance continues that bracket; its stiffness probes
+// run only when the search rose above it.
 std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
                                 const std::vector<double>& distances,
                                 const std::function<void(const MtsRow&)>& on_row = {},
-                                const std::function<bool()>& stop = {});
+                                const std::function<bool()>& stop = {},
+                                const std::vector<SearchStart>& starts = {});
 
 }  // namespace depthprec

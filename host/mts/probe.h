@@ -23,7 +23,8 @@ const char* to_string(Outcome o);
 
 struct ProbeResult {
   Outcome outcome = Outcome::clean;
-  int frames = 0;  // frames rendered up to and including the deciding one (all if clean)
+  int frames = 0;           // frames rendered up to and including the deciding one (all if clean)
+  int deciding_frame = -1;  // the frame (index into the scene's frames) that decided it; -1: none
   uint64_t fragment_pairs = 0;  // pairs the kernel evaluated for this probe
   bool any_clipped = false, any_non_finite = false, any_uncovered = false;
   double seconds = 0;         // share of the launches' wall time, by fragment pairs

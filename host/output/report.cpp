@@ -113,6 +113,30 @@ std::string footer(const RunInfo& run) {
   return s;
 }
 
+namespace {
+
+// A worst-case row's convergence: the last refinement's relative rise of the MTS.
+std::string convergence_cell(const MtsRow& r, bool full) {
+  return full ? exact(r.convergence) : fmt::format("{:.2g}", r.convergence);
+}
+
+// The paper's frames alone more than 5 % below the worst case (the table marks it ^).
+bool paper_far_below(const MtsRow& r) {
+  return std::isfinite(r.mts) && r.mts_paper < 0.95 * r.mts;
+}
+
+// "100 frames", or "worst case over ±1° (100 frames, then rounds of 100)".
+std::string sampling_caption(const Scene& s) {
+  if (s.sampling == Sampling::paper) return fmt::format("{} frames", s.frames);
+  return fmt::format(
+      "worst case over rotations within ±{}° (the paper's {} frames, then up to {} rounds of {} "
+      "orientations, until a round raises the MTS by at most {})",
+      human(s.rotation_range_deg), s.frames, s.worst_case.max_rounds, s.frames,
+      human(s.worst_case.tolerance));
+}
+
+}  // namespace
+
 std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
                         const std::string& format) {
   if (format == "json") {
@@ -146,6 +170,13 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   }
   // Emulated outputs keep their columns; a rendered row says so (JSON rows always carry it).
   if (rendered) cols.insert(cols.begin(), {"source", true});
+  // Worst-case sampling: the paper's frames' answer and how far the worst case converged, after
+  // the MTS (docs/cli.md, "Reading a worst-case row").
+  const bool worst_case = scene.sampling == Sampling::worst_case;
+  const size_t sampling_at = rendered ? 6 : 5;  // after mts
+  if (worst_case)
+    cols.insert(cols.begin() + static_cast<long>(sampling_at),
+                {{"mts_paper"}, {"orientations"}, {"convergence"}});
   if (attributed)
     for (const char* c : {"storage_mts", "arithmetic_mts"}) cols.push_back({c});
   if (attributed) cols.push_back({"dominant", true});
@@ -176,6 +207,9 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
                                   std::to_string(r.fragment_pairs),
                                   std::to_string(r.launches)};
     if (rendered) c.insert(c.begin(), to_string(r.source));
+    if (worst_case)
+      c.insert(c.begin() + static_cast<long>(sampling_at),
+               {num(r.mts_paper), std::to_string(r.orientations), convergence_cell(r, full)});
     if (attributed) {
       c.push_back(num(r.storage_mts));
       c.push_back(num(r.arithmetic_mts));
@@ -211,16 +245,21 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   const bool full = format == "csv";
   bool attributed = false;
   for (const auto& r : rows) attributed |= r.attributed();
+  const bool worst_case = scene.sampling == Sampling::worst_case;
   // CSV keeps what text marks with ~, * and S/A/V as columns of their own beside each pair's.
   std::vector<Column> cols = {{"z"}, {"vertex_bound"}};
   for (const auto& l : labels) {
     cols.push_back({l});
     if (full) cols.push_back({l + " flags"});
     if (full && attributed) cols.push_back({l + " dominant"});
+    if (full && worst_case) {
+      cols.push_back({l + " mts_paper"});
+      cols.push_back({l + " convergence"});
+    }
   }
   std::vector<std::vector<std::string>> cells;
   std::vector<const MtsRow*> marked;  // cells marked *, in table order
-  bool any_below_code = false;
+  bool any_below_code = false, any_paper_below = false;
   for (double z : zs) {
     std::vector<std::string> c = {full ? exact(z) : human(z),
                                   full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
@@ -230,6 +269,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         c.push_back("");
         if (full) c.push_back("");
         if (full && attributed) c.push_back("");
+        if (full && worst_case) c.insert(c.end(), {"", ""});
         continue;
       }
       const MtsRow& r = *it->second;
@@ -238,9 +278,14 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         c.push_back(v);
         c.push_back(r.flags());
         if (attributed) c.push_back(r.dominant);
+        if (worst_case) c.insert(c.end(), {exact(r.mts_paper), convergence_cell(r, true)});
         continue;
       }
       v += dominant_mark(r);
+      if (worst_case && paper_far_below(r)) {
+        v += "^";
+        any_paper_below = true;
+      }
       if (r.below_one_code) {
         v += "~";
         any_below_code = true;
@@ -258,11 +303,11 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   std::string out;
   {
     out += fmt::format(
-        "MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {} frames, "
+        "MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {}, "
         "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
         "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
         scene.name, human(scene.near), human(scene.far), scene.kernel_w, scene.kernel_h,
-        scene.frames, human(scene.rel_precision));
+        sampling_caption(scene), human(scene.rel_precision));
   }
   out += grid(cols, cells, md);
   if (!marked.empty()) {
@@ -280,6 +325,14 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         "span a code, so where z falls between codes decided it; a z nearby can need up to one "
         "code "
         "(code_width in --format-out json)\n";
+  }
+  if (any_paper_below) {
+    out += md ? "\n" : "";
+    out += fmt::format(
+        "^ the paper's {} frames alone give an MTS more than 5 % below the worst case (mts_paper "
+        "in --format-out csv or json): a separation between the two fights in an orientation the "
+        "paper's path does not reach\n",
+        scene.frames);
   }
   if (attributed) {
     out += "\n";

@@ -55,6 +55,9 @@ json row_to_json(const MtsRow& r, bool timing) {
   j.update({{"source", to_string(r.source)},
             {"z", r.z},
             {"mts", number(r.mts)},
+            {"mts_paper", number(r.mts_paper)},
+            {"orientations", r.orientations},
+            {"convergence", r.convergence},
             {"lo", r.lo},
             {"hi", number(r.hi)},
             {"mts_seen", number(r.mts_seen)},
@@ -124,6 +127,9 @@ MtsRow row_from_json(const json& j) {
   }
   r.z = read_number(j, "z");
   r.mts = read_number(j, "mts");
+  r.mts_paper = j.contains("mts_paper") ? read_number(j, "mts_paper") : r.mts;
+  r.orientations = j.contains("orientations") ? read_count<uint64_t>(j, "orientations") : 0;
+  r.convergence = j.contains("convergence") ? read_number(j, "convergence") : 0;
   r.lo = read_number(j, "lo");
   r.hi = read_number(j, "hi");
   r.mts_seen = read_number(j, "mts_seen");

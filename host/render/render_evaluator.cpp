@@ -450,6 +450,7 @@ std::vector<ProbeResult> RenderEvaluator::run_rounds(
       if (fight) {
         r.outcome = Outcome::fight;
         decided[i] = true;
+        r.deciding_frame = frame;
         last_fight_frame_[z[i]] = frame;
       }
     }

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "host/mts/mts_search.h"
+#include "host/mts/worst_case.h"
 #include "host/output/row_json.h"
 #include "host/render/gl_depth_format.h"
 #include "host/render/render_evaluator.h"
@@ -49,12 +50,30 @@ MtsRun render_scene(GlContext& gl, const Scene& scene,
       r.frames_per_second = r.seconds > 0 ? static_cast<double>(r.frames) / r.seconds : 0;
       return r;
     };
+    const bool worst_case = scene.sampling == Sampling::worst_case;
+    uint64_t frames = 0;  // the pair's frames drawn (and their seconds), over every evaluator
+    double seconds = 0;
     auto rows = search_pair(
         ev, scene, pair, zs,
         [&](const MtsRow& r) {
-          if (control.on_row) control.on_row(mark(r));
+          if (control.on_row && !worst_case) control.on_row(mark(r));
         },
         control.stop);
+    frames += ev.frames_rendered();
+    seconds += ev.seconds();
+    // The driver draws the worst case's rounds of orientations as the emulator samples them.
+    if (worst_case) {
+      refine_worst_case(
+          [&](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
+            RenderEvaluator round_ev(gl, s, pair);
+            use(round_ev);
+            frames += round_ev.frames_rendered();
+            seconds += round_ev.seconds();
+          },
+          scene, pair, rows, control.stop);
+      if (control.on_row)
+        for (const auto& r : rows) control.on_row(mark(r));
+    }
     for (auto& r : rows) {
       r = mark(r);
       run.info.fragment_pairs += r.fragment_pairs;
@@ -64,8 +83,8 @@ MtsRun render_scene(GlContext& gl, const Scene& scene,
       log(fmt::format(
           "{}: {} distances, {} frames rendered in {:.2f} s ({:.0f} frames/s), depth "
           "buffer {}",
-          pair.label(), rows.size(), ev.frames_rendered(), ev.seconds(),
-          ev.seconds() > 0 ? static_cast<double>(ev.frames_rendered()) / ev.seconds() : 0.0,
+          pair.label(), rows.size(), frames, seconds,
+          seconds > 0 ? static_cast<double>(frames) / seconds : 0.0,
           ev.depth_format().given()));
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   }
