@@ -1,6 +1,8 @@
 // advise: the smallest near plane that holds is found by bisection, the next one down fails, and
 // the emulator's MTS agrees: at the near plane found the MTS is within the separation, below it
 // a distance needs more; the far plane likewise. Batch behaviour: tests/test_batch.cpp.
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -113,4 +115,39 @@ TEST_CASE("advise's far plane is the farthest that holds; the next one out fails
   CHECK(mts_within(test::runtime(), scene, pair, r, n, f));
   CHECK_FALSE((near_holds(test::runtime(), scene, pair, r, n, nullptr, out) &&
                mts_within(test::runtime(), scene, pair, r, n, out)));
+}
+
+TEST_CASE("advise's near plane holds under worst-case sampling as printed and beyond it",
+          "[advise][worst_case][cli]") {
+  // The paper's frames alone answered 4.216 here, where the worst case needs 0.01021.
+  const std::string setup = "-t standard -f unorm24 --far 5e4";
+  const auto a = run_cli("advise --range 500,500 --separation 0.01 " + setup +
+                         " --no-timing --format-out json");
+  REQUIRE(a.exit_code == 0);
+  const auto rec = nlohmann::json::parse(a.output)["records"][0];
+  REQUIRE(rec.contains("smallest_near"));
+  const double n = rec["smallest_near"];
+  CHECK(fmt::format("{:.4g}", n) == fmt::format("{:.17g}", n));  // prints as itself
+  CHECK(rec["next_near"].get<double>() < n);
+  for (const double near : {n, n * 1.01, n * 1.1, n * 2, 5.0, 10.0}) {
+    INFO("near " << near);
+    const auto m =
+        run_cli(fmt::format("mts {} --near {:.17g} --distances 500 --no-timing "
+                            "--format-out json",
+                            setup, near));
+    REQUIRE(m.exit_code == 0);
+    const auto row = nlohmann::json::parse(m.output)["rows"][0];
+    CHECK(row["verdict"] == "resolved");
+    CHECK(row["mts"].get<double>() <= 0.01);
+  }
+}
+
+TEST_CASE("round_printed rounds to the four digits text shows, on the side asked",
+          "[advise][worst_case]") {
+  CHECK(round_printed(4.21601, true) == 4.217);
+  CHECK(round_printed(4.21601, false) == 4.216);
+  CHECK(round_printed(4.216, true) == 4.216);  // already printed as itself
+  CHECK(round_printed(4.32e6 + 1, false) == 4.32e6);
+  CHECK(round_printed(0.0012345, true) == 0.001235);
+  CHECK(round_printed(999.95, true) == 1000);
 }

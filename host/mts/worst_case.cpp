@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
@@ -72,13 +73,18 @@ void take_search(MtsRow& row, const MtsRow& found) {
   row.clipped_probes += found.clipped_probes;
   row.non_finite |= found.non_finite;
   row.uncovered |= found.uncovered;
-  // Alone, an orientation is clean below its bracket more often than the many frames of a
-  // chunk, which fight there in its stead; what matters is a fight above the answer.
-  row.non_monotone |= found.fight_max > found.hi;
-  // A search that found no clean separation above the bracket (the orientation clipped or left
-  // pixels uncovered there) leaves the answer to the orientations that could be measured; its
-  // flags say so.
+  // An orientation that fights at every separation up to the search's limit makes the worst case
+  // unresolvable. One whose separations above the bracket were clipped or left pixels uncovered
+  // leaves the answer to the orientations that could be measured; its flags say so.
+  if (found.unresolvable && !found.clipped && !found.uncovered && !found.non_finite) {
+    row.unresolvable = true;
+    row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
+    return;
+  }
   if (found.unresolvable || !(found.hi > row.hi)) return;
+  // Below its bracket, where it is clean again, the orientation alone fights no more and the
+  // earlier ones already did not: fights are not monotone there, for the row as for it.
+  row.non_monotone |= found.non_monotone;
   row.lo = found.lo;
   row.hi = row.mts = found.hi;
   row.mts_seen = found.mts_seen;
@@ -89,8 +95,9 @@ void take_search(MtsRow& row, const MtsRow& found) {
   row.clean_min = found.clean_min;
 }
 
-// A probe of a chunk at the row's MTS: its work and what it saw.
-void take_probe(MtsRow& row, const ProbeResult& r) {
+// A probe of a chunk at separation s (the row's MTS): its work and what it saw.
+void take_probe(MtsRow& row, double s, const ProbeResult& r) {
+  if (r.outcome == Outcome::fight) row.fight_max = std::max(row.fight_max, s);
   ++row.probes;
   row.frames += static_cast<uint64_t>(r.frames);
   row.fragment_pairs += r.fragment_pairs;
@@ -125,7 +132,7 @@ void refine_window(ProbeEvaluator& ev, const Scene& scene, const EvalPair& pair,
     std::vector<SearchStart> starts;
     for (size_t k = 0; k < pending.size(); ++k) {
       MtsRow& row = rows[pending[k]];
-      take_probe(row, results[k]);
+      take_probe(row, probes[k].s, results[k]);
       if (results[k].outcome != Outcome::fight || results[k].deciding_frame < 0) continue;
       fought.push_back(pending[k]);
       zs.push_back(row.z);
@@ -142,7 +149,8 @@ void refine_window(ProbeEvaluator& ev, const Scene& scene, const EvalPair& pair,
       MtsRow& row = rows[fought[k]];
       const double before = row.hi;
       take_search(row, found[k]);
-      if (row.hi > before) pending.push_back(fought[k]);  // probe the chunk again above it
+      if (row.hi > before && !row.unresolvable)
+        pending.push_back(fought[k]);  // probe the chunk again above it
     }
   }
 }
@@ -199,11 +207,15 @@ void refine_worst_case(const WithEvaluator& with_evaluator, const Scene& scene,
       const auto from = list.begin() + static_cast<long>(first);
       const std::vector<Angles> part(
           from, from + static_cast<long>(std::min(chunk, list.size() - first)));
-      refine_chunk(with_evaluator, scene, pair, part, rows, open, stop);
+      std::vector<size_t> live;  // an orientation that fights at any separation ends a row
+      for (const size_t i : open)
+        if (!rows[i].unresolvable) live.push_back(i);
+      refine_chunk(with_evaluator, scene, pair, part, rows, live, stop);
     }
     std::vector<size_t> still;
     for (size_t k = 0; k < open.size(); ++k) {
       MtsRow& row = rows[open[k]];
+      if (row.unresolvable) continue;  // nothing left to converge
       row.convergence = (row.hi - before[k]) / before[k];
       // A round samples as many orientations as all before it: stop once doubling them no longer
       // raises the MTS by more than the tolerance.
