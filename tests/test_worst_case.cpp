@@ -161,3 +161,36 @@ TEST_CASE("over random scenes the worst case is never below the paper's frames",
   }
   CHECK(resolved >= 6);
 }
+
+TEST_CASE("the evaluator's shortcuts change no probe result over a round's orientations",
+          "[worst_case][bounds]") {
+  // A chunk is an ordinary scene whose frames take the round's orientations (the cube's corners
+  // first, where the planes are steepest): probes from s = z down past the MTS decide the same
+  // with the certified shortcuts (code bounds, B's coverage from A's, the gap certificate) and
+  // without them.
+  Scene scene = worst_case_scene({"kernel=[48,48]", "viewport=[48,48]", "rotation_range_deg=5"});
+  const std::vector<Angles> chunk = round_orientations(scene, 1);
+  scene.frames = static_cast<int>(chunk.size());
+  std::vector<Probe> probes;
+  for (double z : {1.005, 30.0, 3000.0, 2e6}) {
+    scene.orientations[z] = chunk;
+    for (double f = 1.0; f > 1e-9; f /= 8) probes.push_back({z, z * f});
+  }
+  for (const EvalPair& pair : {EvalPair{Technique::standard, "unorm24", DepthRange::gl},
+                               EvalPair{Technique::reversed, "float32", DepthRange::zero_to_one},
+                               EvalPair{Technique::log_fragment, "unorm24", DepthRange::gl}}) {
+    MtsEvaluator with(runtime(), scene, pair), without(runtime(), scene, pair, false);
+    const auto a = with.run(probes), b = without.run(probes);
+    int fights = 0;
+    for (size_t k = 0; k < probes.size(); ++k) {
+      INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+      CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
+      CHECK(a[k].frames == b[k].frames);
+      CHECK(a[k].deciding_frame == b[k].deciding_frame);
+      CHECK(a[k].any_uncovered == b[k].any_uncovered);
+      fights += a[k].outcome == Outcome::fight;
+    }
+    INFO(pair.label());
+    CHECK(fights > 0);  // the descent reaches separations that fight
+  }
+}

@@ -101,13 +101,7 @@ bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, con
   const Scene s = with_near(scene, n, f);
   MtsEvaluator ev(rt, s, pair);
   std::vector<MtsRow> rows = search_pair(ev, s, pair, advise_distances(r));
-  if (s.sampling == Sampling::worst_case)
-    refine_worst_case(
-        [&rt, &pair](const Scene& rs, const std::function<void(ProbeEvaluator&)>& use) {
-          MtsEvaluator round_ev(rt, rs, pair);
-          use(round_ev);
-        },
-        s, pair, rows);
+  if (s.sampling == Sampling::worst_case) refine_worst_case(rt, s, pair, rows);
   for (const MtsRow& row : rows)
     if (row.verdict() != Verdict::resolved || row.mts > r.separation_at(row.z)) return false;
   return true;

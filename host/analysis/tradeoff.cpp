@@ -1,5 +1,7 @@
 #include "host/analysis/tradeoff.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,13 +12,31 @@
 namespace depthprec {
 
 std::vector<Level> ladder() {
-  return {{"reference", 200, 100, 12},     {"kernel 100", 100, 100, 12},
-          {"kernel 50", 50, 100, 12},      {"kernel 25", 25, 100, 12},
-          {"frames 50", 200, 50, 12},      {"frames 25", 200, 25, 12},
-          {"frames 10", 200, 10, 12},      {"precision 2^-10", 200, 100, 10},
-          {"precision 2^-8", 200, 100, 8}, {"precision 2^-6", 200, 100, 6},
-          {"precision 2^-4", 200, 100, 4}, {"100/50/2^-8", 100, 50, 8},
-          {"50/25/2^-6", 50, 25, 6},       {"25/10/2^-4", 25, 10, 4}};
+  return {{"reference", 200, 100, 12},
+          {"kernel 100", 100, 100, 12},
+          {"kernel 50", 50, 100, 12},
+          {"kernel 25", 25, 100, 12},
+          {"frames 50", 200, 50, 12},
+          {"frames 25", 200, 25, 12},
+          {"frames 10", 200, 10, 12},
+          {"precision 2^-10", 200, 100, 10},
+          {"precision 2^-8", 200, 100, 8},
+          {"precision 2^-6", 200, 100, 6},
+          {"precision 2^-4", 200, 100, 4},
+          {"100/50/2^-8", 100, 50, 8},
+          {"50/25/2^-6", 50, 25, 6},
+          {"25/10/2^-4", 25, 10, 4},
+          {"paper frames", 200, 100, 12, 0},
+          {"worst case, 1 round", 200, 100, 12, 1},
+          {"worst case, 2 rounds", 200, 100, 12, 2},
+          {"worst case, 3 rounds", 200, 100, 12, 3},
+          {"worst case, 4 rounds", 200, 100, 12, 4}};
+}
+
+std::string sampling_of(const Level& lv) {
+  if (lv.rounds < 0) return "scene";
+  if (lv.rounds == 0) return "paper";
+  return fmt::format("{} round{}", lv.rounds, lv.rounds == 1 ? "" : "s");
 }
 
 nlohmann::json level_record(OpenClRuntime& rt, const Scene& base, const Level& lv) {
@@ -24,7 +44,19 @@ nlohmann::json level_record(OpenClRuntime& rt, const Scene& base, const Level& l
   s.kernel_w = s.kernel_h = s.viewport_w = s.viewport_h = lv.kernel;
   s.frames = lv.frames;
   s.rel_precision = std::ldexp(1.0, -lv.precision_log2);
+  if (lv.rounds == 0) s.sampling = Sampling::paper;
+  if (lv.rounds > 0) {
+    s.sampling = Sampling::worst_case;
+    s.worst_case.min_rounds = s.worst_case.max_rounds = lv.rounds;
+  }
   const MtsRun run = run_scene(rt, s);
+  uint64_t orientations = 0;  // summed over the resolved rows
+  size_t resolved = 0;
+  for (const auto& r : run.rows)
+    if (r.verdict() == Verdict::resolved) {
+      orientations += r.orientations;
+      ++resolved;
+    }
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& r : run.rows)
     rows.push_back({{"row", row_key(r.pair, r.z)},
@@ -34,6 +66,8 @@ nlohmann::json level_record(OpenClRuntime& rt, const Scene& base, const Level& l
           {"kernel", lv.kernel},
           {"frames", lv.frames},
           {"precision_log2", lv.precision_log2},
+          {"rounds", lv.rounds},
+          {"mean_orientations", resolved ? static_cast<double>(orientations) / resolved : 0.0},
           {"fragment_pairs", run.info.fragment_pairs},
           {"seconds", run.info.wall_seconds},
           {"rows", rows}};
@@ -49,7 +83,9 @@ std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& reco
   for (const auto& rec : records) {
     LevelResult r;
     r.level = {rec.at("level").get<std::string>(), rec.at("kernel").get<int>(),
-               rec.at("frames").get<int>(), rec.at("precision_log2").get<int>()};
+               rec.at("frames").get<int>(), rec.at("precision_log2").get<int>(),
+               rec.value("rounds", -1)};
+    r.mean_orientations = rec.value("mean_orientations", 0.0);
     r.seconds = rec.value("seconds", 0.0);
     r.pairs = rec.at("fragment_pairs").get<uint64_t>();
     std::vector<double> errs;

@@ -18,15 +18,22 @@ struct Level {
   int kernel;
   int frames;
   int precision_log2;  // rel_precision = 2^-precision_log2
+  // How the orientations are sampled: the scene's own sampling (-1), the paper's frames alone
+  // (0), or the worst case with exactly this many rounds (docs/mts.md, "The worst case").
+  int rounds = -1;
 };
+// "scene", "paper" or "N rounds": the sampling column of a level.
+std::string sampling_of(const Level& lv);
 
-// The ladder of the issue: each budget alone, then combined; the first is the reference.
+// The ladder: each budget alone, then combined, then the sampling of orientations from the
+// paper's frames to four rounds of the worst case; the first is the reference.
 std::vector<Level> ladder();
 
 struct LevelResult {
   Level level;
   double seconds = 0;
   uint64_t pairs = 0;
+  double mean_orientations = 0;  // per resolved row
   double median_err = 0, max_err = 0;
   int verdict_changes = 0;
   std::vector<std::string> changed;  // "technique/format/range z" of each verdict change

@@ -18,6 +18,7 @@
 #include "host/model/profile.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
+#include "host/mts/worst_case.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 #include "host/render/gl_context.h"
@@ -100,7 +101,8 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
   // The MTS beside each answer: what separation the pair resolves there without any bias.
   {
     MtsEvaluator ev(rt, scene, pair);
-    const auto rows = search_pair(ev, scene, pair, scene.distances);
+    auto rows = search_pair(ev, scene, pair, scene.distances);
+    if (scene.sampling == Sampling::worst_case) refine_worst_case(rt, scene, pair, rows);
     for (size_t k = 0; k < rows.size(); ++k)
       if (rows[k].verdict() == Verdict::resolved) mts[k] = rows[k].mts;
   }

@@ -69,6 +69,8 @@ std::string render_tradeoff_output(const nlohmann::json& header,
                         {"kernel", r.level.kernel},
                         {"frames", r.level.frames},
                         {"rel_precision", std::ldexp(1.0, -r.level.precision_log2)},
+                        {"sampling", sampling_of(r.level)},
+                        {"mean_orientations", r.mean_orientations},
                         {"fragment_pairs", r.pairs},
                         {"seconds", r.seconds},
                         {"median_rel_err", r.median_err},
@@ -77,8 +79,9 @@ std::string render_tradeoff_output(const nlohmann::json& header,
                         {"pareto", r.pareto}});
     return records_json(header, records, timing, {{"levels", levels}});
   }
-  std::vector<Column> cols = {
-      {"level", true}, {"kernel"}, {"frames"}, {"rel_precision"}, {"fragment_pairs"}};
+  std::vector<Column> cols = {{"level", true},   {"kernel"},         {"frames"},
+                              {"rel_precision"}, {"sampling", true}, {"orientations"},
+                              {"fragment_pairs"}};
   if (timing) cols.push_back({"seconds"});
   for (const char* c : {"median_rel_err", "max_rel_err", "verdict_changes"}) cols.push_back({c});
   cols.push_back({"pareto", true});
@@ -90,6 +93,8 @@ std::string render_tradeoff_output(const nlohmann::json& header,
                                     std::to_string(r.level.frames),
                                     csv ? exact(std::ldexp(1.0, -r.level.precision_log2))
                                         : fmt::format("2^-{}", r.level.precision_log2),
+                                    sampling_of(r.level),
+                                    number_cell(r.mean_orientations, out.format_out, "{:.0f}"),
                                     std::to_string(r.pairs)};
     if (timing) row.push_back(number_cell(r.seconds, out.format_out, "{:.2f}"));
     row.push_back(number_cell(r.median_err, out.format_out, "{:.3g}"));
@@ -116,10 +121,12 @@ void add_tradeoff_command(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand(
       "tradeoff",
       "How the MTS answer degrades as the evaluator spends less: kernel 25^2..200^2, frames\n"
-      "10..100, rel_precision 2^-4..2^-12, alone and combined, each against the reference level\n"
-      "(200^2, 100 frames, 2^-12): median and max relative MTS error, distances whose\n"
-      "resolvable/unresolvable verdict changed, work and time, and the Pareto front.\n"
-      "Fourteen full runs of the scene's pairs: choose few pairs and distances.\n"
+      "10..100, rel_precision 2^-4..2^-12, alone and combined, then the orientations sampled\n"
+      "(the paper's frames alone, then the worst case with 1 to 4 rounds, each doubling them),\n"
+      "each against the reference level (200^2, 100 frames, 2^-12, the scene's sampling):\n"
+      "median and max relative MTS error, distances whose resolvable/unresolvable verdict\n"
+      "changed, orientations per row, work and time, and the Pareto front.\n"
+      "Nineteen full runs of the scene's pairs: choose few pairs and distances.\n"
       "Examples:\n"
       "  depthprec tradeoff -t reversed -f float32 --depth-range zero_to_one --distances "
       "2,1024,1e6\n"

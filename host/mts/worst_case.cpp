@@ -7,6 +7,7 @@
 
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
+#include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 
 namespace depthprec {
@@ -224,6 +225,16 @@ void refine_worst_case(const WithEvaluator& with_evaluator, const Scene& scene,
     }
     open = std::move(still);
   }
+}
+
+void refine_worst_case(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                       std::vector<MtsRow>& rows, const std::function<bool()>& stop) {
+  refine_worst_case(
+      [&rt, &pair](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
+        MtsEvaluator ev(rt, s, pair);
+        use(ev);
+      },
+      scene, pair, rows, stop);
 }
 
 }  // namespace depthprec

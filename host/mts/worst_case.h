@@ -14,6 +14,7 @@
 
 #include "host/mts/mts_row.h"
 #include "host/mts/probe.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
 
@@ -34,5 +35,9 @@ using WithEvaluator =
 void refine_worst_case(const WithEvaluator& with_evaluator, const Scene& scene,
                        const EvalPair& pair, std::vector<MtsRow>& rows,
                        const std::function<bool()>& stop = {});
+
+// The same on the emulated pipeline, an MtsEvaluator per chunk.
+void refine_worst_case(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                       std::vector<MtsRow>& rows, const std::function<bool()>& stop = {});
 
 }  // namespace depthprec

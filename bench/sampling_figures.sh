@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The figures of worst-case sampling in one run (docs/mts.md, "The worst case"): the default table
+# under sampling=paper and under the default worst_case, alternately (rounds times each, so this
+# VM's drift falls on both alike), each run's wall time and peak RSS; then how the worst case's
+# rows moved against the paper's and where they stand against the paper's path sampled ten times
+# longer (frames=1000, one run: about 90 s on 2 cores). The paper table must equal the one
+# `table --set sampling=paper` gave before worst-case sampling existed (checked by the tests'
+# byte-identity of CSV output).
+# Usage: bench/sampling_figures.sh [rounds] [build dir] [more table options]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rounds=${1:-3}
+build=${2:-build}
+shift $(($# > 2 ? 2 : $#))
+bin=$build/depthprec
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+run() {  # name, then table options; appends "name seconds MB" to runs
+  local name=$1
+  shift
+  /usr/bin/time -f '%e %M' -o "$out/time" \
+    "$bin" table --format-out csv --no-timing -q -o "$out/$name.csv" "$@"
+  read -r secs kb < "$out/time"
+  echo "$name $secs $((kb / 1024))" >> "$out/runs"
+}
+
+for ((i = 0; i < rounds; i++)); do
+  run paper --set sampling=paper "$@"
+  run worst_case "$@"
+done
+for name in paper worst_case; do
+  awk -v n="$name" '$1 == n { print $2, $3 }' "$out/runs" | sort -g | awk -v n="$name" '
+    { t[NR] = $1; if ($2 > m) m = $2 }
+    END { printf "%-11s wall median %.2f s (of %d runs, fastest %.2f s), peak RSS %d MB\n", n,
+          (NR % 2) ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2, NR, t[1], m }'
+done
+python3 bench/table_ratios.py "$out/paper.csv" "$out/worst_case.csv" "worst case / paper"
+run paper_1000 --set sampling=paper --set frames=1000 "$@"
+python3 bench/table_ratios.py "$out/paper_1000.csv" "$out/worst_case.csv" \
+  "worst case / the paper's path at 1000 frames"
+awk '$1 == "paper_1000" { printf "paper_1000  wall %.2f s, peak RSS %d MB\n", $2, $3 }' "$out/runs"
