@@ -77,7 +77,16 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   std::vector<double> zs;
   for (const auto& r : rows) zs.push_back(r.z);
   ExactEvaluator exact(rt, plain, pair);
-  const auto storage = search_pair(exact, plain, pair, zs, {}, stop);
+  auto storage = search_pair(exact, plain, pair, zs, {}, stop);
+  // Under worst-case sampling each factor is its own worst case, as the MTS is.
+  const bool worst_case = scene.sampling == Sampling::worst_case;
+  if (worst_case)
+    refine_worst_case(
+        [&rt, &pair](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
+          ExactEvaluator round_ev(rt, s, pair);
+          use(round_ev);
+        },
+        plain, pair, storage, stop);
   EvalPair raw = pair;
   raw.format = "float32";
   const bool is_raw = pair.format == "float32";
@@ -88,8 +97,9 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
     if (!arithmetic_cache.count(row_key(raw, z))) missing.push_back(z);
   if (!missing.empty()) {
     MtsEvaluator ev(rt, plain, raw);
-    for (const auto& r : search_pair(ev, plain, raw, missing, {}, stop))
-      arithmetic_cache[row_key(raw, r.z)] = r.mts;
+    std::vector<MtsRow> arithmetic = search_pair(ev, plain, raw, missing, {}, stop);
+    if (worst_case) refine_worst_case(rt, plain, raw, arithmetic, stop);
+    for (const auto& r : arithmetic) arithmetic_cache[row_key(raw, r.z)] = r.mts;
   }
   for (size_t i = 0; i < rows.size(); ++i) {
     rows[i].storage_mts = storage[i].beyond_far ? INFINITY : storage[i].mts;
