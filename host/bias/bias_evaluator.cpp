@@ -122,7 +122,10 @@ std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes)
         results[i].seconds += secs / static_cast<double>(active.size());
         results[i].kernel_seconds += ksecs / static_cast<double>(active.size());
         results[i].launches += 2;
-        if (decided[i]) last_fail_frame_[probes[i].z] = (first[i] + results[i].frames - 1) % total;
+        if (decided[i]) {
+          results[i].deciding_frame = (first[i] + results[i].frames - 1) % total;
+          last_fail_frame_[probes[i].z] = results[i].deciding_frame;
+        }
       }
     }
     done += frames;

@@ -100,31 +100,32 @@ double units_limit(const BiasRule& rule) {
 
 }  // namespace
 
-std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene& scene,
-                                           const EvalPair& pair, const BiasOptions& options,
-                                           const std::vector<double>& distances,
-                                           const std::vector<double>& mts) {
+std::vector<BiasAnswers> search_bias(BiasEvaluator& evaluator, const Scene& scene,
+                                     const EvalPair& pair, const BiasOptions& options,
+                                     const std::vector<double>& distances, unsigned kinds) {
   const BiasRule rule = bias_rule(options, scene.storage_format(pair));
   const double sign = bias_sign(scene, pair);
   const size_t n = distances.size();
   std::vector<IntegerBiasSearch> units(n, IntegerBiasSearch(units_limit(rule))),
       with_factor(n, IntegerBiasSearch(units_limit(rule)));
   std::vector<RealBiasSearch> factor(n, RealBiasSearch(kFactorLimit, kFactorPrecision));
-  std::vector<double> seconds(n, 0);
+  std::vector<BiasAnswers> out(n);
+  const bool want_units = kinds & kBiasUnits, want_factor = kinds & kBiasFactor,
+             want_with = (kinds & kBiasWithFactor) && options.set_factor > 0;
   // A round: the next probe of every search not done, all in one evaluator call.
   while (true) {
     std::vector<BiasProbe> probes;
     std::vector<std::pair<size_t, int>> owner;  // (distance, search)
     for (size_t k = 0; k < n; ++k) {
-      if (!units[k].done()) {
+      if (want_units && !units[k].done()) {
         probes.push_back({distances[k], sign * units[k].next(), 0});
         owner.push_back({k, 0});
       }
-      if (!factor[k].done()) {
+      if (want_factor && !factor[k].done()) {
         probes.push_back({distances[k], 0, sign * factor[k].next()});
         owner.push_back({k, 1});
       }
-      if (!with_factor[k].done() && options.set_factor > 0) {
+      if (want_with && !with_factor[k].done()) {
         probes.push_back({distances[k], sign * with_factor[k].next(), sign * options.set_factor});
         owner.push_back({k, 2});
       }
@@ -133,7 +134,7 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
     const std::vector<ProbeResult> results = evaluator.run(probes);
     for (size_t i = 0; i < probes.size(); ++i) {
       const auto [k, which] = owner[i];
-      seconds[k] += results[i].seconds;
+      out[k].seconds += results[i].seconds;
       if (which == 0)
         units[k].record(results[i]);
       else if (which == 1)
@@ -142,10 +143,43 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
         with_factor[k].record(results[i]);
     }
   }
+  for (size_t k = 0; k < n; ++k) {
+    if (want_units) out[k].units = units[k].answer();
+    if (want_factor) out[k].factor = factor[k].answer();
+    if (want_with) out[k].with_factor = with_factor[k].answer();
+    out[k].orientations = static_cast<uint64_t>(scene.frames);
+  }
+  return out;
+}
+
+BiasProbe bias_probe(const Scene& scene, const EvalPair& pair, const BiasOptions& options,
+                     unsigned kind, double z, double value) {
+  const double sign = bias_sign(scene, pair);
+  if (kind == kBiasUnits) return {z, sign * value, 0};
+  if (kind == kBiasFactor) return {z, 0, sign * value};
+  return {z, sign * value, sign * options.set_factor};
+}
+
+std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene& scene,
+                                           const EvalPair& pair, const BiasOptions& options,
+                                           const std::vector<double>& distances,
+                                           const std::vector<double>& mts) {
+  return bias_rows(scene, pair, options, evaluator.source(), distances,
+                   search_bias(evaluator, scene, pair, options, distances), mts);
+}
+
+std::vector<nlohmann::json> bias_rows(const Scene& scene, const EvalPair& pair,
+                                      const BiasOptions& options, RowSource source,
+                                      const std::vector<double>& distances,
+                                      const std::vector<BiasAnswers>& answers,
+                                      const std::vector<double>& mts) {
+  const BiasRule rule = bias_rule(options, scene.storage_format(pair));
+  const double sign = bias_sign(scene, pair);
+  const size_t n = distances.size();
   std::vector<nlohmann::json> rows;
   for (size_t k = 0; k < n; ++k) {
     const double z = distances[k];
-    const BiasAnswer u = units[k].answer(), f = factor[k].answer();
+    const BiasAnswer &u = answers[k].units, &f = answers[k].factor;
     nlohmann::json j = pair.fields();
     j["z"] = z;
     j["verdict"] = u.verdict;
@@ -157,7 +191,7 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
     j["factor"] = signed_or_null(f.value);
     j["factor_verdict"] = f.verdict;
     if (options.set_factor > 0) {
-      const BiasAnswer s = with_factor[k].answer();
+      const BiasAnswer& s = answers[k].with_factor;
       j["set_factor"] = sign * options.set_factor;
       j["set_units"] = signed_or_null(s.value);
       j["set_verdict"] = s.verdict;
@@ -165,7 +199,7 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
     // What the constant bias amounts to at z: the offset r * units in window depth (r of z's own
     // binade for float storage), and the eye distance it moves a fragment toward the camera.
     // Rendered rows leave them out: their r is the driver's.
-    if (evaluator.source() == RowSource::emulated) {
+    if (source == RowSource::emulated) {
       j["r"] = rule.r_text;
       j["offset"] = nullptr;
       j["eye_separation"] = nullptr;
@@ -184,8 +218,12 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
       }
     }
     j["mts"] = std::isnan(mts[k]) ? nlohmann::json(nullptr) : nlohmann::json(mts[k]);
-    j["probes"] = u.probes + f.probes + with_factor[k].answer().probes;
-    j["seconds"] = seconds[k];
+    j["probes"] = u.probes + f.probes + answers[k].with_factor.probes;
+    j["seconds"] = answers[k].seconds;
+    if (scene.sampling == Sampling::worst_case) {
+      j["orientations"] = answers[k].orientations;
+      j["convergence"] = json_number(answers[k].convergence);
+    }
     rows.push_back(j);
   }
   return rows;

@@ -68,6 +68,38 @@ class RealBiasSearch : public BiasSearch {
 // uncovered or non-finite.
 bool bias_passes(const ProbeResult& r);
 
+// The searches of one distance: the smallest constant bias, slope factor, and units with the set
+// factor (left as constructed where not searched), their evaluators' seconds, the orientations they
+// rest on and, under worst-case sampling, the largest relative rise of the three in the last round.
+struct BiasAnswers {
+  BiasAnswer units, factor, with_factor;
+  double seconds = 0;
+  uint64_t orientations = 0;
+  double convergence = 0;
+  BiasAnswer& of(unsigned kind) { return kind == 1 ? units : kind == 2 ? factor : with_factor; }
+};
+// The searches, as bits: run_bias's three kinds.
+constexpr unsigned kBiasUnits = 1, kBiasFactor = 2, kBiasWithFactor = 4;
+
+// Runs the searches `kinds` asks for (with_factor only with a set factor) at every distance, all
+// distances' probes sharing each launch round.
+std::vector<BiasAnswers> search_bias(BiasEvaluator& evaluator, const Scene& scene,
+                                     const EvalPair& pair, const BiasOptions& options,
+                                     const std::vector<double>& distances,
+                                     unsigned kinds = kBiasUnits | kBiasFactor | kBiasWithFactor);
+
+// The probe of search `kind` at magnitude `value` (signed as the pair's bias).
+BiasProbe bias_probe(const Scene& scene, const EvalPair& pair, const BiasOptions& options,
+                     unsigned kind, double z, double value);
+
+// One record per distance from the answers (fields in docs/bias.md). mts: the pair's MTS at each
+// distance (NaN where it has none), for the comparison column.
+std::vector<nlohmann::json> bias_rows(const Scene& scene, const EvalPair& pair,
+                                      const BiasOptions& options, RowSource source,
+                                      const std::vector<double>& distances,
+                                      const std::vector<BiasAnswers>& answers,
+                                      const std::vector<double>& mts);
+
 // Everything `bias` reports for one pair: one record per distance (fields in docs/bias.md).
 // mts: the pair's MTS at each distance (NaN where it has none), for the comparison column.
 std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene& scene,

@@ -12,6 +12,7 @@
 #include "host/base/json_number.h"
 #include "host/bias/bias_evaluator.h"
 #include "host/bias/bias_search.h"
+#include "host/bias/bias_worst_case.h"
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
@@ -92,10 +93,22 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
     return rec;
   }
   std::vector<double> mts(scene.distances.size(), std::numeric_limits<double>::quiet_NaN());
+  // Under worst-case sampling the answers hold in every orientation sampled, as the MTS does.
+  const auto answers = [&](const WithBiasEvaluator& with) {
+    std::vector<BiasAnswers> a;
+    with(scene, [&](BiasEvaluator& ev) { a = search_bias(ev, scene, pair, b, scene.distances); });
+    if (scene.sampling == Sampling::worst_case)
+      refine_bias_worst_case(with, scene, pair, b, scene.distances, a);
+    return a;
+  };
   if (gl) {
-    RenderEvaluator renderer(*gl, scene, pair);
-    BiasRenderer ev(renderer, b);
-    rec["rows"] = bias_pair_rows(ev, scene, pair, b, scene.distances, mts);
+    rec["rows"] = bias_rows(scene, pair, b, RowSource::rendered, scene.distances,
+                            answers([&](const Scene& s, const auto& use) {
+                              RenderEvaluator renderer(*gl, s, pair);
+                              BiasRenderer ev(renderer, b);
+                              use(ev);
+                            }),
+                            mts);
     return rec;
   }
   // The MTS beside each answer: what separation the pair resolves there without any bias.
@@ -106,8 +119,12 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
     for (size_t k = 0; k < rows.size(); ++k)
       if (rows[k].verdict() == Verdict::resolved) mts[k] = rows[k].mts;
   }
-  BiasEmulator ev(rt, scene, pair, b);
-  rec["rows"] = bias_pair_rows(ev, scene, pair, b, scene.distances, mts);
+  rec["rows"] = bias_rows(scene, pair, b, RowSource::emulated, scene.distances,
+                          answers([&](const Scene& s, const auto& use) {
+                            BiasEmulator ev(rt, s, pair, b);
+                            use(ev);
+                          }),
+                          mts);
   return rec;
 }
 
