@@ -1,3 +1,5 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
@@ -108,7 +110,7 @@ TEST_CASE("tradeoff reports every ladder level against the reference with a Pare
       run_cli("tradeoff -t linear -f unorm24 --distances 4096 --no-timing --format-out json");
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.output);
-  REQUIRE(j["levels"].size() == 14);
+  REQUIRE(j["levels"].size() == 19);
   CHECK(j["levels"][0]["level"] == "reference");
   CHECK(j["levels"][0]["max_rel_err"] == 0.0);
   int pareto = 0;
@@ -116,6 +118,14 @@ TEST_CASE("tradeoff reports every ladder level against the reference with a Pare
   CHECK(pareto >= 1);
   // the cheapest level is on the front by construction: nothing does less work
   CHECK(j["levels"][13]["pareto"] == true);
+  // the sampling levels: the paper's frames alone, then each round doubling the orientations
+  CHECK(j["levels"][14]["sampling"] == "paper");
+  CHECK(j["levels"][14]["mean_orientations"] == 100.0);
+  for (int k = 15; k < 19; ++k) {
+    CHECK(j["levels"][k]["sampling"] == fmt::format("{} round{}", k - 14, k == 15 ? "" : "s"));
+    CHECK(j["levels"][k]["mean_orientations"] == 100.0 * (1 << (k - 14)));
+    CHECK(j["levels"][k]["fragment_pairs"] > j["levels"][k - 1]["fragment_pairs"]);
+  }
   // coarser bisection can only widen the answer: 2^-4 is further off than 2^-10
   CHECK(j["levels"][10]["max_rel_err"].get<double>() >=
         j["levels"][7]["max_rel_err"].get<double>());

@@ -47,14 +47,11 @@ Drawn draw_scene(std::mt19937& rng) {
     pairs += fmt::format("{}{{\"technique\":\"{}\",\"format\":\"{}\"}}", i ? "," : "",
                          pick(technique_table()).name,
                          pick(std::vector<std::string>{"unorm16", "unorm24", "float32", "e4m12"}));
-  d.overrides = {fmt::format("viewport=[{},{}]", vw, vh),
-                 fmt::format("kernel=[{},{}]", kw, kh),
-                 fmt::format("near={}", near),
-                 fmt::format("far={}", far),
+  d.overrides = {fmt::format("viewport=[{},{}]", vw, vh), fmt::format("kernel=[{},{}]", kw, kh),
+                 fmt::format("near={}", near), fmt::format("far={}", far),
                  fmt::format("frames={}", uniform(2, 6)),
                  fmt::format("fov_y_deg={}", pick(std::vector<int>{10, 60})),
-                 "distances=[" + dist + "]",
-                 "evaluate=[" + pairs + "]",
+                 "distances=[" + dist + "]", "evaluate=[" + pairs + "]",
                  // the reference below replays the scene's own frames
                  "sampling=paper"};
   return d;

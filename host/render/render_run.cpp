@@ -84,8 +84,7 @@ MtsRun render_scene(GlContext& gl, const Scene& scene,
           "{}: {} distances, {} frames rendered in {:.2f} s ({:.0f} frames/s), depth "
           "buffer {}",
           pair.label(), rows.size(), frames, seconds,
-          seconds > 0 ? static_cast<double>(frames) / seconds : 0.0,
-          ev.depth_format().given()));
+          seconds > 0 ? static_cast<double>(frames) / seconds : 0.0, ev.depth_format().given()));
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   }
   sort_rows(scene, run.rows);
