@@ -157,7 +157,7 @@ TEST_CASE("the bias kernel decides every probe as the host reference pipeline do
   }
 }
 
-TEST_CASE("a camera-facing decal needs a few units; its eye-space reach grows as z^2 / n",
+TEST_CASE("a camera-facing decal needs a few units, and its eye-space reach grows as z^2 / n",
           "[bias]") {
   const auto r = run_cli("bias -t standard,reversed -f unorm24 --distances 100,1000,10000 " +
                          kSmallScene + "--format-out json");
@@ -207,4 +207,71 @@ TEST_CASE("bias refuses what has no bias rule and says why", "[bias][cli][errors
   CHECK(j["records"][0]["applicable"] == false);
   CHECK_THAT(j["records"][0]["reason"].get<std::string>(), Contains("fragment stage"));
   CHECK(j["records"][1]["applicable"] == true);
+}
+
+TEST_CASE("bias clamps are signed as the APIs define them, and so is the offset", "[bias][cli]") {
+  // D3D (DepthBiasClamp), Vulkan (depthBiasClamp) and GL (glPolygonOffsetClamp): min(o, c) for
+  // c > 0, max(o, c) for c < 0. Under LESS (standard) the bias is negative, so only a negative
+  // clamp limits it; under GREATER (reversed) only a positive one.
+  CHECK(depth_bias(-1e-3f, 0, 0, 1e-4f, 0, 0.5f, 0.5f, 0.5f) == -1e-3f);
+  CHECK(depth_bias(1e-3f, 0, 0, 1e-4f, 0, 0.5f, 0.5f, 0.5f) == 1e-4f);
+  CHECK(depth_bias(1e-3f, 0, 0, -1e-4f, 0, 0.5f, 0.5f, 0.5f) == 1e-3f);
+  CHECK(clamped(-1e-3, 1e-4) == -1e-3);
+  CHECK(clamped(1e-3, 1e-4) == 1e-4);
+  CHECK(clamped(-1e-3, -1e-4) == -1e-4);
+  CHECK(clamped(1e-3, -1e-4) == 1e-3);
+  CHECK(clamped(-1e-3, 0) == -1e-3);
+
+  const std::string base =
+      "bias -t standard,reversed -f unorm24 --distances 100 " + kSmallScene + "--format-out json";
+  const auto json_of = [](const std::string& output) {
+    // the JSON, without the note on stderr before it
+    return nlohmann::json::parse(
+        output.substr(output.find('{'), output.rfind('}') - output.find('{') + 1));
+  };
+  const auto plain = run_cli(base);
+  REQUIRE(plain.exit_code == 0);
+  const auto p = json_of(plain.output);
+  const auto& standard = p["records"][0]["rows"][0];
+  const auto& reversed = p["records"][1]["rows"][0];
+  REQUIRE(standard["verdict"] == "resolved");
+  REQUIRE(reversed["verdict"] == "resolved");
+  // the offset carries the units' sign: negative under LESS, positive under GREATER
+  const double r24 = 1.0 / 16777215.0;
+  CHECK(standard["units"].get<double>() < 0);
+  CHECK(standard["offset"].get<double>() ==
+        Approx(standard["units"].get<double>() * r24).epsilon(1e-12));
+  CHECK(reversed["offset"].get<double>() ==
+        Approx(reversed["units"].get<double>() * r24).epsilon(1e-12));
+  CHECK(reversed["offset"].get<double>() > 0);
+
+  // A clamp far below the bias needed: it limits the pairs whose bias has its sign (no bias
+  // passes: unresolvable), and leaves the others as without it, saying so.
+  for (const double c : {-1e-9, 1e-9}) {
+    INFO("--clamp " << c);
+    const auto r = run_cli(base + fmt::format(" --clamp {}", c));
+    REQUIRE(r.exit_code == 0);
+    const auto j = json_of(r.output);
+    CHECK(j["clamp"] == c);
+    const auto& limited = j["records"][c < 0 ? 0 : 1]["rows"][0];
+    const auto& unlimited = j["records"][c < 0 ? 1 : 0]["rows"][0];
+    const auto& unlimited_plain = c < 0 ? reversed : standard;
+    CHECK(limited["verdict"] == "unresolvable");
+    CHECK(limited["factor_verdict"] == "unresolvable");
+    CHECK(limited["set_verdict"] == "unresolvable");
+    CHECK(unlimited["units"] == unlimited_plain["units"]);
+    CHECK(unlimited["factor"] == unlimited_plain["factor"]);
+    CHECK(unlimited["set_units"] == unlimited_plain["set_units"]);
+    CHECK(unlimited["offset"] == unlimited_plain["offset"]);
+    CHECK_THAT(r.output, Contains(fmt::format(
+                             "--clamp {} has no effect on {}", c < 0 ? "-1e-09" : "1e-09",
+                             c < 0 ? "reversed/unorm24/zero_to_one" : "standard/unorm24/gl")));
+  }
+  // A clamp beyond the bias needed changes nothing, and is not called ineffective.
+  const auto loose = run_cli(base + " --clamp -1e-6");
+  REQUIRE(loose.exit_code == 0);
+  const auto l = json_of(loose.output);
+  CHECK(l["records"][0]["rows"][0]["units"] == standard["units"]);
+  CHECK(l["records"][0]["rows"][0]["offset"] == standard["offset"]);
+  CHECK_THAT(loose.output, !Contains("no effect on standard"));
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -91,10 +92,22 @@ UnormR unorm_r_default(BiasApi api) {
   return api == BiasApi::vulkan ? UnormR::pow2 : UnormR::step;
 }
 
+double clamped(double o, double clamp) {
+  if (clamp > 0) return std::min(o, clamp);
+  if (clamp < 0) return std::max(o, clamp);
+  return o;
+}
+
+bool clamp_binds(double clamp, int sign) {
+  return clamp != 0 && (clamp > 0) == (sign > 0);
+}
+
 void validate(const BiasOptions& o) {
   if (!std::isfinite(o.clamp))
     throw InputError(
-        fmt::format("--clamp {}: the offset's limit must be finite (0: none)", o.clamp));
+        fmt::format("--clamp {}: the clamp must be finite (> 0 limits the offset from above, < 0 "
+                    "from below, 0: none)",
+                    o.clamp));
   if (!(o.tilt_deg >= 0 && o.tilt_deg <= 80))
     throw InputError(fmt::format(
         "--tilt {}: the planes' tilt must lie in [0, 80] degrees (steeper planes cover the kernel "
