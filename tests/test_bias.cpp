@@ -13,7 +13,9 @@
 #include "host/base/errors.h"
 #include "host/bias/bias_evaluator.h"
 #include "host/bias/bias_search.h"
+#include "host/model/frame_setup.h"
 #include "host/model/profile.h"
+#include "host/model/tilted_plane.h"
 #include "host/mts/reference_pipeline.h"
 #include "kernels/bias_formula.h"
 #include "mts_fixture.h"
@@ -274,4 +276,94 @@ TEST_CASE("bias clamps are signed as the APIs define them, and so is the offset"
   CHECK(l["records"][0]["rows"][0]["units"] == standard["units"]);
   CHECK(l["records"][0]["rows"][0]["offset"] == standard["offset"]);
   CHECK_THAT(loose.output, !Contains("no effect on standard"));
+}
+
+TEST_CASE(
+    "tilted planes cover the whole view in every frame, their near side in front of the camera",
+    "[bias][tilt]") {
+  // Independent of how the plane is sized: the corner rays of the viewport meet the plane the
+  // matrix builds inside its unit square, and every corner of the plane lies in front of the
+  // camera. Checked on the default scene (kernel = viewport) and a wide one.
+  for (const Scene& s :
+       {load_scene("", {}), load_scene("", {"viewport=[320,180]", "kernel=[320,180]"})}) {
+    const double ty = std::tan(s.fov_y_deg * M_PI / 360);
+    const double tx = ty * s.viewport_w / s.viewport_h;
+    REQUIRE(s.pipeline.compose == Compose::separate);  // plane_matrix gives the model-view
+    CHECK(max_tilt_deg(s) >= 80);
+    for (const double tilt : {10.0, 45.0, 60.0, 80.0, max_tilt_deg(s)}) {
+      for (const double z : {2.0, 1000.0}) {
+        const ProbeConstants pc = probe_constants(s, s.evaluate[0], z);
+        for (int k = 0; k < s.frames; ++k) {
+          INFO("viewport " << s.viewport_w << "x" << s.viewport_h << " tilt " << tilt << " z " << z
+                           << " frame " << k);
+          const Mat4f m = plane_matrix(s, pc, z, k, tilt * M_PI / 180);
+          // eye position of object point (x, y): columns 0, 1, 3 of the row-major model-view
+          const auto eye = [&m](double x, double y, int r) {
+            return m[r * 4 + 0] * x + m[r * 4 + 1] * y + m[r * 4 + 3];
+          };
+          for (const double x : {-0.5, 0.5})
+            for (const double y : {-0.5, 0.5}) CHECK(eye(x, y, 2) < 0);
+          // ray t (rx, ry, -1) meets origin + x e_x + y e_y: solve the 3x3 system by Cramer's rule
+          for (const double rx : {-tx, tx})
+            for (const double ry : {-ty, ty}) {
+              const double a[3][3] = {{m[0], m[1], -rx}, {m[4], m[5], -ry}, {m[8], m[9], 1}};
+              const double b[3] = {-m[3], -m[7], -m[11]};
+              const auto det = [](const double q[3][3]) {
+                return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) -
+                       q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+                       q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+              };
+              double sol[3];
+              const double d = det(a);
+              REQUIRE(d != 0);
+              for (int c = 0; c < 3; ++c) {
+                double q[3][3];
+                for (int i = 0; i < 3; ++i)
+                  for (int j = 0; j < 3; ++j) q[i][j] = j == c ? b[i] : a[i][j];
+                sol[c] = det(q) / d;
+              }
+              CHECK(std::fabs(sol[0]) < 0.5);
+              CHECK(std::fabs(sol[1]) < 0.5);
+              CHECK(sol[2] > 0);  // in front of the camera
+            }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("bias measures tilted planes up to 80 degrees and refuses what it cannot cover",
+          "[bias][tilt][cli]") {
+  // The --help example's case: the default kernel (the whole viewport) and frames. Every search
+  // resolves, and the steeper the plane the smaller the slope factor that separates it.
+  double factor_before = INFINITY;
+  for (const int tilt : {45, 60, 80}) {
+    INFO("--tilt " << tilt);
+    const auto r = run_cli(fmt::format(
+        "bias -t standard -f unorm24 --api d3d --distances 100 --tilt {} --no-timing -q "
+        "--format-out json",
+        tilt));
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.output);
+    const auto& row = j["records"][0]["rows"][0];
+    CHECK(row["verdict"] == "resolved");
+    CHECK(row["factor_verdict"] == "resolved");
+    CHECK(row["set_verdict"] == "resolved");
+    const double factor = -row["factor"].get<double>();
+    CHECK(factor > 0);
+    CHECK(factor < factor_before);
+    factor_before = factor;
+  }
+  // refused before anything runs; the default scene's frames decide its limit
+  const std::string base = "bias -t standard -f unorm24 --distances 100 -q ";
+  const auto steep = run_cli(base + "--tilt 85");
+  CHECK(steep.exit_code == 3);
+  CHECK_THAT(steep.output, Contains("at most 82.4 degrees"));
+  const auto edge_on = run_cli(base + "--tilt 90");
+  CHECK(edge_on.exit_code == 3);
+  CHECK_THAT(edge_on.output, Contains("[0, 90)"));
+  // a wider view (fov 40 degrees) lowers the limit: its lower edge runs parallel sooner
+  const auto wide = run_cli(base + "--tilt 80 --set fov_y_deg=40");
+  CHECK(wide.exit_code == 3);
+  CHECK_THAT(wide.output, Contains("at most"));
 }

@@ -108,11 +108,13 @@ void validate(const BiasOptions& o) {
         fmt::format("--clamp {}: the clamp must be finite (> 0 limits the offset from above, < 0 "
                     "from below, 0: none)",
                     o.clamp));
-  if (!(o.tilt_deg >= 0 && o.tilt_deg <= 80))
-    throw InputError(fmt::format(
-        "--tilt {}: the planes' tilt must lie in [0, 80] degrees (steeper planes cover the kernel "
-        "only from nearly edge-on)",
-        o.tilt_deg));
+  // The scene sets the steepest tilt it can measure (check_tilt, host/model/tilted_plane.h);
+  // whatever the scene, a plane at 90 degrees or more is seen edge-on or from behind.
+  if (!(o.tilt_deg >= 0 && o.tilt_deg < 90))
+    throw InputError(
+        fmt::format("--tilt {}: the planes' tilt must lie in [0, 90) degrees (at 90 a plane is "
+                    "seen edge-on, beyond it from behind)",
+                    o.tilt_deg));
   if (!std::isfinite(o.set_factor) || o.set_factor < 0)
     throw InputError(fmt::format("--set-factor {}: the slope factor must be >= 0", o.set_factor));
   if (o.api == BiasApi::d3d && o.slope == SlopeForm::sqrt)

@@ -16,6 +16,7 @@
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/model/profile.h"
+#include "host/model/tilted_plane.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 #include "host/output/report.h"
@@ -134,6 +135,7 @@ void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
   // Rendered probes take the driver's own implementation forms, whatever profile was named.
   const Scene scene = rendered ? rendered_counterpart(o.scene.load()) : o.scene.load();
   check_planes_cover_kernel(scene);
+  check_tilt(scene, b.tilt_deg);
   note_clamp_without_effect(scene, b);
   nlohmann::json rules = nlohmann::json::object();
   for (const EvalPair& pair : scene.evaluate)  // every format's rule before any work
@@ -319,7 +321,8 @@ void add_bias_command(CLI::App& app, GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--tilt", o->tilt,
                   "Tilt both planes this many degrees about the view's x axis, on top of the "
-                  "scene's rotation (0..80): the slope term's case")
+                  "scene's rotation: the slope term's case. Up to 82.4 in the default scene (the "
+                  "view's lower edge must still meet the planes; the limit is named when passed)")
       ->capture_default_str();
   cmd->add_option("--set-factor", o->set_factor,
                   "The slope factor of the pair to set (its sign follows the compare; 0: leave "
