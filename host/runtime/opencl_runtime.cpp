@@ -7,7 +7,9 @@
 #include <cstdlib>
 
 #include "host/base/errors.h"
+#include "host/base/fatal_signal.h"
 #include "host/base/text.h"
+#include "host/runtime/driver_cache.h"
 #include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
@@ -19,6 +21,7 @@ constexpr const char* kNoPlatform =
     "run scripts/setup.sh)";
 
 std::vector<cl::Platform> platforms_or_throw() {
+  open_driver_cache();  // PoCL reads POCL_CACHE_DIR when the platform is first touched
   std::vector<cl::Platform> platforms;
   try {
     cl::Platform::get(&platforms);
@@ -77,6 +80,7 @@ std::vector<Candidate> enumerate_devices() {
           {platforms[pi], devices[di],
            describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di))});
   }
+  install_fatal_signal_report();  // over the handlers PoCL's LLVM installed meanwhile
   return all;
 }
 
@@ -228,15 +232,17 @@ cl::Program OpenClRuntime::program(const std::string& path, const std::string& o
 OpenClRuntime::~OpenClRuntime() {
   // Programs whose binary grew here (compiled from source, or new work-group functions) are
   // kept for the next run; nothing a cache write does may fail the run that is ending.
-  if (!binaries_.writable()) return;  // exporting a binary compiles: only when it is kept
-  for (const auto& [name, built] : cache_) {
-    try {
-      const auto binaries = built.program.getInfo<CL_PROGRAM_BINARIES>();
-      if (!binaries.empty() && binaries.front().size() != built.loaded_bytes)
-        binaries_.store(built.key, binaries.front());
-    } catch (...) {
+  if (binaries_.writable()) {  // exporting a binary compiles: only when it is kept
+    for (const auto& [name, built] : cache_) {
+      try {
+        const auto binaries = built.program.getInfo<CL_PROGRAM_BINARIES>();
+        if (!binaries.empty() && binaries.front().size() != built.loaded_bytes)
+          binaries_.store(built.key, binaries.front());
+      } catch (...) {
+      }
     }
   }
+  record_driver_cache();  // what PoCL compiled for this run, checked at the next one
 }
 
 }  // namespace depthprec
