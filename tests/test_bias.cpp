@@ -13,7 +13,9 @@
 #include "host/base/errors.h"
 #include "host/bias/bias_evaluator.h"
 #include "host/bias/bias_search.h"
+#include "host/model/frame_setup.h"
 #include "host/model/profile.h"
+#include "host/model/tilted_plane.h"
 #include "host/mts/reference_pipeline.h"
 #include "kernels/bias_formula.h"
 #include "mts_fixture.h"
@@ -157,7 +159,7 @@ TEST_CASE("the bias kernel decides every probe as the host reference pipeline do
   }
 }
 
-TEST_CASE("a camera-facing decal needs a few units; its eye-space reach grows as z^2 / n",
+TEST_CASE("a camera-facing decal needs a few units, and its eye-space reach grows as z^2 / n",
           "[bias]") {
   const auto r = run_cli("bias -t standard,reversed -f unorm24 --distances 100,1000,10000 " +
                          kSmallScene + "--format-out json");
@@ -207,4 +209,161 @@ TEST_CASE("bias refuses what has no bias rule and says why", "[bias][cli][errors
   CHECK(j["records"][0]["applicable"] == false);
   CHECK_THAT(j["records"][0]["reason"].get<std::string>(), Contains("fragment stage"));
   CHECK(j["records"][1]["applicable"] == true);
+}
+
+TEST_CASE("bias clamps are signed as the APIs define them, and so is the offset", "[bias][cli]") {
+  // D3D (DepthBiasClamp), Vulkan (depthBiasClamp) and GL (glPolygonOffsetClamp): min(o, c) for
+  // c > 0, max(o, c) for c < 0. Under LESS (standard) the bias is negative, so only a negative
+  // clamp limits it; under GREATER (reversed) only a positive one.
+  CHECK(depth_bias(-1e-3f, 0, 0, 1e-4f, 0, 0.5f, 0.5f, 0.5f) == -1e-3f);
+  CHECK(depth_bias(1e-3f, 0, 0, 1e-4f, 0, 0.5f, 0.5f, 0.5f) == 1e-4f);
+  CHECK(depth_bias(1e-3f, 0, 0, -1e-4f, 0, 0.5f, 0.5f, 0.5f) == 1e-3f);
+  CHECK(clamped(-1e-3, 1e-4) == -1e-3);
+  CHECK(clamped(1e-3, 1e-4) == 1e-4);
+  CHECK(clamped(-1e-3, -1e-4) == -1e-4);
+  CHECK(clamped(1e-3, -1e-4) == 1e-3);
+  CHECK(clamped(-1e-3, 0) == -1e-3);
+
+  const std::string base =
+      "bias -t standard,reversed -f unorm24 --distances 100 " + kSmallScene + "--format-out json";
+  const auto json_of = [](const std::string& output) {
+    // the JSON, without the note on stderr before it
+    return nlohmann::json::parse(
+        output.substr(output.find('{'), output.rfind('}') - output.find('{') + 1));
+  };
+  const auto plain = run_cli(base);
+  REQUIRE(plain.exit_code == 0);
+  const auto p = json_of(plain.output);
+  const auto& standard = p["records"][0]["rows"][0];
+  const auto& reversed = p["records"][1]["rows"][0];
+  REQUIRE(standard["verdict"] == "resolved");
+  REQUIRE(reversed["verdict"] == "resolved");
+  // the offset carries the units' sign: negative under LESS, positive under GREATER
+  const double r24 = 1.0 / 16777215.0;
+  CHECK(standard["units"].get<double>() < 0);
+  CHECK(standard["offset"].get<double>() ==
+        Approx(standard["units"].get<double>() * r24).epsilon(1e-12));
+  CHECK(reversed["offset"].get<double>() ==
+        Approx(reversed["units"].get<double>() * r24).epsilon(1e-12));
+  CHECK(reversed["offset"].get<double>() > 0);
+
+  // A clamp far below the bias needed: it limits the pairs whose bias has its sign (no bias
+  // passes: unresolvable), and leaves the others as without it, saying so.
+  for (const double c : {-1e-9, 1e-9}) {
+    INFO("--clamp " << c);
+    const auto r = run_cli(base + fmt::format(" --clamp {}", c));
+    REQUIRE(r.exit_code == 0);
+    const auto j = json_of(r.output);
+    CHECK(j["clamp"] == c);
+    const auto& limited = j["records"][c < 0 ? 0 : 1]["rows"][0];
+    const auto& unlimited = j["records"][c < 0 ? 1 : 0]["rows"][0];
+    const auto& unlimited_plain = c < 0 ? reversed : standard;
+    CHECK(limited["verdict"] == "unresolvable");
+    CHECK(limited["factor_verdict"] == "unresolvable");
+    CHECK(limited["set_verdict"] == "unresolvable");
+    CHECK(unlimited["units"] == unlimited_plain["units"]);
+    CHECK(unlimited["factor"] == unlimited_plain["factor"]);
+    CHECK(unlimited["set_units"] == unlimited_plain["set_units"]);
+    CHECK(unlimited["offset"] == unlimited_plain["offset"]);
+    CHECK_THAT(r.output, Contains(fmt::format(
+                             "--clamp {} has no effect on {}", c < 0 ? "-1e-09" : "1e-09",
+                             c < 0 ? "reversed/unorm24/zero_to_one" : "standard/unorm24/gl")));
+  }
+  // A clamp beyond the bias needed changes nothing, and is not called ineffective.
+  const auto loose = run_cli(base + " --clamp -1e-6");
+  REQUIRE(loose.exit_code == 0);
+  const auto l = json_of(loose.output);
+  CHECK(l["records"][0]["rows"][0]["units"] == standard["units"]);
+  CHECK(l["records"][0]["rows"][0]["offset"] == standard["offset"]);
+  CHECK_THAT(loose.output, !Contains("no effect on standard"));
+}
+
+TEST_CASE(
+    "tilted planes cover the whole view in every frame, their near side in front of the camera",
+    "[bias][tilt]") {
+  // Independent of how the plane is sized: the corner rays of the viewport meet the plane the
+  // matrix builds inside its unit square, and every corner of the plane lies in front of the
+  // camera. Checked on the default scene (kernel = viewport) and a wide one.
+  for (const Scene& s :
+       {load_scene("", {}), load_scene("", {"viewport=[320,180]", "kernel=[320,180]"})}) {
+    const double ty = std::tan(s.fov_y_deg * M_PI / 360);
+    const double tx = ty * s.viewport_w / s.viewport_h;
+    REQUIRE(s.pipeline.compose == Compose::separate);  // plane_matrix gives the model-view
+    CHECK(max_tilt_deg(s) >= 80);
+    for (const double tilt : {10.0, 45.0, 60.0, 80.0, max_tilt_deg(s)}) {
+      for (const double z : {2.0, 1000.0}) {
+        const ProbeConstants pc = probe_constants(s, s.evaluate[0], z);
+        for (int k = 0; k < s.frames; ++k) {
+          INFO("viewport " << s.viewport_w << "x" << s.viewport_h << " tilt " << tilt << " z " << z
+                           << " frame " << k);
+          const Mat4f m = plane_matrix(s, pc, z, k, tilt * M_PI / 180);
+          // eye position of object point (x, y): columns 0, 1, 3 of the row-major model-view
+          const auto eye = [&m](double x, double y, int r) {
+            return m[r * 4 + 0] * x + m[r * 4 + 1] * y + m[r * 4 + 3];
+          };
+          for (const double x : {-0.5, 0.5})
+            for (const double y : {-0.5, 0.5}) CHECK(eye(x, y, 2) < 0);
+          // ray t (rx, ry, -1) meets origin + x e_x + y e_y: solve the 3x3 system by Cramer's rule
+          for (const double rx : {-tx, tx})
+            for (const double ry : {-ty, ty}) {
+              const double a[3][3] = {{m[0], m[1], -rx}, {m[4], m[5], -ry}, {m[8], m[9], 1}};
+              const double b[3] = {-m[3], -m[7], -m[11]};
+              const auto det = [](const double q[3][3]) {
+                return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) -
+                       q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+                       q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+              };
+              double sol[3];
+              const double d = det(a);
+              REQUIRE(d != 0);
+              for (int c = 0; c < 3; ++c) {
+                double q[3][3];
+                for (int i = 0; i < 3; ++i)
+                  for (int j = 0; j < 3; ++j) q[i][j] = j == c ? b[i] : a[i][j];
+                sol[c] = det(q) / d;
+              }
+              CHECK(std::fabs(sol[0]) < 0.5);
+              CHECK(std::fabs(sol[1]) < 0.5);
+              CHECK(sol[2] > 0);  // in front of the camera
+            }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("bias measures tilted planes up to 80 degrees and refuses what it cannot cover",
+          "[bias][tilt][cli]") {
+  // The --help example's case: the default kernel (the whole viewport) and frames. Every search
+  // resolves, and the steeper the plane the smaller the slope factor that separates it.
+  double factor_before = INFINITY;
+  for (const int tilt : {45, 60, 80}) {
+    INFO("--tilt " << tilt);
+    const auto r = run_cli(fmt::format(
+        "bias -t standard -f unorm24 --api d3d --distances 100 --tilt {} --no-timing -q "
+        "--format-out json",
+        tilt));
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.output);
+    const auto& row = j["records"][0]["rows"][0];
+    CHECK(row["verdict"] == "resolved");
+    CHECK(row["factor_verdict"] == "resolved");
+    CHECK(row["set_verdict"] == "resolved");
+    const double factor = -row["factor"].get<double>();
+    CHECK(factor > 0);
+    CHECK(factor < factor_before);
+    factor_before = factor;
+  }
+  // refused before anything runs; the default scene's frames decide its limit
+  const std::string base = "bias -t standard -f unorm24 --distances 100 -q ";
+  const auto steep = run_cli(base + "--tilt 85");
+  CHECK(steep.exit_code == 3);
+  CHECK_THAT(steep.output, Contains("at most 82.4 degrees"));
+  const auto edge_on = run_cli(base + "--tilt 90");
+  CHECK(edge_on.exit_code == 3);
+  CHECK_THAT(edge_on.output, Contains("[0, 90)"));
+  // a wider view (fov 40 degrees) lowers the limit: its lower edge runs parallel sooner
+  const auto wide = run_cli(base + "--tilt 80 --set fov_y_deg=40");
+  CHECK(wide.exit_code == 3);
+  CHECK_THAT(wide.output, Contains("at most"));
 }

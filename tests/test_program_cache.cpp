@@ -82,7 +82,7 @@ TEST_CASE("the program binary cache loads what it stored and refuses anything el
   CHECK(ProgramBinaryCache("", {}).enabled() == false);
 }
 
-TEST_CASE("a run with PoCL's cache empty loads the kept programs; damaged ones are rebuilt",
+TEST_CASE("a run with PoCL's cache empty loads the kept programs, and damaged ones are rebuilt",
           "[program_cache][cli]") {
   const fs::path kept = empty_dir("kernel_cache");
   const std::string mts =

@@ -320,6 +320,40 @@ TEST_CASE("depth bias rendered with glPolygonOffset on llvmpipe", "[render][bias
   }
 }
 
+TEST_CASE("a rendered clamp reaches glPolygonOffsetClamp signed, as the emulation applies it",
+          "[render][bias]") {
+  // standard: LESS, a negative bias. A negative clamp far below it limits it on both sides (no
+  // bias passes); a positive one limits only positive offsets, so it changes nothing.
+  const Scene scene =
+      load_scene("", {"kernel=[32,32]", "frames=6",
+                      R"(evaluate=[{"technique": "standard", "format": "unorm16"}])"});
+  const EvalPair pair = scene.evaluate[0];
+  BiasOptions o;
+  o.unorm_r = UnormR::double_step;
+  const std::vector<double> zs = {100};
+  const std::vector<double> no_mts(zs.size(), NAN);
+  RenderEvaluator renderer(gl(), scene, pair);
+  const auto rows_with = [&](double clamp, bool rendered) {
+    BiasOptions c = o;
+    c.clamp = clamp;
+    if (rendered) {
+      BiasRenderer ev(renderer, c);
+      return bias_pair_rows(ev, scene, pair, c, zs, no_mts).front();
+    }
+    BiasEmulator ev(runtime(), scene, pair, c);
+    return bias_pair_rows(ev, scene, pair, c, zs, no_mts).front();
+  };
+  const auto plain = rows_with(0, true);
+  REQUIRE(plain["verdict"] == "resolved");
+  for (const bool rendered : {true, false}) {
+    INFO((rendered ? "rendered" : "emulated"));
+    CHECK(rows_with(-1e-9, rendered)["verdict"] == "unresolvable");
+    const auto positive = rows_with(1e-9, rendered);
+    REQUIRE(positive["verdict"] == "resolved");
+    CHECK(positive["units"] == plain["units"]);
+  }
+}
+
 TEST_CASE("the llvmpipe profile's depth is llvmpipe's on every pixel", "[render][llvmpipe]") {
   // Plane A's depth as llvmpipe stores it in a float32 buffer (no quantisation hides a
   // difference), against the emulation's stored depth under each profile, pixel by pixel, for a

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -91,15 +92,29 @@ UnormR unorm_r_default(BiasApi api) {
   return api == BiasApi::vulkan ? UnormR::pow2 : UnormR::step;
 }
 
+double clamped(double o, double clamp) {
+  if (clamp > 0) return std::min(o, clamp);
+  if (clamp < 0) return std::max(o, clamp);
+  return o;
+}
+
+bool clamp_binds(double clamp, int sign) {
+  return clamp != 0 && (clamp > 0) == (sign > 0);
+}
+
 void validate(const BiasOptions& o) {
   if (!std::isfinite(o.clamp))
     throw InputError(
-        fmt::format("--clamp {}: the offset's limit must be finite (0: none)", o.clamp));
-  if (!(o.tilt_deg >= 0 && o.tilt_deg <= 80))
-    throw InputError(fmt::format(
-        "--tilt {}: the planes' tilt must lie in [0, 80] degrees (steeper planes cover the kernel "
-        "only from nearly edge-on)",
-        o.tilt_deg));
+        fmt::format("--clamp {}: the clamp must be finite (> 0 limits the offset from above, < 0 "
+                    "from below, 0: none)",
+                    o.clamp));
+  // The scene sets the steepest tilt it can measure (check_tilt, host/model/tilted_plane.h);
+  // whatever the scene, a plane at 90 degrees or more is seen edge-on or from behind.
+  if (!(o.tilt_deg >= 0 && o.tilt_deg < 90))
+    throw InputError(
+        fmt::format("--tilt {}: the planes' tilt must lie in [0, 90) degrees (at 90 a plane is "
+                    "seen edge-on, beyond it from behind)",
+                    o.tilt_deg));
   if (!std::isfinite(o.set_factor) || o.set_factor < 0)
     throw InputError(fmt::format("--set-factor {}: the slope factor must be >= 0", o.set_factor));
   if (o.api == BiasApi::d3d && o.slope == SlopeForm::sqrt)

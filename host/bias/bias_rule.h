@@ -38,7 +38,9 @@ struct BiasOptions {
   std::optional<UnormR> unorm_r;  // unset: the API's own (unorm_r_default)
   VulkanRepresentation representation = VulkanRepresentation::format;
   SlopeForm slope = SlopeForm::max;
-  double clamp = 0;       // |offset| limit, 0: none
+  // The APIs' signed clamp (D3D DepthBiasClamp, Vulkan depthBiasClamp, GL
+  // glPolygonOffsetClamp): > 0 limits the offset from above, < 0 from below, 0 none (clamped).
+  double clamp = 0;
   bool or_equal = false;  // LEQUAL / GEQUAL instead of the APIs' default LESS / GREATER
   double tilt_deg = 0;    // planes tilted about the view's x axis, on top of the scene's rotation
   double set_factor = 1;  // the slope factor of the pair a user would set
@@ -46,9 +48,19 @@ struct BiasOptions {
 
 UnormR unorm_r_default(BiasApi api);
 
+// The offset o after the API's clamp c: min(o, c) for c > 0, max(o, c) for c < 0, o for c = 0.
+// A clamp of the other sign than the offset never binds: under LESS the bias is negative, and
+// only a negative clamp limits it. The kernels apply the same rule in binary32
+// (kernels/bias_formula.h depth_bias); this is the host's, in binary64, for the offset reported.
+double clamped(double o, double clamp);
+
+// Whether the clamp can bind the offsets of a pair whose bias carries sign (bias_sign): 0 or the
+// same sign.
+bool clamp_binds(double clamp, int sign);
+
 // Throws InputError for options that contradict each other or the API (a clamp that is not
-// finite, a tilt outside [0, 80] degrees, sqrt slopes under D3D, a representation outside
-// Vulkan).
+// finite, a tilt outside [0, 90) degrees, sqrt slopes under D3D, a representation outside
+// Vulkan). The scene's own limit on the tilt is check_tilt's (host/model/tilted_plane.h).
 void validate(const BiasOptions& o);
 
 // The r of one storage format under the options.

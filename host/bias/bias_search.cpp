@@ -197,8 +197,9 @@ std::vector<nlohmann::json> bias_rows(const Scene& scene, const EvalPair& pair,
       j["set_verdict"] = s.verdict;
     }
     // What the constant bias amounts to at z: the offset r * units in window depth (r of z's own
-    // binade for float storage), and the eye distance it moves a fragment toward the camera.
-    // Rendered rows leave them out: their r is the driver's.
+    // binade for float storage), signed as the units and clamped as the API clamps it, and the
+    // eye distance it moves a fragment toward the camera. Rendered rows leave them out: their r
+    // is the driver's.
     if (source == RowSource::emulated) {
       j["r"] = rule.r_text;
       j["offset"] = nullptr;
@@ -207,9 +208,10 @@ std::vector<nlohmann::json> bias_rows(const Scene& scene, const EvalPair& pair,
         const ResolveSetup setup =
             mapping_at(pair.technique, scene.near, scene.far, scene.params, z);
         const double d = depth_of_distance(setup.technique, setup.near, setup.far, setup.params, z);
-        const double offset = rule.r_at(static_cast<float>(d)) * u.value;
-        const double moved = d + sign * offset;
-        j["offset"] = offset;
+        const double offset =
+            clamped(sign * rule.r_at(static_cast<float>(d)) * u.value, options.clamp);
+        const double moved = d + offset;
+        j["offset"] = offset == 0 ? 0.0 : offset;
         // Past the depth range the offset has moved the fragment beyond the near plane (or
         // far): every distance nearer than z, an infinite separation.
         j["eye_separation"] =

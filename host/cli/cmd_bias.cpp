@@ -17,6 +17,7 @@
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/model/profile.h"
+#include "host/model/tilted_plane.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 #include "host/mts/worst_case.h"
@@ -53,6 +54,25 @@ void check_rendered_options(const BiasCliOptions& o) {
         "--source emulated --r-unorm ...)");
   if (o.slope != "max")
     throw InputError("--slope: with --source rendered the driver decides the slope form");
+}
+
+// A clamp of the other sign than a pair's bias never binds (the APIs' rule: a positive clamp
+// limits positive offsets only), so that pair runs as without it: said, not left to be guessed.
+void note_clamp_without_effect(const Scene& scene, const BiasOptions& b) {
+  if (b.clamp == 0) return;
+  std::vector<std::string> unaffected;
+  for (const EvalPair& pair : scene.evaluate)
+    if (bias_not_applicable(scene, pair).empty() && !clamp_binds(b.clamp, bias_sign(scene, pair)))
+      unaffected.push_back(pair.label());
+  if (unaffected.empty()) return;
+  fmt::print(stderr,
+             "depthprec: note: --clamp {} has no effect on {}: their bias is {} (it moves the "
+             "overlay toward the camera under {}), and a {} clamp limits only {} offsets "
+             "(D3D, Vulkan and OpenGL: min(offset, clamp) for a clamp > 0, max(offset, clamp) "
+             "for one < 0); --clamp {} limits them\n",
+             human(b.clamp), fmt::join(unaffected, ", "), b.clamp > 0 ? "negative" : "positive",
+             b.clamp > 0 ? "LESS" : "GREATER", b.clamp > 0 ? "positive" : "negative",
+             b.clamp > 0 ? "positive" : "negative", human(-b.clamp));
 }
 
 BiasOptions bias_options_of(const BiasCliOptions& o) {
@@ -134,6 +154,8 @@ void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
   // Rendered probes take the driver's own implementation forms, whatever profile was named.
   const Scene scene = rendered ? rendered_counterpart(o.scene.load()) : o.scene.load();
   check_planes_cover_kernel(scene);
+  check_tilt(scene, b.tilt_deg);
+  note_clamp_without_effect(scene, b);
   nlohmann::json rules = nlohmann::json::object();
   for (const EvalPair& pair : scene.evaluate)  // every format's rule before any work
     if (bias_not_applicable(scene, pair).empty())
@@ -238,7 +260,7 @@ std::string render_bias_output(const nlohmann::json& header,
       "constant term alone (factor 0); factor: the slope term alone (units 0); set units: the "
       "units needed beside the set factor -- the pair to give {}. Values are signed as you set "
       "them (negative: toward the camera under LESS). offset: the constant bias in window depth "
-      "(units x r; r = {}); eye separation: how "
+      "(units x r{}; r = {}); eye separation: how "
       "far it moves a fragment toward the camera at z, beside the MTS (the separation two planes "
       "need without bias).{}",
       header.value("scene_name", std::string("?")),
@@ -253,6 +275,9 @@ std::string render_bias_output(const nlohmann::json& header,
       api == "d3d"      ? "DepthBias / SlopeScaledDepthBias"
       : api == "vulkan" ? "depthBiasConstantFactor / depthBiasSlopeFactor"
                         : "glPolygonOffset(factor, units)",
+      header.value("clamp", 0.0) != 0
+          ? fmt::format(", clamped to {} as the API clamps it", human(header.value("clamp", 0.0)))
+          : "",
       r_text,
       skipped.empty() ? ""
                       : fmt::format(" Not applicable (the fragment stage writes depth, which "
@@ -307,11 +332,16 @@ void add_bias_command(CLI::App& app, GlobalOptions& global) {
                   "The slope m: max (max(|dz/dx|, |dz/dy|)) or sqrt (sqrt(dz/dx^2 + dz/dy^2); not "
                   "d3d)")
       ->capture_default_str();
-  cmd->add_option("--clamp", o->clamp, "Limit of the offset's magnitude (0: none)")
+  cmd->add_option("--clamp", o->clamp,
+                  "The APIs' signed clamp (DepthBiasClamp, depthBiasClamp, glPolygonOffsetClamp): "
+                  "> 0 limits the offset from above (min(offset, clamp)), < 0 from below "
+                  "(max(offset, clamp)), 0 none. Under LESS the bias is negative, so only a "
+                  "negative clamp limits it; under GREATER a positive one")
       ->capture_default_str();
   cmd->add_option("--tilt", o->tilt,
                   "Tilt both planes this many degrees about the view's x axis, on top of the "
-                  "scene's rotation (0..80): the slope term's case")
+                  "scene's rotation: the slope term's case. Up to 82.4 in the default scene (the "
+                  "view's lower edge must still meet the planes; the limit is named when passed)")
       ->capture_default_str();
   cmd->add_option("--set-factor", o->set_factor,
                   "The slope factor of the pair to set (its sign follows the compare; 0: leave "

@@ -36,6 +36,8 @@ void add_pipelines_command(CLI::App& app, GlobalOptions& global);
 void add_report_command(CLI::App& app, GlobalOptions& global);
 void add_advise_command(CLI::App& app, GlobalOptions& global);
 void add_bias_command(CLI::App& app, GlobalOptions& global);
+// cache show, cache clear.
+void add_cache_command(CLI::App& app);
 
 // The record batches (lj-table, tradeoff, cost, pipelines) render their output from a header (what
 // their JSON output carries besides the records) and the records, so `merge` renders joined shards

@@ -7,18 +7,20 @@
 
 #include "host/base/did_you_mean.h"
 #include "host/base/errors.h"
+#include "host/base/fatal_signal.h"
 #include "host/base/version.h"
 #include "host/cli/commands.h"
 #include "host/runtime/cl.h"
 
 int main(int argc, char** argv) {
   using namespace depthprec;
+  install_fatal_signal_report();  // a crash (a damaged kernel cache, say) is said in words
   CLI::App app{fmt::format(
       "depthprec {} - how much depth precision a depth-buffer set-up gives.\n"
       "Emulates per fragment what a GPU computes and stores (OpenCL on PoCL) and measures the\n"
       "minimum triangle separation (Gilg et al. 2021) and the Lapidous-Jiao average depth error.\n"
-      "Exit codes: 0 ok, 1 internal error, 2 usage, 3 bad input, 4 OpenCL device/runtime,\n"
-      "5 output not writable, 130 interrupted.",
+      "Exit codes: 0 ok, 1 internal error, 2 usage, 3 bad input, 4 OpenCL device/runtime (a\n"
+      "crash in the driver too: see `depthprec cache`), 5 output not writable, 130 interrupted.",
       kVersion)};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
   cli::add_report_command(app, global);
   cli::add_advise_command(app, global);
   cli::add_bias_command(app, global);
+  cli::add_cache_command(app);
   global.command_line = "depthprec";
   for (int i = 1; i < argc; ++i) global.command_line += std::string(" ") + argv[i];
   try {

@@ -1,8 +1,13 @@
 #include "host/model/frame_setup.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
+
+#include "host/base/errors.h"
+#include "host/model/tilted_plane.h"
 
 namespace depthprec {
 
@@ -42,19 +47,30 @@ T model_distance(double D) {
   return static_cast<T>(D);
 }
 
-// tilt (radians) turns the plane about x on top of the frame's rotation; its side along y then
-// grows so that its far half, seen obliquely, still reaches past the view's edge:
-// h cos t / (D + h sin t) >= tan(fov/2) for the half side h.
+// tilt (radians) turns the plane about x on top of the frame's rotation; the plane is then no
+// longer the centred square but, frame by frame, the rectangle that covers the view widened by
+// plane_margin (host/model/tilted_plane.h): longer and wider on its far side than on its near one.
+// Untilted planes are the square of docs/spec.md 5.1, built as they always were.
 template <class T>
 Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
   const T dist = model_distance<T>(D);
   const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
   const T side = static_cast<T>(s.plane_margin) * T(2) * dist * std::tan(half_fov);
   const double ax = tilt == 0 ? ang[0] : ang[0] + tilt;
-  const T side_y = tilt == 0
-                       ? side
-                       : static_cast<T>(s.plane_margin * 2 * D * std::tan(half_fov) /
-                                        (std::cos(tilt) - std::tan(half_fov) * std::sin(tilt)));
+  T side_x = side, side_y = side;
+  Mat<T> offset(T(1));  // the rectangle's centre in the plane's own coordinates
+  if (tilt != 0) {
+    const auto rect = view_footprint(s, D, {ax, ang[1], ang[2]});
+    if (!rect)
+      throw Error(ExitCode::internal,
+                  fmt::format("a plane at {} tilted {} degrees cannot cover the view in frame {} "
+                              "(check_tilt lets no such tilt through)",
+                              D, tilt * 180 / glm::pi<double>(), frame));
+    side_x = static_cast<T>(rect->width);
+    side_y = static_cast<T>(rect->height);
+    offset[3][0] = static_cast<T>(rect->cx);
+    offset[3][1] = static_cast<T>(rect->cy);
+  }
   const T cx = std::cos(static_cast<T>(ax)), sx = std::sin(static_cast<T>(ax));
   const T cy = std::cos(static_cast<T>(ang[1])), sy = std::sin(static_cast<T>(ang[1]));
   const T cz = std::cos(static_cast<T>(ang[2])), sz = std::sin(static_cast<T>(ang[2]));
@@ -71,9 +87,10 @@ Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
   Rz[1][0] = -sz;
   Rz[0][1] = sz;
   Rz[1][1] = cz;
-  S[0][0] = side;
+  S[0][0] = side_x;
   S[1][1] = side_y;
   Tr[3][2] = -dist;
+  if (tilt != 0) return Tr * (Rx * Ry * Rz) * offset * S;
   return Tr * (Rx * Ry * Rz) * S;
 }
 

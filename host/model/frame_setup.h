@@ -58,8 +58,8 @@ Angles frame_orientation(const Scene& scene, double z, int frame);
 
 // Model-view of a plane at requested distance D (binary64: z for plane A, z + s for plane B) in
 // frame k; with compose = premultiplied, P * MV instead. tilt (radians, `bias --tilt`) turns the
-// plane about the view's x axis on top of the frame's rotation, and lengthens it along y to
-// cover the view still.
+// plane about the view's x axis on top of the frame's rotation, and sizes it in each frame to
+// cover the view still (host/model/tilted_plane.h).
 Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame,
                    double tilt = 0);
 

@@ -340,9 +340,11 @@ void RenderEvaluator::draw_bias(const BiasProbe& probe, const BiasOptions& o, in
   // The overlay: the same plane tessellated the other way, offset as the application sets it.
   glVertexArrayElementBuffer(vao_, ibo_flipped_);
   glEnable(GL_POLYGON_OFFSET_FILL);
+  // The clamp as given: it is signed as the APIs take it (a negative one limits a negative
+  // offset), the emulation applies the same rule (kernels/bias_formula.h).
   if (o.clamp != 0)
     glPolygonOffsetClamp(static_cast<float>(probe.factor), static_cast<float>(probe.units),
-                         static_cast<float>(bias_sign(scene_, pair_) * o.clamp));
+                         static_cast<float>(o.clamp));
   else
     glPolygonOffset(static_cast<float>(probe.factor), static_cast<float>(probe.units));
   glDepthMask(GL_FALSE);

@@ -7,7 +7,9 @@
 #include <cstdlib>
 
 #include "host/base/errors.h"
+#include "host/base/fatal_signal.h"
 #include "host/base/text.h"
+#include "host/runtime/driver_cache.h"
 #include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
@@ -19,6 +21,7 @@ constexpr const char* kNoPlatform =
     "run scripts/setup.sh)";
 
 std::vector<cl::Platform> platforms_or_throw() {
+  open_driver_cache();  // PoCL reads POCL_CACHE_DIR when the platform is first touched
   std::vector<cl::Platform> platforms;
   try {
     cl::Platform::get(&platforms);
@@ -77,6 +80,7 @@ std::vector<Candidate> enumerate_devices() {
           {platforms[pi], devices[di],
            describe(platforms[pi], devices[di], static_cast<int>(pi), static_cast<int>(di))});
   }
+  install_fatal_signal_report();  // over the handlers PoCL's LLVM installed meanwhile
   return all;
 }
 
@@ -158,6 +162,38 @@ cl::CommandQueue& OpenClRuntime::queue() {
   return it->second;
 }
 
+std::string compiler_options(const std::string& options) {
+  const char* warnings = std::getenv(kKernelWarningsEnvVar);
+  if (warnings && std::string(warnings) == "on") return options;
+  return options + " -w";
+}
+
+cl::Program compile_program(cl::Context& context, const cl::Device& device,
+                            const std::string& source, const std::string& options,
+                            const std::string& what) {
+  const std::string built_with = compiler_options(options);
+  cl::Program program(context, source);
+  try {
+    program.build({device}, built_with.c_str());
+  } catch (const cl::Error& e) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+    } catch (const cl::Error&) {
+      log = "(no build log)";
+    }
+    throw RuntimeError(
+        fmt::format("building OpenCL program {} failed ({})\n  options: {}\n  build log:\n{}", what,
+                    e.err(), built_with, log));
+  }
+  if (built_with == options) {  // $DEPTHPREC_KERNEL_WARNINGS=on: the log asked for
+    const std::string log = trim(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device));
+    if (!log.empty())
+      fmt::print(stderr, "depthprec: build log of {} ({}):\n{}\n", what, built_with, log);
+  }
+  return program;
+}
+
 std::string base_build_options(bool flush_denormals) {
   std::string o = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt";
   if (flush_denormals) o += " -cl-denorms-are-zero";
@@ -172,36 +208,23 @@ cl::Program OpenClRuntime::program(const std::string& path, const std::string& o
   const std::string source = expand_embedded(path);
   BuiltProgram built;
   // Everything a binary depends on: a driver upgrade or an edited kernel is another key.
-  built.key =
-      fmt::format("{}\n{}\n{}\n{}\n{}\n{}\n{}", info_.platform_name, info_.platform_version,
-                  info_.device_name, device_.getInfo<CL_DRIVER_VERSION>(), path, options, source);
+  const std::string built_with = compiler_options(options);
+  built.key = fmt::format("{}\n{}\n{}\n{}\n{}\n{}\n{}", info_.platform_name, info_.platform_version,
+                          info_.device_name, device_.getInfo<CL_DRIVER_VERSION>(), path, built_with,
+                          source);
   if (const auto binary = binaries_.load(built.key)) {
     try {
       cl::Program from_binary(context_, {device_}, cl::Program::Binaries{*binary});
-      from_binary.build({device_}, options.c_str());
+      from_binary.build({device_}, built_with.c_str());
       built.program = from_binary;
       built.loaded_bytes = binary->size();
     } catch (const cl::Error&) {
       binaries_.forget(built.key);  // not loadable here after all: compiled again below
     }
   }
-  if (built.loaded_bytes == 0) {
-    built.program = cl::Program(context_, source);
-    try {
-      built.program.build({device_}, options.c_str());
-    } catch (const cl::Error& e) {
-      std::string log;
-      try {
-        log = built.program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
-      } catch (const cl::Error&) {
-        log = "(no build log)";
-      }
-      throw RuntimeError(
-          fmt::format("building OpenCL program {} failed ({}) on {}\n  options: {}\n"
-                      "  build log:\n{}",
-                      path, e.err(), description(), options, log));
-    }
-  }
+  if (built.loaded_bytes == 0)
+    built.program = compile_program(context_, device_, source, options,
+                                    fmt::format("{} on {}", path, description()));
   cache_.emplace(key, built);
   return built.program;
 }
@@ -209,15 +232,17 @@ cl::Program OpenClRuntime::program(const std::string& path, const std::string& o
 OpenClRuntime::~OpenClRuntime() {
   // Programs whose binary grew here (compiled from source, or new work-group functions) are
   // kept for the next run; nothing a cache write does may fail the run that is ending.
-  if (!binaries_.writable()) return;  // exporting a binary compiles: only when it is kept
-  for (const auto& [name, built] : cache_) {
-    try {
-      const auto binaries = built.program.getInfo<CL_PROGRAM_BINARIES>();
-      if (!binaries.empty() && binaries.front().size() != built.loaded_bytes)
-        binaries_.store(built.key, binaries.front());
-    } catch (...) {
+  if (binaries_.writable()) {  // exporting a binary compiles: only when it is kept
+    for (const auto& [name, built] : cache_) {
+      try {
+        const auto binaries = built.program.getInfo<CL_PROGRAM_BINARIES>();
+        if (!binaries.empty() && binaries.front().size() != built.loaded_bytes)
+          binaries_.store(built.key, binaries.front());
+      } catch (...) {
+      }
     }
   }
+  record_driver_cache();  // what PoCL compiled for this run, checked at the next one
 }
 
 }  // namespace depthprec

@@ -91,4 +91,21 @@ inline size_t padded_size(size_t n) {
 // divides correctly rounded), denormals kept unless flush is asked for.
 std::string base_build_options(bool flush_denormals);
 
+// The environment variable that keeps the compiler's warnings ("on"): for kernel developers.
+constexpr const char* kKernelWarningsEnvVar = "DEPTHPREC_KERNEL_WARNINGS";
+
+// options as the driver gets them: with the compiler's warnings off (OpenCL's -w). PoCL compiles
+// with an embedded clang, which ends a compile that warned with a line such as "151 warnings
+// generated." written straight to stderr, past -q and past any PoCL setting (POCL_DEBUG governs
+// PoCL's own messages, which stay off). Errors are not affected: a failing build's log is in the
+// error thrown. With $DEPTHPREC_KERNEL_WARNINGS=on the options are left as they are (other cache
+// entries, so compiled cold) and compile_program prints each compiled program's log.
+std::string compiler_options(const std::string& options);
+
+// Compiles source for device as every depthprec program is compiled (compiler_options). Throws
+// RuntimeError with the options and the build log on failure; what names the program there.
+cl::Program compile_program(cl::Context& context, const cl::Device& device,
+                            const std::string& source, const std::string& options,
+                            const std::string& what);
+
 }  // namespace depthprec

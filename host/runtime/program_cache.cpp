@@ -3,12 +3,16 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <sstream>
+
+#include "host/base/errors.h"
 
 namespace depthprec {
 
@@ -99,6 +103,30 @@ void ProgramBinaryCache::forget(const std::string& key) const {
   if (writable_.empty()) return;
   std::error_code ec;
   fs::remove(fs::path(writable_) / file_name(key), ec);
+}
+
+std::uintmax_t ProgramBinaryCache::clear() const {
+  std::uintmax_t bytes = 0;
+  std::error_code ec;
+  if (writable_.empty() || !fs::is_directory(writable_, ec)) return 0;
+  std::vector<fs::path> doomed;
+  for (const auto& e : fs::directory_iterator(writable_, ec)) {
+    const std::string name = e.path().filename().string();
+    // file_name()'s "<16 hex digits>.bin", or store()'s "<16 hex digits>.bin.<pid>.tmp"
+    const bool hex = name.size() >= 20 && std::all_of(name.begin(), name.begin() + 16, [](char c) {
+                       return std::isxdigit(static_cast<unsigned char>(c));
+                     });
+    const bool entry = hex && name.size() == 20 && name.compare(16, 4, ".bin") == 0;
+    const bool partial = hex && name.compare(16, 5, ".bin.") == 0 && name.size() > 25 &&
+                         name.compare(name.size() - 4, 4, ".tmp") == 0;
+    if ((entry || partial) && e.is_regular_file(ec)) doomed.push_back(e.path());
+  }
+  for (const fs::path& p : doomed) {
+    bytes += fs::file_size(p, ec);
+    fs::remove(p, ec);
+    if (ec) throw RuntimeError(fmt::format("cannot remove {}: {}", p.string(), ec.message()));
+  }
+  return bytes;
 }
 
 }  // namespace depthprec

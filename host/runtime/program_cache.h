@@ -10,6 +10,7 @@
 // removed and rebuilt from source.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,11 @@ class ProgramBinaryCache {
   void forget(const std::string& key) const;
   bool enabled() const { return !writable_.empty() || !prebuilt_.empty(); }
   bool writable() const { return !writable_.empty(); }
+  const std::string& writable_dir() const { return writable_; }
+  const std::vector<std::string>& prebuilt_dirs() const { return prebuilt_; }
+  // The entries of the writable directory (each program's file, and any a crashed store left
+  // half-written); nothing else there. Returns the bytes removed.
+  std::uintmax_t clear() const;
 
  private:
   std::string file_name(const std::string& key) const;
