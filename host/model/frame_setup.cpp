@@ -63,9 +63,9 @@ Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
     const auto rect = view_footprint(s, D, {ax, ang[1], ang[2]});
     if (!rect)
       throw Error(ExitCode::internal,
-                  fmt::format("a plane at {} tilted {} degrees cannot cover the view in frame {} "
-                              "(check_tilt lets no such tilt through)",
-                              D, tilt * 180 / glm::pi<double>(), frame));
+                  fmt::format("a plane at {} tilted {} degrees cannot cover the view turned "
+                              "({}, {}, {}) radians (check_tilt lets no such tilt through)",
+                              D, tilt * 180 / glm::pi<double>(), ang[0], ang[1], ang[2]));
     side_x = static_cast<T>(rect->width);
     side_y = static_cast<T>(rect->height);
     offset[3][0] = static_cast<T>(rect->cx);

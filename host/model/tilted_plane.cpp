@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
@@ -72,8 +73,15 @@ std::optional<PlaneRect> view_footprint(const Scene& s, double D,
 namespace {
 
 bool covers_every_frame(const Scene& s, double tilt_deg) {
-  for (int k = 0; k < s.frames; ++k) {
-    std::array<double, 3> a = frame_angles(s, k);
+  std::vector<std::array<double, 3>> angles;
+  for (int k = 0; k < s.frames; ++k) angles.push_back(frame_angles(s, k));
+  // Worst-case sampling takes orientations anywhere in the rotation cube: its corners are the
+  // steepest (docs/mts.md, "The worst case").
+  if (s.sampling == Sampling::worst_case) {
+    const double r = std::abs(s.rotation_range_deg) * kDeg;
+    for (int c = 0; c < 8; ++c) angles.push_back({c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r});
+  }
+  for (std::array<double, 3> a : angles) {
     a[0] += tilt_deg * kDeg;
     // The footprint's existence does not depend on D (it scales with it): any distance decides.
     if (!view_footprint(s, 1.0, a)) return false;
