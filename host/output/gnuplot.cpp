@@ -40,7 +40,8 @@ void run_gnuplot(const std::string& script, const std::string& output) {
   const bool ok = write(fd, script.data(), script.size()) == static_cast<ssize_t>(script.size());
   close(fd);
   if (!ok) throw OutputError("plot: cannot write the temporary gnuplot script");
-  const int status = std::system(fmt::format("gnuplot '{}' 2>&1", path).c_str());
+  // gnuplot's messages are diagnostics: on stderr, never mixed into a result on standard output.
+  const int status = std::system(fmt::format("gnuplot '{}' 1>&2", path).c_str());
   std::remove(path);
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127)
     throw RuntimeError("plot: gnuplot did not run: install gnuplot-nox (scripts/setup.sh does)");
