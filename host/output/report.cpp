@@ -1,6 +1,7 @@
 #include "host/output/report.h"
 
 #include <fmt/format.h>
+#include <stdio_ext.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -329,8 +330,15 @@ void check_writable(const std::string& path) {
 
 void write_output(const std::string& path, const std::string& text) {
   if (path.empty()) {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fflush(stdout);
+    // A full disk or /dev/full fails here, at the write or at the flush: the result is lost, and
+    // the run must not end as if it had been delivered.
+    const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size();
+    if (std::fflush(stdout) != 0 || !ok) {
+      const int err = errno;
+      __fpurge(stdout);  // what did not go out is dropped, so the exit's check does not fail again
+      std::clearerr(stdout);
+      throw OutputError(fmt::format("cannot write standard output: {}", std::strerror(err)));
+    }
     return;
   }
   const bool in_place = is_stream_output(path);
