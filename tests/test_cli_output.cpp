@@ -1,6 +1,7 @@
 // Where results go: a result that cannot be delivered ends in exit 5 naming the place (standard
 // output as much as a file), and an output never replaces what the command reads.
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -46,4 +47,48 @@ TEST_CASE("a result standard output cannot take is an output error naming standa
   INFO(r.output);
   CHECK(r.exit_code == 5);
   CHECK_THAT(r.output, Contains("cannot write standard output: No space left on device"));
+}
+
+// Before, `mts ow.json ... -o ow.json` put the results where the scene was (exit 0), and
+// `merge a.json b.json -o a.json` a merge over a shard.
+TEST_CASE("an output that names an input is refused before any work", "[cli][output][errors]") {
+  const std::string dir = "/tmp/depthprec_test_ow";
+  std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
+  const std::string scene = dir + "/ow.json", scene_text = "{\"frames\": 4}\n";
+  std::ofstream(scene) << scene_text;
+  std::system(("ln -s ow.json " + dir + "/soft.json && ln " + scene + " " + dir + "/hard.json && " +
+               "cp " + scene + " " + dir + "/x.json.tmp")
+                  .c_str());
+  const std::string a = dir + "/a.json", b = dir + "/b.json";
+  REQUIRE(run_cli("mts " + kTiny + " --format-out json --shard 1/2 -o " + a).exit_code == 0);
+  REQUIRE(run_cli("mts " + kTiny + " --format-out json --shard 2/2 -o " + b).exit_code == 0);
+  const std::string shard_text = depthprec::test::slurp(a);
+  const auto [args, input] = GENERATE_COPY(table<std::string, std::string>({
+      {"mts " + scene + " " + kTiny + " -o " + scene, scene},
+      {"mts " + scene + " " + kTiny + " -o " + dir + "/soft.json", scene},  // a symbolic link
+      {"mts " + dir + "/hard.json " + kTiny + " -o " + scene, scene},       // a hard link
+      {"mts " + dir + "/x.json.tmp " + kTiny + " -o " + dir + "/x.json", dir + "/x.json.tmp"},
+      {"table " + scene + " " + kTiny + " -o " + scene, scene},
+      {"mts " + scene + " " + kTiny + " --profiles ideal,llvmpipe -o " + scene, scene},
+      {"cost " + scene + " " + kTiny + " -o " + scene, scene},
+      {"tradeoff " + scene + " " + kTiny + " -o " + scene, scene},
+      {"pipelines " + scene + " " + kTiny + " -o " + scene, scene},
+      {"advise " + scene + " --range 1,10 --separation 0.1 -o " + scene, scene},
+      {"bias " + scene + " " + kTiny + " -o " + scene, scene},
+      {"compare " + scene + " " + kTiny + " -o " + scene, scene},
+      {"report " + scene + " " + kTiny + " -o " + scene, scene},
+      {"merge " + a + " " + b + " -o " + a, a},
+      {"merge " + a + " " + b + " -o " + dir + "/./a.json", a},
+      {"report --from " + a + " -o " + a, a},
+      {"plot " + a + " -o " + a, a},
+      {"compare --emulated " + a + " --rendered " + b + " -o " + a, a},
+  }));
+  INFO(args);
+  const auto r = run_cli(args);
+  INFO(r.output);
+  CHECK(r.exit_code == 3);
+  CHECK_THAT(r.output, Contains(input) && Contains("which this command reads"));
+  CHECK(depthprec::test::slurp(scene) == scene_text);
+  CHECK(depthprec::test::slurp(dir + "/x.json.tmp") == scene_text);
+  CHECK(depthprec::test::slurp(a) == shard_text);
 }

@@ -13,6 +13,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
+#include "host/output/output_guard.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 
@@ -44,6 +45,7 @@ AdviseRequest request_of(const AdviseOptions& o) {
 }
 
 void run_advise(const AdviseOptions& o, const GlobalOptions& g) {
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
   const AdviseRequest r = request_of(o);
   const Scene scene = o.scene.load();
   validate(r, scene);

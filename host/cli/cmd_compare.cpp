@@ -20,6 +20,7 @@
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
 #include "host/output/gnuplot.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/progress.h"
 #include "host/output/report.h"
@@ -302,6 +303,11 @@ void add_compare_command(CLI::App& app, GlobalOptions& global) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->callback([o, &global]() {
+    const std::vector<NamedInput> inputs = {{"the scene file", o->scene.scene_file},
+                                            {"the --emulated file", o->emulated_file},
+                                            {"the --rendered file", o->rendered_file}};
+    check_output_spares_inputs("-o", o->out.output, inputs);
+    check_output_spares_inputs("--plot", o->plot, inputs);
     if (o->emulated_file.empty() != o->rendered_file.empty())
       throw Error(ExitCode::usage, "compare: --emulated and --rendered go together");
     if (!o->emulated_file.empty() && (o->scene.any() || !o->batch.shard.empty() || o->batch.resume))

@@ -12,6 +12,7 @@
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
+#include "host/output/output_guard.h"
 #include "host/output/row_json.h"
 #include "host/output/text_table.h"
 
@@ -201,6 +202,9 @@ void merge_records(const MergeOptions& o, const std::string& kind,
 
 void run_merge(const MergeOptions& o) {
   if (o.files.empty()) throw Error(ExitCode::usage, "merge: name the JSON outputs of the shards");
+  std::vector<NamedInput> inputs;
+  for (const auto& f : o.files) inputs.push_back({"one of the files to merge", f});
+  check_output_spares_inputs("-o", o.out.output, inputs);
   check_writable(o.out.output);
   std::vector<nlohmann::json> docs;
   for (const auto& f : o.files) docs.push_back(read_json(f));

@@ -12,6 +12,7 @@
 #include "host/base/errors.h"
 #include "host/cli/commands.h"
 #include "host/output/gnuplot.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/row_json.h"
 
@@ -26,6 +27,7 @@ struct PlotOptions {
 };
 
 void run_plot(const PlotOptions& o) {
+  check_output_spares_inputs("-o", o.output, {{"the file to plot", o.input}});
   std::ifstream in(o.input);
   if (!in) throw InputError(fmt::format("plot: cannot read '{}'", o.input));
   const auto j = nlohmann::json::parse(in, nullptr, false);

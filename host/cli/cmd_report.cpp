@@ -17,6 +17,7 @@
 #include "host/lj/lj_metric.h"
 #include "host/mts/mts_run.h"
 #include "host/output/html_report.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/row_json.h"
 
@@ -56,6 +57,8 @@ std::string plot_svg(const std::vector<MtsRow>& rows, const std::string& scene_n
 }
 
 void run_report(const ReportOptions& o, const GlobalOptions& global) {
+  check_output_spares_inputs("-o", o.output,
+                             {{"the scene file", o.scene.scene_file}, {"the --from file", o.from}});
   if (!o.from.empty() && o.scene.any())
     throw Error(ExitCode::usage,
                 "report: --from takes the scene and rows from its file; give no scene or scene "
