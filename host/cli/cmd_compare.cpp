@@ -54,9 +54,15 @@ double rel_precision_of(const json& header) {
   return scene_from_json(header.at("scene"), "compare header").rel_precision;
 }
 
-void finish(const CompareOptions& o, const json& header, const std::vector<json>& records) {
-  write_output(o.out.output,
-               for_terminal(render_compare_output(header, records, o.out), o.out.format_out));
+// journal: the run's, removed once the output is in place (nullptr: rows read from files).
+void finish(const CompareOptions& o, const json& header, const std::vector<json>& records,
+            RowJournal* journal) {
+  const std::string text =
+      for_terminal(render_compare_output(header, records, o.out), o.out.format_out);
+  if (journal)
+    write_batch_output(*journal, o.out.output, text);
+  else
+    write_output(o.out.output, text);
   if (!o.plot.empty()) plot_compare(records, o.plot);
 }
 
@@ -110,8 +116,7 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
         write_output("",
                      for_terminal(render_compare_output(header, done, o.out), o.out.format_out));
       });
-  finish(o, header, records);
-  journal.remove();
+  finish(o, header, records, &journal);
 }
 
 json read_rows_doc(const std::string& path, const char* which) {
@@ -171,7 +176,7 @@ void run_from_files(const CompareOptions& o) {
   add_rendered_with(
       header, {r.value("gl_renderer", ""), r.value("gl_version", ""), r.value("egl_platform", ""),
                r.value("depth_buffers", std::map<std::string, std::string>{})});
-  finish(o, header, records);
+  finish(o, header, records, nullptr);
 }
 
 std::string cell(const json& v) {

@@ -179,8 +179,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
                   write_output("", render(to_rows(done), info));
                 });
   info.shard = o.batch.shard;
-  write_output(o.out.output, render(to_rows(records), info));
-  journal.remove();
+  write_batch_output(journal, o.out.output, render(to_rows(records), info));
 }
 
 }  // namespace
