@@ -116,8 +116,8 @@ void RowJournal::open_locked() {
           "finish (or stop it and continue with --resume), or choose another --output",
           path_, known && holder.l_pid > 0 ? fmt::format(" (process {})", holder.l_pid) : ""));
     }
-    struct stat held {
-    }, named{};
+    struct stat held = {};
+    struct stat named = {};
     if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
         held.st_dev == named.st_dev && held.st_ino == named.st_ino)
       return;
