@@ -55,6 +55,9 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
       {"mts /tmp/depthprec_bad.json", 3, "depthprec_bad.json:4:1: malformed JSON"},
       {"mts /tmp/depthprec_unknown.json", 3, "depthprec_unknown.json:2:3: unknown key 'kernal'"},
       {"mts /nonexistent/scene.json", 3, "cannot read scene file '/nonexistent/scene.json'"},
+      {"mts /tmp", 3, "scene file '/tmp' is a directory"},  // not "malformed JSON"
+      {"merge /tmp", 3, "shard '/tmp' is a directory"},
+      {"report --from /tmp", 3, "--from file '/tmp' is a directory"},
       {"mts -t zbuffer", 3,
        "unknown technique 'zbuffer' (did you mean standard?): expected one of standard"},
       {"mts -f unorm40", 3, "unorm takes 1 to 32 bits"},

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/base/errors.h"
+#include "host/base/read_file.h"
 #include "host/batch/batch.h"
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
@@ -26,9 +27,13 @@ struct MergeOptions {
 };
 
 nlohmann::json read_json(const std::string& f) {
-  std::ifstream in(f);
-  if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
-  auto j = nlohmann::json::parse(in, nullptr, false);
+  std::string text;
+  try {
+    text = read_input_file(f, "shard");
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("merge: {}", e.what()));
+  }
+  auto j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object())
     throw InputError(
         fmt::format("merge: '{}' is not a JSON output of a batch command (--format-out json)", f));

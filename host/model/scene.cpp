@@ -16,6 +16,7 @@
 
 #include "host/base/errors.h"
 #include "host/base/named_choice.h"
+#include "host/base/read_file.h"
 #include "host/model/profile.h"
 #include "host/runtime/embedded_sources.h"
 
@@ -352,12 +353,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides, bool check,
                  const std::map<std::string, std::string>& origins) {
   if (path.empty()) return load_scene_text("", "", overrides, check, origins);
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return load_scene_text(buf.str(), path, overrides, check, origins);
+  return load_scene_text(read_input_file(path, "scene file"), path, overrides, check, origins);
 }
 
 namespace {
