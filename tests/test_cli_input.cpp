@@ -305,3 +305,43 @@ TEST_CASE("profiles side by side: each one's MTS and the spread", "[cli][profile
   CHECK(run_cli("table --profile llvmpipe --profiles ideal,llvmpipe" + small).exit_code == 2);
   CHECK(run_cli("table --profiles ideal,nvidia" + small).exit_code == 3);
 }
+
+// Before, one shard drew as if it were the whole run ("distances 3" with one row, gnuplot's
+// "empty x range"), and a --profiles output was called no output of mts at all.
+TEST_CASE("report and plot refuse one shard of a run and say what a --profiles output is",
+          "[cli][errors]") {
+  const std::string args = kSmall + " --distances 2,64,2048 -q --format-out json";
+  for (int i = 1; i <= 2; ++i)
+    REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " +
+                    fresh("/tmp/depthprec_test_rs" + std::to_string(i) + ".json"))
+                .exit_code == 0);
+  const std::string part = "/tmp/depthprec_test_rs1.json";
+  for (const std::string& cmd :
+       {"report --from " + part + " -o " + fresh("/tmp/depthprec_test_rs.html"),
+        "plot " + part + " -o " + fresh("/tmp/depthprec_test_rs.png"),
+        "compare --emulated " + part + " --rendered " + part}) {
+    INFO(cmd);
+    const auto r = run_cli(cmd);
+    CHECK(r.exit_code == 3);
+    CHECK_THAT(r.output, Contains("is shard 1/2 of a batch") && Contains("depthprec merge"));
+  }
+  // merged, the same files draw
+  const std::string whole = fresh("/tmp/depthprec_test_rs_whole.json");
+  REQUIRE(run_cli("merge " + part + " /tmp/depthprec_test_rs2.json --format-out json -o " + whole)
+              .exit_code == 0);
+  CHECK(run_cli("plot " + whole + " -o " + fresh("/tmp/depthprec_test_rs.png")).exit_code == 0);
+  CHECK(run_cli("report --from " + whole + " -o " + fresh("/tmp/depthprec_test_rs.html") + " -q")
+            .exit_code == 0);
+  // a --profiles output: its shard is refused by plot, and report says what it is
+  const std::string profiles = fresh("/tmp/depthprec_test_rs_prof.json");
+  REQUIRE(run_cli(args + " --profiles ideal,llvmpipe -o " + profiles).exit_code == 0);
+  const auto report = run_cli("report --from " + profiles + " -o /tmp/depthprec_test_rs.html");
+  CHECK(report.exit_code == 3);
+  CHECK_THAT(report.output, Contains("--profiles` output") && Contains("depthprec plot"));
+  const std::string profiles_part = fresh("/tmp/depthprec_test_rs_prof1.json");
+  REQUIRE(run_cli(args + " --profiles ideal,llvmpipe --shard 1/2 -o " + profiles_part).exit_code ==
+          0);
+  const auto plot = run_cli("plot " + profiles_part + " -o " + fresh("/tmp/depthprec_test_rs.png"));
+  CHECK(plot.exit_code == 3);
+  CHECK_THAT(plot.output, Contains("is shard 1/2 of a batch"));
+}

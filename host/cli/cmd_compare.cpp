@@ -23,6 +23,7 @@
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/progress.h"
+#include "host/output/read_output.h"
 #include "host/output/report.h"
 #include "host/output/row_json.h"
 #include "host/output/text_table.h"
@@ -120,13 +121,9 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
 }
 
 json read_rows_doc(const std::string& path, const char* which) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("compare: cannot read {} '{}'", which, path));
-  auto j = json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("rows") || !j.contains("scene"))
-    throw InputError(fmt::format(
-        "compare: {} '{}' is not a JSON output of mts, table, render or merge (--format-out json)",
-        which, path));
+  json j = read_json_output(path, "compare", fmt::format("{} file", which));
+  check_rows_output(j, path, "compare",
+                    "`compare --profile NAME` compares one profile's emulation with the rendering");
   return j;
 }
 

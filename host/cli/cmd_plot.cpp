@@ -14,6 +14,7 @@
 #include "host/output/gnuplot.h"
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
+#include "host/output/read_output.h"
 #include "host/output/row_json.h"
 
 namespace depthprec::cli {
@@ -28,11 +29,10 @@ struct PlotOptions {
 
 void run_plot(const PlotOptions& o) {
   check_output_spares_inputs("-o", o.output, {{"the file to plot", o.input}});
-  std::ifstream in(o.input);
-  if (!in) throw InputError(fmt::format("plot: cannot read '{}'", o.input));
-  const auto j = nlohmann::json::parse(in, nullptr, false);
-  if (!j.is_discarded() && j.is_object() && j.value("kind", "") == "profiles" &&
+  const auto j = read_json_output(o.input, "plot", "input");
+  if (j.value("kind", "") == "profiles" &&
       j.contains("records")) {  // `mts --profiles` / `table --profiles`: the band between them
+    refuse_shard(j, o.input, "plot");
     check_plot_output(o.output);
     const std::string scene = j.value("scene_name", "?");
     plot_profiles(j["records"].get<std::vector<nlohmann::json>>(),
@@ -41,11 +41,7 @@ void run_plot(const PlotOptions& o) {
                   o.output);
     return;
   }
-  if (j.is_discarded() || !j.is_object() || !j.contains("rows"))
-    throw InputError(fmt::format(
-        "plot: '{}' is not a JSON output of mts, table (with or without --profiles) or merge "
-        "(--format-out json)",
-        o.input));
+  check_rows_output(j, o.input, "plot", "plot draws one from its records, which this file lacks");
   check_plot_output(o.output);
   std::vector<MtsRow> rows;
   for (const auto& rj : j["rows"]) rows.push_back(row_from_json(rj));

@@ -19,6 +19,7 @@
 #include "host/output/html_report.h"
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
+#include "host/output/read_output.h"
 #include "host/output/row_json.h"
 
 namespace depthprec::cli {
@@ -67,13 +68,9 @@ void run_report(const ReportOptions& o, const GlobalOptions& global) {
   std::optional<Scene> scene;
   ReportPage page;
   if (!o.from.empty()) {
-    std::ifstream in(o.from);
-    if (!in) throw InputError(fmt::format("report: cannot read '{}'", o.from));
-    const auto j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("rows") || !j.contains("scene"))
-      throw InputError(fmt::format(
-          "report: '{}' is not a JSON output of mts, table, render or merge (--format-out json)",
-          o.from));
+    const auto j = read_json_output(o.from, "report", "--from file");
+    check_rows_output(j, o.from, "report",
+                      "`depthprec plot` draws it, and `report --profile NAME` reports one profile");
     scene = scene_from_json(j.at("scene"), o.from);
     for (const auto& r : j.at("rows")) page.rows.push_back(row_from_json(r));
     page.run.device = j.value("device", "");
