@@ -92,3 +92,30 @@ TEST_CASE("an output that names an input is refused before any work", "[cli][out
   CHECK(depthprec::test::slurp(dir + "/x.json.tmp") == scene_text);
   CHECK(depthprec::test::slurp(a) == shard_text);
 }
+
+// Before, `plot OUT.json` without -o replaced any ./mts.png (and `report` any ./report.html).
+TEST_CASE("plot and report without -o never replace a file of their default name",
+          "[cli][output][plot]") {
+  const std::string dir = "/tmp/depthprec_test_default_out";
+  std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
+  const std::string rows = dir + "/rows.json";
+  REQUIRE(run_cli("mts " + kTiny + " --format-out json -o " + rows).exit_code == 0);
+  const std::string in_dir = "cd " + dir + " && '" + std::string(DEPTHPREC_EXE) + "' ";
+  for (const auto& [cmd, name] : {std::pair<std::string, std::string>{"plot rows.json", "mts.png"},
+                                  {"report --from rows.json -q", "report.html"}}) {
+    INFO(cmd);
+    const std::string path = dir + "/" + name;
+    std::remove(path.c_str());
+    CHECK(depthprec::test::run_shell(in_dir + cmd + " 2>&1").exit_code == 0);  // a new file
+    CHECK(depthprec::test::slurp(path).size() > 1000);
+    std::ofstream(path) << "someone's file\n";
+    const auto again = depthprec::test::run_shell(in_dir + cmd + " 2>&1");
+    INFO(again.output);
+    CHECK(again.exit_code == 5);
+    CHECK_THAT(again.output, Contains("'" + name + "' exists") && Contains("-o " + name));
+    CHECK(depthprec::test::slurp(path) == "someone's file\n");
+    // named with -o, it is replaced
+    CHECK(depthprec::test::run_shell(in_dir + cmd + " -o " + name + " 2>&1").exit_code == 0);
+    CHECK(depthprec::test::slurp(path).size() > 1000);
+  }
+}

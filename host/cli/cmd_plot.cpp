@@ -25,9 +25,11 @@ struct PlotOptions {
   std::string input;
   std::string output = "mts.png";
   std::string title;
+  bool output_named = false;  // -o given: it may replace a file; the default name never does
 };
 
 void run_plot(const PlotOptions& o) {
+  check_default_output_is_new("plot", o.output, o.output_named);
   check_output_spares_inputs("-o", o.output, {{"the file to plot", o.input}});
   const auto j = read_json_output(o.input, "plot", "input");
   if (j.value("kind", "") == "profiles" &&
@@ -67,9 +69,16 @@ void add_plot_command(CLI::App& app) {
       "  depthprec table --format-out json -o table.json && depthprec plot table.json -o "
       "table.png");
   cmd->add_option("input", o->input, "JSON output of mts, table or merge")->required();
-  cmd->add_option("-o,--output", o->output, "Image to write: .png or .svg")->capture_default_str();
+  CLI::Option* output =
+      cmd->add_option("-o,--output", o->output,
+                      "Image to write: .png or .svg, replaced if it exists (without -o: mts.png, "
+                      "written only where there is no such file)")
+          ->capture_default_str();
   cmd->add_option("--title", o->title, "Plot title");
-  cmd->callback([o]() { run_plot(*o); });
+  cmd->callback([o, output]() {
+    o->output_named = output->count() > 0;
+    run_plot(*o);
+  });
 }
 
 }  // namespace depthprec::cli

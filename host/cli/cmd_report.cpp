@@ -32,6 +32,7 @@ struct ReportOptions {
   std::string from;
   bool no_timing = false;
   bool no_attribute = false;
+  bool output_named = false;  // -o given: it may replace a file; the default name never does
 };
 
 // The Lapidous-Jiao figure of every pair whose technique is one of LJ99's buffers, over the
@@ -64,6 +65,7 @@ void run_report(const ReportOptions& o, const GlobalOptions& global) {
     throw Error(ExitCode::usage,
                 "report: --from takes the scene and rows from its file; give no scene or scene "
                 "option with it");
+  check_default_output_is_new("report", o.output, o.output_named);
   check_writable(o.output);
   std::optional<Scene> scene;
   ReportPage page;
@@ -126,7 +128,11 @@ void add_report_command(CLI::App& app, GlobalOptions& global) {
       "  depthprec report my_scene.json -t reversed,standard -f float32 -o decals.html\n"
       "  depthprec report --from table.json -o table.html");
   o->scene.add_to(*cmd, true);
-  cmd->add_option("-o,--output", o->output, "The HTML file to write")->capture_default_str();
+  CLI::Option* output =
+      cmd->add_option("-o,--output", o->output,
+                      "The HTML file to write, replaced if it exists (without -o: report.html, "
+                      "written only where there is no such file)")
+          ->capture_default_str();
   cmd->add_option("--from", o->from,
                   "Build the page from this JSON output of mts, table, render or merge instead "
                   "of running the scene");
@@ -134,7 +140,10 @@ void add_report_command(CLI::App& app, GlobalOptions& global) {
                 "Leave the attribution out: the table's run alone, a fraction of the time");
   cmd->add_flag("--no-timing", o->no_timing,
                 "Leave measured times out, so two reports compare byte for byte");
-  cmd->callback([o, &global]() { run_report(*o, global); });
+  cmd->callback([o, output, &global]() {
+    o->output_named = output->count() > 0;
+    run_report(*o, global);
+  });
 }
 
 }  // namespace depthprec::cli

@@ -37,4 +37,13 @@ void check_output_spares_inputs(const std::string& option, const std::string& ou
   }
 }
 
+void check_default_output_is_new(const std::string& who, const std::string& path, bool named) {
+  std::error_code ec;
+  if (named || !std::filesystem::exists(path, ec)) return;
+  throw OutputError(fmt::format(
+      "{}: '{}' exists, and without -o {} writes only where there is none; replace it with -o "
+      "{}, or name another file with -o",
+      who, path, who, path));
+}
+
 }  // namespace depthprec

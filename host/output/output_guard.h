@@ -20,4 +20,9 @@ struct NamedInput {
 void check_output_spares_inputs(const std::string& option, const std::string& output,
                                 const std::vector<NamedInput>& inputs);
 
+// A command that writes a file of a default name when no -o is given (plot: mts.png, report:
+// report.html) must not silently replace a file of that name, perhaps another run's: throws
+// OutputError when named is false and path exists, asking for -o. named: -o was given.
+void check_default_output_is_new(const std::string& who, const std::string& path, bool named);
+
 }  // namespace depthprec
