@@ -87,6 +87,17 @@ TEST_CASE("options are read strictly and blamed by name", "[cli][errors]") {
   CHECK_THAT(twice.output, Contains("--near 0.1 and --set near=5 both set 'near'"));
   const auto set = run_cli("mts --set frames=0");
   CHECK_THAT(set.output, StartsWith("depthprec: --set frames=0: 'frames'"));
+  // A whole number too large for an integer is out of range, not "no whole number".
+  const auto huge = run_cli("mts --set frames=1e12");
+  CHECK(huge.exit_code == 3);
+  CHECK_THAT(huge.output, Contains("'frames' must be 1..1000000, not 1000000000000.0 (too large)"));
+  std::ofstream("/tmp/depthprec_test_huge_frames.json") << "{\n  \"frames\": 1e12\n}\n";
+  const auto file = run_cli("mts /tmp/depthprec_test_huge_frames.json");
+  CHECK(file.exit_code == 3);
+  CHECK_THAT(file.output, Contains("depthprec_test_huge_frames.json:2:3: 'frames' must be "
+                                   "1..1000000, not 1000000000000.0 (too large)"));
+  CHECK_THAT(run_cli("mts --set frames=18446744073709551615").output, Contains("(too large)"));
+  CHECK_THAT(run_cli("mts --set frames=4.5").output, Contains("'frames' must be a whole number"));
   const auto value = run_cli("formats unorm24 --value 1.5");
   CHECK(value.exit_code == 3);
   CHECK_THAT(value.output, Contains("--value 1.5: depth values are in [0, 1]"));

@@ -120,6 +120,15 @@ void check_user_keys(const json& j, const std::string& source, const std::string
       check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
 }
 
+// The value of a JSON number that is a whole number, however it is written (4, 4.0, 1e12, and an
+// integer beyond 64 bits, which nlohmann reads as a double); nullopt for anything else.
+std::optional<double> whole_value(const json& v) {
+  if (!v.is_number()) return std::nullopt;
+  const double d = v.get<double>();
+  if (!std::isfinite(d) || d != std::floor(d)) return std::nullopt;
+  return d;
+}
+
 // Reads typed values with errors that name the key and say what is allowed.
 class Reader {
  public:
@@ -172,10 +181,14 @@ class Reader {
 
   int integer(const std::string& key, int lo, int hi) const {
     const json& v = at(key);
+    // A whole number too large for an integer (1e12, 1e30 reads as a double) is out of range
+    // before it is no integer: the range is what the user needs to hear.
+    const auto whole = whole_value(v);
+    if (whole && (*whole < lo || *whole > hi))
+      fail(key, fmt::format("must be {}..{}, not {} (too {})", lo, hi, v.dump(),
+                            *whole > hi ? "large" : "small"));
     if (!v.is_number_integer()) fail(key, fmt::format("must be a whole number, not {}", v.dump()));
-    const auto i = v.get<long long>();
-    if (i < lo || i > hi) fail(key, fmt::format("must be {}..{}, not {}", lo, hi, i));
-    return static_cast<int>(i);
+    return v.get<int>();
   }
 
   std::string string(const std::string& key) const {
@@ -188,7 +201,8 @@ class Reader {
   int none_or_integer(const std::string& key, int lo, int hi) const {
     const json& v = at(key);
     if (v == "none") return 0;
-    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+    const auto whole = whole_value(v);
+    if (!v.is_number_integer() || *whole < lo || *whole > hi)
       fail(key, fmt::format("must be none or a whole number {}..{}, not {}", lo, hi, v.dump()));
     return v.get<int>();
   }
@@ -201,12 +215,14 @@ class Reader {
 
   std::array<int, 2> size2(const std::string& key, int hi) const {
     const json& v = at(key);
-    if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
+    if (!v.is_array() || v.size() != 2 || !whole_value(v[0]) || !whole_value(v[1]))
       fail(key, fmt::format("must be [width, height] in pixels, not {}", v.dump()));
-    const auto w = v[0].get<long long>(), h = v[1].get<long long>();
+    const double w = *whole_value(v[0]), h = *whole_value(v[1]);
     if (w < 1 || h < 1 || w > hi || h > hi)
       fail(key, fmt::format("sides must be 1..{} pixels, not {}", hi, v.dump()));
-    return {static_cast<int>(w), static_cast<int>(h)};
+    if (!v[0].is_number_integer() || !v[1].is_number_integer())
+      fail(key, fmt::format("must be [width, height] in whole pixels, not {}", v.dump()));
+    return {v[0].get<int>(), v[1].get<int>()};
   }
 
   std::array<double, 3> vec3(const std::string& key) const {
