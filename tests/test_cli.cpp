@@ -49,6 +49,11 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
   {
     std::ofstream("/tmp/depthprec_bad.json") << "{\n  \"near\": 1,\n  \"far\": [1,\n}\n";
     std::ofstream("/tmp/depthprec_unknown.json") << "{\n  \"kernal\": [10, 10]\n}\n";
+    std::ofstream("/tmp/depthprec_dup.json")
+        << "{\n  \"near\": 1,\n  \"far\": 100,\n  \"near\": 2\n}\n";
+    std::ofstream("/tmp/depthprec_dup_nested.json")
+        << R"({"evaluate": [{"technique": "standard", "format": "unorm24"},)"
+        << R"( {"technique": "reversed", "format": "float32", "format": "unorm24"}]})";
   }
   // One generated run per case, so a failure names its case.
   const auto [args_in, code, says] = GENERATE(table<std::string, int, std::string>({
@@ -56,6 +61,9 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
       {"mts /tmp/depthprec_unknown.json", 3, "depthprec_unknown.json:2:3: unknown key 'kernal'"},
       {"mts /nonexistent/scene.json", 3, "cannot read scene file '/nonexistent/scene.json'"},
       {"mts /tmp", 3, "scene file '/tmp' is a directory"},  // not "malformed JSON"
+      {"mts /tmp/depthprec_dup.json", 3,
+       "depthprec_dup.json:4:3: key 'near' given twice (first at 2:3)"},
+      {"mts /tmp/depthprec_dup_nested.json", 3, "key 'evaluate[1].format' given twice"},
       {"merge /tmp", 3, "shard '/tmp' is a directory"},
       {"report --from /tmp", 3, "--from file '/tmp' is a directory"},
       {"mts -t zbuffer", 3,
