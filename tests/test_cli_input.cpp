@@ -356,3 +356,25 @@ TEST_CASE("report and plot refuse one shard of a run and say what a --profiles o
   CHECK(plot.exit_code == 3);
   CHECK_THAT(plot.output, Contains("is shard 1/2 of a batch"));
 }
+
+// Before, --far given to a technique without a far plane changed nothing without a word, and
+// resolve's header echoed it (or the default far 100) as if the mapping used it.
+TEST_CASE("a far plane a technique has no use for is pointed out, and resolve does not echo it",
+          "[cli][errors]") {
+  const std::string small = " -f float32 --distances 2 --kernel 8x8 --frames 2 -q --no-timing";
+  const auto infinite = run_cli("mts -t infinite --far 500" + small);
+  REQUIRE(infinite.exit_code == 0);
+  CHECK_THAT(infinite.output, Contains("note: --far 500: infinite has no far plane"));
+  const auto set = run_cli("mts -t reversed_infinite,standard --set far=500" + small);
+  CHECK_THAT(set.output, Contains("note: --set far=500: reversed_infinite has no far plane"));
+  CHECK_THAT(run_cli("mts -t standard --far 500" + small).output, !Contains("note"));
+  const auto res = run_cli("resolve -t infinite -f float32 --far 500 --distance 2");
+  REQUIRE(res.exit_code == 0);
+  CHECK_THAT(res.output, Contains("note: --far 500: infinite has no far plane"));
+  CHECK_THAT(res.output, Contains("near 1, no far plane:") && !Contains(", far 500"));
+  const auto json = run_cli("resolve -t infinite -f float32 --distance 5000 --format-out json");
+  REQUIRE(json.exit_code == 0);
+  CHECK_FALSE(nlohmann::json::parse(json.output).contains("far"));
+  CHECK_THAT(run_cli("resolve -t standard -f float32 --far 500 --distance 2").output,
+             Contains("near 1, far 500:") && !Contains("note"));
+}

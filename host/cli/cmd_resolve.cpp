@@ -1,6 +1,8 @@
 // resolve: code <-> eye distance queries on the exact mappings (host/model/resolve.h).
 #include <fmt/format.h>
 
+#include <cstdio>
+
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/cli/commands.h"
@@ -21,6 +23,7 @@ struct ResolveOptions {
   long long code = 0;
   double distance = 0;
   bool code_given = false, distance_given = false;  // by the option's count: any value is typed
+  bool far_given = false;
   bool curve = false;
   int points = 50;
   OutputOptions out;
@@ -39,6 +42,12 @@ void run_resolve(const ResolveOptions& o) {
   if (o.code_given && (o.code < 0 || o.code > static_cast<long long>(f.max_code())))
     throw InputError(fmt::format("--code {}: {}'s codes are the whole numbers 0 to {}", o.code,
                                  f.name(), f.max_code()));
+  // A technique without a far plane maps depths without one: --far only ends --curve's range.
+  const bool far_used = has_far_plane(s.technique) || o.curve;
+  if (o.far_given && !far_used)
+    std::fprintf(stderr,
+                 "depthprec: note: --far %s: %s has no far plane, so its mapping ignores it\n",
+                 human(o.far).c_str(), o.technique.c_str());
   check_writable(o.out.output);
   std::string text;
   const auto digits = [&o](double v) { return number_cell(v, o.out.format_out, "{:.10g}"); };
@@ -52,6 +61,7 @@ void run_resolve(const ResolveOptions& o) {
             {"far", json_number(s.far)},
             {"rows", nlohmann::json::array()}});
   j.erase("device");  // exact mappings on the host: no device
+  if (!far_used) j.erase("far");
   if (o.code_given) {
     const CodeInterval ci = resolve_code(s, f, static_cast<uint32_t>(o.code));
     j["rows"].push_back({{"code", ci.code},
@@ -88,8 +98,11 @@ void run_resolve(const ResolveOptions& o) {
   }
   if (o.out.format_out == "json") text = j.dump(2) + "\n";
   if (o.out.format_out == "text")
-    text = fmt::format("{} in {} ({}), near {}, far {}:\n", o.technique, f.name(), o.rounding,
-                       human(s.near), human(s.far)) +
+    text = fmt::format("{} in {} ({}), near {}, {}:\n", o.technique, f.name(), o.rounding,
+                       human(s.near),
+                       has_far_plane(s.technique) ? "far " + human(s.far)
+                       : o.curve                  ? "no far plane, the curve up to " + human(s.far)
+                                                  : "no far plane") +
            text;
   write_output(o.out.output, text);
 }
@@ -113,8 +126,11 @@ void add_resolve_command(CLI::App& app) {
       ->capture_default_str();
   rcmd->add_option("-f,--format", res->format, "Storage format")->capture_default_str();
   rcmd->add_option("--near", res->near, "Near plane")->capture_default_str();
-  rcmd->add_option("--far", res->far, "Far plane (inf for the infinite techniques)")
-      ->capture_default_str();
+  CLI::Option* far =
+      rcmd->add_option("--far", res->far,
+                       "Far plane (for infinite, reversed_infinite and inverse_w, which have none: "
+                       "the end of --curve's range)")
+          ->capture_default_str();
   rcmd->add_option("--log-k", res->log_k, "k of the log techniques")->capture_default_str();
   rcmd->add_option("--rounding", res->rounding, "nearest_even or truncate")->capture_default_str();
   CLI::Option* code =
@@ -124,7 +140,8 @@ void add_resolve_command(CLI::App& app) {
                  "Resolution at --points distances, geometric from near to far");
   rcmd->add_option("--points", res->points, "Points of --curve")->capture_default_str();
   res->out.add_to(*rcmd);
-  rcmd->callback([res, code, distance]() {
+  rcmd->callback([res, code, distance, far]() {
+    res->far_given = far->count() > 0;
     res->code_given = code->count() > 0;
     res->distance_given = distance->count() > 0;
     run_resolve(*res);
