@@ -115,6 +115,16 @@ TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
     CHECK_THAT(r.output, Contains(std::string("(did you mean ") + meant + "?)"));
   }
   CHECK_THAT(run_cli("lj --buffer reversed").output, Contains("(did you mean complementary_z?)"));
+  for (const auto& [typed, meant] : {std::pair{"zbuffer", "z"},
+                                     {"z-buffer", "z"},
+                                     {"wbuffer", "w"},
+                                     {"W_BUFFER", "w"},
+                                     {"1/w", "inverse_w"}}) {
+    INFO(typed);
+    const auto r = run_cli(std::string("lj --buffer ") + typed);
+    CHECK(r.exit_code == 3);
+    CHECK_THAT(r.output, Contains(std::string("(did you mean ") + meant + "?)"));
+  }
   CHECK_THAT(run_cli("mts -t standrd").output, Contains("(did you mean standard?)"));
   const auto cmd = run_cli("mst");
   CHECK(cmd.exit_code == 2);
