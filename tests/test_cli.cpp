@@ -105,3 +105,14 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
   CHECK(r.exit_code == code);
   CHECK_THAT(r.output, Contains(says));
 }
+
+// Before, merge --help left out render, bias and --profiles, all of which it joins.
+TEST_CASE("merge --help names every batch whose shards it joins", "[cli][batch]") {
+  const auto r = run_cli("merge --help");
+  REQUIRE(r.exit_code == 0);
+  for (const char* batch : {"`mts`", "`table`", "`render`", "`compare`", "`lj-table`", "`tradeoff`",
+                            "`cost`", "`pipelines`", "`advise`", "`bias`", "`mts --profiles`"}) {
+    INFO(batch);
+    CHECK_THAT(r.output, Contains(batch));
+  }
+}

@@ -226,10 +226,10 @@ void add_merge_command(CLI::App& app) {
   auto merge = std::make_shared<MergeOptions>();
   auto* mcmd = app.add_subcommand(
       "merge",
-      "Join the JSON outputs of the shards of a batch (`mts`, `table`, `lj-table`, `tradeoff`,\n"
-      "`cost`, `pipelines`, `compare`, `advise` with --shard i/N --format-out json) into the "
-      "output one whole run\n"
-      "would write.\n"
+      "Join the JSON outputs of the shards of a batch (--shard i/N --format-out json) into the\n"
+      "output one whole run would write, in any --format-out: the shards of `mts`, `table`,\n"
+      "`render`, `compare`, `lj-table`, `tradeoff`, `cost`, `pipelines`, `advise`, `bias`, and\n"
+      "of `mts --profiles` and `table --profiles`.\n"
       "Example:\n"
       "  depthprec merge part1.json part2.json part3.json part4.json --format-out markdown");
   mcmd->add_option("files", merge->files, "JSON outputs of the shards")->required();
