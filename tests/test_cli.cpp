@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "run_cli.h"
 
@@ -115,4 +116,21 @@ TEST_CASE("merge --help names every batch whose shards it joins", "[cli][batch]"
     INFO(batch);
     CHECK_THAT(r.output, Contains(batch));
   }
+}
+
+// Before, a value binary32 cannot hold showed a relative error of 0: relative to d = 0.
+TEST_CASE("formats says a value below binary32's range is lost whole, not stored exactly",
+          "[cli]") {
+  const auto r = run_cli("formats unorm24 float32 --value 1e-50");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output,
+             Contains("float32  1e-50             0     0         0x0       0  -1.000e+00"));
+  CHECK_THAT(r.output, Contains("-1.000e+00") && !Contains("0.000e+00"));
+  CHECK_THAT(r.output, Contains("--value 1e-50: below binary32's smallest positive value"));
+  const auto j =
+      nlohmann::json::parse(run_cli("formats float32 --value 1e-50 --format-out json").output);
+  CHECK(j["round_trips"][0]["rel_error"] == -1.0);
+  // 0 itself is stored exactly
+  CHECK(nlohmann::json::parse(run_cli("formats float32 --value 0 --format-out json")
+                                  .output)["round_trips"][0]["rel_error"] == 0.0);
 }
