@@ -515,6 +515,9 @@ Scene load_scene_text(const std::string& text, const std::string& path,
     // A scene file that does not name itself is called after its file, never after the default
     // scene it starts from: outputs and plots must not label a user's scene "gilg2021".
     if (!user.contains("name")) merged["name"] = std::filesystem::path(path).stem().string();
+    // Nor does it inherit the default's description ("the paper's MTS configuration. The
+    // embedded default scene"), which a report would print as the user's scene's.
+    if (!user.contains("description")) merged["description"] = "";
     // A scene that lists its own pairs replaces the default list, not merges into it.
     merged.merge_patch(user);
     if (user.contains("evaluate")) merged["evaluate"] = user["evaluate"];
