@@ -119,3 +119,30 @@ TEST_CASE("plot and report without -o never replace a file of their default name
     CHECK(depthprec::test::slurp(path).size() > 1000);
   }
 }
+
+// Before, gnuplot drew straight into the output: a run that failed half way left a broken image
+// under the name asked for (and exit 5 beside it).
+TEST_CASE("a plot gnuplot fails to draw leaves neither a broken image nor a temporary file",
+          "[cli][output][plot]") {
+  const std::string dir = "/tmp/depthprec_test_fake_gnuplot";
+  std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str());
+  // A gnuplot that writes part of its output, then fails as a real one can.
+  std::ofstream(dir + "/gnuplot") << "#!/bin/sh\n"
+                                     "out=$(sed -n 's/^set output \"\\(.*\\)\"$/\\1/p' \"$1\")\n"
+                                     "echo 'half a plot' > \"$out\"\n"
+                                     "echo 'fake gnuplot: it failed' >&2\n"
+                                     "exit 1\n";
+  std::system(("chmod +x " + dir + "/gnuplot").c_str());
+  const std::string rows = dir + "/rows.json", png = dir + "/mts.png";
+  REQUIRE(run_cli("mts " + kTiny + " --format-out json -o " + rows).exit_code == 0);
+  const auto r = run_cli("plot " + rows + " -o " + png, "PATH=" + dir + ":$PATH");
+  INFO(r.output);
+  CHECK(r.exit_code == 5);
+  CHECK_THAT(r.output, Contains("gnuplot failed writing '" + png + "'"));
+  CHECK_FALSE(std::ifstream(png).good());
+  CHECK_FALSE(std::ifstream(png + ".tmp").good());
+  // with the real gnuplot the same plot is drawn
+  CHECK(run_cli("plot " + rows + " -o " + png).exit_code == 0);
+  CHECK(depthprec::test::slurp(png).substr(1, 3) == "PNG");
+  CHECK_FALSE(std::ifstream(png + ".tmp").good());
+}
