@@ -63,12 +63,13 @@ void add_plot_command(CLI::App& app) {
       "plot",
       "Plot MTS against distance (log-log, one line per technique/format/depth range, the\n"
       "binary32 vertex-precision bound shaded, as Gilg et al.'s fig. 6) with gnuplot, from the\n"
-      "JSON output of mts, table or merge; for `--profiles` outputs, a line per profile and the\n"
-      "band between them.\n"
+      "JSON output of a whole run of mts, table, render or merge (one shard alone is refused:\n"
+      "merge the shards first); for `--profiles` outputs, a line per profile and the band\n"
+      "between them. Without -o it writes mts.png, and only where there is no such file.\n"
       "Example:\n"
       "  depthprec table --format-out json -o table.json && depthprec plot table.json -o "
       "table.png");
-  cmd->add_option("input", o->input, "JSON output of mts, table or merge")->required();
+  cmd->add_option("input", o->input, "JSON output of mts, table, render or merge")->required();
   CLI::Option* output =
       cmd->add_option("-o,--output", o->output,
                       "Image to write: .png or .svg, replaced if it exists (without -o: mts.png, "

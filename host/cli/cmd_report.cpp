@@ -122,7 +122,7 @@ void add_report_command(CLI::App& app, GlobalOptions& global) {
       "Lapidous-Jiao figures where they apply. No network, no other files: attach it to a\n"
       "review or open it in any browser. Runs the scene as `table --attribute` (the default\n"
       "scene: about 3 minutes on 2 cores; --no-attribute: the table alone, seconds), or reads\n"
-      "an mts/table/render/merge JSON output with --from.\n"
+      "the JSON output of a whole mts/table/render/merge run with --from (not one shard).\n"
       "Examples:\n"
       "  depthprec report -o report.html\n"
       "  depthprec report my_scene.json -t reversed,standard -f float32 -o decals.html\n"
