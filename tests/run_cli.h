@@ -19,10 +19,8 @@ struct CliResult {
 // Options for a command's run small enough for a test that checks behaviour, not figures.
 inline const std::string kSmallScene = "--kernel 24x24 --frames 4 --no-timing -q ";
 
-// env: assignments put before the command, e.g. "OCL_ICD_VENDORS=/nonexistent".
-inline CliResult run_cli(const std::string& args, const std::string& env = "") {
-  const std::string cmd =
-      env + (env.empty() ? "" : " ") + "'" + DEPTHPREC_EXE + "' " + args + " 2>&1";
+// Runs a shell command line, capturing what it writes to its standard output.
+inline CliResult run_shell(const std::string& cmd) {
   CliResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -32,6 +30,17 @@ inline CliResult run_cli(const std::string& args, const std::string& env = "") {
   const int status = pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// env: assignments put before the command, e.g. "OCL_ICD_VENDORS=/nonexistent".
+inline CliResult run_cli(const std::string& args, const std::string& env = "") {
+  return run_shell(env + (env.empty() ? "" : " ") + "'" + DEPTHPREC_EXE + "' " + args + " 2>&1");
+}
+
+// Runs depthprec with its standard output sent to stdout_to (e.g. /dev/full, which refuses every
+// write as a full disk does); output holds standard error alone.
+inline CliResult run_cli_stdout_to(const std::string& args, const std::string& stdout_to) {
+  return run_shell("'" + std::string(DEPTHPREC_EXE) + "' " + args + " 2>&1 >'" + stdout_to + "'");
 }
 
 // path, with any output and journal (path.rows.jsonl) an earlier, failed run left there removed:

@@ -88,6 +88,13 @@ TEST_CASE("advise refuses what it cannot answer", "[advise][cli][errors]") {
   const auto far = run_cli(base + "--range 10,1000 --separation 1 --far 500");
   CHECK(far.exit_code == 3);
   CHECK_THAT(far.output, Contains("far plane"));
+  // The near plane and the distances are what advise computes: given, they were ignored silently.
+  for (const char* option : {"--near 0.5", "--set near=0.5", "--distances 20,40"}) {
+    INFO(option);
+    const auto given = run_cli(base + "--range 10,1000 --separation 1 " + option);
+    CHECK(given.exit_code == 2);
+    CHECK_THAT(given.output, Contains(std::string("advise: ") + option) && Contains("drop"));
+  }
 }
 
 TEST_CASE("advise's far plane is the farthest that holds; the next one out fails",

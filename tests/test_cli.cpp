@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "run_cli.h"
 
@@ -49,12 +50,23 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
   {
     std::ofstream("/tmp/depthprec_bad.json") << "{\n  \"near\": 1,\n  \"far\": [1,\n}\n";
     std::ofstream("/tmp/depthprec_unknown.json") << "{\n  \"kernal\": [10, 10]\n}\n";
+    std::ofstream("/tmp/depthprec_dup.json")
+        << "{\n  \"near\": 1,\n  \"far\": 100,\n  \"near\": 2\n}\n";
+    std::ofstream("/tmp/depthprec_dup_nested.json")
+        << R"({"evaluate": [{"technique": "standard", "format": "unorm24"},)"
+        << R"( {"technique": "reversed", "format": "float32", "format": "unorm24"}]})";
   }
   // One generated run per case, so a failure names its case.
   const auto [args_in, code, says] = GENERATE(table<std::string, int, std::string>({
       {"mts /tmp/depthprec_bad.json", 3, "depthprec_bad.json:4:1: malformed JSON"},
       {"mts /tmp/depthprec_unknown.json", 3, "depthprec_unknown.json:2:3: unknown key 'kernal'"},
       {"mts /nonexistent/scene.json", 3, "cannot read scene file '/nonexistent/scene.json'"},
+      {"mts /tmp", 3, "scene file '/tmp' is a directory"},  // not "malformed JSON"
+      {"mts /tmp/depthprec_dup.json", 3,
+       "depthprec_dup.json:4:3: key 'near' given twice (first at 2:3)"},
+      {"mts /tmp/depthprec_dup_nested.json", 3, "key 'evaluate[1].format' given twice"},
+      {"merge /tmp", 3, "shard '/tmp' is a directory"},
+      {"report --from /tmp", 3, "--from file '/tmp' is a directory"},
       {"mts -t zbuffer", 3,
        "unknown technique 'zbuffer' (did you mean standard?): expected one of standard"},
       {"mts -f unorm40", 3, "unorm takes 1 to 32 bits"},
@@ -74,6 +86,9 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
       {"lj --near 10 --far 5", 3, "--far must be finite and > near"},
       {"lj --buffer q", 3, "unknown buffer type 'q'"},
       {"resolve --code 1 --distance 2", 2, "exactly one of --code N, --distance w or --curve"},
+      {"resolve --code -1", 3, "--code -1: unorm24's codes are the whole numbers 0 to 16777215"},
+      {"resolve -f unorm16 --code 65536", 3, "unorm16's codes are the whole numbers 0 to 65535"},
+      {"resolve --distance -5", 3, "--distance must be a finite eye distance > 0, not -5"},
       {"resolve --technique layered --code 1", 3, "layered has one mapping per layer"},
       {"select --bits 40", 3, "--bits must be 2..32"},
       {"mts --bogus", 2, "--bogus"},
@@ -90,4 +105,32 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
   INFO(args_in << "\n" << r.output);
   CHECK(r.exit_code == code);
   CHECK_THAT(r.output, Contains(says));
+}
+
+// Before, merge --help left out render, bias and --profiles, all of which it joins.
+TEST_CASE("merge --help names every batch whose shards it joins", "[cli][batch]") {
+  const auto r = run_cli("merge --help");
+  REQUIRE(r.exit_code == 0);
+  for (const char* batch : {"`mts`", "`table`", "`render`", "`compare`", "`lj-table`", "`tradeoff`",
+                            "`cost`", "`pipelines`", "`advise`", "`bias`", "`mts --profiles`"}) {
+    INFO(batch);
+    CHECK_THAT(r.output, Contains(batch));
+  }
+}
+
+// Before, a value binary32 cannot hold showed a relative error of 0: relative to d = 0.
+TEST_CASE("formats says a value below binary32's range is lost whole, not stored exactly",
+          "[cli]") {
+  const auto r = run_cli("formats unorm24 float32 --value 1e-50");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output,
+             Contains("float32  1e-50             0     0         0x0       0  -1.000e+00"));
+  CHECK_THAT(r.output, Contains("-1.000e+00") && !Contains("0.000e+00"));
+  CHECK_THAT(r.output, Contains("--value 1e-50: below binary32's smallest positive value"));
+  const auto j =
+      nlohmann::json::parse(run_cli("formats float32 --value 1e-50 --format-out json").output);
+  CHECK(j["round_trips"][0]["rel_error"] == -1.0);
+  // 0 itself is stored exactly
+  CHECK(nlohmann::json::parse(run_cli("formats float32 --value 0 --format-out json")
+                                  .output)["round_trips"][0]["rel_error"] == 0.0);
 }

@@ -87,6 +87,17 @@ TEST_CASE("options are read strictly and blamed by name", "[cli][errors]") {
   CHECK_THAT(twice.output, Contains("--near 0.1 and --set near=5 both set 'near'"));
   const auto set = run_cli("mts --set frames=0");
   CHECK_THAT(set.output, StartsWith("depthprec: --set frames=0: 'frames'"));
+  // A whole number too large for an integer is out of range, not "no whole number".
+  const auto huge = run_cli("mts --set frames=1e12");
+  CHECK(huge.exit_code == 3);
+  CHECK_THAT(huge.output, Contains("'frames' must be 1..1000000, not 1000000000000.0 (too large)"));
+  std::ofstream("/tmp/depthprec_test_huge_frames.json") << "{\n  \"frames\": 1e12\n}\n";
+  const auto file = run_cli("mts /tmp/depthprec_test_huge_frames.json");
+  CHECK(file.exit_code == 3);
+  CHECK_THAT(file.output, Contains("depthprec_test_huge_frames.json:2:3: 'frames' must be "
+                                   "1..1000000, not 1000000000000.0 (too large)"));
+  CHECK_THAT(run_cli("mts --set frames=18446744073709551615").output, Contains("(too large)"));
+  CHECK_THAT(run_cli("mts --set frames=4.5").output, Contains("'frames' must be a whole number"));
   const auto value = run_cli("formats unorm24 --value 1.5");
   CHECK(value.exit_code == 3);
   CHECK_THAT(value.output, Contains("--value 1.5: depth values are in [0, 1]"));
@@ -104,6 +115,16 @@ TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
     CHECK_THAT(r.output, Contains(std::string("(did you mean ") + meant + "?)"));
   }
   CHECK_THAT(run_cli("lj --buffer reversed").output, Contains("(did you mean complementary_z?)"));
+  for (const auto& [typed, meant] : {std::pair{"zbuffer", "z"},
+                                     {"z-buffer", "z"},
+                                     {"wbuffer", "w"},
+                                     {"W_BUFFER", "w"},
+                                     {"1/w", "inverse_w"}}) {
+    INFO(typed);
+    const auto r = run_cli(std::string("lj --buffer ") + typed);
+    CHECK(r.exit_code == 3);
+    CHECK_THAT(r.output, Contains(std::string("(did you mean ") + meant + "?)"));
+  }
   CHECK_THAT(run_cli("mts -t standrd").output, Contains("(did you mean standard?)"));
   const auto cmd = run_cli("mst");
   CHECK(cmd.exit_code == 2);
@@ -304,4 +325,66 @@ TEST_CASE("profiles side by side: each one's MTS and the spread", "[cli][profile
   CHECK(run_cli("table --profiles ideal,ideal" + small).exit_code == 2);
   CHECK(run_cli("table --profile llvmpipe --profiles ideal,llvmpipe" + small).exit_code == 2);
   CHECK(run_cli("table --profiles ideal,nvidia" + small).exit_code == 3);
+}
+
+// Before, one shard drew as if it were the whole run ("distances 3" with one row, gnuplot's
+// "empty x range"), and a --profiles output was called no output of mts at all.
+TEST_CASE("report and plot refuse one shard of a run and say what a --profiles output is",
+          "[cli][errors]") {
+  const std::string args = kSmall + " --distances 2,64,2048 -q --format-out json";
+  for (int i = 1; i <= 2; ++i)
+    REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " +
+                    fresh("/tmp/depthprec_test_rs" + std::to_string(i) + ".json"))
+                .exit_code == 0);
+  const std::string part = "/tmp/depthprec_test_rs1.json";
+  for (const std::string& cmd :
+       {"report --from " + part + " -o " + fresh("/tmp/depthprec_test_rs.html"),
+        "plot " + part + " -o " + fresh("/tmp/depthprec_test_rs.png"),
+        "compare --emulated " + part + " --rendered " + part}) {
+    INFO(cmd);
+    const auto r = run_cli(cmd);
+    CHECK(r.exit_code == 3);
+    CHECK_THAT(r.output, Contains("is shard 1/2 of a batch") && Contains("depthprec merge"));
+  }
+  // merged, the same files draw
+  const std::string whole = fresh("/tmp/depthprec_test_rs_whole.json");
+  REQUIRE(run_cli("merge " + part + " /tmp/depthprec_test_rs2.json --format-out json -o " + whole)
+              .exit_code == 0);
+  CHECK(run_cli("plot " + whole + " -o " + fresh("/tmp/depthprec_test_rs.png")).exit_code == 0);
+  CHECK(run_cli("report --from " + whole + " -o " + fresh("/tmp/depthprec_test_rs.html") + " -q")
+            .exit_code == 0);
+  // a --profiles output: its shard is refused by plot, and report says what it is
+  const std::string profiles = fresh("/tmp/depthprec_test_rs_prof.json");
+  REQUIRE(run_cli(args + " --profiles ideal,llvmpipe -o " + profiles).exit_code == 0);
+  const auto report = run_cli("report --from " + profiles + " -o /tmp/depthprec_test_rs.html");
+  CHECK(report.exit_code == 3);
+  CHECK_THAT(report.output, Contains("--profiles` output") && Contains("depthprec plot"));
+  const std::string profiles_part = fresh("/tmp/depthprec_test_rs_prof1.json");
+  REQUIRE(run_cli(args + " --profiles ideal,llvmpipe --shard 1/2 -o " + profiles_part).exit_code ==
+          0);
+  const auto plot = run_cli("plot " + profiles_part + " -o " + fresh("/tmp/depthprec_test_rs.png"));
+  CHECK(plot.exit_code == 3);
+  CHECK_THAT(plot.output, Contains("is shard 1/2 of a batch"));
+}
+
+// Before, --far given to a technique without a far plane changed nothing without a word, and
+// resolve's header echoed it (or the default far 100) as if the mapping used it.
+TEST_CASE("a far plane a technique has no use for is pointed out, and resolve does not echo it",
+          "[cli][errors]") {
+  const std::string small = " -f float32 --distances 2 --kernel 8x8 --frames 2 -q --no-timing";
+  const auto infinite = run_cli("mts -t infinite --far 500" + small);
+  REQUIRE(infinite.exit_code == 0);
+  CHECK_THAT(infinite.output, Contains("note: --far 500: infinite has no far plane"));
+  const auto set = run_cli("mts -t reversed_infinite,standard --set far=500" + small);
+  CHECK_THAT(set.output, Contains("note: --set far=500: reversed_infinite has no far plane"));
+  CHECK_THAT(run_cli("mts -t standard --far 500" + small).output, !Contains("note"));
+  const auto res = run_cli("resolve -t infinite -f float32 --far 500 --distance 2");
+  REQUIRE(res.exit_code == 0);
+  CHECK_THAT(res.output, Contains("note: --far 500: infinite has no far plane"));
+  CHECK_THAT(res.output, Contains("near 1, no far plane:") && !Contains(", far 500"));
+  const auto json = run_cli("resolve -t infinite -f float32 --distance 5000 --format-out json");
+  REQUIRE(json.exit_code == 0);
+  CHECK_FALSE(nlohmann::json::parse(json.output).contains("far"));
+  CHECK_THAT(run_cli("resolve -t standard -f float32 --far 500 --distance 2").output,
+             Contains("near 1, far 500:") && !Contains("note"));
 }

@@ -176,6 +176,31 @@ TEST_CASE("the MTS plot names the user's scene and marks distances without an MT
   CHECK_THAT(text, Contains("no MTS at this z"));
 }
 
+// Before, a scene file without a description carried the default scene's ("the paper's MTS
+// configuration. The embedded default scene; ..."), and a report printed it as the user's.
+TEST_CASE("a scene file does not inherit the default scene's description", "[cli][scene]") {
+  const std::string scene = fresh("/tmp/depthprec_test_bare_scene.json"),
+                    json = fresh("/tmp/depthprec_test_bare_rows.json"),
+                    html = fresh("/tmp/depthprec_test_bare.html");
+  const std::string run =
+      " -t standard -f unorm24 --distances 2 --kernel 16x16 --frames 4 -q "
+      "--no-timing --format-out json -o " +
+      json;
+  std::ofstream(scene) << R"({"far": 1000})";
+  REQUIRE(run_cli("mts " + scene + run).exit_code == 0);
+  CHECK(nlohmann::json::parse(slurp(json))["scene"]["description"] == "");
+  REQUIRE(run_cli("report --from " + json + " -q -o " + html).exit_code == 0);
+  CHECK_THAT(slurp(html),
+             Contains("depthprec_test_bare_scene") && !Contains("The embedded default scene"));
+  std::ofstream(scene) << R"({"far": 1000, "description": "a harbour at dusk"})";
+  REQUIRE(run_cli("mts " + scene + run).exit_code == 0);
+  CHECK(nlohmann::json::parse(slurp(json))["scene"]["description"] == "a harbour at dusk");
+  // the default scene keeps its own
+  REQUIRE(run_cli("mts" + run).exit_code == 0);
+  CHECK_THAT(nlohmann::json::parse(slurp(json))["scene"]["description"].get<std::string>(),
+             Contains("The embedded default scene"));
+}
+
 TEST_CASE("tradeoff, cost and lj-table plot through gnuplot with --plot", "[cli][plot]") {
   const std::string a = fresh("/tmp/depthprec_test_tradeoff.svg"),
                     b = fresh("/tmp/depthprec_test_lj.png");

@@ -287,6 +287,15 @@ TEST_CASE("render refuses what the driver or the rendering cannot do", "[render]
     const CliResult emulated = run_cli("mts -t standard -f unorm24 --distances 4 --frames 2", env);
     CHECK(emulated.exit_code == 0);
   }
+  SECTION("an EGL device that is not there: out of range, the displays listed, no packages") {
+    // Before, it read as a missing installation: "install libegl1 libgl1 ...".
+    const CliResult r =
+        run_cli("render --gl-device device:7 -t standard -f unorm24 --distances 4 --frames 2");
+    CHECK(r.exit_code == 4);
+    CHECK_THAT(r.output, Contains("--gl-device device:7: out of range") &&
+                             Contains("the displays to choose from: surfaceless (llvmpipe") &&
+                             !Contains("install"));
+  }
 }
 
 TEST_CASE("depth bias rendered with glPolygonOffset on llvmpipe", "[render][bias]") {

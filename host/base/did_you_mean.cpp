@@ -112,9 +112,14 @@ std::string buffer_suggestion(const std::string& typed) {
       {"reverse_z", "complementary_z"},
       {"reversed_infinite", "inverse_w"},
       {"standard", "z"},
+      {"zbuffer", "z"},
       {"z_buffer", "z"},
+      {"z-buffer", "z"},
       {"linear", "w"},
+      {"wbuffer", "w"},
       {"w_buffer", "w"},
+      {"w-buffer", "w"},
+      {"1/w", "inverse_w"},
   };
   static const std::vector<std::string> names = {"z", "w", "inverse_w", "complementary_z"};
   return suggest(typed, aliases, names);

@@ -1,8 +1,14 @@
 #include "host/batch/batch.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <map>
 
 #include "host/base/errors.h"
@@ -46,6 +52,83 @@ std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,
                      b.dump());
 }
 
+namespace {
+
+// Whether the start of a journal is the start of the line this depthprec begins one with: a first
+// line torn by a full disk or a kill is still recognisably its own.
+bool starts_like_journal(const std::string& head) {
+  static const std::string kStart = "{\"journal_of\":";
+  return head.compare(0, kStart.size(), kStart, 0, std::min(head.size(), kStart.size())) == 0;
+}
+
+// The whole file behind fd, from its start.
+std::string read_all(int fd, const std::string& path) {
+  std::string text;
+  char buf[65536];
+  for (off_t at = 0;;) {
+    const ssize_t n = ::pread(fd, buf, sizeof buf, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0)
+      throw OutputError(
+          fmt::format("cannot read the row journal '{}': {}", path, std::strerror(errno)));
+    if (n == 0) return text;
+    text.append(buf, static_cast<size_t>(n));
+    at += n;
+  }
+}
+
+}  // namespace
+
+void RowJournal::open_locked() {
+  // The lock is on the file the path names now: a run that held it may have finished and removed
+  // it between our open and our lock, so the inode is compared after locking and the open retried.
+  for (int attempt = 0;; ++attempt) {
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0)
+      throw OutputError(
+          fmt::format("cannot write the row journal '{}': {}", path_, std::strerror(errno)));
+    struct flock lock {};
+    lock.l_type = F_WRLCK;
+    lock.l_whence = SEEK_SET;
+    if (::fcntl(fd_, F_SETLK, &lock) != 0) {
+      const int err = errno;
+      struct flock holder {};
+      holder.l_type = F_WRLCK;
+      holder.l_whence = SEEK_SET;
+      const bool known = ::fcntl(fd_, F_GETLK, &holder) == 0 && holder.l_type != F_UNLCK;
+      ::close(fd_);
+      fd_ = -1;
+      if (err != EACCES && err != EAGAIN) {
+        // A file system without locks (some network mounts): the run goes on, unguarded.
+        fmt::print(stderr,
+                   "depthprec: note: cannot lock the row journal '{}' ({}): a second run writing "
+                   "the same output at the same time would not be noticed\n",
+                   path_, std::strerror(err));
+        fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (fd_ < 0)
+          throw OutputError(
+              fmt::format("cannot write the row journal '{}': {}", path_, std::strerror(errno)));
+        return;
+      }
+      if (!known && attempt < 10) continue;  // released in between: try again
+      throw InputError(fmt::format(
+          "{} is in use by another depthprec run{} writing the same output now; wait for it to "
+          "finish (or stop it and continue with --resume), or choose another --output",
+          path_, known && holder.l_pid > 0 ? fmt::format(" (process {})", holder.l_pid) : ""));
+    }
+    struct stat held = {};
+    struct stat named = {};
+    if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
+        held.st_dev == named.st_dev && held.st_ino == named.st_ino)
+      return;
+    ::close(fd_);
+    fd_ = -1;
+    if (attempt >= 10)
+      throw OutputError(
+          fmt::format("cannot lock the row journal '{}': it keeps being replaced", path_));
+  }
+}
+
 RowJournal::RowJournal(const std::string& output, bool resume, const nlohmann::json& identity) {
   if (output.empty() || is_stream_output(output)) {
     if (resume)
@@ -55,64 +138,148 @@ RowJournal::RowJournal(const std::string& output, bool resume, const nlohmann::j
     return;
   }
   path_ = output + ".rows.jsonl";
-  std::ifstream in(path_);
-  const bool fresh_journal = !in.good();
-  if (in.good() && !resume)
-    throw Error(ExitCode::output,
-                fmt::format("{} holds the finished rows of an interrupted run: continue it "
-                            "with --resume, or delete it to start over",
-                            path_));
-  std::string line;
-  int number = 0;
-  if (resume && in.good()) {
-    // The first line says which run wrote the journal.
-    ++number;
-    const auto head =
-        std::getline(in, line) ? nlohmann::json::parse(line, nullptr, false) : nlohmann::json();
-    if (!head.is_object() || !head.contains("journal_of"))
-      throw InputError(fmt::format(
-          "{}: not a journal this depthprec wrote (its first line does not say which run it "
-          "belongs to); delete it to start over",
-          path_));
+  open_locked();
+  try {
+    read_or_start(resume, identity);
+  } catch (...) {
+    // A constructor that throws runs no destructor: the lock is released here, and a journal
+    // left empty (this run's, or an empty one it found) removed, so it is in no rerun's way.
+    struct stat st {};
+    if (::fstat(fd_, &st) == 0 && st.st_size == 0) ::unlink(path_.c_str());
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+void RowJournal::read_or_start(bool resume, const nlohmann::json& identity) {
+  const std::string text = read_all(fd_, path_);
+  const size_t first_end = text.find('\n');
+  const auto head = first_end == std::string::npos
+                        ? nlohmann::json()
+                        : nlohmann::json::parse(text.substr(0, first_end), nullptr, false);
+  const bool ours = head.is_object() && head.contains("journal_of");
+  if (!ours && !(text.empty() || (first_end == std::string::npos && starts_like_journal(text)))) {
+    // Someone else's file, theirs to delete.
+    const std::string what = fmt::format(
+        "{}: not a journal this depthprec wrote (its first line does not say which run it "
+        "belongs to); delete it to start over, or choose another --output",
+        path_);
+    if (resume) throw InputError(what);
+    throw OutputError(what);
+  }
+  // The whole rows after the first line; a line cut short (no newline, or not an object) ends
+  // them: everything before it is whole.
+  std::vector<nlohmann::json> rows;
+  size_t whole = ours ? first_end + 1 : 0, torn_line = 0;
+  for (size_t at = whole, number = 2; ours && at < text.size(); ++number) {
+    const size_t end = text.find('\n', at);
+    if (end == std::string::npos) {
+      torn_line = number;
+      break;
+    }
+    if (end > at) {
+      auto j = nlohmann::json::parse(text.substr(at, end - at), nullptr, false);
+      if (j.is_discarded() || !j.is_object()) {
+        torn_line = number;
+        break;
+      }
+      rows.push_back(std::move(j));
+    }
+    at = whole = end + 1;
+  }
+  if (!rows.empty()) {
+    if (!resume)
+      throw Error(ExitCode::output,
+                  fmt::format("{} holds the finished rows of an interrupted run: continue it "
+                              "with --resume, or delete it to start over",
+                              path_));
     const std::string diff = first_difference(head["journal_of"], identity);
     if (!diff.empty())
       throw InputError(fmt::format(
           "{} was written by another run ({}: the journal's value, then this run's); run the "
           "same command to resume it, or delete it to start over",
           path_, diff));
-  }
-  while (resume && std::getline(in, line)) {
-    ++number;
-    if (line.empty()) continue;
-    auto j = nlohmann::json::parse(line, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) {
-      // a line cut short by a kill: everything before it is whole
+    if (torn_line > 0) {
+      // Cut off, so the next row starts on a line of its own.
       fmt::print(stderr, "depthprec: {}:{}: incomplete row left out (it will be recomputed)\n",
-                 path_, number);
-      break;
+                 path_, torn_line);
+      if (::ftruncate(fd_, static_cast<off_t>(whole)) != 0)
+        throw OutputError(
+            fmt::format("cannot write the row journal '{}': {}", path_, std::strerror(errno)));
     }
-    earlier_.push_back(std::move(j));
+    earlier_ = std::move(rows);
+    rows_ = earlier_.size();
+    size_ = static_cast<long long>(whole);
+    return;
   }
-  in.close();
-  out_ = std::make_unique<std::ofstream>(path_, std::ios::app);
-  if (!*out_) throw OutputError(fmt::format("cannot write the row journal '{}'", path_));
-  if (fresh_journal) append({{"journal_of", identity}});
+  // No finished row in it -- empty (a disk that was full), its first line torn, or that line
+  // alone (a run stopped before its first row): nothing is lost by starting it afresh.
+  if (!text.empty())
+    fmt::print(stderr, "depthprec: note: {} held no finished rows; starting it afresh\n", path_);
+  if (::ftruncate(fd_, 0) != 0)
+    throw OutputError(
+        fmt::format("cannot write the row journal '{}': {}", path_, std::strerror(errno)));
+  write_line(nlohmann::json{{"journal_of", identity}}.dump() + "\n");
+}
+
+RowJournal::~RowJournal() {
+  if (fd_ < 0) return;
+  if (rows_ == 0) ::unlink(path_.c_str());  // while still locked: no other run has it open
+  ::close(fd_);
+}
+
+void RowJournal::write_line(const std::string& line) {
+  size_t done = 0;
+  while (done < line.size()) {
+    const ssize_t n = ::pwrite(fd_, line.data() + done, line.size() - done,
+                               static_cast<off_t>(size_ + static_cast<long long>(done)));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      // What was written of the line is cut off again: the journal keeps whole lines only.
+      (void)::ftruncate(fd_, static_cast<off_t>(size_));
+      throw OutputError(fmt::format(
+          "cannot append to the row journal '{}': {}{}", path_, std::strerror(err),
+          rows_ > 0 ? fmt::format("; its {} finished rows are kept: the same command with "
+                                  "--resume continues once there is room",
+                                  rows_)
+                    : ""));
+    }
+    done += static_cast<size_t>(n);
+  }
+  size_ += static_cast<long long>(line.size());
 }
 
 void RowJournal::append(const nlohmann::json& record) {
-  if (!out_) return;
-  *out_ << record.dump() << '\n';
-  out_->flush();
-  if (!*out_) throw OutputError(fmt::format("cannot append to the row journal '{}'", path_));
+  if (fd_ < 0) return;
+  write_line(record.dump() + "\n");
+  ++rows_;
 }
 
 void RowJournal::remove() {
-  if (!out_) return;
-  out_.reset();
-  std::remove(path_.c_str());
+  if (fd_ < 0) return;
+  ::unlink(path_.c_str());
+  ::close(fd_);
+  fd_ = -1;
+}
+
+void write_batch_output(RowJournal& journal, const std::string& output, const std::string& text) {
+  try {
+    write_output(output, text);
+  } catch (const OutputError& e) {
+    if (!journal.active() || journal.rows() == 0) throw;
+    throw OutputError(fmt::format(
+        "{}; the {} finished rows are kept in {}: the same command with --resume writes the "
+        "output from them",
+        e.what(), journal.rows(), journal.path()));
+  }
+  journal.remove();
 }
 
 void throw_interrupted(const RowJournal& journal, size_t finished) {
+  if (journal.active() && finished == 0)  // the journal goes with the run: it holds no row
+    throw Error(ExitCode::interrupted, "interrupted before any row finished: nothing to keep");
   if (journal.active())
     throw Error(
         ExitCode::interrupted,

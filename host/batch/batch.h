@@ -4,7 +4,6 @@
 // as it finishes and stopping cleanly on Ctrl-C / SIGTERM.
 #pragma once
 
-#include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
@@ -25,24 +24,45 @@ struct Shard {
 class RowJournal {
  public:
   // output "" or a device or pipe (is_stream_output): no journal (then resume is a usage error).
-  // Without resume, an existing journal is refused (it holds an interrupted run's rows); with it,
-  // its complete lines are read.
+  // The journal is locked (fcntl) while this object lives, so a second run with the same output
+  // is refused, naming the process that holds it, rather than told to resume a run still going;
+  // the lock goes with the process, however it ends.
+  // Without resume, a journal holding finished rows is refused (it holds an interrupted run's
+  // rows); with it, its complete lines are read, and a line cut short (a kill, a full disk) is
+  // cut off so later rows start on a line of their own. A journal without rows -- empty, its
+  // first line torn, or that line alone -- is restarted: nothing in it can be lost.
   // identity: what makes this run's rows what they are (program version, command, scene,
   // options that change a row, shard). A new journal starts with it; a resumed one must start
   // with the same, else it is refused naming the first field that differs -- rows of another
   // scene or version must not be mixed into this run's output.
   RowJournal(const std::string& output, bool resume, const nlohmann::json& identity);
-  bool active() const { return out_ != nullptr; }
+  // Releases the lock; a journal that holds no finished row is removed (a run that failed before
+  // its first row leaves nothing behind).
+  ~RowJournal();
+  RowJournal(const RowJournal&) = delete;
+  RowJournal& operator=(const RowJournal&) = delete;
+  bool active() const { return fd_ >= 0; }
   const std::string& path() const { return path_; }
   const std::vector<nlohmann::json>& earlier() const { return earlier_; }
+  size_t rows() const { return rows_; }  // finished rows in the journal, earlier ones included
+  // Throws OutputError when the line cannot be written whole; a part written is cut off again.
   void append(const nlohmann::json& record);
   void remove();  // once the final output is in place
 
  private:
+  void open_locked();
+  void read_or_start(bool resume, const nlohmann::json& identity);
+  void write_line(const std::string& line);  // whole, or cut back to the last whole line
   std::string path_;
   std::vector<nlohmann::json> earlier_;
-  std::unique_ptr<std::ofstream> out_;
+  int fd_ = -1;
+  size_t rows_ = 0;
+  long long size_ = 0;  // bytes of whole lines in the journal
 };
+
+// Writes a batch's final output and, once it is in place, removes the journal. When the output
+// cannot be written, the error says the finished rows are kept and how to write it from them.
+void write_batch_output(RowJournal& journal, const std::string& output, const std::string& text);
 
 // The first place two JSON values differ, as "scene.frames: 10 against 100" ("" when equal).
 std::string first_difference(const nlohmann::json& a, const nlohmann::json& b,

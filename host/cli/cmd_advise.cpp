@@ -2,6 +2,7 @@
 // each affords (host/analysis/advise.h). A record batch: one record per pair, so it journals,
 // resumes, shards and merges as cost does.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
+#include "host/output/output_guard.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 
@@ -43,7 +45,31 @@ AdviseRequest request_of(const AdviseOptions& o) {
   return r;
 }
 
+// What advise computes rather than reads: the near plane (its answer) and the distances checked
+// (those of --range). Given anyway, they would be ignored; refused, so no one believes them used.
+void refuse_computed_options(const SceneOptions& s) {
+  std::string near = s.near.empty() ? "" : "--near " + s.near, distances;
+  if (!s.distances.empty())
+    distances = "--distances " + fmt::format("{}", fmt::join(s.distances, ","));
+  for (const auto& set : s.sets) {
+    if (set.rfind("near=", 0) == 0) near = "--set " + set;
+    if (set.rfind("distances=", 0) == 0) distances = "--set " + set;
+  }
+  if (!near.empty())
+    throw Error(ExitCode::usage,
+                fmt::format("advise: {}: the near plane is what advise finds (the smallest that "
+                            "holds, searched from {} x the nearest content up to it); drop {}",
+                            near, human(AdviseRequest{}.near_floor_ratio), near));
+  if (!distances.empty())
+    throw Error(ExitCode::usage,
+                fmt::format("advise: {}: advise checks the distances of --range itself (A, 2A, "
+                            "4A, ..., B); drop {}",
+                            distances, distances));
+}
+
 void run_advise(const AdviseOptions& o, const GlobalOptions& g) {
+  refuse_computed_options(o.scene);
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
   const AdviseRequest r = request_of(o);
   const Scene scene = o.scene.load();
   validate(r, scene);

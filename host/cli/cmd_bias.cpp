@@ -21,6 +21,7 @@
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 #include "host/mts/worst_case.h"
+#include "host/output/output_guard.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 #include "host/render/gl_context.h"
@@ -149,6 +150,7 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
 }
 
 void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
   const BiasOptions b = bias_options_of(o);
   const bool rendered = parse_row_source(o.source) == RowSource::rendered;
   // Rendered probes take the driver's own implementation forms, whatever profile was named.

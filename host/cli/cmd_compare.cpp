@@ -20,8 +20,10 @@
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
 #include "host/output/gnuplot.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/progress.h"
+#include "host/output/read_output.h"
 #include "host/output/report.h"
 #include "host/output/row_json.h"
 #include "host/output/text_table.h"
@@ -53,9 +55,15 @@ double rel_precision_of(const json& header) {
   return scene_from_json(header.at("scene"), "compare header").rel_precision;
 }
 
-void finish(const CompareOptions& o, const json& header, const std::vector<json>& records) {
-  write_output(o.out.output,
-               for_terminal(render_compare_output(header, records, o.out), o.out.format_out));
+// journal: the run's, removed once the output is in place (nullptr: rows read from files).
+void finish(const CompareOptions& o, const json& header, const std::vector<json>& records,
+            RowJournal* journal) {
+  const std::string text =
+      for_terminal(render_compare_output(header, records, o.out), o.out.format_out);
+  if (journal)
+    write_batch_output(*journal, o.out.output, text);
+  else
+    write_output(o.out.output, text);
   if (!o.plot.empty()) plot_compare(records, o.plot);
 }
 
@@ -109,18 +117,13 @@ void run_from_scene(const CompareOptions& o, const GlobalOptions& global) {
         write_output("",
                      for_terminal(render_compare_output(header, done, o.out), o.out.format_out));
       });
-  finish(o, header, records);
-  journal.remove();
+  finish(o, header, records, &journal);
 }
 
 json read_rows_doc(const std::string& path, const char* which) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("compare: cannot read {} '{}'", which, path));
-  auto j = json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("rows") || !j.contains("scene"))
-    throw InputError(fmt::format(
-        "compare: {} '{}' is not a JSON output of mts, table, render or merge (--format-out json)",
-        which, path));
+  json j = read_json_output(path, "compare", fmt::format("{} file", which));
+  check_rows_output(j, path, "compare",
+                    "`compare --profile NAME` compares one profile's emulation with the rendering");
   return j;
 }
 
@@ -170,7 +173,7 @@ void run_from_files(const CompareOptions& o) {
   add_rendered_with(
       header, {r.value("gl_renderer", ""), r.value("gl_version", ""), r.value("egl_platform", ""),
                r.value("depth_buffers", std::map<std::string, std::string>{})});
-  finish(o, header, records);
+  finish(o, header, records, nullptr);
 }
 
 std::string cell(const json& v) {
@@ -302,6 +305,11 @@ void add_compare_command(CLI::App& app, GlobalOptions& global) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->callback([o, &global]() {
+    const std::vector<NamedInput> inputs = {{"the scene file", o->scene.scene_file},
+                                            {"the --emulated file", o->emulated_file},
+                                            {"the --rendered file", o->rendered_file}};
+    check_output_spares_inputs("-o", o->out.output, inputs);
+    check_output_spares_inputs("--plot", o->plot, inputs);
     if (o->emulated_file.empty() != o->rendered_file.empty())
       throw Error(ExitCode::usage, "compare: --emulated and --rendered go together");
     if (!o->emulated_file.empty() && (o->scene.any() || !o->batch.shard.empty() || o->batch.resume))

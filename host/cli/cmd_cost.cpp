@@ -17,6 +17,7 @@
 #include "host/mts/mts_run.h"
 #include "host/mts/mts_timing.h"
 #include "host/output/gnuplot.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/text_table.h"
 
@@ -32,6 +33,8 @@ struct CostOptions {
 };
 
 void run_cost(const CostOptions& o, const GlobalOptions& g) {
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
+  check_output_spares_inputs("--plot", o.plot, {{"the scene file", o.scene.scene_file}});
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
   check_plot_output(o.plot);

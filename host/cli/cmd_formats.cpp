@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -67,13 +68,23 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
     j["device"] = rt->description();
   }
   Cells rcells;
+  std::vector<std::string> notes;
   for (double v : o.values) {
     const float d = static_cast<float>(v);
+    // A value below binary32's smallest positive is 0 as a depth before any format stores it:
+    // all of it is lost (relative error -1), which an error relative to d = 0 would hide as 0.
+    const bool underflow = d == 0.0f && v != 0.0;
+    if (underflow)
+      notes.push_back(fmt::format(
+          "--value {}: below binary32's smallest positive value ({:g}), it is 0 as a depth before "
+          "any format stores it: relative error -1",
+          v, static_cast<double>(std::numeric_limits<float>::denorm_min())));
     for (const auto& f : formats) {
       const uint32_t code = f.encode(d);
       const double stored = f.decode(code);
-      const double rel =
-          d != 0.0f ? (stored - static_cast<double>(d)) / static_cast<double>(d) : 0.0;
+      const double rel = underflow   ? (stored - v) / v
+                         : d != 0.0f ? (stored - static_cast<double>(d)) / static_cast<double>(d)
+                                     : 0.0;
       std::vector<std::string> row = {f.name(),
                                       number_cell(v, out, "{:.17g}"),
                                       fmt::format("{:.17g}", d),
@@ -117,8 +128,9 @@ void run_formats(const FormatsOptions& o, const GlobalOptions& global) {
                                        "value{}",
                                        rt ? " (code also computed by the OpenCL kernel)" : ""),
                            rcols, rcells, out);
+    for (const auto& note : notes) text += (out == "markdown" ? "\n" : "") + note + "\n";
   }
-  write_output(o.out.output, text);
+  write_output(o.out.output, for_terminal(text, out));
 }
 
 }  // namespace

@@ -7,11 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "host/base/errors.h"
+#include "host/base/read_file.h"
 #include "host/batch/batch.h"
 #include "host/cli/commands.h"
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
+#include "host/output/output_guard.h"
 #include "host/output/row_json.h"
 #include "host/output/text_table.h"
 
@@ -25,9 +27,13 @@ struct MergeOptions {
 };
 
 nlohmann::json read_json(const std::string& f) {
-  std::ifstream in(f);
-  if (!in) throw InputError(fmt::format("merge: cannot read '{}'", f));
-  auto j = nlohmann::json::parse(in, nullptr, false);
+  std::string text;
+  try {
+    text = read_input_file(f, "shard");
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("merge: {}", e.what()));
+  }
+  auto j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object())
     throw InputError(
         fmt::format("merge: '{}' is not a JSON output of a batch command (--format-out json)", f));
@@ -201,6 +207,9 @@ void merge_records(const MergeOptions& o, const std::string& kind,
 
 void run_merge(const MergeOptions& o) {
   if (o.files.empty()) throw Error(ExitCode::usage, "merge: name the JSON outputs of the shards");
+  std::vector<NamedInput> inputs;
+  for (const auto& f : o.files) inputs.push_back({"one of the files to merge", f});
+  check_output_spares_inputs("-o", o.out.output, inputs);
   check_writable(o.out.output);
   std::vector<nlohmann::json> docs;
   for (const auto& f : o.files) docs.push_back(read_json(f));
@@ -217,10 +226,10 @@ void add_merge_command(CLI::App& app) {
   auto merge = std::make_shared<MergeOptions>();
   auto* mcmd = app.add_subcommand(
       "merge",
-      "Join the JSON outputs of the shards of a batch (`mts`, `table`, `lj-table`, `tradeoff`,\n"
-      "`cost`, `pipelines`, `compare`, `advise` with --shard i/N --format-out json) into the "
-      "output one whole run\n"
-      "would write.\n"
+      "Join the JSON outputs of the shards of a batch (--shard i/N --format-out json) into the\n"
+      "output one whole run would write, in any --format-out: the shards of `mts`, `table`,\n"
+      "`render`, `compare`, `lj-table`, `tradeoff`, `cost`, `pipelines`, `advise`, `bias`, and\n"
+      "of `mts --profiles` and `table --profiles`.\n"
       "Example:\n"
       "  depthprec merge part1.json part2.json part3.json part4.json --format-out markdown");
   mcmd->add_option("files", merge->files, "JSON outputs of the shards")->required();

@@ -23,6 +23,7 @@
 #include "host/model/profile.h"
 #include "host/mts/mts_run.h"
 #include "host/output/json_header.h"
+#include "host/output/output_guard.h"
 #include "host/output/progress.h"
 #include "host/output/report.h"
 #include "host/output/row_json.h"
@@ -113,6 +114,7 @@ void add_attribute_flag(CLI::App* cmd, MtsOptions& o) {
 }
 
 void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
   if (!o.profiles.empty()) return run_profiles(o, global, wide);
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
@@ -177,8 +179,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
                   write_output("", render(to_rows(done), info));
                 });
   info.shard = o.batch.shard;
-  write_output(o.out.output, render(to_rows(records), info));
-  journal.remove();
+  write_batch_output(journal, o.out.output, render(to_rows(records), info));
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
+#include "host/output/output_guard.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 
@@ -117,6 +118,7 @@ std::string render_pipelines_output(const nlohmann::json& header,
 namespace {
 
 void run_pipelines(const PipelinesOptions& o, const GlobalOptions& g) {
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
   run_record_batch(

@@ -12,7 +12,9 @@
 #include "host/base/errors.h"
 #include "host/cli/commands.h"
 #include "host/output/gnuplot.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
+#include "host/output/read_output.h"
 #include "host/output/row_json.h"
 
 namespace depthprec::cli {
@@ -23,14 +25,16 @@ struct PlotOptions {
   std::string input;
   std::string output = "mts.png";
   std::string title;
+  bool output_named = false;  // -o given: it may replace a file; the default name never does
 };
 
 void run_plot(const PlotOptions& o) {
-  std::ifstream in(o.input);
-  if (!in) throw InputError(fmt::format("plot: cannot read '{}'", o.input));
-  const auto j = nlohmann::json::parse(in, nullptr, false);
-  if (!j.is_discarded() && j.is_object() && j.value("kind", "") == "profiles" &&
+  check_default_output_is_new("plot", o.output, o.output_named);
+  check_output_spares_inputs("-o", o.output, {{"the file to plot", o.input}});
+  const auto j = read_json_output(o.input, "plot", "input");
+  if (j.value("kind", "") == "profiles" &&
       j.contains("records")) {  // `mts --profiles` / `table --profiles`: the band between them
+    refuse_shard(j, o.input, "plot");
     check_plot_output(o.output);
     const std::string scene = j.value("scene_name", "?");
     plot_profiles(j["records"].get<std::vector<nlohmann::json>>(),
@@ -39,11 +43,7 @@ void run_plot(const PlotOptions& o) {
                   o.output);
     return;
   }
-  if (j.is_discarded() || !j.is_object() || !j.contains("rows"))
-    throw InputError(fmt::format(
-        "plot: '{}' is not a JSON output of mts, table (with or without --profiles) or merge "
-        "(--format-out json)",
-        o.input));
+  check_rows_output(j, o.input, "plot", "plot draws one from its records, which this file lacks");
   check_plot_output(o.output);
   std::vector<MtsRow> rows;
   for (const auto& rj : j["rows"]) rows.push_back(row_from_json(rj));
@@ -63,15 +63,23 @@ void add_plot_command(CLI::App& app) {
       "plot",
       "Plot MTS against distance (log-log, one line per technique/format/depth range, the\n"
       "binary32 vertex-precision bound shaded, as Gilg et al.'s fig. 6) with gnuplot, from the\n"
-      "JSON output of mts, table or merge; for `--profiles` outputs, a line per profile and the\n"
-      "band between them.\n"
+      "JSON output of a whole run of mts, table, render or merge (one shard alone is refused:\n"
+      "merge the shards first); for `--profiles` outputs, a line per profile and the band\n"
+      "between them. Without -o it writes mts.png, and only where there is no such file.\n"
       "Example:\n"
       "  depthprec table --format-out json -o table.json && depthprec plot table.json -o "
       "table.png");
-  cmd->add_option("input", o->input, "JSON output of mts, table or merge")->required();
-  cmd->add_option("-o,--output", o->output, "Image to write: .png or .svg")->capture_default_str();
+  cmd->add_option("input", o->input, "JSON output of mts, table, render or merge")->required();
+  CLI::Option* output =
+      cmd->add_option("-o,--output", o->output,
+                      "Image to write: .png or .svg, replaced if it exists (without -o: mts.png, "
+                      "written only where there is no such file)")
+          ->capture_default_str();
   cmd->add_option("--title", o->title, "Plot title");
-  cmd->callback([o]() { run_plot(*o); });
+  cmd->callback([o, output]() {
+    o->output_named = output->count() > 0;
+    run_plot(*o);
+  });
 }
 
 }  // namespace depthprec::cli

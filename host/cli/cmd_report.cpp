@@ -17,7 +17,9 @@
 #include "host/lj/lj_metric.h"
 #include "host/mts/mts_run.h"
 #include "host/output/html_report.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
+#include "host/output/read_output.h"
 #include "host/output/row_json.h"
 
 namespace depthprec::cli {
@@ -30,6 +32,7 @@ struct ReportOptions {
   std::string from;
   bool no_timing = false;
   bool no_attribute = false;
+  bool output_named = false;  // -o given: it may replace a file; the default name never does
 };
 
 // The Lapidous-Jiao figure of every pair whose technique is one of LJ99's buffers, over the
@@ -56,21 +59,20 @@ std::string plot_svg(const std::vector<MtsRow>& rows, const std::string& scene_n
 }
 
 void run_report(const ReportOptions& o, const GlobalOptions& global) {
+  check_output_spares_inputs("-o", o.output,
+                             {{"the scene file", o.scene.scene_file}, {"the --from file", o.from}});
   if (!o.from.empty() && o.scene.any())
     throw Error(ExitCode::usage,
                 "report: --from takes the scene and rows from its file; give no scene or scene "
                 "option with it");
+  check_default_output_is_new("report", o.output, o.output_named);
   check_writable(o.output);
   std::optional<Scene> scene;
   ReportPage page;
   if (!o.from.empty()) {
-    std::ifstream in(o.from);
-    if (!in) throw InputError(fmt::format("report: cannot read '{}'", o.from));
-    const auto j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("rows") || !j.contains("scene"))
-      throw InputError(fmt::format(
-          "report: '{}' is not a JSON output of mts, table, render or merge (--format-out json)",
-          o.from));
+    const auto j = read_json_output(o.from, "report", "--from file");
+    check_rows_output(j, o.from, "report",
+                      "`depthprec plot` draws it, and `report --profile NAME` reports one profile");
     scene = scene_from_json(j.at("scene"), o.from);
     for (const auto& r : j.at("rows")) page.rows.push_back(row_from_json(r));
     page.run.device = j.value("device", "");
@@ -120,13 +122,17 @@ void add_report_command(CLI::App& app, GlobalOptions& global) {
       "Lapidous-Jiao figures where they apply. No network, no other files: attach it to a\n"
       "review or open it in any browser. Runs the scene as `table --attribute` (the default\n"
       "scene: about 3 minutes on 2 cores; --no-attribute: the table alone, seconds), or reads\n"
-      "an mts/table/render/merge JSON output with --from.\n"
+      "the JSON output of a whole mts/table/render/merge run with --from (not one shard).\n"
       "Examples:\n"
       "  depthprec report -o report.html\n"
       "  depthprec report my_scene.json -t reversed,standard -f float32 -o decals.html\n"
       "  depthprec report --from table.json -o table.html");
   o->scene.add_to(*cmd, true);
-  cmd->add_option("-o,--output", o->output, "The HTML file to write")->capture_default_str();
+  CLI::Option* output =
+      cmd->add_option("-o,--output", o->output,
+                      "The HTML file to write, replaced if it exists (without -o: report.html, "
+                      "written only where there is no such file)")
+          ->capture_default_str();
   cmd->add_option("--from", o->from,
                   "Build the page from this JSON output of mts, table, render or merge instead "
                   "of running the scene");
@@ -134,7 +140,10 @@ void add_report_command(CLI::App& app, GlobalOptions& global) {
                 "Leave the attribution out: the table's run alone, a fraction of the time");
   cmd->add_flag("--no-timing", o->no_timing,
                 "Leave measured times out, so two reports compare byte for byte");
-  cmd->callback([o, &global]() { run_report(*o, global); });
+  cmd->callback([o, output, &global]() {
+    o->output_named = output->count() > 0;
+    run_report(*o, global);
+  });
 }
 
 }  // namespace depthprec::cli

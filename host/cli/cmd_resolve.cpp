@@ -1,6 +1,8 @@
 // resolve: code <-> eye distance queries on the exact mappings (host/model/resolve.h).
 #include <fmt/format.h>
 
+#include <cstdio>
+
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/cli/commands.h"
@@ -18,8 +20,10 @@ namespace {
 struct ResolveOptions {
   std::string technique = "standard", format = "unorm24", rounding = "nearest_even";
   double near = 1, far = 100, log_k = 1;
-  long long code = -1;
-  double distance = -1;
+  long long code = 0;
+  double distance = 0;
+  bool code_given = false, distance_given = false;  // by the option's count: any value is typed
+  bool far_given = false;
   bool curve = false;
   int points = 50;
   OutputOptions out;
@@ -32,9 +36,18 @@ void run_resolve(const ResolveOptions& o) {
   s.far = o.far;
   s.params.log_k = o.log_k;
   const StorageFormat f = StorageFormat::parse(o.format, parse_rounding(o.rounding));
-  const int modes = (o.code >= 0) + (o.distance >= 0) + (o.curve ? 1 : 0);
+  const int modes = (o.code_given ? 1 : 0) + (o.distance_given ? 1 : 0) + (o.curve ? 1 : 0);
   if (modes != 1)
     throw Error(ExitCode::usage, "resolve: give exactly one of --code N, --distance w or --curve");
+  if (o.code_given && (o.code < 0 || o.code > static_cast<long long>(f.max_code())))
+    throw InputError(fmt::format("--code {}: {}'s codes are the whole numbers 0 to {}", o.code,
+                                 f.name(), f.max_code()));
+  // A technique without a far plane maps depths without one: --far only ends --curve's range.
+  const bool far_used = has_far_plane(s.technique) || o.curve;
+  if (o.far_given && !far_used)
+    std::fprintf(stderr,
+                 "depthprec: note: --far %s: %s has no far plane, so its mapping ignores it\n",
+                 human(o.far).c_str(), o.technique.c_str());
   check_writable(o.out.output);
   std::string text;
   const auto digits = [&o](double v) { return number_cell(v, o.out.format_out, "{:.10g}"); };
@@ -48,8 +61,8 @@ void run_resolve(const ResolveOptions& o) {
             {"far", json_number(s.far)},
             {"rows", nlohmann::json::array()}});
   j.erase("device");  // exact mappings on the host: no device
-  if (o.code >= 0) {
-    if (o.code > 0xffffffffLL) throw InputError(fmt::format("--code {} is beyond 32 bits", o.code));
+  if (!far_used) j.erase("far");
+  if (o.code_given) {
     const CodeInterval ci = resolve_code(s, f, static_cast<uint32_t>(o.code));
     j["rows"].push_back({{"code", ci.code},
                          {"depth", json_number(ci.depth)},
@@ -85,8 +98,11 @@ void run_resolve(const ResolveOptions& o) {
   }
   if (o.out.format_out == "json") text = j.dump(2) + "\n";
   if (o.out.format_out == "text")
-    text = fmt::format("{} in {} ({}), near {}, far {}:\n", o.technique, f.name(), o.rounding,
-                       human(s.near), human(s.far)) +
+    text = fmt::format("{} in {} ({}), near {}, {}:\n", o.technique, f.name(), o.rounding,
+                       human(s.near),
+                       has_far_plane(s.technique) ? "far " + human(s.far)
+                       : o.curve                  ? "no far plane, the curve up to " + human(s.far)
+                                                  : "no far plane") +
            text;
   write_output(o.out.output, text);
 }
@@ -110,17 +126,26 @@ void add_resolve_command(CLI::App& app) {
       ->capture_default_str();
   rcmd->add_option("-f,--format", res->format, "Storage format")->capture_default_str();
   rcmd->add_option("--near", res->near, "Near plane")->capture_default_str();
-  rcmd->add_option("--far", res->far, "Far plane (inf for the infinite techniques)")
-      ->capture_default_str();
+  CLI::Option* far =
+      rcmd->add_option("--far", res->far,
+                       "Far plane (for infinite, reversed_infinite and inverse_w, which have none: "
+                       "the end of --curve's range)")
+          ->capture_default_str();
   rcmd->add_option("--log-k", res->log_k, "k of the log techniques")->capture_default_str();
   rcmd->add_option("--rounding", res->rounding, "nearest_even or truncate")->capture_default_str();
-  rcmd->add_option("--code", res->code, "A stored code");
-  rcmd->add_option("--distance", res->distance, "An eye distance");
+  CLI::Option* code =
+      rcmd->add_option("--code", res->code, "A stored code: 0 to the format's largest");
+  CLI::Option* distance = rcmd->add_option("--distance", res->distance, "An eye distance");
   rcmd->add_flag("--curve", res->curve,
                  "Resolution at --points distances, geometric from near to far");
   rcmd->add_option("--points", res->points, "Points of --curve")->capture_default_str();
   res->out.add_to(*rcmd);
-  rcmd->callback([res]() { run_resolve(*res); });
+  rcmd->callback([res, code, distance, far]() {
+    res->far_given = far->count() > 0;
+    res->code_given = code->count() > 0;
+    res->distance_given = distance->count() > 0;
+    run_resolve(*res);
+  });
 }
 
 }  // namespace depthprec::cli

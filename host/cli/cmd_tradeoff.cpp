@@ -16,6 +16,7 @@
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
 #include "host/output/gnuplot.h"
+#include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/row_json.h"
 #include "host/output/text_table.h"
@@ -32,6 +33,8 @@ struct TradeoffOptions {
 };
 
 void run_tradeoff(const TradeoffOptions& o, const GlobalOptions& g) {
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
+  check_output_spares_inputs("--plot", o.plot, {{"the scene file", o.scene.scene_file}});
   const Scene base = o.scene.load();
   check_writable(o.out.output);
   check_plot_output(o.plot);

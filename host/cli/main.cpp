@@ -3,16 +3,24 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <sstream>
 
 #include "host/base/did_you_mean.h"
 #include "host/base/errors.h"
 #include "host/base/fatal_signal.h"
 #include "host/base/version.h"
 #include "host/cli/commands.h"
+#include "host/output/report.h"
 #include "host/runtime/cl.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+// Runs the command line; returns the exit code.
+int run(int argc, char** argv) {
   using namespace depthprec;
   install_fatal_signal_report();  // a crash (a damaged kernel cache, say) is said in words
   CLI::App app{fmt::format(
@@ -68,7 +76,16 @@ int main(int argc, char** argv) {
                    fmt::format("{}", fmt::join(names, ", ")).c_str());
       return static_cast<int>(ExitCode::usage);
     }
-    const int rc = app.exit(e);
+    // --help and --version through write_output, so a failed write names its reason.
+    std::ostringstream out, err;
+    const int rc = app.exit(e, out, err);
+    std::fputs(err.str().c_str(), stderr);
+    try {
+      write_output("", out.str());
+    } catch (const Error& failed) {
+      std::fprintf(stderr, "depthprec: %s\n", failed.what());
+      return static_cast<int>(failed.code());
+    }
     return rc == 0 ? 0 : static_cast<int>(ExitCode::usage);
   } catch (const Error& e) {
     std::fprintf(stderr, "depthprec: %s\n", e.what());
@@ -81,4 +98,24 @@ int main(int argc, char** argv) {
     return static_cast<int>(ExitCode::internal);
   }
   return 0;
+}
+
+// Everything written to standard output -- results, --help, --version -- is buffered, and a full
+// disk or /dev/full fails only when it is flushed: checked once here, at the end of every run, so
+// no command can lose its output and still exit 0.
+int finish_standard_output(int rc) {
+  std::cout.flush();
+  errno = 0;
+  const bool flush_failed = std::fflush(stdout) != 0;
+  const int err = errno;
+  if (!flush_failed && !std::ferror(stdout) && std::cout) return rc;
+  std::fprintf(stderr, "depthprec: cannot write standard output: %s\n",
+               err != 0 ? std::strerror(err) : "a write failed");
+  return rc == 0 ? static_cast<int>(depthprec::ExitCode::output) : rc;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return finish_standard_output(run(argc, argv));
 }

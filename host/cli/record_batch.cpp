@@ -30,8 +30,8 @@ std::vector<nlohmann::json> run_record_batch(
                 [&](const std::vector<nlohmann::json>& done) {
                   write_output("", for_terminal(render(header, done, out), out.format_out));
                 });
-  write_output(out.output, for_terminal(render(header, records, out), out.format_out));
-  journal.remove();
+  write_batch_output(journal, out.output,
+                     for_terminal(render(header, records, out), out.format_out));
   return records;
 }
 

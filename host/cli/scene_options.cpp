@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -83,6 +84,24 @@ std::string whole_number_text(const std::string& option, const std::string& v) {
     throw Error(ExitCode::usage,
                 fmt::format("{} '{}': expected a whole number, e.g. 20", option, v));
   return v;
+}
+
+// A far plane given on the command line that some pairs have no use for: said once (a command
+// that loads the scene once per profile would say it again), so a user who set it for those
+// pairs learns that it changed nothing there.
+void note_unused_far(const Scene& scene, const std::string& given) {
+  std::vector<std::string> unused;
+  for (const auto& p : scene.evaluate) {
+    const std::string name = info(p.technique).name;
+    if (!has_far_plane(p.technique) &&
+        std::find(unused.begin(), unused.end(), name) == unused.end())
+      unused.push_back(name);
+  }
+  static std::set<std::string> said;
+  if (unused.empty() || !said.insert(given).second) return;
+  std::fprintf(stderr, "depthprec: note: %s: %s %s no far plane, so it changes nothing there\n",
+               given.c_str(), fmt::format("{}", fmt::join(unused, ", ")).c_str(),
+               unused.size() == 1 ? "has" : "have");
 }
 
 }  // namespace
@@ -192,6 +211,10 @@ Scene SceneOptions::load() const {
   }
   check_pairs(scene);
   check_planes_cover_kernel(scene);
+  std::string far_given = far.empty() ? "" : "--far " + far;
+  for (const auto& set : sets)
+    if (set.rfind("far=", 0) == 0) far_given = "--set " + set;
+  if (!far_given.empty()) note_unused_far(scene, far_given);
   return scene;
 }
 

@@ -16,6 +16,7 @@
 
 #include "host/base/errors.h"
 #include "host/base/named_choice.h"
+#include "host/base/read_file.h"
 #include "host/model/profile.h"
 #include "host/runtime/embedded_sources.h"
 
@@ -83,9 +84,90 @@ std::string where(const std::string& source, const std::string& text, const std:
   return source + ":" + position_of(text, at);
 }
 
+// Where the n-th (from 0) occurrence of "key" as a key stands in text ("" when not found: a key
+// written with escapes).
+std::string key_position(const std::string& text, const std::string& key, size_t n) {
+  const std::string quoted = "\"" + key + "\"";
+  for (size_t at = text.find(quoted); at != std::string::npos; at = text.find(quoted, at + 1)) {
+    const size_t colon = text.find_first_not_of(" \t\r\n", at + quoted.size());
+    if (colon == std::string::npos || text[colon] != ':') continue;
+    if (n-- == 0) return position_of(text, at);
+  }
+  return "";
+}
+
+// JSON allows a key twice in an object and nlohmann keeps the last: a scene that sets `near`
+// twice would run with one of them unsaid. The parser's callback sees every key in order, so a
+// repeat is refused with its path and both places.
+class DuplicateKeyCheck {
+ public:
+  DuplicateKeyCheck(const std::string& text, const std::string& source)
+      : text_(text), source_(source) {}
+
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        frames_.push_back({false});
+        break;
+      case json::parse_event_t::array_start:
+        frames_.push_back({true});
+        break;
+      case json::parse_event_t::key: {
+        const std::string key = parsed.get<std::string>();
+        const size_t nth = seen_[key]++;
+        Frame& f = frames_.back();
+        f.key = key;
+        if (!f.keys.insert(key).second) {
+          const std::string at = key_position(text_, key, nth);
+          throw InputError(
+              fmt::format("{}{}: key '{}' given twice{}; JSON keeps only one of them: give it once",
+                          source_, at.empty() ? "" : ":" + at, path(), first_place(key, f)));
+        }
+        f.first[key] = nth;
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        next_element();
+        break;
+      case json::parse_event_t::value:
+        next_element();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    size_t index = 0;                       // arrays: the element being read
+    std::string key;                        // objects: the key being read
+    std::set<std::string> keys;             // objects: the keys read so far
+    std::map<std::string, size_t> first{};  // objects: which occurrence of each key it was
+  };
+  void next_element() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : frames_)
+      p += f.array ? fmt::format("[{}]", f.index) : (p.empty() ? "" : ".") + f.key;
+    return p;
+  }
+  std::string first_place(const std::string& key, const Frame& f) const {
+    const std::string at = key_position(text_, key, f.first.at(key));
+    return at.empty() ? "" : fmt::format(" (first at {})", at);
+  }
+  const std::string& text_;
+  const std::string& source_;
+  std::vector<Frame> frames_;
+  std::map<std::string, size_t> seen_;  // occurrences of each key in the text so far
+};
+
 json parse_text(const std::string& text, const std::string& source) {
   try {
-    return json::parse(text);
+    return json::parse(text, DuplicateKeyCheck(text, source));
   } catch (const json::parse_error& e) {
     std::string msg = e.what();
     const auto p = msg.find("parse error");
@@ -123,6 +205,15 @@ void check_user_keys(const json& j, const std::string& source, const std::string
   if (j.contains("evaluate") && j["evaluate"].is_array())
     for (const auto& p : j["evaluate"])
       check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
+}
+
+// The value of a JSON number that is a whole number, however it is written (4, 4.0, 1e12, and an
+// integer beyond 64 bits, which nlohmann reads as a double); nullopt for anything else.
+std::optional<double> whole_value(const json& v) {
+  if (!v.is_number()) return std::nullopt;
+  const double d = v.get<double>();
+  if (!std::isfinite(d) || d != std::floor(d)) return std::nullopt;
+  return d;
 }
 
 // Reads typed values with errors that name the key and say what is allowed.
@@ -177,10 +268,14 @@ class Reader {
 
   int integer(const std::string& key, int lo, int hi) const {
     const json& v = at(key);
+    // A whole number too large for an integer (1e12, 1e30 reads as a double) is out of range
+    // before it is no integer: the range is what the user needs to hear.
+    const auto whole = whole_value(v);
+    if (whole && (*whole < lo || *whole > hi))
+      fail(key, fmt::format("must be {}..{}, not {} (too {})", lo, hi, v.dump(),
+                            *whole > hi ? "large" : "small"));
     if (!v.is_number_integer()) fail(key, fmt::format("must be a whole number, not {}", v.dump()));
-    const auto i = v.get<long long>();
-    if (i < lo || i > hi) fail(key, fmt::format("must be {}..{}, not {}", lo, hi, i));
-    return static_cast<int>(i);
+    return v.get<int>();
   }
 
   std::string string(const std::string& key) const {
@@ -193,7 +288,8 @@ class Reader {
   int none_or_integer(const std::string& key, int lo, int hi) const {
     const json& v = at(key);
     if (v == "none") return 0;
-    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+    const auto whole = whole_value(v);
+    if (!v.is_number_integer() || *whole < lo || *whole > hi)
       fail(key, fmt::format("must be none or a whole number {}..{}, not {}", lo, hi, v.dump()));
     return v.get<int>();
   }
@@ -206,12 +302,14 @@ class Reader {
 
   std::array<int, 2> size2(const std::string& key, int hi) const {
     const json& v = at(key);
-    if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
+    if (!v.is_array() || v.size() != 2 || !whole_value(v[0]) || !whole_value(v[1]))
       fail(key, fmt::format("must be [width, height] in pixels, not {}", v.dump()));
-    const auto w = v[0].get<long long>(), h = v[1].get<long long>();
+    const double w = *whole_value(v[0]), h = *whole_value(v[1]);
     if (w < 1 || h < 1 || w > hi || h > hi)
       fail(key, fmt::format("sides must be 1..{} pixels, not {}", hi, v.dump()));
-    return {static_cast<int>(w), static_cast<int>(h)};
+    if (!v[0].is_number_integer() || !v[1].is_number_integer())
+      fail(key, fmt::format("must be [width, height] in whole pixels, not {}", v.dump()));
+    return {v[0].get<int>(), v[1].get<int>()};
   }
 
   std::array<double, 3> vec3(const std::string& key) const {
@@ -362,12 +460,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides, bool check,
                  const std::map<std::string, std::string>& origins) {
   if (path.empty()) return load_scene_text("", "", overrides, check, origins);
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return load_scene_text(buf.str(), path, overrides, check, origins);
+  return load_scene_text(read_input_file(path, "scene file"), path, overrides, check, origins);
 }
 
 namespace {
@@ -432,6 +525,9 @@ Scene load_scene_text(const std::string& text, const std::string& path,
     // A scene file that does not name itself is called after its file, never after the default
     // scene it starts from: outputs and plots must not label a user's scene "gilg2021".
     if (!user.contains("name")) merged["name"] = std::filesystem::path(path).stem().string();
+    // Nor does it inherit the default's description ("the paper's MTS configuration. The
+    // embedded default scene"), which a report would print as the user's scene's.
+    if (!user.contains("description")) merged["description"] = "";
     // A scene that lists its own pairs replaces the default list, not merges into it.
     merged.merge_patch(user);
     if (user.contains("evaluate")) merged["evaluate"] = user["evaluate"];

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "host/base/errors.h"
 #include "host/output/report.h"
@@ -33,6 +34,10 @@ std::string gnuplot_quote(const std::string& s) {
   return "\"" + out + "\"";
 }
 
+std::string gnuplot_writes(const std::string& output) {
+  return is_stream_output(output) ? output : output + ".tmp";
+}
+
 void run_gnuplot(const std::string& script, const std::string& output) {
   char path[] = "/tmp/depthprec_plot_XXXXXX";
   const int fd = mkstemp(path);
@@ -40,12 +45,19 @@ void run_gnuplot(const std::string& script, const std::string& output) {
   const bool ok = write(fd, script.data(), script.size()) == static_cast<ssize_t>(script.size());
   close(fd);
   if (!ok) throw OutputError("plot: cannot write the temporary gnuplot script");
-  const int status = std::system(fmt::format("gnuplot '{}' 2>&1", path).c_str());
+  // gnuplot's messages are diagnostics: on stderr, never mixed into a result on standard output.
+  const int status = std::system(fmt::format("gnuplot '{}' 1>&2", path).c_str());
   std::remove(path);
+  const std::string written = gnuplot_writes(output);
+  const bool in_place = written == output;
+  const bool drawn = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (drawn && (in_place || std::rename(written.c_str(), output.c_str()) == 0)) return;
+  const int err = errno;
+  if (!in_place) std::remove(written.c_str());  // what a failed gnuplot drew is no plot
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) == 127)
     throw RuntimeError("plot: gnuplot did not run: install gnuplot-nox (scripts/setup.sh does)");
-  if (WEXITSTATUS(status) != 0)
-    throw OutputError(fmt::format("plot: gnuplot failed writing '{}'", output));
+  if (!drawn) throw OutputError(fmt::format("plot: gnuplot failed writing '{}'", output));
+  throw OutputError(fmt::format("cannot write output '{}': {}", output, std::strerror(err)));
 }
 
 }  // namespace depthprec

@@ -9,8 +9,13 @@ namespace depthprec {
 std::string gnuplot_terminal(const std::string& output);
 // A gnuplot string literal.
 std::string gnuplot_quote(const std::string& s);
-// Writes the script to a temporary file and runs gnuplot on it. Throws RuntimeError when gnuplot
-// is missing (naming the package), OutputError when it fails.
+// The file a plot's script sets as gnuplot's output: output.tmp, renamed to output once gnuplot
+// has finished, so a failed plot leaves neither a half-drawn image nor the temporary file; a
+// device or pipe (/dev/stdout) is written in place.
+std::string gnuplot_writes(const std::string& output);
+// Writes the script to a temporary file and runs gnuplot on it, then puts what it wrote
+// (gnuplot_writes) in place. Throws RuntimeError when gnuplot is missing (naming the package),
+// OutputError when it fails.
 void run_gnuplot(const std::string& script, const std::string& output);
 
 // Checks up front, before a batch runs, that a plot can be written there: a .png or .svg name in

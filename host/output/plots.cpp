@@ -22,10 +22,11 @@ std::string series_style(size_t i) {
   return fmt::format("lc rgb '{}' pt {}", kColours[i % 12], 4 + 2 * (i / 12));
 }
 
-// The first lines of every plot's script: the terminal the output's name asks for, and the output.
+// The first lines of every plot's script: the terminal the output's name asks for, and the file
+// gnuplot writes (run_gnuplot puts it in place).
 std::string script_start(const std::string& output) {
   return fmt::format("set terminal {}\nset output {}\n", gnuplot_terminal(output),
-                     gnuplot_quote(output));
+                     gnuplot_quote(gnuplot_writes(output)));
 }
 
 // Log axes labelled as powers of ten (gnuplot's enhanced text), never as 0.000010.

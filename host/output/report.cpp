@@ -1,6 +1,7 @@
 #include "host/output/report.h"
 
 #include <fmt/format.h>
+#include <stdio_ext.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -367,6 +368,10 @@ bool is_stream_output(const std::string& path) {
 
 void check_writable(const std::string& path) {
   if (path.empty()) return;
+  // A directory takes no output; found only at the final rename, it would cost the whole run.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw OutputError(fmt::format("cannot write output '{}': it is a directory", path));
   if (is_stream_output(path)) {  // opening a FIFO would wait for its reader
     if (::access(path.c_str(), W_OK) != 0)
       throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
@@ -382,8 +387,15 @@ void check_writable(const std::string& path) {
 
 void write_output(const std::string& path, const std::string& text) {
   if (path.empty()) {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fflush(stdout);
+    // A full disk or /dev/full fails here, at the write or at the flush: the result is lost, and
+    // the run must not end as if it had been delivered.
+    const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size();
+    if (std::fflush(stdout) != 0 || !ok) {
+      const int err = errno;
+      __fpurge(stdout);  // what did not go out is dropped, so the exit's check does not fail again
+      std::clearerr(stdout);
+      throw OutputError(fmt::format("cannot write standard output: {}", std::strerror(err)));
+    }
     return;
   }
   const bool in_place = is_stream_output(path);
@@ -392,8 +404,11 @@ void write_output(const std::string& path, const std::string& text) {
   if (!f)
     throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok || (!in_place && std::rename(tmp.c_str(), path.c_str()) != 0))
-    throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+  const bool closed = std::fclose(f) == 0;
+  if (ok && closed && (in_place || std::rename(tmp.c_str(), path.c_str()) == 0)) return;
+  const int err = errno;
+  if (!in_place) std::remove(tmp.c_str());  // a failed write leaves nothing half written behind
+  throw OutputError(fmt::format("cannot write output '{}': {}", path, std::strerror(err)));
 }
 
 }  // namespace depthprec

@@ -44,9 +44,20 @@ EGLDisplay open_device(int index, std::string& platform) {
   eglQueryDevicesEXT(0, nullptr, &count);
   std::vector<EGLDeviceEXT> devices(static_cast<size_t>(std::max(count, 0)));
   if (count > 0) eglQueryDevicesEXT(count, devices.data(), &count);
-  if (index >= count)
-    fail(fmt::format("EGL device {} asked for, {} available (device:0 to device:{})", index, count,
-                     count - 1));
+  if (index >= count) {
+    // A device that is not there is the choice's fault, not the installation's: no packages to
+    // install, but the displays there are to choose from.
+    std::string there;
+    for (const GlDisplay& d : list_gl_displays())
+      there += fmt::format("{}{} ({}{})", there.empty() ? "" : ", ", d.choice,
+                           d.usable ? "" : "not usable: ", d.what);
+    throw RuntimeError(fmt::format(
+        "--gl-device device:{}: out of range: this machine has {} EGL device{}{}; the displays "
+        "to choose from: {} (`depthprec devices` lists them)",
+        index, count, count == 1 ? "" : "s",
+        count > 0 ? fmt::format(" (device:0 to device:{})", count - 1) : "",
+        there.empty() ? "none" : there));
+  }
   platform = fmt::format("device:{}", index);
   return eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[static_cast<size_t>(index)],
                                   nullptr);
