@@ -31,7 +31,9 @@ using depthprec::test::run_cli;
 using depthprec::test::slurp;
 namespace fs = std::filesystem;
 
-namespace {
+// The whole file in a namespace of its own: the unity build puts it beside test_program_cache.cpp,
+// whose helpers have the same names.
+namespace dc {
 
 fs::path empty_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("depthprec_test_" + name);
@@ -74,8 +76,6 @@ const std::string kRun =
 std::string env_for(const fs::path& pocl, const std::string& kernel_cache = "off") {
   return "POCL_CACHE_DIR=" + pocl.string() + " DEPTHPREC_KERNEL_CACHE=" + kernel_cache;
 }
-
-}  // namespace
 
 TEST_CASE("a damaged kernel in PoCL's cache is removed, compiled again, and said",
           "[driver_cache][cli]") {
@@ -341,3 +341,5 @@ TEST_CASE("a fatal signal is reported in words with the file mapped where it str
                        Contains("advice for the test"));
   fs::remove(file);
 }
+
+}  // namespace dc
