@@ -12,11 +12,11 @@
 
 #include "host/base/errors.h"
 #include "host/bias/bias_evaluator.h"
+#include "host/bias/bias_reference.h"
 #include "host/bias/bias_search.h"
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"
 #include "host/model/tilted_plane.h"
-#include "host/mts/reference_pipeline.h"
 #include "kernels/bias_formula.h"
 #include "mts_fixture.h"
 #include "run_cli.h"

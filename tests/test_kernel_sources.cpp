@@ -3,8 +3,8 @@
 // a program variant missing a define is refused by its #error instead of reading it as 0.
 #include <catch2/catch.hpp>
 
+#include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
-#include "host/runtime/embedded_sources.h"
 #include "host/runtime/kernel_variant.h"
 #include "mts_fixture.h"
 

@@ -8,7 +8,7 @@
 
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
-#include "host/output/row_json.h"
+#include "host/mts/row_json.h"
 
 namespace depthprec {
 

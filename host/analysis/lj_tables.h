@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "host/batch/batch.h"
 #include "host/lj/lj_metric.h"
 #include "host/runtime/opencl_runtime.h"
 
@@ -47,7 +46,5 @@ LjConfig table_config(LjBuffer b, double ratio, long long samples, LjSampling sa
 // The records' keys: a split-format row, and a row of the 32-bit picks.
 std::string split_key(const char* sampling, int bits, LjBuffer b, double r);
 std::string picks_key(double r);
-// One unit per table row, so an interrupted run keeps every finished row.
-std::vector<BatchUnit> lj_table_units(OpenClRuntime& rt, long long samples);
 
 }  // namespace depthprec

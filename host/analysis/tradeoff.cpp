@@ -7,7 +7,7 @@
 
 #include "host/base/json_number.h"
 #include "host/mts/mts_run.h"
-#include "host/output/row_json.h"
+#include "host/mts/row_json.h"
 
 namespace depthprec {
 

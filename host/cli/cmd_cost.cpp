@@ -19,6 +19,7 @@
 #include "host/output/gnuplot.h"
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
+#include "host/output/report.h"
 #include "host/output/text_table.h"
 
 namespace depthprec::cli {

@@ -310,6 +310,40 @@ std::string render_lj_table_output(const nlohmann::json& header,
 
 namespace {
 
+// One unit per table row, so an interrupted run keeps every finished row.
+std::vector<BatchUnit> lj_table_units(OpenClRuntime& rt, long long samples) {
+  std::vector<BatchUnit> units;
+  auto aes = [](const std::vector<double>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (double x : v) a.push_back(json_number(x));
+    return nlohmann::json{{"ae", a}};
+  };
+  for (const char* sampling : kLjSamplings)
+    for (int bits : kLjBits)
+      for (const LjBuffer b : kLjBuffers)
+        for (double r : kLjRatios)
+          units.push_back(
+              {split_key(sampling, bits, b, r), [&rt, samples, sampling, bits, b, r, aes] {
+                 std::vector<double> v;
+                 for (const auto& x :
+                      sweep(rt, table_config(b, r, samples, parse_lj_sampling(sampling)), bits))
+                   v.push_back(x.ae);
+                 return aes(v);
+               }});
+  for (double r : kLjRatios)
+    units.push_back({picks_key(r), [&rt, samples, r, aes] {
+                       std::vector<double> v;
+                       for (const auto& p : kLjPicks)
+                         v.push_back(lj_average_error_device(
+                                         rt,
+                                         table_config(p.buffer, r, samples, LjSampling::uniform),
+                                         StorageFormat::parse(p.format))
+                                         .ae);
+                       return aes(v);
+                     }});
+  return units;
+}
+
 void run_lj_table(const LjOptions& o, const GlobalOptions& g) {
   check_writable(o.out.output);
   check_plot_output(o.plot);

@@ -22,11 +22,11 @@
 #include "host/cli/scene_options.h"
 #include "host/model/profile.h"
 #include "host/mts/mts_run.h"
+#include "host/mts/row_json.h"
 #include "host/output/json_header.h"
 #include "host/output/output_guard.h"
 #include "host/output/progress.h"
 #include "host/output/report.h"
-#include "host/output/row_json.h"
 #include "host/output/text_table.h"
 #include "host/render/render_run.h"
 

@@ -11,11 +11,11 @@
 
 #include "host/base/errors.h"
 #include "host/cli/commands.h"
+#include "host/mts/row_json.h"
 #include "host/output/gnuplot.h"
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/read_output.h"
-#include "host/output/row_json.h"
 
 namespace depthprec::cli {
 

@@ -16,11 +16,11 @@
 #include "host/cli/scene_options.h"
 #include "host/lj/lj_metric.h"
 #include "host/mts/mts_run.h"
+#include "host/mts/row_json.h"
 #include "host/output/html_report.h"
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/read_output.h"
-#include "host/output/row_json.h"
 
 namespace depthprec::cli {
 

@@ -15,10 +15,11 @@
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
+#include "host/mts/row_json.h"
 #include "host/output/gnuplot.h"
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
-#include "host/output/row_json.h"
+#include "host/output/report.h"
 #include "host/output/text_table.h"
 
 namespace depthprec::cli {

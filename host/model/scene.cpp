@@ -14,11 +14,11 @@
 #include <set>
 #include <sstream>
 
+#include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
 #include "host/base/named_choice.h"
 #include "host/base/read_file.h"
 #include "host/model/profile.h"
-#include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
 

@@ -17,8 +17,8 @@
 #include "host/model/frame_setup.h"
 #include "host/mts/mts_exact.h"
 #include "host/mts/mts_search.h"
+#include "host/mts/row_json.h"
 #include "host/mts/worst_case.h"
-#include "host/output/row_json.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {

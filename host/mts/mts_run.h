@@ -5,7 +5,8 @@
 #include <map>
 #include <set>
 
-#include "host/output/report.h"
+#include "host/mts/mts_row.h"
+#include "host/mts/run_info.h"
 #include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {

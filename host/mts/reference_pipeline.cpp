@@ -405,18 +405,17 @@ FrameCodes reference_frame(const Scene& s, const EvalPair& pair, const Probe& pr
   return fc;
 }
 
-BiasFrame reference_bias_frame(const Scene& s, const EvalPair& pair, const BiasOptions& options,
-                               const BiasProbe& probe, int frame) {
+BiasFrame reference_biased_frame(const Scene& s, const EvalPair& pair, const ReferenceBias& bias,
+                                 double z, int frame) {
   const StorageFormat fmt = s.storage_format(pair);
-  const BiasRule rule = bias_rule(options, fmt);
-  const ProbeConstants pc = probe_constants(s, pair, probe.z);
-  const Mat4f m = plane_matrix(s, pc, probe.z, frame, options.tilt_deg * M_PI / 180.0);
+  const ProbeConstants pc = probe_constants(s, pair, z);
+  const Mat4f m = plane_matrix(s, pc, z, frame, bias.tilt);
   BiasTerms terms;
-  terms.units_term = rule.units_term(probe.units);
-  terms.float_rule = rule.float_rule ? 1 : 0;
-  terms.factor = static_cast<float>(probe.factor);
-  terms.clamp = static_cast<float>(options.clamp);
-  terms.slope_form = options.slope == SlopeForm::sqrt ? BIAS_SLOPE_SQRT : BIAS_SLOPE_MAX;
+  terms.units_term = bias.units_term;
+  terms.float_rule = bias.float_rule;
+  terms.factor = bias.factor;
+  terms.clamp = bias.clamp;
+  terms.slope_form = bias.slope_form;
   const Plane a = setup_plane(s, pair, pc, m);
   const Plane b = setup_plane(s, pair, pc, m, true, &terms);
   const bool greater = info(depth_path(s, pair.technique)).greater;
@@ -448,12 +447,12 @@ BiasFrame reference_bias_frame(const Scene& s, const EvalPair& pair, const BiasO
         out.clipped = true;
         continue;
       }
-      if (!options.or_equal && ca == fmt.encode(greater ? 0.0f : 1.0f)) {
+      if (!bias.or_equal && ca == fmt.encode(greater ? 0.0f : 1.0f)) {
         out.uncovered = true;  // A fails its own test against the cleared buffer: not drawn
         continue;
       }
-      const bool passes = greater ? (options.or_equal ? cb >= ca : cb > ca)
-                                  : (options.or_equal ? cb <= ca : cb < ca);
+      const bool passes =
+          greater ? (bias.or_equal ? cb >= ca : cb > ca) : (bias.or_equal ? cb <= ca : cb < ca);
       if (!passes) out.fight = true;
     }
   }

@@ -16,8 +16,8 @@
 #include "host/base/errors.h"
 #include "host/base/version.h"
 #include "host/model/frame_setup.h"
+#include "host/mts/row_json.h"
 #include "host/output/json_header.h"
-#include "host/output/row_json.h"
 #include "host/output/text_table.h"
 
 namespace depthprec {

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <functional>
 
+#include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
 #include "host/mts/mts_evaluator.h"
-#include "host/runtime/embedded_sources.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {

@@ -5,8 +5,8 @@
 #include <chrono>
 
 #include "host/mts/mts_search.h"
+#include "host/mts/row_json.h"
 #include "host/mts/worst_case.h"
-#include "host/output/row_json.h"
 #include "host/render/gl_depth_format.h"
 #include "host/render/render_evaluator.h"
 

@@ -4,8 +4,8 @@
 #include <set>
 #include <sstream>
 
+#include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
-#include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
 

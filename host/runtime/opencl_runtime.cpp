@@ -6,11 +6,11 @@
 #include <cctype>
 #include <cstdlib>
 
+#include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
 #include "host/base/fatal_signal.h"
 #include "host/base/text.h"
 #include "host/runtime/driver_cache.h"
-#include "host/runtime/embedded_sources.h"
 
 namespace depthprec {
 

@@ -15,7 +15,7 @@
 
 #include "host/base/errors.h"
 #include "host/batch/batch.h"
-#include "host/output/row_json.h"
+#include "host/mts/row_json.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::string out = "/tmp/depthprec_journal_fuzz_" + std::to_string(getpid());

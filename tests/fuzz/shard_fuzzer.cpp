@@ -16,8 +16,8 @@
 #include "host/batch/batch.h"
 #include "host/model/scene.h"
 #include "host/mts/mts_run.h"
+#include "host/mts/row_json.h"
 #include "host/output/report.h"
-#include "host/output/row_json.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto doc = nlohmann::json::parse(data, data + size, nullptr, false);

@@ -1,4 +1,4 @@
-#include "host/output/row_json.h"
+#include "host/mts/row_json.h"
 
 #include <fmt/format.h>
 
