@@ -126,14 +126,15 @@ bool paper_far_below(const MtsRow& r) {
   return std::isfinite(r.mts) && r.mts_paper < 0.95 * r.mts;
 }
 
-// "100 frames", or "worst case over ±1° (100 frames, then rounds of 100)".
+// "100 frames", or how the worst case was sampled.
 std::string sampling_caption(const Scene& s) {
   if (s.sampling == Sampling::paper) return fmt::format("{} frames", s.frames);
+  const WorstCaseSettings& w = s.worst_case;
   return fmt::format(
-      "worst case over rotations within ±{}° (the paper's {} frames, then up to {} rounds of {} "
-      "orientations, until a round raises the MTS by at most {})",
-      human(s.rotation_range_deg), s.frames, s.worst_case.max_rounds, s.frames,
-      human(s.worst_case.tolerance));
+      "worst case over rotations within ±{}°: the paper's {} frames, then rounds of {}, {}, ... "
+      "orientations, each doubling them, {} to {} rounds until one raises the MTS by at most {}",
+      human(s.rotation_range_deg), s.frames, w.round_size, 2 * w.round_size, w.min_rounds,
+      w.max_rounds, human(w.tolerance));
 }
 
 }  // namespace
