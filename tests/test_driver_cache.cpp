@@ -24,32 +24,20 @@
 #include "host/runtime/cache_manifest.h"
 #include "host/runtime/pocl_cache_files.h"
 #include "run_cli.h"
+#include "test_files.h"
 
 using namespace depthprec;
 using Catch::Matchers::Contains;
 using depthprec::test::run_cli;
 using depthprec::test::slurp;
 namespace fs = std::filesystem;
+using depthprec::test::bytes_of;
+using depthprec::test::empty_dir;
+using depthprec::test::write_bytes;
 
 // The whole file in a namespace of its own: the unity build puts it beside test_program_cache.cpp,
 // whose helpers have the same names.
 namespace dc {
-
-fs::path empty_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("depthprec_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string bytes_of(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void write_bytes(const fs::path& p, const std::string& b) {
-  std::ofstream(p, std::ios::binary | std::ios::trunc) << b;
-}
 
 // The first file of the cache whose path ends with tail.
 fs::path cache_file(const fs::path& dir, const std::string& tail) {

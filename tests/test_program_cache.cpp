@@ -7,28 +7,16 @@
 
 #include "host/runtime/program_cache.h"
 #include "run_cli.h"
+#include "test_files.h"
 
 using namespace depthprec;
 namespace fs = std::filesystem;
+using depthprec::test::bytes_of;
+using depthprec::test::empty_dir;
 using depthprec::test::run_cli;
+using depthprec::test::write_bytes;
 
 namespace {
-
-fs::path empty_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("depthprec_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string bytes_of(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void write_bytes(const fs::path& p, const std::string& b) {
-  std::ofstream(p, std::ios::binary | std::ios::trunc) << b;
-}
 
 fs::path only_entry(const fs::path& dir) {
   std::vector<fs::path> files;
