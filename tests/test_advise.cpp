@@ -17,13 +17,16 @@ using depthprec::test::run_cli;
 
 namespace {
 
+// The paper's frames: these tests check the bisections to near_precision; under worst-case
+// sampling the answer also moves past values that fail its safety checks (the test at the end).
 Scene small_scene(const std::string& pairs) {
-  return load_scene("", {"kernel=[24,24]", "frames=4", "evaluate=" + pairs});
+  return load_scene("", {"kernel=[24,24]", "frames=4", "sampling=paper", "evaluate=" + pairs});
 }
 
 }  // namespace
 
-TEST_CASE("advise finds the smallest near plane that holds; the next one down fails", "[advise]") {
+TEST_CASE("advise finds the smallest near plane that holds, and the next one down fails",
+          "[advise]") {
   const Scene scene =
       small_scene(R"([{"technique": "standard", "format": "unorm24", "depth_range": "gl"}])");
   AdviseRequest r;
@@ -97,7 +100,7 @@ TEST_CASE("advise refuses what it cannot answer", "[advise][cli][errors]") {
   }
 }
 
-TEST_CASE("advise's far plane is the farthest that holds; the next one out fails",
+TEST_CASE("advise's far plane is the farthest that holds, and the next one out fails",
           "[advise][far]") {
   // Linear depth in unorm24 resolves (f - n) / 2^24 everywhere: with the scene's far plane at
   // 1e9 no near plane meets 0.01, pulled in to the content it does, and it may move out again

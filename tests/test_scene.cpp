@@ -42,7 +42,7 @@ TEST_CASE("a scene file overrides only what it names", "[scene]") {
   CHECK(s.evaluate[0].depth_range == DepthRange::zero_to_one);
 }
 
-TEST_CASE("a scene is named by its own name key, else its file; --set marks it changed",
+TEST_CASE("a scene is named by its own name key, else its file, and --set marks it changed",
           "[scene]") {
   CHECK(load_scene("").name == "gilg2021");
   CHECK(load_scene("", {"near=2"}).name == "gilg2021+set");
