@@ -19,6 +19,8 @@
 #include "host/base/named_choice.h"
 #include "host/base/read_file.h"
 #include "host/model/profile.h"
+#include "host/model/scene_json.h"
+#include "host/model/scene_reader.h"
 
 namespace depthprec {
 
@@ -63,126 +65,6 @@ const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 const std::set<std::string> kWorstCaseKeys = {"min_rounds", "max_rounds", "round_size",
                                               "tolerance"};
 
-// "line L, column C" of a byte offset in text (1-based, as editors count).
-std::string position_of(const std::string& text, size_t offset) {
-  size_t line = 1, col = 1;
-  for (size_t i = 0; i < offset && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return fmt::format("{}:{}", line, col);
-}
-
-// Where a key first appears in the file, for errors about keys (nlohmann keeps no positions).
-std::string where(const std::string& source, const std::string& text, const std::string& key) {
-  const size_t at = text.empty() ? std::string::npos : text.find("\"" + key + "\"");
-  if (at == std::string::npos) return source;
-  return source + ":" + position_of(text, at);
-}
-
-// Where the n-th (from 0) occurrence of "key" as a key stands in text ("" when not found: a key
-// written with escapes).
-std::string key_position(const std::string& text, const std::string& key, size_t n) {
-  const std::string quoted = "\"" + key + "\"";
-  for (size_t at = text.find(quoted); at != std::string::npos; at = text.find(quoted, at + 1)) {
-    const size_t colon = text.find_first_not_of(" \t\r\n", at + quoted.size());
-    if (colon == std::string::npos || text[colon] != ':') continue;
-    if (n-- == 0) return position_of(text, at);
-  }
-  return "";
-}
-
-// JSON allows a key twice in an object and nlohmann keeps the last: a scene that sets `near`
-// twice would run with one of them unsaid. The parser's callback sees every key in order, so a
-// repeat is refused with its path and both places.
-class DuplicateKeyCheck {
- public:
-  DuplicateKeyCheck(const std::string& text, const std::string& source)
-      : text_(text), source_(source) {}
-
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-        frames_.push_back({false});
-        break;
-      case json::parse_event_t::array_start:
-        frames_.push_back({true});
-        break;
-      case json::parse_event_t::key: {
-        const std::string key = parsed.get<std::string>();
-        const size_t nth = seen_[key]++;
-        Frame& f = frames_.back();
-        f.key = key;
-        if (!f.keys.insert(key).second) {
-          const std::string at = key_position(text_, key, nth);
-          throw InputError(
-              fmt::format("{}{}: key '{}' given twice{}; JSON keeps only one of them: give it once",
-                          source_, at.empty() ? "" : ":" + at, path(), first_place(key, f)));
-        }
-        f.first[key] = nth;
-        break;
-      }
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        frames_.pop_back();
-        next_element();
-        break;
-      case json::parse_event_t::value:
-        next_element();
-        break;
-    }
-    return true;
-  }
-
- private:
-  struct Frame {
-    bool array = false;
-    size_t index = 0;                       // arrays: the element being read
-    std::string key;                        // objects: the key being read
-    std::set<std::string> keys;             // objects: the keys read so far
-    std::map<std::string, size_t> first{};  // objects: which occurrence of each key it was
-  };
-  void next_element() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-  }
-  std::string path() const {
-    std::string p;
-    for (const Frame& f : frames_)
-      p += f.array ? fmt::format("[{}]", f.index) : (p.empty() ? "" : ".") + f.key;
-    return p;
-  }
-  std::string first_place(const std::string& key, const Frame& f) const {
-    const std::string at = key_position(text_, key, f.first.at(key));
-    return at.empty() ? "" : fmt::format(" (first at {})", at);
-  }
-  const std::string& text_;
-  const std::string& source_;
-  std::vector<Frame> frames_;
-  std::map<std::string, size_t> seen_;  // occurrences of each key in the text so far
-};
-
-json parse_text(const std::string& text, const std::string& source) {
-  try {
-    return json::parse(text, DuplicateKeyCheck(text, source));
-  } catch (const json::parse_error& e) {
-    std::string msg = e.what();
-    const auto p = msg.find("parse error");
-    if (p != std::string::npos) msg = msg.substr(p);
-    throw InputError(fmt::format("{}:{}: malformed JSON: {}", source,
-                                 position_of(text, e.byte > 0 ? e.byte - 1 : 0), msg));
-  } catch (const json::exception& e) {
-    // e.g. a number too large for binary64 (found by the fuzzer): no position is known
-    std::string msg = e.what();
-    const auto p = msg.find("] ");
-    if (p != std::string::npos) msg = msg.substr(p + 2);
-    throw InputError(fmt::format("{}: malformed JSON: {}", source, msg));
-  }
-}
-
 void check_known_keys(const json& j, const std::set<std::string>& known, const std::string& what,
                       const std::string& source, const std::string& text) {
   if (!j.is_object()) return;
@@ -191,7 +73,8 @@ void check_known_keys(const json& j, const std::set<std::string>& known, const s
     std::string list;
     for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
     throw InputError(fmt::format("{}: unknown key '{}' in {}; known keys: {}",
-                                 where(source, text, item.key()), item.key(), what, list));
+                                 scene_key_where(source, text, item.key()), item.key(), what,
+                                 list));
   }
 }
 
@@ -206,142 +89,6 @@ void check_user_keys(const json& j, const std::string& source, const std::string
     for (const auto& p : j["evaluate"])
       check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
 }
-
-// The value of a JSON number that is a whole number, however it is written (4, 4.0, 1e12, and an
-// integer beyond 64 bits, which nlohmann reads as a double); nullopt for anything else.
-std::optional<double> whole_value(const json& v) {
-  if (!v.is_number()) return std::nullopt;
-  const double d = v.get<double>();
-  if (!std::isfinite(d) || d != std::floor(d)) return std::nullopt;
-  return d;
-}
-
-// Reads typed values with errors that name the key and say what is allowed.
-class Reader {
- public:
-  // origins: the command-line option that set a key (e.g. "--near 5", "--set near=5"); a key
-  // found there is blamed on it rather than on the scene file.
-  Reader(const json& j, std::string source, std::string text,
-         const std::map<std::string, std::string>& origins)
-      : j_(j), source_(std::move(source)), text_(std::move(text)), origins_(origins) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& msg) const {
-    for (std::string k = key;;
-         k = k.substr(0, k.rfind('.'))) {  // "pipeline.divide", then "pipeline"
-      const auto o = origins_.find(k);
-      if (o != origins_.end()) throw InputError(fmt::format("{}: '{}' {}", o->second, key, msg));
-      if (k.find('.') == std::string::npos) break;
-    }
-    const std::string leaf =
-        key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1);
-    throw InputError(fmt::format("{}: '{}' {}", where(source_, text_, leaf), key, msg));
-  }
-
-  const json& at(const std::string& key) const {
-    const json* p = &j_;
-    std::stringstream ss(key);
-    std::string part;
-    while (std::getline(ss, part, '.')) {
-      if (!p->is_object() || !p->contains(part)) fail(key, "is missing");
-      p = &(*p)[part];
-    }
-    return *p;
-  }
-
-  // A number; "inf" is accepted where allow_inf (JSON has no infinity).
-  double number(const std::string& key, bool allow_inf = false) const {
-    const json& v = at(key);
-    if (allow_inf && v.is_string() && (v == "inf" || v == "infinity")) return INFINITY;
-    if (!v.is_number())
-      fail(key,
-           fmt::format("must be a number{}, not {}", allow_inf ? " or \"inf\"" : "", v.dump()));
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(key, "must be finite");
-    return d;
-  }
-
-  double positive(const std::string& key, bool allow_inf = false) const {
-    const double d = number(key, allow_inf);
-    if (!(d > 0)) fail(key, fmt::format("must be > 0, not {}", d));
-    return d;
-  }
-
-  int integer(const std::string& key, int lo, int hi) const {
-    const json& v = at(key);
-    // A whole number too large for an integer (1e12, 1e30 reads as a double) is out of range
-    // before it is no integer: the range is what the user needs to hear.
-    const auto whole = whole_value(v);
-    if (whole && (*whole < lo || *whole > hi))
-      fail(key, fmt::format("must be {}..{}, not {} (too {})", lo, hi, v.dump(),
-                            *whole > hi ? "large" : "small"));
-    if (!v.is_number_integer()) fail(key, fmt::format("must be a whole number, not {}", v.dump()));
-    return v.get<int>();
-  }
-
-  std::string string(const std::string& key) const {
-    const json& v = at(key);
-    if (!v.is_string()) fail(key, fmt::format("must be a string, not {}", v.dump()));
-    return v.get<std::string>();
-  }
-
-  // "none" (0) or a whole number lo..hi.
-  int none_or_integer(const std::string& key, int lo, int hi) const {
-    const json& v = at(key);
-    if (v == "none") return 0;
-    const auto whole = whole_value(v);
-    if (!v.is_number_integer() || *whole < lo || *whole > hi)
-      fail(key, fmt::format("must be none or a whole number {}..{}, not {}", lo, hi, v.dump()));
-    return v.get<int>();
-  }
-
-  bool boolean(const std::string& key) const {
-    const json& v = at(key);
-    if (!v.is_boolean()) fail(key, fmt::format("must be true or false, not {}", v.dump()));
-    return v.get<bool>();
-  }
-
-  std::array<int, 2> size2(const std::string& key, int hi) const {
-    const json& v = at(key);
-    if (!v.is_array() || v.size() != 2 || !whole_value(v[0]) || !whole_value(v[1]))
-      fail(key, fmt::format("must be [width, height] in pixels, not {}", v.dump()));
-    const double w = *whole_value(v[0]), h = *whole_value(v[1]);
-    if (w < 1 || h < 1 || w > hi || h > hi)
-      fail(key, fmt::format("sides must be 1..{} pixels, not {}", hi, v.dump()));
-    if (!v[0].is_number_integer() || !v[1].is_number_integer())
-      fail(key, fmt::format("must be [width, height] in whole pixels, not {}", v.dump()));
-    return {v[0].get<int>(), v[1].get<int>()};
-  }
-
-  std::array<double, 3> vec3(const std::string& key) const {
-    const json& v = at(key);
-    if (!v.is_array() || v.size() != 3)
-      fail(key, fmt::format("must be three numbers [x, y, z], not {}", v.dump()));
-    std::array<double, 3> out{};
-    for (int i = 0; i < 3; ++i) {
-      if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-        fail(key, fmt::format("must be three finite numbers, not {}", v.dump()));
-      out[i] = v[i].get<double>();
-    }
-    return out;
-  }
-
-  // Converts an enum-like string with the given parser, reporting the key on failure.
-  template <class F>
-  auto choice(const std::string& key, F parse) const {
-    const std::string s = string(key);
-    try {
-      return parse(s);
-    } catch (const InputError& e) {
-      fail(key, e.what());
-    }
-  }
-
- private:
-  const json& j_;
-  std::string source_;
-  std::string text_;
-  const std::map<std::string, std::string>& origins_;
-};
 
 MatrixPrecision parse_matrix_precision(const std::string& s) {
   return named_choice<MatrixPrecision>(
@@ -515,12 +262,12 @@ std::string matching_profile(const json& pipeline) {
 Scene load_scene_text(const std::string& text, const std::string& path,
                       const std::vector<std::string>& overrides, bool check,
                       const std::map<std::string, std::string>& origins) {
-  json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
+  json merged = parse_scene_json(default_scene_text(), std::string("embedded:") + kDefaultPath);
   std::string source = std::string("embedded:") + kDefaultPath;
   json user = json::object(), patch = json::object();
   if (!path.empty()) {
     source = path;
-    user = parse_text(text, path);
+    user = parse_scene_json(text, path);
     check_user_keys(user, path, text);
     // A scene file that does not name itself is called after its file, never after the default
     // scene it starts from: outputs and plots must not label a user's scene "gilg2021".
@@ -554,7 +301,7 @@ Scene load_scene_text(const std::string& text, const std::string& path,
 }
 
 Scene scene_from_json(const json& j, const std::string& source) {
-  json merged = parse_text(default_scene_text(), std::string("embedded:") + kDefaultPath);
+  json merged = parse_scene_json(default_scene_text(), std::string("embedded:") + kDefaultPath);
   check_user_keys(j, source, "");
   merged.merge_patch(j);
   if (j.contains("evaluate")) merged["evaluate"] = j["evaluate"];
