@@ -266,9 +266,12 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
       "depth range and distance z, the smallest separation s of two planes at z and fl32(z+s)\n"
       "for which the farther plane never wins the depth test, found by the host's bisection\n"
       "over an emulated binary32 pipeline. One line per (pair, distance) with the bracket,\n"
-      "the vertex-precision bound, work done and flags.\n"
+      "the vertex-precision bound, work done and flags. The MTS is the worst case over the\n"
+      "orientations the scene allows (mts_paper: the paper's 100 frames alone; orientations and\n"
+      "convergence: what it rests on; docs/mts.md, \"The worst case\").\n"
       "Examples:\n"
       "  depthprec mts -t reversed -f float32 --depth-range zero_to_one --distances 2,1024,1e6\n"
+      "  depthprec mts -t linear -f float32 --distances 16384 --set sampling=paper\n"
       "  depthprec mts -t standard,linear -f unorm24 --kernel 50x50 --frames 20\n"
       "  depthprec mts my_scene.json --set pipeline.divide=exact --format-out csv");
   mts->scene.add_to(*cmd, true);
