@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -63,10 +64,10 @@ class DuplicateKeyCheck {
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
-        frames_.push_back({false});
+        frames_.push_back(Frame{false, 0, {}, {}, {}});
         break;
       case json::parse_event_t::array_start:
-        frames_.push_back({true});
+        frames_.push_back(Frame{true, 0, {}, {}, {}});
         break;
       case json::parse_event_t::key: {
         const std::string key = parsed.get<std::string>();

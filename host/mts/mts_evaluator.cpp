@@ -7,152 +7,12 @@
 #include <limits>
 
 #include "host/base/errors.h"
+#include "host/mts/mts_evaluator_parts.h"
 #include "kernels/mts_layout.h"
 
 namespace depthprec {
 
-namespace {
-
-constexpr int kProbeStride = PROBE_STRIDE;
-constexpr uint32_t kFight = R_FIGHT, kClipped = R_CLIPPED, kNonFinite = R_NONFINITE,
-                   kUncovered = R_UNCOVERED, kBounds = R_BOUNDS, kReused = R_REUSED;
-constexpr int kCountShift = R_COUNT_SHIFT;
-constexpr uint32_t kVertexNonFinite = V_NONFINITE;
-
-// Kernel rows per band that mts_frame_bounds decides at once from code bounds: a band's depth
-// range grows with its height, so smaller bands are decided closer to the MTS but cost more
-// bounds work per row.
-constexpr cl_uint kBandRows = 32;
-static_assert(kBandRows <= 32,
-              "a band's rows left out of its verdict are bits of one word (DW_BAD_ROWS)");
-
-// The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
-// its share of this (all frames of each; the pairs a run evaluates side by side share it) and at
-// most kMaxSlots. The search keeps no more distances in flight than that (distances_at_once), so
-// none is evicted while it is still probed: memory stays within the budget whatever the frames
-// or distances. A small window costs no speed: the default table took 12.0 s with one job at 64
-// MiB and at 192 MiB, 11.1 s with two jobs at 64 MiB each (docs/performance.md).
-constexpr size_t kPlaneACacheBytes = size_t{128} << 20;
-constexpr size_t kMaxSlots = 64;
-
-constexpr size_t kLocal = kWorkGroup;  // host/runtime/opencl_runtime.h
-cl::NDRange padded(size_t n) {
-  return cl::NDRange(padded_size(n));
-}
-
-constexpr int kMaxBatchFrames = 64;  // batch_frames' largest batch
-
-cl_uint band_count(const Scene& scene) {
-  return (static_cast<cl_uint>(scene.kernel_h) + kBandRows - 1) / kBandRows;
-}
-
-// Floats per plane record (kernels/mts_layout.h, the buffer layout the kernels include too).
-size_t plane_record_floats(const Scene& scene) {
-  return MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions),
-                          static_cast<size_t>(scene.pipeline.clip_slots()));
-}
-
-// Words per kernel row of plane A's cached codes (0: not cached).
-size_t code_row_words(const Scene& scene, bool cache_codes) {
-  return cache_codes ? static_cast<size_t>(scene.kernel_w) + CODE_ROW_PAD : 0;
-}
-
-// Bytes of one plane-A cache slot: one distance, every frame (MtsEvaluator::cache_plane_a).
-size_t plane_a_slot_bytes(const Scene& scene, bool cache_codes) {
-  const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h);
-  return sizeof(float) * (kProbeStride + f * plane_record_floats(scene)) +
-         sizeof(uint32_t) * f *
-             (1 + kh * (ROW_WORDS + code_row_words(scene, cache_codes)) +
-              BAND_WORDS * band_count(scene));
-}
-
-// Distances the plane-A cache holds at once with its budget shared by `evaluators`.
-size_t plane_a_slots(const Scene& scene, bool cache_codes, int evaluators) {
-  const size_t share = kPlaneACacheBytes / static_cast<size_t>(std::max(1, evaluators));
-  return std::clamp<size_t>(share / std::max<size_t>(plane_a_slot_bytes(scene, cache_codes), 1), 1,
-                            kMaxSlots);
-}
-
-}  // namespace
-
-int batch_frames(int done, int total) {
-  const int want = done == 0 ? 4 : done < 20 ? 16 : kMaxBatchFrames;
-  return std::min(want, total - done);
-}
-
-void LaunchPrimer::once(const std::string& kernel, const std::function<void()>& prime) {
-  std::once_flag* flag = nullptr;
-  {
-    std::lock_guard<std::mutex> lock(m_);
-    flag = &flags_[kernel];  // a map's elements stay where they are
-  }
-  std::call_once(*flag, prime);
-}
-
-std::vector<size_t> undecided(const std::vector<bool>& decided) {
-  std::vector<size_t> out;
-  for (size_t i = 0; i < decided.size(); ++i)
-    if (!decided[i]) out.push_back(i);
-  return out;
-}
-
-std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows,
-                                  const std::vector<size_t>& active, int first_frame, int frames,
-                                  size_t kernel_h, std::vector<ProbeResult>& results,
-                                  std::vector<bool>& decided, uint64_t& after_decision) {
-  std::vector<uint64_t> probe_pairs(active.size(), 0);
-  for (size_t i = 0; i < active.size(); ++i) {
-    ProbeResult& r = results[active[i]];
-    for (int f = 0; f < frames; ++f) {
-      uint32_t flags = 0;
-      uint64_t frame_pairs = 0;
-      for (size_t y = 0; y < kernel_h; ++y) {
-        const uint32_t v = rows[(i * frames + f) * kernel_h + y];
-        flags |= v;
-        frame_pairs += v >> kCountShift;
-      }
-      probe_pairs[i] += frame_pairs;
-      if (decided[active[i]]) {  // frames after the deciding one: work, not outcome
-        after_decision += frame_pairs;
-        continue;
-      }
-      r.frames = first_frame + f + 1;
-      r.any_clipped |= (flags & kClipped) != 0;
-      r.any_uncovered |= (flags & kUncovered) != 0;
-      if (flags & kNonFinite) {
-        r.any_non_finite = true;
-        r.outcome = Outcome::non_finite;
-        decided[active[i]] = true;
-      } else if (flags & kFight) {
-        r.outcome = Outcome::fight;
-        decided[active[i]] = true;
-      }
-    }
-    r.fragment_pairs += probe_pairs[i];
-  }
-  return probe_pairs;
-}
-
-void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided) {
-  for (size_t i = 0; i < results.size(); ++i)
-    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
-}
-
-const char* to_string(Outcome o) {
-  switch (o) {
-    case Outcome::clean:
-      return "clean";
-    case Outcome::fight:
-      return "fight";
-    case Outcome::clipped:
-      return "clipped";
-    case Outcome::non_finite:
-      return "non_finite";
-    case Outcome::uncovered:
-      return "uncovered";
-  }
-  return "?";
-}
+using namespace mts_parts;
 
 MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                            bool shortcuts, Kernels kernels)
@@ -180,84 +40,6 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
 
 void MtsEvaluator::share_plane_a_budget(int evaluators) {
   max_slots_ = plane_a_slots(scene_, variant_.cache_a_codes, evaluators);
-}
-
-MtsEvaluator::LaunchWidths& MtsEvaluator::LaunchWidths::operator|=(const LaunchWidths& o) {
-  setup = std::max(setup, o.setup);
-  a_rows = std::max(a_rows, o.a_rows);
-  a_bands = std::max(a_bands, o.a_bands);
-  bounds = std::max(bounds, o.bounds);
-  raster = std::max(raster, o.raster);
-  return *this;
-}
-
-MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene, const EvalPair& pair,
-                                                         int evaluators) {
-  const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h),
-               bands = band_count(scene);
-  // A launch of run() takes the probes of at most distances_at_once() distances (search_pair's
-  // window), one bisection probe or the stiffness probes of each, over at most kMaxBatchFrames
-  // frames; the plane-A cache's launches take every frame of one distance.
-  const size_t probes = plane_a_slots(scene, mts_variant(scene, pair).cache_a_codes, evaluators) *
-                        static_cast<size_t>(std::max(1, 2 * scene.stiffness_probes));
-  const size_t frames = std::min<size_t>(f, kMaxBatchFrames), planes = probes * frames;
-  LaunchWidths w;
-  w.setup = padded_size(std::max(f, planes));
-  w.a_rows = padded_size(f * kh);
-  w.a_bands = padded_size(f * bands);
-  w.bounds = padded_size(planes * bands);
-  w.raster = std::max({padded_size(bands), frames, probes});  // (bands, frames, probes)
-  return w;
-}
-
-void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& primer) {
-  const cl::Buffer none(rt_.context(), CL_MEM_READ_WRITE, 64);
-  const cl_uint no = 0;  // items, count, kernel rows: every work-item returns at once
-  const float at = 0.0f;
-  // once per kernel of a program build: its source, options and name
-  const auto prime = [&](cl::Kernel& k, const std::string& program, size_t width, int dimensions) {
-    primer.once(program + " " + k.getInfo<CL_KERNEL_FUNCTION_NAME>(), [&] {
-      const size_t w = padded_size(width);
-      rt_.queue().enqueueNDRangeKernel(
-          k, cl::NullRange, dimensions == 3 ? cl::NDRange(w, 1, 1) : cl::NDRange(w),
-          dimensions == 3 ? cl::NDRange(kLocal, 1, 1) : cl::NDRange(kLocal));
-      rt_.queue().finish();
-    });
-  };
-  const std::string program = variant_.program + " " + variant_.options;
-  set_args(setup_, none, none, cl_uint{1}, at, at, at, at, no, no, kBandRows, none, none, no, no);
-  prime(setup_, variant_.setup_program + " " + variant_.setup_options, widths.setup, 1);
-  set_args(a_rows_, none, none, none, no, no, no, no, at, at, none, none, no, none, none, no,
-           kBandRows);
-  prime(a_rows_, program, widths.a_rows, 1);
-  set_args(a_bands_, none, none, none, no, no, no, no, at, at, no, kBandRows, none, no);
-  prime(a_bands_, program, widths.a_bands, 1);
-  set_args(bounds_, none, none, none, none, none, none, none, no, no, no, no, at, at, no, no,
-           kBandRows, none, no);
-  prime(bounds_, program, widths.bounds, 1);
-  set_args(raster_, none, none, none, none, none, none, none, no, none, no, no, no, at, at, no,
-           none, no, kBandRows, no, none);
-  prime(raster_, program, widths.raster, 3);
-  primed_ = widths;
-}
-
-void MtsEvaluator::launch(cl::Kernel& k, size_t primed, const cl::NDRange& global,
-                          const cl::NDRange& local, cl::Event* done) {
-  for (size_t d = 0; primed && d < global.dimensions(); ++d)
-    if (global.get()[d] > primed)
-      throw Error(ExitCode::internal,
-                  fmt::format("{}: a grid {} work-items wide, wider than the {} it was primed for "
-                              "(MtsEvaluator::widest_launches)",
-                              k.getInfo<CL_KERNEL_FUNCTION_NAME>(), global.get()[d], primed));
-  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, global, local, nullptr, done);
-  ++launches_;
-}
-
-const cl::Program& MtsEvaluator::test_program() const {
-  if (!test_program_())
-    throw Error(ExitCode::internal,
-                "the test kernels need an MtsEvaluator built with Kernels::with_tests");
-  return test_program_;
 }
 
 size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {
@@ -419,17 +201,6 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes,
   return setup(probe_buf, mats, static_cast<cl_uint>(frames), 0, tris, vflags);
 }
 
-CoverageAudit MtsEvaluator::audit_coverage(const std::vector<Probe>& probes) {
-  reserve_plane_a(probes);
-  CoverageAudit total;
-  for (const std::vector<size_t>& group : cache_groups(probes)) {
-    std::vector<Probe> held;
-    for (const size_t i : group) held.push_back(probes[i]);
-    total += audit_cached(held);
-  }
-  return total;
-}
-
 std::vector<std::vector<size_t>> MtsEvaluator::cache_groups(
     const std::vector<Probe>& probes) const {
   std::vector<std::vector<size_t>> groups;
@@ -449,38 +220,6 @@ std::vector<std::vector<size_t>> MtsEvaluator::cache_groups(
     }
   }
   return groups;
-}
-
-CoverageAudit MtsEvaluator::audit_cached(const std::vector<Probe>& probes) {
-  std::vector<size_t> all(probes.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  double ksecs = 0;
-  std::vector<int> cache_launches;
-  const std::vector<cl_uint> slots = cache_plane_a(probes, all, ksecs, cache_launches);
-  const int frames = scene_.frames;
-  cl::Buffer probe_buf, slot_buf, tris, vflags;
-  setup_plane_b(probes, all, slots, std::vector<int>(probes.size(), 0), 0, frames, probe_buf,
-                slot_buf, tris, vflags);
-  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
-  const size_t items = probes.size() * frames * kh;
-  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-  cl::Kernel k(test_program(), "mts_coverage_audit");
-  set_args(k, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf, cl_uint{0},
-           static_cast<cl_uint>(frames), kw, kh, origin_x(), origin_y(),
-           static_cast<cl_uint>(frames), kBandRows, out, static_cast<cl_uint>(items));
-  rt_.queue().enqueueNDRangeKernel(k, cl::NullRange, padded(items), cl::NDRange(kLocal));
-  std::vector<uint32_t> words(items);
-  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, words.data());
-  CoverageAudit a;
-  for (const uint32_t w : words) {
-    a.rows += (w >> 3) & 1;
-    a.b_differs += w & 1;
-    a.certified += (w >> 1) & 1;
-    a.certified_but_differs += (w >> 2) & 1;
-    a.a_differs += (w >> 4) & 1;
-    a.from_reference += (w >> 5) & 1;
-  }
-  return a;
 }
 
 std::vector<ProbeResult> MtsEvaluator::run(const std::vector<Probe>& probes) {
@@ -638,41 +377,6 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     pairs_ += launch_pairs;
     done += frames;
   }
-}
-
-FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
-  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
-  const auto packed = pc.packed();
-  const cl::Buffer probe_buf =
-      buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));
-  std::vector<float> mats;
-  for (const double d : {probe.z, probe.z + probe.s}) {
-    const Mat4f m = plane_matrix(scene_, pc, d, frame);
-    mats.insert(mats.end(), m.begin(), m.end());
-  }
-  cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * plane_floats_);
-  cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * 2);
-  setup(probe_buf, mats, 2, 0, tris, vflags);
-  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
-  const size_t pixels = static_cast<size_t>(kw) * kh;
-  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * 4 * pixels);
-  cl::Kernel codes(test_program(), "mts_codes");
-  set_args(codes, probe_buf, tris, kw, origin_x(), origin_y(), out, kh);
-  rt_.queue().enqueueNDRangeKernel(codes, cl::NullRange, padded(kh), cl::NDRange(kLocal));
-  std::vector<uint32_t> raw(4 * pixels);
-  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * raw.size(), raw.data());
-  uint32_t vf[2] = {0, 0};
-  rt_.queue().enqueueReadBuffer(vflags, CL_TRUE, 0, sizeof vf, vf);
-  FrameCodes fc;
-  fc.width = static_cast<int>(kw);
-  fc.height = static_cast<int>(kh);
-  for (size_t i = 0; i < pixels; ++i) {
-    fc.code_a.push_back(raw[4 * i]);
-    fc.code_b.push_back(raw[4 * i + 1]);
-    fc.status_a.push_back((vf[0] & kVertexNonFinite) ? 2 : static_cast<uint8_t>(raw[4 * i + 2]));
-    fc.status_b.push_back((vf[1] & kVertexNonFinite) ? 2 : static_cast<uint8_t>(raw[4 * i + 3]));
-  }
-  return fc;
 }
 
 }  // namespace depthprec

@@ -1,0 +1,76 @@
+// What the MtsEvaluator's files share (mts_evaluator.cpp, mts_launches.cpp, mts_test_kernels.cpp):
+// the result bits and constants of the host-kernel layout under the names the host uses, the
+// band height, the plane-A cache's budget and record sizes. Internal to host/mts/.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "host/model/scene.h"
+#include "host/runtime/opencl_runtime.h"
+#include "kernels/mts_layout.h"
+
+namespace depthprec::mts_parts {
+
+constexpr int kProbeStride = PROBE_STRIDE;
+constexpr uint32_t kFight = R_FIGHT, kClipped = R_CLIPPED, kNonFinite = R_NONFINITE,
+                   kUncovered = R_UNCOVERED, kBounds = R_BOUNDS, kReused = R_REUSED;
+constexpr int kCountShift = R_COUNT_SHIFT;
+constexpr uint32_t kVertexNonFinite = V_NONFINITE;
+
+// Kernel rows per band that mts_frame_bounds decides at once from code bounds: a band's depth
+// range grows with its height, so smaller bands are decided closer to the MTS but cost more
+// bounds work per row.
+constexpr cl_uint kBandRows = 32;
+static_assert(kBandRows <= 32,
+              "a band's rows left out of its verdict are bits of one word (DW_BAD_ROWS)");
+
+// The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
+// its share of this (all frames of each; the pairs a run evaluates side by side share it) and at
+// most kMaxSlots. The search keeps no more distances in flight than that (distances_at_once), so
+// none is evicted while it is still probed: memory stays within the budget whatever the frames
+// or distances. A small window costs no speed: the default table took 12.0 s with one job at 64
+// MiB and at 192 MiB, 11.1 s with two jobs at 64 MiB each (docs/performance.md).
+constexpr size_t kPlaneACacheBytes = size_t{128} << 20;
+constexpr size_t kMaxSlots = 64;
+
+constexpr size_t kLocal = kWorkGroup;  // host/runtime/opencl_runtime.h
+inline cl::NDRange padded(size_t n) {
+  return cl::NDRange(padded_size(n));
+}
+
+constexpr int kMaxBatchFrames = 64;  // batch_frames' largest batch
+
+inline cl_uint band_count(const Scene& scene) {
+  return (static_cast<cl_uint>(scene.kernel_h) + kBandRows - 1) / kBandRows;
+}
+
+// Floats per plane record (kernels/mts_layout.h, the buffer layout the kernels include too).
+inline size_t plane_record_floats(const Scene& scene) {
+  return MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions),
+                          static_cast<size_t>(scene.pipeline.clip_slots()));
+}
+
+// Words per kernel row of plane A's cached codes (0: not cached).
+inline size_t code_row_words(const Scene& scene, bool cache_codes) {
+  return cache_codes ? static_cast<size_t>(scene.kernel_w) + CODE_ROW_PAD : 0;
+}
+
+// Bytes of one plane-A cache slot: one distance, every frame (MtsEvaluator::cache_plane_a).
+inline size_t plane_a_slot_bytes(const Scene& scene, bool cache_codes) {
+  const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h);
+  return sizeof(float) * (kProbeStride + f * plane_record_floats(scene)) +
+         sizeof(uint32_t) * f *
+             (1 + kh * (ROW_WORDS + code_row_words(scene, cache_codes)) +
+              BAND_WORDS * band_count(scene));
+}
+
+// Distances the plane-A cache holds at once with its budget shared by `evaluators`.
+inline size_t plane_a_slots(const Scene& scene, bool cache_codes, int evaluators) {
+  const size_t share = kPlaneACacheBytes / static_cast<size_t>(std::max(1, evaluators));
+  return std::clamp<size_t>(share / std::max<size_t>(plane_a_slot_bytes(scene, cache_codes), 1), 1,
+                            kMaxSlots);
+}
+
+}  // namespace depthprec::mts_parts

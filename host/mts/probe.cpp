@@ -1,0 +1,88 @@
+// The probe loop's pieces every evaluator shares (host/mts/probe.h, mts_evaluator.h): frame
+// batches, the fold of a launch's row words into probe results, outcomes by name.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include "host/base/errors.h"
+#include "host/mts/mts_evaluator.h"
+#include "host/mts/mts_evaluator_parts.h"
+#include "kernels/mts_layout.h"
+
+namespace depthprec {
+
+using namespace mts_parts;
+
+int batch_frames(int done, int total) {
+  const int want = done == 0 ? 4 : done < 20 ? 16 : kMaxBatchFrames;
+  return std::min(want, total - done);
+}
+
+std::vector<size_t> undecided(const std::vector<bool>& decided) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < decided.size(); ++i)
+    if (!decided[i]) out.push_back(i);
+  return out;
+}
+
+std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows,
+                                  const std::vector<size_t>& active, int first_frame, int frames,
+                                  size_t kernel_h, std::vector<ProbeResult>& results,
+                                  std::vector<bool>& decided, uint64_t& after_decision) {
+  std::vector<uint64_t> probe_pairs(active.size(), 0);
+  for (size_t i = 0; i < active.size(); ++i) {
+    ProbeResult& r = results[active[i]];
+    for (int f = 0; f < frames; ++f) {
+      uint32_t flags = 0;
+      uint64_t frame_pairs = 0;
+      for (size_t y = 0; y < kernel_h; ++y) {
+        const uint32_t v = rows[(i * frames + f) * kernel_h + y];
+        flags |= v;
+        frame_pairs += v >> kCountShift;
+      }
+      probe_pairs[i] += frame_pairs;
+      if (decided[active[i]]) {  // frames after the deciding one: work, not outcome
+        after_decision += frame_pairs;
+        continue;
+      }
+      r.frames = first_frame + f + 1;
+      r.any_clipped |= (flags & kClipped) != 0;
+      r.any_uncovered |= (flags & kUncovered) != 0;
+      if (flags & kNonFinite) {
+        r.any_non_finite = true;
+        r.outcome = Outcome::non_finite;
+        decided[active[i]] = true;
+      } else if (flags & kFight) {
+        r.outcome = Outcome::fight;
+        decided[active[i]] = true;
+      }
+    }
+    r.fragment_pairs += probe_pairs[i];
+  }
+  return probe_pairs;
+}
+
+void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided) {
+  for (size_t i = 0; i < results.size(); ++i)
+    if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
+}
+
+const char* to_string(Outcome o) {
+  switch (o) {
+    case Outcome::clean:
+      return "clean";
+    case Outcome::fight:
+      return "fight";
+    case Outcome::clipped:
+      return "clipped";
+    case Outcome::non_finite:
+      return "non_finite";
+    case Outcome::uncovered:
+      return "uncovered";
+  }
+  return "?";
+}
+
+}  // namespace depthprec
