@@ -9,7 +9,6 @@
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/mts/mts_evaluator.h"
-#include "host/mts/mts_search.h"
 #include "host/mts/worst_case.h"
 
 namespace depthprec {
@@ -99,10 +98,7 @@ bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, con
 bool mts_within(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
                 double n, double f) {
   const Scene s = with_near(scene, n, f);
-  MtsEvaluator ev(rt, s, pair);
-  std::vector<MtsRow> rows = search_pair(ev, s, pair, advise_distances(r));
-  if (s.sampling == Sampling::worst_case) refine_worst_case(rt, s, pair, rows);
-  for (const MtsRow& row : rows)
+  for (const MtsRow& row : search_sampled(rt, s, pair, advise_distances(r)))
     if (row.verdict() != Verdict::resolved || row.mts > r.separation_at(row.z)) return false;
   return true;
 }

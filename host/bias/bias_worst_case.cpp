@@ -88,20 +88,15 @@ void refine_bias_worst_case(const WithBiasEvaluator& with_evaluator, const Scene
                             std::vector<BiasAnswers>& answers) {
   std::vector<size_t> open;
   for (size_t k = 0; k < distances.size(); ++k) open.push_back(k);
-  const auto chunk = static_cast<size_t>(scene.worst_case.round_size);
   for (int round = 1; round <= scene.worst_case.max_rounds && !open.empty(); ++round) {
-    const std::vector<Angles> list = round_orientations(scene, round);
     std::vector<BiasAnswers> before;
     for (const size_t k : open) before.push_back(answers[k]);
-    for (size_t first = 0; first < list.size(); first += chunk) {
+    for (const std::vector<Angles>& part : round_chunks(scene, round)) {
       std::vector<Slot> slots;  // the resolved answers of the open distances
       for (const size_t k : open)
         for (const unsigned kind : kKinds)
           if (answers[k].of(kind).resolved() && !std::isnan(answers[k].of(kind).value))
             slots.push_back({k, kind});
-      const auto from = list.begin() + static_cast<long>(first);
-      const std::vector<Angles> part(
-          from, from + static_cast<long>(std::min(chunk, list.size() - first)));
       if (!slots.empty())
         refine_chunk(with_evaluator, scene, pair, options, distances, part, answers, slots);
       for (const size_t k : open) answers[k].orientations += part.size();

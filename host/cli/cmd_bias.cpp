@@ -18,8 +18,6 @@
 #include "host/cli/scene_options.h"
 #include "host/model/profile.h"
 #include "host/model/tilted_plane.h"
-#include "host/mts/mts_evaluator.h"
-#include "host/mts/mts_search.h"
 #include "host/mts/worst_case.h"
 #include "host/output/output_guard.h"
 #include "host/output/report.h"
@@ -134,9 +132,7 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
   }
   // The MTS beside each answer: what separation the pair resolves there without any bias.
   {
-    MtsEvaluator ev(rt, scene, pair);
-    auto rows = search_pair(ev, scene, pair, scene.distances);
-    if (scene.sampling == Sampling::worst_case) refine_worst_case(rt, scene, pair, rows);
+    const auto rows = search_sampled(rt, scene, pair, scene.distances);
     for (size_t k = 0; k < rows.size(); ++k)
       if (rows[k].verdict() == Verdict::resolved) mts[k] = rows[k].mts;
   }

@@ -87,6 +87,9 @@ struct MtsRow {
   // A factor larger than the MTS itself (by more than the bisection's precision twice over):
   // the factors interact, and rounding errors can cancel (docs/stability.md).
   bool factor_above_mts(double rel_precision) const;
+  // A probe's work (frames, fragment pairs, times) and the clipping and uncovered pixels it saw;
+  // its launches are the caller's to count (rows share them).
+  void add_probe_work(const ProbeResult& r);
   std::string flags() const;  // "non_finite,clipped" or "" when none
   Verdict verdict() const;
 };

@@ -79,8 +79,7 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   ExactEvaluator exact(rt, plain, pair);
   auto storage = search_pair(exact, plain, pair, zs, {}, stop);
   // Under worst-case sampling each factor is its own worst case, as the MTS is.
-  const bool worst_case = scene.sampling == Sampling::worst_case;
-  if (worst_case)
+  if (scene.sampling == Sampling::worst_case)
     refine_worst_case(
         [&rt, &pair](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
           ExactEvaluator round_ev(rt, s, pair);
@@ -96,10 +95,8 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   for (double z : zs)
     if (!arithmetic_cache.count(row_key(raw, z))) missing.push_back(z);
   if (!missing.empty()) {
-    MtsEvaluator ev(rt, plain, raw);
-    std::vector<MtsRow> arithmetic = search_pair(ev, plain, raw, missing, {}, stop);
-    if (worst_case) refine_worst_case(rt, plain, raw, arithmetic, stop);
-    for (const auto& r : arithmetic) arithmetic_cache[row_key(raw, r.z)] = r.mts;
+    for (const auto& r : search_sampled(rt, plain, raw, missing, stop))
+      arithmetic_cache[row_key(raw, r.z)] = r.mts;
   }
   for (size_t i = 0; i < rows.size(); ++i) {
     rows[i].storage_mts = storage[i].beyond_far ? INFINITY : storage[i].mts;

@@ -75,6 +75,15 @@ void Bisection::advance() {
   if (!(next_ > lo_ && next_ < upper)) done_ = true;  // bracket at binary64 resolution
 }
 
+void MtsRow::add_probe_work(const ProbeResult& r) {
+  frames += static_cast<uint64_t>(r.frames);
+  fragment_pairs += r.fragment_pairs;
+  seconds += r.seconds;
+  kernel_seconds += r.kernel_seconds;
+  uncovered |= r.any_uncovered;
+  clipped_probes += r.any_clipped ? 1 : 0;
+}
+
 std::string MtsRow::flags() const {
   std::string f;
   auto add = [&f](bool on, const char* name) {
@@ -274,12 +283,7 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       const size_t i = owner[k].first;
       MtsRow& row = rows[i];
       const ProbeResult& r = results[k];
-      row.frames += static_cast<uint64_t>(r.frames);
-      row.fragment_pairs += r.fragment_pairs;
-      row.seconds += r.seconds;
-      row.kernel_seconds += r.kernel_seconds;
-      row.uncovered |= r.any_uncovered;
-      row.clipped_probes += r.any_clipped ? 1 : 0;
+      row.add_probe_work(r);
       // Nothing was compared at an uncovered pixel: such a probe is never clean.
       const Outcome o =
           r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;

@@ -60,6 +60,17 @@ std::vector<Angles> round_orientations(const Scene& scene, int round) {
   return out;
 }
 
+std::vector<std::vector<Angles>> round_chunks(const Scene& scene, int round) {
+  const std::vector<Angles> list = round_orientations(scene, round);
+  const auto chunk = static_cast<size_t>(scene.worst_case.round_size);
+  std::vector<std::vector<Angles>> out;
+  for (size_t first = 0; first < list.size(); first += chunk) {
+    const auto from = list.begin() + static_cast<long>(first);
+    out.emplace_back(from, from + static_cast<long>(std::min(chunk, list.size() - first)));
+  }
+  return out;
+}
+
 namespace {
 
 // A search that continues a row's bracket over other orientations: its work always, its bracket
@@ -96,17 +107,13 @@ void take_search(MtsRow& row, const MtsRow& found) {
   row.clean_min = found.clean_min;
 }
 
-// A probe of a chunk at separation s (the row's MTS): its work and what it saw.
+// A probe of a chunk at separation s (the row's MTS): its work and what it saw. It is the row's
+// only probe in its launches, so their launches are its own.
 void take_probe(MtsRow& row, double s, const ProbeResult& r) {
   if (r.outcome == Outcome::fight) row.fight_max = std::max(row.fight_max, s);
   ++row.probes;
-  row.frames += static_cast<uint64_t>(r.frames);
-  row.fragment_pairs += r.fragment_pairs;
+  row.add_probe_work(r);
   row.launches += r.launches;
-  row.seconds += r.seconds;
-  row.kernel_seconds += r.kernel_seconds;
-  row.clipped_probes += r.any_clipped ? 1 : 0;
-  row.uncovered |= r.any_uncovered;
   if (r.outcome == Outcome::non_finite) row.non_finite = true;
 }
 
@@ -195,19 +202,13 @@ void refine_worst_case(const WithEvaluator& with_evaluator, const Scene& scene,
     const MtsRow& r = rows[i];
     if (!r.unresolvable && !r.beyond_far && !r.before_near) open.push_back(i);
   }
-  const auto chunk = static_cast<size_t>(scene.worst_case.round_size);
   for (int round = 1; round <= scene.worst_case.max_rounds && !open.empty(); ++round) {
-    const std::vector<Angles> list = round_orientations(scene, round);
     std::vector<double> before;  // each open row's MTS before the round
     for (const size_t i : open) before.push_back(rows[i].hi);
-    // The round in chunks of round_size orientations, each continuing the brackets the chunks
-    // before it left: an evaluator holds plane A of one chunk, so memory does not grow with the
-    // rounds. Every row takes the same orientations: a row's answer depends on its own rounds
-    // only, whichever rows share its launches.
-    for (size_t first = 0; first < list.size(); first += chunk) {
-      const auto from = list.begin() + static_cast<long>(first);
-      const std::vector<Angles> part(
-          from, from + static_cast<long>(std::min(chunk, list.size() - first)));
+    // Each chunk continues the brackets the chunks before it left. Every row takes the same
+    // orientations: a row's answer depends on its own rounds only, whichever rows share its
+    // launches.
+    for (const std::vector<Angles>& part : round_chunks(scene, round)) {
       std::vector<size_t> live;  // an orientation that fights at any separation ends a row
       for (const size_t i : open)
         if (!rows[i].unresolvable) live.push_back(i);
@@ -227,14 +228,19 @@ void refine_worst_case(const WithEvaluator& with_evaluator, const Scene& scene,
   }
 }
 
-void refine_worst_case(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                       std::vector<MtsRow>& rows, const std::function<bool()>& stop) {
-  refine_worst_case(
-      [&rt, &pair](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-        MtsEvaluator ev(rt, s, pair);
-        use(ev);
-      },
-      scene, pair, rows, stop);
+std::vector<MtsRow> search_sampled(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                                   const std::vector<double>& distances,
+                                   const std::function<bool()>& stop) {
+  const WithEvaluator with = [&rt, &pair](const Scene& s,
+                                          const std::function<void(ProbeEvaluator&)>& use) {
+    MtsEvaluator ev(rt, s, pair);
+    use(ev);
+  };
+  std::vector<MtsRow> rows;
+  with(scene,
+       [&](ProbeEvaluator& ev) { rows = search_pair(ev, scene, pair, distances, {}, stop); });
+  if (scene.sampling == Sampling::worst_case) refine_worst_case(with, scene, pair, rows, stop);
+  return rows;
 }
 
 }  // namespace depthprec

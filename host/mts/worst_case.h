@@ -22,6 +22,9 @@ namespace depthprec {
 size_t round_size(const Scene& scene, int round);
 // The orientations of round k: angle triples inside the rotation cube, none of an earlier round's.
 std::vector<Angles> round_orientations(const Scene& scene, int round);
+// Round k's orientations in chunks of round_size, as the rounds are evaluated: an evaluator holds
+// plane A of one chunk, so memory does not grow with the rounds.
+std::vector<std::vector<Angles>> round_chunks(const Scene& scene, int round);
 
 // Runs `use` with an evaluator of the pair for `scene` (a scene whose orientations the rounds
 // set): the caller owns its construction and its statistics.
@@ -36,8 +39,10 @@ void refine_worst_case(const WithEvaluator& with_evaluator, const Scene& scene,
                        const EvalPair& pair, std::vector<MtsRow>& rows,
                        const std::function<bool()>& stop = {});
 
-// The same on the emulated pipeline, an MtsEvaluator per chunk.
-void refine_worst_case(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                       std::vector<MtsRow>& rows, const std::function<bool()>& stop = {});
+// The MTS rows of these distances on the emulated pipeline as the scene samples them: the
+// search over its frames, refined to the worst case under worst-case sampling.
+std::vector<MtsRow> search_sampled(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                                   const std::vector<double>& distances,
+                                   const std::function<bool()>& stop = {});
 
 }  // namespace depthprec
