@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "formats/df_prelude.h"
-#include "kernels/llvmpipe_log.h"
+#include "interface/llvmpipe_log.h"
 
 DP_LLVMPIPE_LOG_DEFINE(llvmpipe_log, float, df_float_bits, df_bits_float, static_cast<float>,
                        std::fma)

@@ -4,7 +4,7 @@
 // arguments (they pick a formula per sample, not a code path worth a program each).
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define DF_ENABLE_FP64 1
-#include "kernels/lj_formulas.h"
+#include "interface/lj_formulas.h"
 
 __kernel void lj_partials(const int buffer, const int sampling, const double d, const double f,
                           const long n, const long chunk, __global double* restrict sums,

@@ -10,7 +10,7 @@
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define DF_ENABLE_FP64 1
 #include "formats/depth_format.h"
-#include "kernels/mts_layout.h" /* the row result word the host folds (R_*), as kernels/mts.cl writes it */
+#include "interface/mts_layout.h" /* the row result word the host folds (R_*), as kernels/mts.cl writes it */
 
 /* The exact mapping D(w) of the technique, 8 lanes at a time. */
 static double8 exact_depth8(double8 w, double n, double f, double k) {
@@ -114,10 +114,10 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
     long8 cov_a, cov_b;
     const double8 wa = exact_w8(ra, ndc_x, &cov_a), wb = exact_w8(rb, ndc_x, &cov_b);
     const long8 covered = active & cov_a & cov_b;
-    if (any(active & ~covered)) flags |= R_UNCOVERED;
+    if (any(active & ~covered)) flags |= MTS_R_UNCOVERED;
     double8 da = exact_depth8(wa, n, f, k), db = exact_depth8(wb, n, f, k);
     const long8 finite = isfinite(da) & isfinite(db);
-    if (any(covered & ~finite)) flags |= R_NONFINITE;
+    if (any(covered & ~finite)) flags |= MTS_R_NONFINITE;
 #if CLIP_W
     const long8 inside = (wa >= n) & (wa <= f) & (wb >= n) & (wb <= f);
     da = clamp(da, 0.0, 1.0);
@@ -125,7 +125,7 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
 #else
     const long8 inside = (da >= 0.0) & (da <= 1.0) & (db >= 0.0) & (db <= 1.0);
 #endif
-    if (any(covered & finite & ~inside)) flags |= R_CLIPPED;
+    if (any(covered & finite & ~inside)) flags |= MTS_R_CLIPPED;
     const long8 ok = covered & finite & inside;
     pairs += (ulong)(-(long)(ok.s0 + ok.s1 + ok.s2 + ok.s3 + ok.s4 + ok.s5 + ok.s6 + ok.s7));
     const uint8 ca = encode8(da, fmt), cb = encode8(db, fmt);
@@ -134,7 +134,7 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
 #else
     const int8 fight = cb <= ca;
 #endif
-    if (any(convert_long8(fight) & ok)) flags |= R_FIGHT;
+    if (any(convert_long8(fight) & ok)) flags |= MTS_R_FIGHT;
   }
-  out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << R_COUNT_SHIFT);
+  out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << MTS_R_COUNT_SHIFT);
 }

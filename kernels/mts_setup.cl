@@ -3,23 +3,17 @@
 // and reads no storage format, compare or fragment-stage choice, so one build serves every
 // variant of kernels/mts.cl that shares its defines (host/runtime/kernel_variant.cpp
 // setup_options): a scene of several formats compiles it once per technique class.
-//   GRID, CONTRACT, PLANE_FORM, CLIP_SLOTS   as in kernels/mts.cl
-//   DEPTH_FROM     0 projection, 1 vertex-stage log (Gilg eq. 5), 2 fragment-stage depth (the
-//                  set-up then leaves d to the fragment stage)
-//   LLVMPIPE_LOG   the vertex-stage log's form (kernels/llvmpipe_log.h); 0 unless DEPTH_FROM 1
+// Its defines are the set-up's subset of kernels/mts/defines.h.
 
-#if !defined(GRID) || !defined(DEPTH_FROM) || !defined(CONTRACT) || !defined(PLANE_FORM) || \
-    !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS)
-#error \
-    "kernels/mts_setup.cl needs GRID, DEPTH_FROM, CONTRACT, PLANE_FORM, LLVMPIPE_LOG and CLIP_SLOTS (host/runtime/kernel_variant.cpp)"
-#endif
-
+#define MTS_SETUP_STAGE 1         /* the set-up's defines only */
 #include "kernels/mts/contract.h" /* CONTRACT: the FP_CONTRACT pragma */
+#include "kernels/mts/defines.h"
 
 // clang-format off
-#include "kernels/mts_layout.h"        /* buffer layout, shared with the host */
-#include "kernels/llvmpipe_log.h"      /* llvmpipe's log, shared with the host */
-#include "kernels/snap.h"              /* sub-pixel snapping, shared with the host */
+#include "interface/mts_layout.h"        /* buffer layout, shared with the host */
+#include "interface/mts_kernel_args.h" /* kernel arguments, shared with the host */
+#include "interface/llvmpipe_log.h"      /* llvmpipe's log, shared with the host */
+#include "interface/snap.h"              /* sub-pixel snapping, shared with the host */
 #include "kernels/mts/common.cl"       /* layout names at this GRID, mat_vec, any16 */
 #include "kernels/mts/plane_records.cl" /* the coverage certificate, a triangle's pixel box */
 #include "kernels/mts/setup.cl"        /* vertex stage, triangle set-up, coverage certificate */
@@ -27,15 +21,12 @@
 
 // Global id: the plane's index in mats; it is written to tris and vflags at first_plane + id, and
 // its probe constants are those of (first_plane + id) / per_probe.
-__kernel void mts_setup(__global const float* restrict probes, __global const float* restrict mats,
-                        const uint per_probe, const float half_w, const float half_h,
-                        const float origin_x, const float origin_y, const uint kernel_w,
-                        const uint kernel_h, const uint band_rows, __global float* restrict tris,
-                        __global uint* restrict vflags, const uint first_plane, const uint count) {
+__kernel void mts_setup(MTS_SETUP_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsSetupArgs args) {
   const uint k = get_global_id(0);
-  if (k >= count) return;
-  const uint id = first_plane + k;
-  setup_plane(probes + (id / per_probe) * PROBE_STRIDE, mats + k * MAT_STRIDE, half_w, half_h,
-              origin_x, origin_y, kernel_w, kernel_h, band_rows, tris + (size_t)id * PLANE_STRIDE,
-              vflags + id, 0);
+  if (k >= args.count) return;
+  const uint id = args.first_plane + k;
+  const MtsKernelArea a = args.area;
+  setup_plane(probes + (id / args.per_probe) * MTS_PROBE_STRIDE, mats + k * MTS_MAT_STRIDE,
+              args.half_w, args.half_h, a.origin_x, a.origin_y, a.kernel_w, a.kernel_h, a.band_rows,
+              tris + (size_t)id * PLANE_STRIDE, vflags + id, 0);
 }

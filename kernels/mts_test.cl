@@ -8,9 +8,9 @@
 // Whether n segments found for a row differ from a cached row record's.
 static inline int segments_differ(int n, const int* seg_x, const int* seg_t,
                                   __global const uint* rec) {
-  int differs = n != (int)rec[RW_N];
+  int differs = n != (int)rec[MTS_RW_N];
   for (int k = 0; k < n && !differs; ++k)
-    differs = seg_x[k] != (int)rec[RW_X + k] || seg_t[k] != (int)rec[RW_T + k];
+    differs = seg_x[k] != (int)rec[MTS_RW_X + k] || seg_t[k] != (int)rec[MTS_RW_T + k];
   return differs;
 }
 
@@ -33,16 +33,16 @@ __kernel void mts_coverage_audit(
   const uint ap = A_PLANE(pf);
   __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
   __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
-  __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
+  __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * MTS_ROW_WORDS;
   out[id] = 0u;
-  const int n = (int)rec[RW_N];
-  if (n == 0 || ((a_vflags[ap] | vflags[pf]) & V_NONFINITE)) return;
+  const int n = (int)rec[MTS_RW_N];
+  if (n == 0 || ((a_vflags[ap] | vflags[pf]) & MTS_V_NONFINITE)) return;
   const float py = origin_y + (float)row + 0.5f;
   int seg_x[MAX_SEG + 1], seg_t[MAX_SEG];
   const int a_differs = segments_differ(row_segments(TA, py, origin_x, (int)kernel_w, seg_x, seg_t),
                                         seg_x, seg_t, rec);
   const int own_margin = !a_differs && coverage_margin(TA, py, origin_x, n, seg_x, seg_t) ==
-                                           ((__global const float*)rec)[RW_MARGIN];
+                                           ((__global const float*)rec)[MTS_RW_MARGIN];
   const int differs = segments_differ(row_segments(TB, py, origin_x, (int)kernel_w, seg_x, seg_t),
                                       seg_x, seg_t, rec);
   /* as mts_frame_bounds finds them for the row's band */
@@ -86,11 +86,17 @@ __kernel void mts_codes(__global const float* restrict probes, __global const fl
       vstore16(fa.clipped, 0, la);
       vstore16(fb.clipped, 0, lb);
       for (int k = 0; k < 16 && i0 + k < x_end; ++k) {
-        const int sa = ta < 0 ? S_UNCOVERED : na[k] ? S_NONFINITE : la[k] ? S_CLIPPED : S_OK;
-        const int sb = tb < 0 ? S_UNCOVERED : nb[k] ? S_NONFINITE : lb[k] ? S_CLIPPED : S_OK;
+        const int sa = ta < 0  ? MTS_S_UNCOVERED
+                       : na[k] ? MTS_S_NONFINITE
+                       : la[k] ? MTS_S_CLIPPED
+                               : MTS_S_OK;
+        const int sb = tb < 0  ? MTS_S_UNCOVERED
+                       : nb[k] ? MTS_S_NONFINITE
+                       : lb[k] ? MTS_S_CLIPPED
+                               : MTS_S_OK;
         __global uint* o = out + 4u * (row * kernel_w + (uint)(i0 + k));
-        o[0] = sa == S_OK ? ca[k] : 0u;
-        o[1] = sb == S_OK ? cb[k] : 0u;
+        o[0] = sa == MTS_S_OK ? ca[k] : 0u;
+        o[1] = sb == MTS_S_OK ? cb[k] : 0u;
         o[2] = (uint)sa;
         o[3] = (uint)sb;
       }

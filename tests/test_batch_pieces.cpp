@@ -7,7 +7,7 @@
 #include "host/base/errors.h"
 #include "host/batch/batch.h"
 #include "host/mts/mts_evaluator.h"
-#include "kernels/mts_layout.h"
+#include "interface/mts_layout.h"
 #include "run_cli.h"
 
 using namespace depthprec;
@@ -86,16 +86,16 @@ TEST_CASE("first_difference names the first field two JSON values differ in", "[
 TEST_CASE("a launch's row words fold into each probe's first deciding frame", "[batch][unit]") {
   // two active probes (results 0 and 2 of three), two frames, two kernel rows each
   const size_t kh = 2;
-  const uint32_t pairs = 10u << R_COUNT_SHIFT;
+  const uint32_t pairs = 10u << MTS_R_COUNT_SHIFT;
   const std::vector<uint32_t> rows = {
       pairs,
       pairs,  // probe 0, frame 0: clean
-      pairs | R_FIGHT,
+      pairs | MTS_R_FIGHT,
       pairs,  // probe 0, frame 1: a fight
-      pairs | R_CLIPPED,
+      pairs | MTS_R_CLIPPED,
       pairs,  // probe 2, frame 0: clipped
       pairs,
-      pairs | R_NONFINITE,  // probe 2, frame 1: non-finite
+      pairs | MTS_R_NONFINITE,  // probe 2, frame 1: non-finite
   };
   std::vector<ProbeResult> results(3);
   std::vector<bool> decided(3, false);

@@ -17,7 +17,7 @@
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"
 #include "host/model/tilted_plane.h"
-#include "kernels/bias_formula.h"
+#include "interface/bias_formula.h"
 #include "mts_fixture.h"
 #include "run_cli.h"
 

@@ -22,15 +22,51 @@ TEST_CASE("kernel programs expand to sources without a quoted include", "[kernel
   }
 }
 
-TEST_CASE("an MTS variant without one of its defines does not build", "[kernels]") {
+namespace {
+
+// The defines kernels/mts/defines.h checks, in the order it checks them: the set-up's, then the
+// per-pixel programs' (from its second #if on).
+std::vector<std::string> checked_defines(bool setup_only) {
+  const std::string text = embedded_sources().at("kernels/mts/defines.h");
+  const size_t per_pixel = text.find("#ifndef MTS_SETUP_STAGE");
+  std::vector<std::string> names;
+  for (size_t at = text.find("!defined("); at != std::string::npos;
+       at = text.find("!defined(", at + 1)) {
+    if (setup_only && at > per_pixel) break;
+    const size_t from = at + 9;
+    names.push_back(text.substr(from, text.find(')', from) - from));
+  }
+  return names;
+}
+
+// The options without -DNAME=...
+std::string options_without(const std::string& options, const std::string& name) {
+  const auto at = options.find("-D" + name + "=");
+  REQUIRE(at != std::string::npos);
+  const auto end = options.find(' ', at);
+  return options.substr(0, at) + (end == std::string::npos ? "" : options.substr(end));
+}
+
+}  // namespace
+
+TEST_CASE("an MTS variant without any one of its defines does not build", "[kernels]") {
   const Scene scene = load_scene("", {});
   const KernelVariant v = mts_variant(scene, scene.evaluate.front());
-  const std::string options = v.options;
-  const auto at = options.find("-DCACHE_A_CODES=");
-  REQUIRE(at != std::string::npos);
-  const std::string without = options.substr(0, at) + options.substr(options.find(' ', at));
-  CHECK_THROWS_WITH(test::runtime().program(v.program, without),
-                    Contains("kernels/mts.cl needs GRID"));
+  const auto names = checked_defines(false);
+  REQUIRE(names.size() == 11);  // GRID .. CLIP_SLOTS, then FRAG_DEPTH .. DF_KIND
+  for (const std::string& name : names) {
+    INFO(name);
+    CHECK_THROWS_WITH(test::runtime().program(v.program, options_without(v.options, name)),
+                      Contains("kernels/mts/defines.h"));
+    CHECK_THROWS_WITH(test::runtime().program("kernels/bias.cl", options_without(v.options, name)),
+                      Contains("kernels/mts/defines.h"));
+  }
+  for (const std::string& name : checked_defines(true)) {
+    INFO(name);
+    CHECK_THROWS_WITH(
+        test::runtime().program(v.setup_program, options_without(v.setup_options, name)),
+        Contains("the emulated pipeline needs GRID"));
+  }
 }
 
 TEST_CASE("the set-up program is shared by the variants that differ only past the set-up",
@@ -50,9 +86,4 @@ TEST_CASE("the set-up program is shared by the variants that differ only past th
   CHECK(setup(Technique::log_vertex, "unorm24") != standard);
   CHECK(setup(Technique::linear, "unorm24") != standard);
   CHECK(setup(Technique::linear, "unorm24") == setup(Technique::log_fragment, "float32"));
-  // and without a define the set-up program is refused as mts.cl is
-  const auto at = standard.find("-DCLIP_SLOTS=");
-  REQUIRE(at != std::string::npos);
-  CHECK_THROWS_WITH(test::runtime().program("kernels/mts_setup.cl", standard.substr(0, at)),
-                    Contains("kernels/mts_setup.cl needs GRID"));
 }

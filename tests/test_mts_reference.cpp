@@ -8,7 +8,7 @@
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"
 #include "host/mts/reference_pipeline.h"
-#include "kernels/snap.h"
+#include "interface/snap.h"
 #include "mts_fixture.h"
 #include "reference_outcome.h"
 

@@ -9,8 +9,9 @@
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
 #include "host/mts/mts_evaluator.h"
-#include "kernels/bias_formula.h"
-#include "kernels/mts_layout.h"
+#include "host/runtime/kernel_args.h"
+#include "interface/bias_formula.h"
+#include "interface/mts_layout.h"
 
 namespace depthprec {
 
@@ -49,9 +50,13 @@ BiasEmulator::BiasEmulator(OpenClRuntime& rt, const Scene& scene, const EvalPair
 std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes) {
   const int total = scene_.frames;
   const size_t kh = static_cast<size_t>(scene_.kernel_h);
-  const cl_uint kw = static_cast<cl_uint>(scene_.kernel_w);
-  const float ox = static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2);
-  const float oy = static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2);
+  // The whole kernel is one band: the set-up's certificate is per plane here, not per band.
+  const MtsKernelArea area{static_cast<cl_uint>(scene_.kernel_w),
+                           static_cast<cl_uint>(scene_.kernel_h),
+                           static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2),
+                           static_cast<float>((scene_.viewport_h - scene_.kernel_h) / 2),
+                           1,
+                           static_cast<cl_uint>(scene_.kernel_h)};
   const double tilt = options_.tilt_deg * M_PI / 180.0;
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
@@ -79,9 +84,9 @@ std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes)
         const BiasProbe& p = probes[i];
         const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
         auto packed = pc.packed();
-        packed[C_BIAS_UNITS] = rule_.units_term(p.units);
-        packed[C_BIAS_FACTOR] = static_cast<float>(p.factor);
-        packed[C_BIAS_CLAMP] = static_cast<float>(options_.clamp);
+        packed[MTS_C_BIAS_UNITS] = rule_.units_term(p.units);
+        packed[MTS_C_BIAS_FACTOR] = static_cast<float>(p.factor);
+        packed[MTS_C_BIAS_CLAMP] = static_cast<float>(options_.clamp);
         consts.insert(consts.end(), packed.begin(), packed.end());
         for (int v = done; v < done + frames; ++v) {
           const Mat4f m = plane_matrix(scene_, pc, p.z, (first[i] + v) % total, tilt);
@@ -93,20 +98,35 @@ std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes)
       const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
       cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * planes * plane_floats_);
       cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * planes);
-      set_args(setup_, const_buf, mat_buf, static_cast<cl_uint>(2 * frames),
-               0.5f * static_cast<float>(scene_.viewport_w),
-               0.5f * static_cast<float>(scene_.viewport_h), ox, oy, kw, static_cast<cl_uint>(kh),
-               static_cast<cl_int>(rule_.float_rule ? 1 : 0),
-               static_cast<cl_int>(options_.slope == SlopeForm::sqrt ? BIAS_SLOPE_SQRT : 0), tris,
-               vflags, static_cast<cl_uint>(planes));
+      BiasSetupBuffers setup_in;
+      setup_in.probes = &const_buf;
+      setup_in.mats = &mat_buf;
+      setup_in.tris = &tris;
+      setup_in.vflags = &vflags;
+      BiasSetupArgs setup_args{};
+      setup_args.area = area;
+      setup_args.half_w = 0.5f * static_cast<float>(scene_.viewport_w);
+      setup_args.half_h = 0.5f * static_cast<float>(scene_.viewport_h);
+      setup_args.per_probe = static_cast<cl_uint>(2 * frames);
+      setup_args.count = static_cast<cl_uint>(planes);
+      setup_args.float_rule = rule_.float_rule ? 1 : 0;
+      setup_args.slope_form = options_.slope == SlopeForm::sqrt ? BIAS_SLOPE_SQRT : 0;
+      bind(setup_, setup_in, setup_args);
       cl::Event setup_done, rows_done;
       rt_.queue().enqueueNDRangeKernel(setup_, cl::NullRange, cl::NDRange(padded_size(planes)),
                                        cl::NDRange(kWorkGroup), nullptr, &setup_done);
       const size_t items = active.size() * static_cast<size_t>(frames) * kh;
       cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-      set_args(rows_, const_buf, tris, vflags, kw, static_cast<cl_uint>(kh), ox, oy,
-               static_cast<cl_uint>(frames), static_cast<cl_int>(options_.or_equal ? 0 : 1),
-               result);
+      BiasRowsBuffers rows_in;
+      rows_in.probes = &const_buf;
+      rows_in.tris = &tris;
+      rows_in.vflags = &vflags;
+      rows_in.result = &result;
+      BiasRowsArgs rows_args{};
+      rows_args.area = area;
+      rows_args.frames = static_cast<cl_uint>(frames);
+      rows_args.strict = options_.or_equal ? 0 : 1;
+      bind(rows_, rows_in, rows_args);
       rt_.queue().enqueueNDRangeKernel(
           rows_, cl::NullRange,
           cl::NDRange(padded_size(kh), static_cast<size_t>(frames), active.size()),

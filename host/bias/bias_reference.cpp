@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "kernels/bias_formula.h"
+#include "interface/bias_formula.h"
 
 namespace depthprec {
 

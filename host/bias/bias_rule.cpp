@@ -8,7 +8,7 @@
 
 #include "host/base/errors.h"
 #include "host/runtime/kernel_variant.h"
-#include "kernels/bias_formula.h"
+#include "interface/bias_formula.h"
 
 namespace depthprec {
 

@@ -1,7 +1,7 @@
 // How an API turns a depth bias (units, factor, clamp) into an offset of window depth for a
 // storage format (docs/bias.md): the minimum resolvable difference r per format and API, the
 // slope form, the clamp and the sign the compare function asks for. The arithmetic itself is
-// kernels/bias_formula.h, shared with the kernel.
+// interface/bias_formula.h, shared with the kernel.
 #pragma once
 
 #include <optional>
@@ -51,7 +51,7 @@ UnormR unorm_r_default(BiasApi api);
 // The offset o after the API's clamp c: min(o, c) for c > 0, max(o, c) for c < 0, o for c = 0.
 // A clamp of the other sign than the offset never binds: under LESS the bias is negative, and
 // only a negative clamp limits it. The kernels apply the same rule in binary32
-// (kernels/bias_formula.h depth_bias); this is the host's, in binary64, for the offset reported.
+// (interface/bias_formula.h depth_bias); this is the host's, in binary64, for the offset reported.
 double clamped(double o, double clamp);
 
 // Whether the clamp can bind the offsets of a pair whose bias carries sign (bias_sign): 0 or the

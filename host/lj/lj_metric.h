@@ -1,5 +1,5 @@
 // The Lapidous-Jiao average depth error (LJ99 eqs. 6-7, docs/spec.md 6) on the host and on the
-// OpenCL device. The per-sample formulas are kernels/lj_formulas.h, shared by both; this file
+// OpenCL device. The per-sample formulas are interface/lj_formulas.h, shared by both; this file
 // parses the user's words, validates, and sums.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include "host/model/storage_format.h"
 #include "host/model/technique.h"
 #include "host/runtime/opencl_runtime.h"
-#include "kernels/lj_formulas.h"
+#include "interface/lj_formulas.h"
 
 namespace depthprec {
 

@@ -110,10 +110,10 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
   pc.log_L = static_cast<float>(std::log(k * f + T(1)));
   pc.depth_gl = pair.depth_range == DepthRange::gl;
   const Pipeline& pipe = s.pipeline;
-  pc.forms = (pipe.divide == Divide::exact ? F_DIVIDE_EXACT : 0u) |
-             (pipe.compose == Compose::premultiplied ? F_COMPOSE_PREMULT : 0u) |
-             (pipe.viewport == ViewportForm::fma ? F_VIEWPORT_FMA : 0u) |
-             (pipe.vertex == VertexForm::fma ? F_VERTEX_FMA : 0u);
+  pc.forms = (pipe.divide == Divide::exact ? MTS_F_DIVIDE_EXACT : 0u) |
+             (pipe.compose == Compose::premultiplied ? MTS_F_COMPOSE_PREMULT : 0u) |
+             (pipe.viewport == ViewportForm::fma ? MTS_F_VIEWPORT_FMA : 0u) |
+             (pipe.vertex == VertexForm::fma ? MTS_F_VERTEX_FMA : 0u);
   pc.snap_bits = pipe.snap_bits;
   pc.layer_near = n64;
   pc.layer_far = f64;
@@ -122,17 +122,17 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
 
 }  // namespace
 
-std::array<float, PROBE_STRIDE> ProbeConstants::packed() const {
-  std::array<float, PROBE_STRIDE> out{};
-  for (int i = 0; i < MAT_STRIDE; ++i) out[i] = P[i];
-  out[C_NEAR] = near;
-  out[C_FAR] = far;
-  out[C_RANGE] = range;
-  out[C_LOGK] = log_k;
-  out[C_LOGL] = log_L;
-  out[C_DEPTH_GL] = depth_gl ? 1.0f : 0.0f;
-  out[C_FORMS] = static_cast<float>(forms);
-  out[C_SNAP_BITS] = static_cast<float>(snap_bits);
+std::array<float, MTS_PROBE_STRIDE> ProbeConstants::packed() const {
+  std::array<float, MTS_PROBE_STRIDE> out{};
+  for (int i = 0; i < MTS_MAT_STRIDE; ++i) out[i] = P[i];
+  out[MTS_C_NEAR] = near;
+  out[MTS_C_FAR] = far;
+  out[MTS_C_RANGE] = range;
+  out[MTS_C_LOGK] = log_k;
+  out[MTS_C_LOGL] = log_L;
+  out[MTS_C_DEPTH_GL] = depth_gl ? 1.0f : 0.0f;
+  out[MTS_C_FORMS] = static_cast<float>(forms);
+  out[MTS_C_SNAP_BITS] = static_cast<float>(snap_bits);
   return out;
 }
 

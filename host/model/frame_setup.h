@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "host/model/scene.h"
-#include "kernels/mts_layout.h"
+#include "interface/mts_layout.h"
 
 namespace depthprec {
 
@@ -33,18 +33,18 @@ inline float object_row_dot(const Mat4f& m, int r, const float obj[4], VertexFor
   return mat_row_dot(m, r, obj);
 }
 
-// Per-probe constants, packed as the kernels read them (kernels/mts_layout.h: PROBE_STRIDE floats,
-// P then the C_* offsets).
+// Per-probe constants, packed as the kernels read them (interface/mts_layout.h: MTS_PROBE_STRIDE
+// floats, P then the C_* offsets).
 struct ProbeConstants {
   Mat4f P{};
   std::array<double, 16> P_full{};  // P in the matrix precision before rounding to binary32
   float near = 0, far = 0, range = 0, log_k = 0, log_L = 0;
-  bool depth_gl = false;                 // the pair's depth range is OpenGL's (C_DEPTH_GL)
-  unsigned forms = 0;                    // the pipeline's vertex-stage forms, F_* bits (C_FORMS)
-  int snap_bits = 0;                     // the pipeline's sub-pixel snapping (C_SNAP_BITS)
+  bool depth_gl = false;  // the pair's depth range is OpenGL's (MTS_C_DEPTH_GL)
+  unsigned forms = 0;     // the pipeline's vertex-stage forms, F_* bits (MTS_C_FORMS)
+  int snap_bits = 0;      // the pipeline's sub-pixel snapping (MTS_C_SNAP_BITS)
   double layer_near = 0, layer_far = 0;  // the sub-frustum used (layered), else near/far
   double z = 0;  // plane A's distance: the frames' orientations are per distance (Scene)
-  std::array<float, PROBE_STRIDE> packed() const;
+  std::array<float, MTS_PROBE_STRIDE> packed() const;
 };
 
 ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z);

@@ -21,8 +21,13 @@
 #include "host/model/profile.h"
 #include "host/model/scene_json.h"
 #include "host/model/scene_reader.h"
+#include "interface/mts_layout.h"
 
 namespace depthprec {
+
+int Pipeline::clip_slots() const {
+  return clip == ClipForm::llvmpipe ? MTS_CLIP_SLOTS : 1;
+}
 
 using nlohmann::json;
 

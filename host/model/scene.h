@@ -13,7 +13,6 @@
 
 #include "host/model/storage_format.h"
 #include "host/model/technique.h"
-#include "kernels/mts_layout.h"
 
 namespace depthprec {
 
@@ -38,7 +37,7 @@ enum class ViewportForm { separate, fma };
 // depthprec's (host/model/frame_setup.h; measured pixel by pixel, docs/validation.md).
 enum class VertexForm { separate, fma };
 // The shaders' natural log (log_vertex, log_fragment): the library's (OpenCL's log, <= 3 ulp), or
-// llvmpipe's approximation (kernels/llvmpipe_log.h).
+// llvmpipe's approximation (interface/llvmpipe_log.h).
 enum class LogForm { library, llvmpipe };
 // Triangles that cross the viewport edge: rasterised as they are, their fragments outside the
 // viewport never seen (none), or clipped into a fan of new triangles as llvmpipe's clip stage
@@ -60,11 +59,11 @@ struct Pipeline {
   VertexForm vertex = VertexForm::separate;
   LogForm log = LogForm::library;
   ClipForm clip = ClipForm::none;
-  // Sub-pixel snapping (kernels/snap.h): window x and y rounded to 2^-snap_bits pixel before
+  // Sub-pixel snapping (interface/snap.h): window x and y rounded to 2^-snap_bits pixel before
   // coverage and the depth plane are computed from them; 0: not snapped.
   int snap_bits = 0;
-  // Triangle records per grid triangle (kernels/mts_layout.h): one, or a clipped fan's slots.
-  int clip_slots() const { return clip == ClipForm::llvmpipe ? MTS_CLIP_SLOTS : 1; }
+  // Triangle records per grid triangle (interface/mts_layout.h): one, or a clipped fan's slots.
+  int clip_slots() const;
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
 };
 

@@ -8,7 +8,8 @@
 
 #include "host/base/errors.h"
 #include "host/mts/mts_evaluator_parts.h"
-#include "kernels/mts_layout.h"
+#include "host/runtime/kernel_args.h"
+#include "interface/mts_layout.h"
 
 namespace depthprec {
 
@@ -32,9 +33,9 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
   raster_ = cl::Kernel(program_, "mts_raster");
   bounds_ = cl::Kernel(program_, "mts_frame_bounds");
   plane_floats_ = plane_record_floats(scene);
-  row_words_ = ROW_WORDS;
-  band_words_ = BAND_WORDS;
-  decided_words_ = DECIDED_WORDS;
+  row_words_ = MTS_ROW_WORDS;
+  band_words_ = MTS_BAND_WORDS;
+  decided_words_ = MTS_DECIDED_WORDS;
   share_plane_a_budget(1);
 }
 
@@ -64,15 +65,33 @@ cl_uint MtsEvaluator::bands() const {
   return band_count(scene_);
 }
 
+MtsKernelArea MtsEvaluator::area() const {
+  return MtsKernelArea{static_cast<cl_uint>(scene_.kernel_w),
+                       static_cast<cl_uint>(scene_.kernel_h),
+                       origin_x(),
+                       origin_y(),
+                       bands(),
+                       kBandRows};
+}
+
 cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats,
                               cl_uint per_probe, cl_uint first_plane, cl::Buffer& tris,
                               cl::Buffer& vflags) {
   const size_t planes = mats.size() / 16;
   const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
-  set_args(setup_, consts, mat_buf, per_probe, 0.5f * static_cast<float>(scene_.viewport_w),
-           0.5f * static_cast<float>(scene_.viewport_h), origin_x(), origin_y(),
-           static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(scene_.kernel_h), kBandRows,
-           tris, vflags, first_plane, static_cast<cl_uint>(planes));
+  MtsSetupBuffers b;
+  b.probes = &consts;
+  b.mats = &mat_buf;
+  b.tris = &tris;
+  b.vflags = &vflags;
+  MtsSetupArgs args{};
+  args.area = area();
+  args.half_w = 0.5f * static_cast<float>(scene_.viewport_w);
+  args.half_h = 0.5f * static_cast<float>(scene_.viewport_h);
+  args.per_probe = per_probe;
+  args.first_plane = first_plane;
+  args.count = static_cast<cl_uint>(planes);
+  bind(setup_, b, args);
   cl::Event done;
   launch(setup_, primed_.setup, padded(planes), cl::NDRange(kLocal), &done);
   return done;
@@ -82,7 +101,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
                                                  const std::vector<size_t>& active,
                                                  double& kernel_seconds,
                                                  std::vector<int>& launches) {
-  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
+  const auto kh = static_cast<cl_uint>(scene_.kernel_h);
   const auto frames = static_cast<cl_uint>(scene_.frames);
   if (a_.tris() == nullptr) {
     const size_t n = a_.capacity;
@@ -147,9 +166,21 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     }
     const auto first_plane = static_cast<cl_uint>(slot * frames);
     const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
-    set_args(a_rows_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
-             origin_y(), a_.rows, a_.codes, static_cast<cl_uint>(frames * kh), a_.ref_tris,
-             a_.ref_rows, static_cast<cl_uint>(a_.has_ref), kBandRows);
+    MtsARowsBuffers rows_in;
+    rows_in.probes = &a_.consts;
+    rows_in.tris = &a_.tris;
+    rows_in.vflags = &a_.vflags;
+    rows_in.ref_tris = &a_.ref_tris;
+    rows_in.ref_rows = &a_.ref_rows;
+    rows_in.rows = &a_.rows;
+    rows_in.codes = &a_.codes;
+    MtsARowsArgs rows_args{};
+    rows_args.area = area();
+    rows_args.first_plane = first_plane;
+    rows_args.per_probe = frames;
+    rows_args.items = static_cast<cl_uint>(frames * kh);
+    rows_args.use_ref = static_cast<cl_uint>(a_.has_ref);
+    bind(a_rows_, rows_in, rows_args);
     cl::Event rows_done, bands_done;
     launch(a_rows_, primed_.a_rows, padded(frames * kh), cl::NDRange(kLocal), &rows_done);
     if (!a_.has_ref) {  // this distance is the reference for the distances filled after it
@@ -159,8 +190,17 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
       rt_.queue().enqueueCopyBuffer(a_.rows, a_.ref_rows, row_bytes * slot, 0, row_bytes);
       a_.has_ref = true;
     }
-    set_args(a_bands_, a_.consts, a_.tris, a_.vflags, first_plane, frames, kw, kh, origin_x(),
-             origin_y(), bands(), kBandRows, a_.bands, static_cast<cl_uint>(frames * bands()));
+    MtsABandsBuffers bands_in;
+    bands_in.probes = &a_.consts;
+    bands_in.tris = &a_.tris;
+    bands_in.vflags = &a_.vflags;
+    bands_in.out = &a_.bands;
+    MtsABandsArgs bands_args{};
+    bands_args.area = area();
+    bands_args.first_plane = first_plane;
+    bands_args.per_probe = frames;
+    bands_args.items = static_cast<cl_uint>(frames * bands());
+    bind(a_bands_, bands_in, bands_args);
     launch(a_bands_, primed_.a_bands, padded(frames * bands()), cl::NDRange(kLocal), &bands_done);
     bands_done.wait();
     launches[i] = 3;
@@ -298,8 +338,7 @@ std::vector<ProbeResult> MtsEvaluator::run_fresh(const std::vector<Probe>& probe
 void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector<size_t>& group,
                              const std::vector<int>& first_visited,
                              std::vector<ProbeResult>& results, std::vector<bool>& decided) {
-  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
-  const float ox = origin_x(), oy = origin_y();
+  const auto kh = static_cast<cl_uint>(scene_.kernel_h);
   int done = 0;
   while (done < scene_.frames) {
     std::vector<size_t> active;
@@ -321,10 +360,22 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
                              sizeof(uint32_t) * band_items * decided_words_);
     cl::Event bounds_done;
     if (shortcuts_) {
-      set_args(bounds_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.bands, slot_buf,
-               static_cast<cl_uint>(done), static_cast<cl_uint>(scene_.frames), kw, kh, ox, oy,
-               static_cast<cl_uint>(frames), bands(), kBandRows, decided_bands,
-               static_cast<cl_uint>(band_items));
+      MtsFrameBoundsBuffers b;
+      b.probes = &probe_buf;
+      b.tris = &tris;
+      b.vflags = &vflags;
+      b.a_tris = &a_.tris;
+      b.a_vflags = &a_.vflags;
+      b.a_bands = &a_.bands;
+      b.a_slots = &slot_buf;
+      b.decided = &decided_bands;
+      MtsFrameBoundsArgs args{};
+      args.area = area();
+      args.first_frame = static_cast<cl_uint>(done);
+      args.frames_total = static_cast<cl_uint>(scene_.frames);
+      args.frames = static_cast<cl_uint>(frames);
+      args.items = static_cast<cl_uint>(band_items);
+      bind(bounds_, b, args);
       launch(bounds_, primed_.bounds, padded(band_items), cl::NDRange(kLocal), &bounds_done);
     } else {
       rt_.queue().enqueueFillBuffer(decided_bands, cl_uint{0}, 0,
@@ -333,10 +384,24 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     }
     std::vector<uint32_t> rows(items);
     cl::Buffer result(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    set_args(raster_, probe_buf, tris, vflags, a_.tris, a_.vflags, a_.rows, slot_buf,
-             static_cast<cl_uint>(done), a_.codes, static_cast<cl_uint>(scene_.frames), kw, kh, ox,
-             oy, static_cast<cl_uint>(frames), decided_bands, bands(), kBandRows,
-             static_cast<cl_uint>(shortcuts_), result);
+    MtsRasterBuffers rb;
+    rb.probes = &probe_buf;
+    rb.tris = &tris;
+    rb.vflags = &vflags;
+    rb.a_tris = &a_.tris;
+    rb.a_vflags = &a_.vflags;
+    rb.a_rows = &a_.rows;
+    rb.a_slots = &slot_buf;
+    rb.a_codes = &a_.codes;
+    rb.decided = &decided_bands;
+    rb.result = &result;
+    MtsRasterArgs ra{};
+    ra.area = area();
+    ra.first_frame = static_cast<cl_uint>(done);
+    ra.frames_total = static_cast<cl_uint>(scene_.frames);
+    ra.frames = static_cast<cl_uint>(frames);
+    ra.shortcuts = static_cast<cl_uint>(shortcuts_);
+    bind(raster_, rb, ra);
     cl::Event raster_done;
     launch(raster_, primed_.raster,
            cl::NDRange(padded_size(bands()), static_cast<size_t>(frames), active.size()),

@@ -17,6 +17,7 @@
 #include "host/mts/probe.h"
 #include "host/runtime/kernel_variant.h"
 #include "host/runtime/opencl_runtime.h"
+#include "interface/mts_kernel_args.h"
 
 namespace depthprec {
 
@@ -28,7 +29,7 @@ int batch_frames(int done, int total);
 std::vector<size_t> undecided(const std::vector<bool>& decided);
 
 // One launch's row words (flags | fragment pairs << 8 per (active probe, frame, kernel row), the
-// layout of kernels/mts_layout.h, which kernels/mts.cl and kernels/mts_exact.cl write), folded
+// layout of interface/mts_layout.h, which kernels/mts.cl and kernels/mts_exact.cl write), folded
 // frame by frame into the active probes' results: a probe is decided at its first frame with a
 // fight or a non-finite value. Returns each active probe's fragment pairs (all frames); those of
 // frames after a probe's deciding one are also added to after_decision.
@@ -189,6 +190,7 @@ class MtsEvaluator : public ProbeEvaluator {
   size_t reserve_plane_a(const std::vector<Probe>& probes);
   size_t code_row_words() const;  // per kernel row of plane A's cached codes (0: not cached)
   cl_uint bands() const;
+  MtsKernelArea area() const;  // the measurement kernel as every launch gets it
 
   OpenClRuntime& rt_;
   const Scene& scene_;
@@ -202,10 +204,10 @@ class MtsEvaluator : public ProbeEvaluator {
   cl::Kernel setup_, a_rows_, a_bands_, bounds_, raster_;
   const cl::Program& test_program()
       const;                  // test_program_, or an internal error without the test kernels
-  size_t plane_floats_ = 0;   // floats per plane record (kernels/mts_layout.h MTS_PLANE_STRIDE)
-  size_t row_words_ = 0;      // words per cached row of plane A (ROW_WORDS)
-  size_t band_words_ = 0;     // words per band of plane A (BAND_WORDS)
-  size_t decided_words_ = 0;  // words per band of mts_frame_bounds' verdicts (DECIDED_WORDS)
+  size_t plane_floats_ = 0;   // floats per plane record (interface/mts_layout.h MTS_PLANE_STRIDE)
+  size_t row_words_ = 0;      // words per cached row of plane A (MTS_ROW_WORDS)
+  size_t band_words_ = 0;     // words per band of plane A (MTS_BAND_WORDS)
+  size_t decided_words_ = 0;  // words per band of mts_frame_bounds' verdicts (MTS_DECIDED_WORDS)
   size_t max_slots_ = 1;
   struct PlaneACache {
     size_t capacity = 0;    // slots, each one distance with all its frames

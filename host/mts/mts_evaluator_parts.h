@@ -9,22 +9,22 @@
 
 #include "host/model/scene.h"
 #include "host/runtime/opencl_runtime.h"
-#include "kernels/mts_layout.h"
+#include "interface/mts_layout.h"
 
 namespace depthprec::mts_parts {
 
-constexpr int kProbeStride = PROBE_STRIDE;
-constexpr uint32_t kFight = R_FIGHT, kClipped = R_CLIPPED, kNonFinite = R_NONFINITE,
-                   kUncovered = R_UNCOVERED, kBounds = R_BOUNDS, kReused = R_REUSED;
-constexpr int kCountShift = R_COUNT_SHIFT;
-constexpr uint32_t kVertexNonFinite = V_NONFINITE;
+constexpr int kProbeStride = MTS_PROBE_STRIDE;
+constexpr uint32_t kFight = MTS_R_FIGHT, kClipped = MTS_R_CLIPPED, kNonFinite = MTS_R_NONFINITE,
+                   kUncovered = MTS_R_UNCOVERED, kBounds = MTS_R_BOUNDS, kReused = MTS_R_REUSED;
+constexpr int kCountShift = MTS_R_COUNT_SHIFT;
+constexpr uint32_t kVertexNonFinite = MTS_V_NONFINITE;
 
 // Kernel rows per band that mts_frame_bounds decides at once from code bounds: a band's depth
 // range grows with its height, so smaller bands are decided closer to the MTS but cost more
 // bounds work per row.
 constexpr cl_uint kBandRows = 32;
 static_assert(kBandRows <= 32,
-              "a band's rows left out of its verdict are bits of one word (DW_BAD_ROWS)");
+              "a band's rows left out of its verdict are bits of one word (MTS_DW_BAD_ROWS)");
 
 // The plane-A cache grows to the distances of the largest run so far, up to as many as fit in
 // its share of this (all frames of each; the pairs a run evaluates side by side share it) and at
@@ -46,7 +46,7 @@ inline cl_uint band_count(const Scene& scene) {
   return (static_cast<cl_uint>(scene.kernel_h) + kBandRows - 1) / kBandRows;
 }
 
-// Floats per plane record (kernels/mts_layout.h, the buffer layout the kernels include too).
+// Floats per plane record (interface/mts_layout.h, the buffer layout the kernels include too).
 inline size_t plane_record_floats(const Scene& scene) {
   return MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions),
                           static_cast<size_t>(scene.pipeline.clip_slots()));
@@ -54,7 +54,7 @@ inline size_t plane_record_floats(const Scene& scene) {
 
 // Words per kernel row of plane A's cached codes (0: not cached).
 inline size_t code_row_words(const Scene& scene, bool cache_codes) {
-  return cache_codes ? static_cast<size_t>(scene.kernel_w) + CODE_ROW_PAD : 0;
+  return cache_codes ? static_cast<size_t>(scene.kernel_w) + MTS_CODE_ROW_PAD : 0;
 }
 
 // Bytes of one plane-A cache slot: one distance, every frame (MtsEvaluator::cache_plane_a).
@@ -62,8 +62,8 @@ inline size_t plane_a_slot_bytes(const Scene& scene, bool cache_codes) {
   const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h);
   return sizeof(float) * (kProbeStride + f * plane_record_floats(scene)) +
          sizeof(uint32_t) * f *
-             (1 + kh * (ROW_WORDS + code_row_words(scene, cache_codes)) +
-              BAND_WORDS * band_count(scene));
+             (1 + kh * (MTS_ROW_WORDS + code_row_words(scene, cache_codes)) +
+              MTS_BAND_WORDS * band_count(scene));
 }
 
 // Distances the plane-A cache holds at once with its budget shared by `evaluators`.

@@ -9,7 +9,8 @@
 #include "host/base/errors.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_evaluator_parts.h"
-#include "kernels/mts_layout.h"
+#include "host/runtime/kernel_args.h"
+#include "interface/mts_layout.h"
 
 namespace depthprec {
 
@@ -54,8 +55,9 @@ MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene, con
 
 void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& primer) {
   const cl::Buffer none(rt_.context(), CL_MEM_READ_WRITE, 64);
-  const cl_uint no = 0;  // items, count, kernel rows: every work-item returns at once
-  const float at = 0.0f;
+  // no items, planes or bands: every work-item returns at once
+  MtsKernelArea none_area = area();
+  none_area.bands = 0;
   // once per kernel of a program build: its source, options and name
   const auto prime = [&](cl::Kernel& k, const std::string& program, size_t width, int dimensions) {
     primer.once(program + " " + k.getInfo<CL_KERNEL_FUNCTION_NAME>(), [&] {
@@ -67,18 +69,26 @@ void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& prim
     });
   };
   const std::string program = variant_.program + " " + variant_.options;
-  set_args(setup_, none, none, cl_uint{1}, at, at, at, at, no, no, kBandRows, none, none, no, no);
+  MtsSetupArgs setup_args{};
+  setup_args.area = none_area;
+  setup_args.per_probe = 1;
+  bind_placeholders(setup_, none, setup_args);
   prime(setup_, variant_.setup_program + " " + variant_.setup_options, widths.setup, 1);
-  set_args(a_rows_, none, none, none, no, no, no, no, at, at, none, none, no, none, none, no,
-           kBandRows);
+  MtsARowsArgs rows_args{};
+  rows_args.area = none_area;
+  bind_placeholders(a_rows_, none, rows_args);
   prime(a_rows_, program, widths.a_rows, 1);
-  set_args(a_bands_, none, none, none, no, no, no, no, at, at, no, kBandRows, none, no);
+  MtsABandsArgs bands_args{};
+  bands_args.area = none_area;
+  bind_placeholders(a_bands_, none, bands_args);
   prime(a_bands_, program, widths.a_bands, 1);
-  set_args(bounds_, none, none, none, none, none, none, none, no, no, no, no, at, at, no, no,
-           kBandRows, none, no);
+  MtsFrameBoundsArgs bounds_args{};
+  bounds_args.area = none_area;
+  bind_placeholders(bounds_, none, bounds_args);
   prime(bounds_, program, widths.bounds, 1);
-  set_args(raster_, none, none, none, none, none, none, none, no, none, no, no, no, at, at, no,
-           none, no, kBandRows, no, none);
+  MtsRasterArgs raster_args{};
+  raster_args.area = none_area;
+  bind_placeholders(raster_, none, raster_args);
   prime(raster_, program, widths.raster, 3);
   primed_ = widths;
 }

@@ -9,7 +9,7 @@
 #include "host/base/errors.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_evaluator_parts.h"
-#include "kernels/mts_layout.h"
+#include "interface/mts_layout.h"
 
 namespace depthprec {
 

@@ -7,9 +7,9 @@
 #include "formats/df_prelude.h"
 #include "host/model/frame_setup.h"
 #include "host/runtime/kernel_variant.h"
-#include "kernels/bias_formula.h"
-#include "kernels/llvmpipe_log.h"
-#include "kernels/snap.h"
+#include "interface/bias_formula.h"
+#include "interface/llvmpipe_log.h"
+#include "interface/snap.h"
 
 namespace depthprec {
 
@@ -102,7 +102,7 @@ struct Triangle {
 };
 
 // What a plane's triangles add to their fragments' depth: nothing (the MTS planes), or a depth
-// bias (kernels/bias_formula.h depth_bias's arguments).
+// bias (interface/bias_formula.h depth_bias's arguments).
 struct BiasTerms {
   float units_term = 0, factor = 0, clamp = 0;
   int float_rule = 0, slope_form = BIAS_SLOPE_MAX;

@@ -11,7 +11,7 @@ namespace depthprec {
 FrameCodes reference_frame(const Scene& scene, const EvalPair& pair, const Probe& probe, int frame);
 
 // What the overlay of the depth-bias measurement adds to its fragments' depth, as kernels/bias.cl
-// takes it (kernels/bias_formula.h depth_bias's arguments; host/bias/bias_reference.h computes
+// takes it (interface/bias_formula.h depth_bias's arguments; host/bias/bias_reference.h computes
 // them from an API's rule), and how it is drawn.
 struct ReferenceBias {
   float units_term = 0, factor = 0, clamp = 0;

@@ -341,7 +341,7 @@ void RenderEvaluator::draw_bias(const BiasProbe& probe, const BiasOptions& o, in
   glVertexArrayElementBuffer(vao_, ibo_flipped_);
   glEnable(GL_POLYGON_OFFSET_FILL);
   // The clamp as given: it is signed as the APIs take it (a negative one limits a negative
-  // offset), the emulation applies the same rule (kernels/bias_formula.h).
+  // offset), the emulation applies the same rule (interface/bias_formula.h).
   if (o.clamp != 0)
     glPolygonOffsetClamp(static_cast<float>(probe.factor), static_cast<float>(probe.units),
                          static_cast<float>(o.clamp));

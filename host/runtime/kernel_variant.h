@@ -17,7 +17,7 @@ struct KernelVariant {
   std::string setup_options;
   std::string label;  // short human name, e.g. "projection/LEQUAL/gl/unorm24"
   // mts_raster reads plane A's codes from the plane-A cache instead of computing them
-  // (CACHE_A_CODES, kernels/mts_layout.h): where the depth path is costly enough (fragment-stage
+  // (CACHE_A_CODES, interface/mts_layout.h): where the depth path is costly enough (fragment-stage
   // depth, a division or a log per fragment) to pay for the cache's memory traffic, and never with
   // contraction (the cached code must be the one mts_raster would compute).
   bool cache_a_codes = false;

@@ -14,7 +14,7 @@ typedef struct {
 // The kernel pixels (column i0..i1, row j0..j1) of rows [r0, r1) that triangle R may own
 // (pixel_boxes16, stored by mts_setup). Empty when i0 > i1 or j0 > j1.
 static inline int4 pixel_box(__global const float* R, int r0, int r1) {
-  const int4 box = vload4(0, (__global const int*)R + T_BOX);
+  const int4 box = vload4(0, (__global const int*)R + MTS_T_BOX);
   return (int4)(box.s0, box.s1, max(box.s2, r0), min(box.s3, r1 - 1));
 }
 
@@ -31,7 +31,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
   records_boxed_in_rows(T, r0, r1, &first, &end);
   for (int t = first; t <= end; ++t) {
     if (t < end) {
-      const int4 box = pixel_box(T + t * TRI_STRIDE, r0, r1);
+      const int4 box = pixel_box(T + t * MTS_TRI_STRIDE, r0, r1);
       const int i0 = box.s0, i1 = box.s1, j0 = box.s2, j1 = box.s3;
       if (i0 > i1 || j0 > j1) continue;
       for (int q = 0; q < 4; ++q) {
@@ -117,21 +117,21 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 #define GAP_CERT 0
 #endif
 #if DEPTH_FROM == 2 /* the interpolated plane: q = 1/w_clip, or depth itself */
-#define G_C0 T_Q0
-#define G_DX T_DQDX
-#define G_DY T_DQDY
+#define G_C0 MTS_T_Q0
+#define G_DX MTS_T_DQDX
+#define G_DY MTS_T_DQDY
 #else
-#define G_C0 T_D0
-#define G_DX T_DZDX
-#define G_DY T_DZDY
+#define G_C0 MTS_T_D0
+#define G_DX MTS_T_DZDX
+#define G_DY MTS_T_DZDY
 #endif
 
 #if GAP_CERT
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 // The reference plane's exact value R at (px, py), binary64 scalars or vectors alike.
-#define REF_PLANE_AT(ref, px, py)                                               \
-  (((double)(ref)[G_C0] + (double)(ref)[G_DX] * ((px) - (double)(ref)[T_X0])) + \
-   (double)(ref)[G_DY] * ((py) - (double)(ref)[T_Y0]))
+#define REF_PLANE_AT(ref, px, py)                                                   \
+  (((double)(ref)[G_C0] + (double)(ref)[G_DX] * ((px) - (double)(ref)[MTS_T_X0])) + \
+   (double)(ref)[G_DY] * ((py) - (double)(ref)[MTS_T_Y0]))
 
 // L - R, and E, of 16 corners: triangle planes in lanes (c0, s, x0, t, y0 of each) against the
 // reference plane ref (same fields).
@@ -157,15 +157,15 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
   records_boxed_in_rows(T, r0, r1, &first, &end);
   for (int t = first; t <= end; ++t) {
     if (t < end) {
-      __global const float* R = T + t * TRI_STRIDE;
+      __global const float* R = T + t * MTS_TRI_STRIDE;
       const int4 box = pixel_box(R, r0, r1);
       if (box.s0 > box.s1 || box.s2 > box.s3) continue;
       for (int q = 0; q < 4; ++q) {
         f[n] = R[G_C0];
         f[16 + n] = R[G_DX];
-        f[32 + n] = R[T_X0];
+        f[32 + n] = R[MTS_T_X0];
         f[48 + n] = R[G_DY];
-        f[64 + n] = R[T_Y0];
+        f[64 + n] = R[MTS_T_Y0];
         px[n] = ox + (float)((q & 1) ? box.s1 : box.s0) + 0.5f;
         py[n] = oy + (float)((q & 2) ? box.s3 : box.s2) + 0.5f;
         ++n;
@@ -205,22 +205,22 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
 //            (bench/llvmpipe_log_error, every one), so 8.7 u h + 3.001 u / L
 static inline double frag_h(__global const float* P, double q) {
 #if FRAG_DEPTH == 1
-  return (1.0 / q - (double)P[C_NEAR]) / (double)P[C_RANGE];
+  return (1.0 / q - (double)P[MTS_C_NEAR]) / (double)P[MTS_C_RANGE];
 #elif FRAG_DEPTH == 2
-  return 1.0 / (q * (double)P[C_FAR]);
+  return 1.0 / (q * (double)P[MTS_C_FAR]);
 #else
-  return log((double)P[C_LOGK] / q + 1.0) / (double)P[C_LOGL];
+  return log((double)P[MTS_C_LOGK] / q + 1.0) / (double)P[MTS_C_LOGL];
 #endif
 }
 
 static inline double frag_err(__global const float* P, double h_max, double w_max) {
   const double u = 0x1.0p-24;
 #if FRAG_DEPTH == 1
-  return 2.001 * u * h_max + 1.001 * u * w_max / (double)P[C_RANGE];
+  return 2.001 * u * h_max + 1.001 * u * w_max / (double)P[MTS_C_RANGE];
 #elif FRAG_DEPTH == 2
   return 2.001 * u * h_max;
 #else
-  return (LLVMPIPE_LOG ? 8.7 : 7.02) * u * h_max + 3.001 * u / (double)P[C_LOGL];
+  return (LLVMPIPE_LOG ? 8.7 : 7.02) * u * h_max + 3.001 * u / (double)P[MTS_C_LOGL];
 #endif
 }
 
@@ -252,23 +252,22 @@ static inline int frag_gap_clear(__global const float* P, __global const float* 
 // (plane_gap_range against its own triangle 0; NaN where not computed). Global id:
 // plane * bands + band, planes from first_plane; the probe constants of plane p are those of p /
 // per_probe.
-__kernel void mts_a_bands(__global const float* restrict probes,
-                          __global const float* restrict tris, __global const uint* restrict vflags,
-                          const uint first_plane, const uint per_probe, const uint kernel_w,
-                          const uint kernel_h, const float origin_x, const float origin_y,
-                          const uint bands, const uint band_rows, __global uint* restrict out,
-                          const uint items) {
+__kernel void mts_a_bands(MTS_A_BANDS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsABandsArgs args) {
+  const uint first_plane = args.first_plane, per_probe = args.per_probe, items = args.items;
+  const uint kernel_w = args.area.kernel_w, kernel_h = args.area.kernel_h;
+  const uint bands = args.area.bands, band_rows = args.area.band_rows;
+  const float origin_x = args.area.origin_x, origin_y = args.area.origin_y;
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint plane = first_plane + id / bands, band = id % bands;
-  __global uint* o = out + ((size_t)plane * bands + band) * BAND_WORDS;
+  __global uint* o = out + ((size_t)plane * bands + band) * MTS_BAND_WORDS;
   o[2] = 1u;
-  ((__global float*)o)[BW_GAP_LO] = NAN;
-  ((__global float*)o)[BW_GAP_HI] = NAN;
+  ((__global float*)o)[MTS_BW_GAP_LO] = NAN;
+  ((__global float*)o)[MTS_BW_GAP_HI] = NAN;
   if (!band_covered(vflags[plane], band)) return;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
   __global const float* T = tris + (size_t)plane * PLANE_STRIDE;
-  const code_bounds_t a = plane_code_bounds(T, probes + (plane / per_probe) * PROBE_STRIDE,
+  const code_bounds_t a = plane_code_bounds(T, probes + (plane / per_probe) * MTS_PROBE_STRIDE,
                                             origin_x, origin_y, (int)kernel_w, r0, r1);
   o[0] = (uint)a.lo;
   o[1] = (uint)a.hi;
@@ -276,24 +275,24 @@ __kernel void mts_a_bands(__global const float* restrict probes,
 #if GAP_CERT
   /* rounded outwards: the band's gap range is only ever widened */
   const double2 g = plane_gap_range(T, T, origin_x, origin_y, (int)kernel_w, r0, r1);
-  ((__global float*)o)[BW_GAP_LO] = convert_float_rtn(g.x);
-  ((__global float*)o)[BW_GAP_HI] = convert_float_rtp(g.y);
+  ((__global float*)o)[MTS_BW_GAP_LO] = convert_float_rtn(g.x);
+  ((__global float*)o)[MTS_BW_GAP_HI] = convert_float_rtp(g.y);
 #endif
 }
 
-// The verdict of one band of a (probe, frame), for its rows but those band_bad_rows names: D_CLEAN
-// when both planes certainly own every pixel of those rows (band_covered) and their code bounds
-// over it exclude a fight: LEQUAL: B's smallest code above A's largest (log depth: by
+// The verdict of one band of a (probe, frame), for its rows but those band_bad_rows names:
+// MTS_D_CLEAN when both planes certainly own every pixel of those rows (band_covered) and their
+// code bounds over it exclude a fight: LEQUAL: B's smallest code above A's largest (log depth: by
 // LOG_CODE_SLACK more, as for pieces), or, where that fails, the gap certificate (plane_gap_range,
-// frag_gap_clear). Otherwise D_RASTER, or D_INSIDE / D_ORDERED where the bounds show both planes
-// finite and unclipped over the band.
+// frag_gap_clear). Otherwise MTS_D_RASTER, or MTS_D_INSIDE / MTS_D_ORDERED where the bounds show
+// both planes finite and unclipped over the band.
 static inline uint band_verdict(__global const float* P, __global const float* TB,
                                 __global const float* ref, uint vflags_b, uint vflags_a,
                                 __global const uint* a, float origin_x, float origin_y,
                                 uint kernel_w, int r0, int r1, uint band) {
-  if (!band_covered(vflags_a, band) || !band_covered(vflags_b, band) || a[2]) return D_RASTER;
+  if (!band_covered(vflags_a, band) || !band_covered(vflags_b, band) || a[2]) return MTS_D_RASTER;
   const code_bounds_t b = plane_code_bounds(TB, P, origin_x, origin_y, (int)kernel_w, r0, r1);
-  if (b.bad) return D_RASTER;
+  if (b.bad) return MTS_D_RASTER;
 #if COMPARE_GREATER
   uint clean = b.hi + LOG_SLACK_OR_0 < (ulong)a[0];
 #else
@@ -304,12 +303,12 @@ static inline uint band_verdict(__global const float* P, __global const float* T
     const double2 g = plane_gap_range(TB, ref, origin_x, origin_y, (int)kernel_w, r0, r1);
     __global const float* ga = (__global const float*)a;
 #if DEPTH_FROM == 2
-    clean = frag_gap_clear(P, ref, (double2)(ga[BW_GAP_LO], ga[BW_GAP_HI]), g, origin_x, origin_y,
-                           (int)kernel_w, r0, r1);
+    clean = frag_gap_clear(P, ref, (double2)(ga[MTS_BW_GAP_LO], ga[MTS_BW_GAP_HI]), g, origin_x,
+                           origin_y, (int)kernel_w, r0, r1);
 #elif COMPARE_GREATER
-    clean = (double)ga[BW_GAP_LO] - g.y > GAP_STEP;
+    clean = (double)ga[MTS_BW_GAP_LO] - g.y > GAP_STEP;
 #else
-    clean = g.x - (double)ga[BW_GAP_HI] > GAP_STEP;
+    clean = g.x - (double)ga[MTS_BW_GAP_HI] > GAP_STEP;
 #endif
   }
 #endif
@@ -323,7 +322,7 @@ static inline uint band_verdict(__global const float* P, __global const float* T
   const uint from = df_order_exact_from(DF_FORMAT_FROM_DEFINES());
   const int ordered =
       from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
-  return clean ? D_CLEAN : ordered ? D_ORDERED : D_INSIDE;
+  return clean ? MTS_D_CLEAN : ordered ? MTS_D_ORDERED : MTS_D_INSIDE;
 }
 
 // Decides bands of kernel rows of a (probe, frame) clean without rasterising them (band_verdict).
@@ -331,31 +330,30 @@ static inline uint band_verdict(__global const float* P, __global const float* T
 // through mts_raster row by row, so the answer never depends on this pass, only the work does;
 // for it, whether B's edges are A's and how far they moved (b_coverage_is_a).
 // Global id: (probe * frames + frame) * bands + band.
-__kernel void mts_frame_bounds(
-    __global const float* restrict probes, __global const float* restrict tris,
-    __global const uint* restrict vflags, __global const float* restrict a_tris,
-    __global const uint* restrict a_vflags, __global const uint* restrict a_bands,
-    __global const uint* restrict a_slots, const uint first_frame, const uint frames_total,
-    const uint kernel_w, const uint kernel_h, const float origin_x, const float origin_y,
-    const uint frames, const uint bands, const uint band_rows, __global uint* restrict decided,
-    const uint items) {
+__kernel void mts_frame_bounds(MTS_FRAME_BOUNDS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT)
+                                   const MtsFrameBoundsArgs args) {
+  const uint first_frame = args.first_frame, frames_total = args.frames_total;
+  const uint frames = args.frames, items = args.items;
+  const uint kernel_w = args.area.kernel_w, kernel_h = args.area.kernel_h;
+  const uint bands = args.area.bands, band_rows = args.area.band_rows;
+  const float origin_x = args.area.origin_x, origin_y = args.area.origin_y;
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint pf = id / bands, band = id - pf * bands;
   const uint ap = A_PLANE(pf);
-  __global const float* P = probes + (pf / frames) * PROBE_STRIDE;
-  __global uint* out = decided + (size_t)id * DECIDED_WORDS;
+  __global const float* P = probes + (pf / frames) * MTS_PROBE_STRIDE;
+  __global uint* out = decided + (size_t)id * MTS_DECIDED_WORDS;
   __global const float* TB = tris + (size_t)pf * PLANE_STRIDE;
   __global const float* ref = a_tris + (size_t)ap * PLANE_STRIDE;
   const int r0 = (int)(band * band_rows), r1 = min((int)kernel_h, r0 + (int)band_rows);
   const uint verdict = band_verdict(P, TB, ref, vflags[pf], a_vflags[ap],
-                                    a_bands + ((size_t)ap * bands + band) * BAND_WORDS, origin_x,
-                                    origin_y, kernel_w, r0, r1, band);
+                                    a_bands + ((size_t)ap * bands + band) * MTS_BAND_WORDS,
+                                    origin_x, origin_y, kernel_w, r0, r1, band);
   float moved = INFINITY;
   uint oriented = 0u;
-  if (verdict != D_CLEAN && !((a_vflags[ap] | vflags[pf]) & V_NONFINITE))
+  if (verdict != MTS_D_CLEAN && !((a_vflags[ap] | vflags[pf]) & MTS_V_NONFINITE))
     oriented = band_b_against_a(ref, TB, origin_y, r0, r1, &moved);
-  ((__global float*)out)[DW_MOVED] = moved;
-  out[DW_VERDICT] = verdict | oriented;
-  out[DW_BAD_ROWS] = band_bad_rows(TB, r0, r1) | band_bad_rows(ref, r0, r1);
+  ((__global float*)out)[MTS_DW_MOVED] = moved;
+  out[MTS_DW_VERDICT] = verdict | oriented;
+  out[MTS_DW_BAD_ROWS] = band_bad_rows(TB, r0, r1) | band_bad_rows(ref, r0, r1);
 }

@@ -12,12 +12,16 @@
 #define V_BAD_ROW MTS_V_BAD_ROW(GRID, CLIP_SLOTS)
 #define PLANE_STRIDE MTS_PLANE_STRIDE(GRID, CLIP_SLOTS)
 
+// A kernel's buffers as parameters, from its list in interface/mts_kernel_args.h.
+#define MTS_ARG_IN(type, name) __global const type *restrict name,
+#define MTS_ARG_OUT(type, name) __global type *restrict name,
+
 // The lane indices of a 16-lane vector.
 #define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 
-// m * v row by row for 16 vectors in lanes, fused (F_VERTEX_FMA) or not (host/model/frame_setup.h
-// mat_row_dot): a computed vector, or a plane's object position (x, y, 0, 1), whose constant z and
-// w a shader compiler folds away (obj_row16).
+// m * v row by row for 16 vectors in lanes, fused (MTS_F_VERTEX_FMA) or not
+// (host/model/frame_setup.h mat_row_dot): a computed vector, or a plane's object position (x, y, 0,
+// 1), whose constant z and w a shader compiler folds away (obj_row16).
 typedef struct {
   float16 x, y, z, w;
 } vec4x16_t;
@@ -43,7 +47,7 @@ static inline vec4x16_t mat_vec16(__global const float* m, vec4x16_t v, int fuse
   return r;
 }
 
-// The shaders' natural log, of one value and of 16 (LLVMPIPE_LOG, kernels/llvmpipe_log.h).
+// The shaders' natural log, of one value and of 16 (LLVMPIPE_LOG, interface/llvmpipe_log.h).
 #if LLVMPIPE_LOG
 DP_LLVMPIPE_LOG_DEFINE(shader_log, float, as_uint, as_float, convert_float, fma)
 DP_LLVMPIPE_LOG_DEFINE(shader_log16, float16, as_uint16, as_float16, convert_float16, fma)

@@ -30,7 +30,8 @@ static inline void edge_range(__global const float* R, uint bits, int e, float p
     *hi = 0;
     return;
   }
-  const float cross = R[4 * e] + (py - R[4 * e + 1]) * R[T_DXDY + e] - ox - 0.5f; /* E ~ 0 here */
+  const float cross =
+      R[4 * e] + (py - R[4 * e + 1]) * R[MTS_T_DXDY + e] - ox - 0.5f; /* E ~ 0 here */
   int g = isfinite(cross) ? (int)clamp(ceil(cross), -1.0f, (float)W + 1.0f) : 0;
   g = clamp(g, 0, W);
   if (sdy < 0.0f) {
@@ -87,17 +88,19 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
    * both ends of the row passes or fails all of it (the test is monotone); a crossing edge's
    * boundary is taken where the test flips between the guessed pixel and the one before it.
    * Lanes where that check fails (-2) are placed by the scalar walk below. */
-  __global const float* SA = T + NT * TRI_STRIDE;
+  __global const float* SA = T + NT * MTS_TRI_STRIDE;
   int elo[NE_PAD], ehi[NE_PAD];
   const float px_first = ox + 0.5f, px_last = ox + (float)(W - 1) + 0.5f;
   /* only the edges of the records the row can meet */
   int t_first, t_end;
   records_meeting(T, py, py, &t_first, &t_end);
   for (int g = 3 * t_first / 16 * 16; g < 3 * t_end; g += 16) {
-    const float16 ax = vload16(0, SA + E_AX * NE_PAD + g), ay = vload16(0, SA + E_AY * NE_PAD + g);
-    const float16 dx = vload16(0, SA + E_DX * NE_PAD + g), dy = vload16(0, SA + E_DY * NE_PAD + g);
-    const float16 dxdy = vload16(0, SA + E_DXDY * NE_PAD + g);
-    const uint16 eb = vload16(0, (__global const uint*)SA + E_BITS * NE_PAD + g);
+    const float16 ax = vload16(0, SA + MTS_E_AX * NE_PAD + g),
+                  ay = vload16(0, SA + MTS_E_AY * NE_PAD + g);
+    const float16 dx = vload16(0, SA + MTS_E_DX * NE_PAD + g),
+                  dy = vload16(0, SA + MTS_E_DY * NE_PAD + g);
+    const float16 dxdy = vload16(0, SA + MTS_E_DXDY * NE_PAD + g);
+    const uint16 eb = vload16(0, (__global const uint*)SA + MTS_E_BITS * NE_PAD + g);
     const int16 negate = convert_int16((eb & (uint16)1u) != (uint16)0u);
     const int16 owns = convert_int16((eb & (uint16)2u) != (uint16)0u);
     const float16 c = dx * (py - ay);
@@ -136,9 +139,9 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   }
   int lo[NT], hi[NT], tri[NT], n = 0;
   for (int t = t_first; t < t_end; ++t) {
-    __global const float* R = T + t * TRI_STRIDE;
-    const uint bits = TB[t * TRI_STRIDE + T_BITS];
-    if (!(bits & 64u) || !(R[T_YMIN] <= py && py <= R[T_YMAX])) continue;
+    __global const float* R = T + t * MTS_TRI_STRIDE;
+    const uint bits = TB[t * MTS_TRI_STRIDE + MTS_T_BITS];
+    if (!(bits & 64u) || !(R[MTS_T_YMIN] <= py && py <= R[MTS_T_YMAX])) continue;
     int a = 0, b = W;
     for (int e = 0; e < 3 && a < b; ++e) {
       const int k = 3 * t + e;
@@ -207,9 +210,9 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
 
 // The segments of a cached row record (mts_a_rows) into seg_x, seg_t; returns their number.
 static inline int record_segments(__global const uint* rec, int* seg_x, int* seg_t) {
-  const int n = (int)rec[RW_N];
-  for (int k = 0; k <= n; ++k) seg_x[k] = (int)rec[RW_X + k];
-  for (int k = 0; k < n; ++k) seg_t[k] = (int)rec[RW_T + k];
+  const int n = (int)rec[MTS_RW_N];
+  for (int k = 0; k <= n; ++k) seg_x[k] = (int)rec[MTS_RW_X + k];
+  for (int k = 0; k < n; ++k) seg_t[k] = (int)rec[MTS_RW_T + k];
   return n;
 }
 
@@ -217,9 +220,9 @@ static inline int record_segments(__global const uint* rec, int* seg_x, int* seg
 // to the same window triangles in exact arithmetic; in binary32 B's vertices lie some delta
 // (~1e-4 px) from A's. Returns a margin: for any B whose edges join A's vertices and lie within
 // less than it of A's (per coordinate, as b_moved_from_a measures), and which owns each kernel
-// pixel through exactly one triangle (V_COVERS), B's coverage of the row is A's segments. Proof:
-// each segment's triangle passes its three edge tests at the segment's first and last pixel in B
-// too, so (each test being monotone along the row) at every pixel of the segment, and the one
+// pixel through exactly one triangle (MTS_V_COVERS), B's coverage of the row is A's segments.
+// Proof: each segment's triangle passes its three edge tests at the segment's first and last pixel
+// in B too, so (each test being monotone along the row) at every pixel of the segment, and the one
 // triangle that passes a pixel owns it; and the row stays inside each triangle's y-range, which
 // row_segments also asks. The edge value E = dx (py - ay) - dy (px - ax) of a pixel moves by at
 // most d (|dx| + |dy| + 2|py - ay| + 2|px - ax|) + 4 d^2 when the edge's anchor (ax, ay) moves by d
@@ -232,8 +235,8 @@ static inline int record_segments(__global const uint* rec, int* seg_x, int* seg
 // clip stage's fans as for the grid's triangles.
 static inline float coverage_margin(__global const float* T, float py, float ox, int n,
                                     const int* seg_x, const int* seg_t) {
-  __global const float* SA = T + NT * TRI_STRIDE;
-  __global const uint* SB = (__global const uint*)SA + E_BITS * NE_PAD;
+  __global const float* SA = T + NT * MTS_TRI_STRIDE;
+  __global const uint* SB = (__global const uint*)SA + MTS_E_BITS * NE_PAD;
   const float eps = 0x1.0p-24f;
   float margin = INFINITY;
   /* Per segment its triangle's three edges (contiguous in the edge records) at both ends, in
@@ -244,16 +247,18 @@ static inline float coverage_margin(__global const float* T, float py, float ox,
   for (int k = 0; k < n; ++k) {
     const int t = seg_t[k];
     if (t < 0) return 0.0f;
-    __global const float* R = T + t * TRI_STRIDE;
-    margin = fmin(margin, fmin(py - R[T_YMIN], R[T_YMAX] - py));
+    __global const float* R = T + t * MTS_TRI_STRIDE;
+    margin = fmin(margin, fmin(py - R[MTS_T_YMIN], R[MTS_T_YMAX] - py));
     const float px0 = ox + (float)seg_x[k] + 0.5f, px1 = ox + (float)(seg_x[k + 1] - 1) + 0.5f;
 #define EDGES8(F, FIELD)                         \
   ({                                             \
     const F##3 v3_ = vload3(0, (FIELD) + 3 * t); \
     (F##8)(v3_, v3_, v3_.s01);                   \
   })
-    const float8 ax = EDGES8(float, SA + E_AX * NE_PAD), ay = EDGES8(float, SA + E_AY * NE_PAD);
-    const float8 dx = EDGES8(float, SA + E_DX * NE_PAD), dy = EDGES8(float, SA + E_DY * NE_PAD);
+    const float8 ax = EDGES8(float, SA + MTS_E_AX * NE_PAD),
+                 ay = EDGES8(float, SA + MTS_E_AY * NE_PAD);
+    const float8 dx = EDGES8(float, SA + MTS_E_DX * NE_PAD),
+                 dy = EDGES8(float, SA + MTS_E_DY * NE_PAD);
     const uint8 bits = EDGES8(uint, SB);
 #undef EDGES8
     const float8 px = (float8)(px0, px0, px0, px1, px1, px1, px0, px0);
@@ -287,24 +292,26 @@ static inline float16 moved16(float16 a, float16 b) {
 
 static inline float b_moved_from_a(__global const float* TA, __global const float* TB, int first,
                                    int end) {
-  __global const float* EA = TA + NT * TRI_STRIDE;
-  __global const float* EB = TB + NT * TRI_STRIDE;
+  __global const float* EA = TA + NT * MTS_TRI_STRIDE;
+  __global const float* EB = TB + NT * MTS_TRI_STRIDE;
   float16 m = (float16)0.0f;
   for (int g = 3 * first / 16 * 16; g < 3 * end; g += 16) {
-    m = fmax(m, moved16(vload16(0, EA + E_AX * NE_PAD + g), vload16(0, EB + E_AX * NE_PAD + g)));
-    m = fmax(m, moved16(vload16(0, EA + E_AY * NE_PAD + g), vload16(0, EB + E_AY * NE_PAD + g)));
     m = fmax(
-        m, 0.5f * moved16(vload16(0, EA + E_DX * NE_PAD + g), vload16(0, EB + E_DX * NE_PAD + g)));
+        m, moved16(vload16(0, EA + MTS_E_AX * NE_PAD + g), vload16(0, EB + MTS_E_AX * NE_PAD + g)));
     m = fmax(
-        m, 0.5f * moved16(vload16(0, EA + E_DY * NE_PAD + g), vload16(0, EB + E_DY * NE_PAD + g)));
+        m, moved16(vload16(0, EA + MTS_E_AY * NE_PAD + g), vload16(0, EB + MTS_E_AY * NE_PAD + g)));
+    m = fmax(m, 0.5f * moved16(vload16(0, EA + MTS_E_DX * NE_PAD + g),
+                               vload16(0, EB + MTS_E_DX * NE_PAD + g)));
+    m = fmax(m, 0.5f * moved16(vload16(0, EA + MTS_E_DY * NE_PAD + g),
+                               vload16(0, EB + MTS_E_DY * NE_PAD + g)));
   }
   const float8 m8 = fmax(m.lo, m.hi);
   const float4 m4 = fmax(m8.lo, m8.hi);
   const float2 m2 = fmax(m4.lo, m4.hi);
   float r = fmax(m2.x, m2.y);
   for (int t = first; t < end; ++t) {
-    const float2 ya = vload2(0, TA + t * TRI_STRIDE + T_YMIN);
-    const float2 yb = vload2(0, TB + t * TRI_STRIDE + T_YMIN);
+    const float2 ya = vload2(0, TA + t * MTS_TRI_STRIDE + MTS_T_YMIN);
+    const float2 yb = vload2(0, TB + t * MTS_TRI_STRIDE + MTS_T_YMIN);
     const float d0 = ya.x == yb.x ? 0.0f : fabs(yb.x - ya.x);
     const float d1 = ya.y == yb.y ? 0.0f : fabs(yb.y - ya.y);
     r = fmax(r, fmax(d0 <= INFINITY ? d0 : INFINITY, d1 <= INFINITY ? d1 : INFINITY));
@@ -317,8 +324,8 @@ static inline float b_moved_from_a(__global const float* TA, __global const floa
 // test negated alike.
 static inline int b_keeps_a_edges(__global const float* TA, __global const float* TB, int first,
                                   int end) {
-  __global const uint* a = (__global const uint*)(TA + NT * TRI_STRIDE) + E_BITS * NE_PAD;
-  __global const uint* b = (__global const uint*)(TB + NT * TRI_STRIDE) + E_BITS * NE_PAD;
+  __global const uint* a = (__global const uint*)(TA + NT * MTS_TRI_STRIDE) + MTS_E_BITS * NE_PAD;
+  __global const uint* b = (__global const uint*)(TB + NT * MTS_TRI_STRIDE) + MTS_E_BITS * NE_PAD;
   uint16 differ = (uint16)0u;
   for (int g = 3 * first / 16 * 16; g < 3 * end; g += 16)
     differ |= (vload16(0, a + g) ^ vload16(0, b + g)) & ~2u;
@@ -326,14 +333,14 @@ static inline int b_keeps_a_edges(__global const float* TA, __global const float
 }
 
 // For the rows [r0, r1) of a band, over the records they can meet in plane A (records_meeting):
-// whether plane B's edges are A's (b_keeps_a_edges, returned as DV_ORIENTED or 0) and how far
+// whether plane B's edges are A's (b_keeps_a_edges, returned as MTS_DV_ORIENTED or 0) and how far
 // they moved (b_moved_from_a, *moved), as b_coverage_is_a asks for every row of the band.
 static inline uint band_b_against_a(__global const float* TA, __global const float* TB,
                                     float origin_y, int r0, int r1, float* moved) {
   int first, end;
   records_meeting(TA, origin_y + (float)r0 + 0.5f, origin_y + (float)(r1 - 1) + 0.5f, &first, &end);
   *moved = b_moved_from_a(TA, TB, first, end);
-  return b_keeps_a_edges(TA, TB, first, end) ? DV_ORIENTED : 0u;
+  return b_keeps_a_edges(TA, TB, first, end) ? MTS_DV_ORIENTED : 0u;
 }
 
 // Whether plane B's coverage of a cached row of plane A is A's: B certified to own every pixel of
@@ -344,6 +351,6 @@ static inline uint band_b_against_a(__global const float* TA, __global const flo
 static inline int b_coverage_is_a(float moved, int oriented, __global const float* TB,
                                   uint vflags_b, int row, uint band_rows,
                                   __global const uint* rec) {
-  return oriented && moved < ((__global const float*)rec)[RW_MARGIN] &&
+  return oriented && moved < ((__global const float*)rec)[MTS_RW_MARGIN] &&
          row_covered(TB, vflags_b, row, band_rows);
 }

@@ -11,18 +11,18 @@ typedef struct {
 } row_plane_t;
 
 static inline row_plane_t row_plane(__global const float* T, int t, float py) {
-  __global const float* R = T + t * TRI_STRIDE;
+  __global const float* R = T + t * MTS_TRI_STRIDE;
   row_plane_t rp;
-  rp.x0 = R[T_X0];
-  rp.y = py - R[T_Y0];
+  rp.x0 = R[MTS_T_X0];
+  rp.y = py - R[MTS_T_Y0];
 #if DEPTH_FROM == 2
-  rp.c0 = R[T_Q0];
-  rp.slope = R[T_DQDX];
-  rp.dy = R[T_DQDY];
+  rp.c0 = R[MTS_T_Q0];
+  rp.slope = R[MTS_T_DQDX];
+  rp.dy = R[MTS_T_DQDY];
 #else
-  rp.c0 = R[T_D0];
-  rp.slope = R[T_DZDX];
-  rp.dy = R[T_DZDY];
+  rp.c0 = R[MTS_T_D0];
+  rp.slope = R[MTS_T_DZDX];
+  rp.dy = R[MTS_T_DZDY];
 #endif
 #if PLANE_FORM == 2
   rp.row_term = rp.dy * (rp.y - (float)((int)rp.y & 1)); /* the quad's even row */
@@ -108,13 +108,13 @@ static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float
   const float16 q = plane_at16(rp, px);
   const float16 w = 1.0f / q;
   const int16 nf_w = !isfinite(w);
-  r.clipped = (w < P[C_NEAR]) || (w > P[C_FAR]);
+  r.clipped = (w < P[MTS_C_NEAR]) || (w > P[MTS_C_FAR]);
 #if FRAG_DEPTH == 1
-  float16 d = (w - P[C_NEAR]) / P[C_RANGE];
+  float16 d = (w - P[MTS_C_NEAR]) / P[MTS_C_RANGE];
 #elif FRAG_DEPTH == 2
-  float16 d = w / P[C_FAR];
+  float16 d = w / P[MTS_C_FAR];
 #else
-  float16 d = shader_log16(P[C_LOGK] * w + 1.0f) / P[C_LOGL];
+  float16 d = shader_log16(P[MTS_C_LOGK] * w + 1.0f) / P[MTS_C_LOGL];
 #endif
   r.nonfinite = nf_w || isnan(d);
   r.d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
@@ -157,8 +157,8 @@ static inline int16 fights16(uint16 code_a, uint16 code_b) {
 }
 
 // fights16 from the depths themselves, for fragments of which at least one has a depth at or
-// above df_order_exact_from (in a D_ORDERED band every fragment of plane A has): there the codes
-// compare as the depths do, so neither needs encoding.
+// above df_order_exact_from (in a MTS_D_ORDERED band every fragment of plane A has): there the
+// codes compare as the depths do, so neither needs encoding.
 static inline int16 ordered_fights16(float16 da, float16 db) {
 #if COMPARE_GREATER
   return db >= da;

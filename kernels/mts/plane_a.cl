@@ -13,7 +13,7 @@
 static inline int row_from_reference(__global const float* T, uint vf, __global const float* R,
                                      __global const uint* ref_rec, int row, uint band_rows,
                                      float py, int* seg_x, int* seg_t, float* margin) {
-  const int n = (int)ref_rec[RW_N];
+  const int n = (int)ref_rec[MTS_RW_N];
   if (n == 0 || !row_covered(T, vf, row, band_rows)) return 0;
   int first, end;
   records_meeting(R, py, py, &first, &end);
@@ -21,7 +21,7 @@ static inline int row_from_reference(__global const float* T, uint vf, __global 
   /* margin - moved, rounded down: the exact sum of this plane's movement and B's stays below the
    * reference's margin */
   const float left =
-      (((__global const float*)ref_rec)[RW_MARGIN] - b_moved_from_a(R, T, first, end)) *
+      (((__global const float*)ref_rec)[MTS_RW_MARGIN] - b_moved_from_a(R, T, first, end)) *
       (1.0f - 0x1.0p-20f);
   if (!(left > 0.0f)) return 0;
   *margin = left;
@@ -31,21 +31,19 @@ static inline int row_from_reference(__global const float* T, uint vf, __global 
 // Row records of cached plane A. Global id: plane * kernel_h + row, planes from first_plane; a
 // plane's frame is its index among the per_probe planes of its distance, and the reference's
 // planes and rows are indexed by frame (use_ref 0: this fill is the reference).
-__kernel void mts_a_rows(__global const float* restrict probes, __global const float* restrict tris,
-                         __global const uint* restrict vflags, const uint first_plane,
-                         const uint per_probe, const uint kernel_w, const uint kernel_h,
-                         const float origin_x, const float origin_y, __global uint* restrict rows,
-                         __global uint* restrict codes, const uint items,
-                         __global const float* restrict ref_tris,
-                         __global const uint* restrict ref_rows, const uint use_ref,
-                         const uint band_rows) {
+__kernel void mts_a_rows(MTS_A_ROWS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsARowsArgs args) {
+  const uint first_plane = args.first_plane, per_probe = args.per_probe, items = args.items;
+  const uint use_ref = args.use_ref;
+  const uint kernel_w = args.area.kernel_w, kernel_h = args.area.kernel_h;
+  const uint band_rows = args.area.band_rows;
+  const float origin_x = args.area.origin_x, origin_y = args.area.origin_y;
   const uint id = get_global_id(0);
   if (id >= items) return;
   const uint plane = first_plane + id / kernel_h, row = id % kernel_h;
   __global const float* T = tris + (size_t)plane * PLANE_STRIDE;
-  __global uint* out = rows + ((size_t)plane * kernel_h + row) * ROW_WORDS;
-  if (vflags[plane] & V_NONFINITE) {
-    out[RW_N] = 0u;
+  __global uint* out = rows + ((size_t)plane * kernel_h + row) * MTS_ROW_WORDS;
+  if (vflags[plane] & MTS_V_NONFINITE) {
+    out[MTS_RW_N] = 0u;
     return;
   }
   const float py = origin_y + (float)row + 0.5f;
@@ -55,20 +53,20 @@ __kernel void mts_a_rows(__global const float* restrict probes, __global const f
   if (use_ref) {
     const uint frame = plane % per_probe;
     n = row_from_reference(T, vflags[plane], ref_tris + (size_t)frame * PLANE_STRIDE,
-                           ref_rows + ((size_t)frame * kernel_h + row) * ROW_WORDS, (int)row,
+                           ref_rows + ((size_t)frame * kernel_h + row) * MTS_ROW_WORDS, (int)row,
                            band_rows, py, seg_x, seg_t, &margin);
   }
   const int from_ref = n > 0;
   if (!from_ref) {
     n = row_segments(T, py, origin_x, (int)kernel_w, seg_x, seg_t);
-    if (n > MAXC) {
-      out[RW_N] = 0u;
+    if (n > MTS_MAXC) {
+      out[MTS_RW_N] = 0u;
       return;
     }
   }
 #if CACHE_A_CODES
-  __global const float* P = probes + (plane / per_probe) * PROBE_STRIDE;
-  __global uint* c = codes + ((size_t)plane * kernel_h + row) * (kernel_w + CODE_ROW_PAD);
+  __global const float* P = probes + (plane / per_probe) * MTS_PROBE_STRIDE;
+  __global uint* c = codes + ((size_t)plane * kernel_h + row) * (kernel_w + MTS_CODE_ROW_PAD);
   for (int k = 0; k < n; ++k) {
     if (seg_t[k] < 0) continue;
     const row_plane16_t rp = broadcast16(row_plane(T, seg_t[k], py));
@@ -76,10 +74,10 @@ __kernel void mts_a_rows(__global const float* restrict probes, __global const f
       vstore16(fragment16(rp, P, (origin_x + convert_float16(i0 + LANES)) + 0.5f).code, 0, c + i0);
   }
 #endif
-  out[RW_N] = (uint)n;
-  for (int k = 0; k <= n; ++k) out[RW_X + k] = (uint)seg_x[k];
-  for (int k = 0; k < n; ++k) out[RW_T + k] = (uint)seg_t[k];
+  out[MTS_RW_N] = (uint)n;
+  for (int k = 0; k <= n; ++k) out[MTS_RW_X + k] = (uint)seg_x[k];
+  for (int k = 0; k < n; ++k) out[MTS_RW_T + k] = (uint)seg_t[k];
   /* A's own certification is not needed: only B's ownership enters the proof (coverage_margin) */
-  ((__global float*)out)[RW_MARGIN] =
+  ((__global float*)out)[MTS_RW_MARGIN] =
       from_ref ? margin : coverage_margin(T, py, origin_x, n, seg_x, seg_t);
 }

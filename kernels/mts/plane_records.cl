@@ -7,7 +7,8 @@
 // Every pixel of the band (or of the whole kernel) is owned by exactly one triangle, but for the
 // rows band_bad_rows names.
 static inline int band_covered(uint vf, uint band) {
-  return (vf & V_COVERS) && (band >= V_MAX_BANDS || !((vf >> (V_BAND_SHIFT + band)) & 1u));
+  return (vf & MTS_V_COVERS) &&
+         (band >= MTS_V_MAX_BANDS || !((vf >> (MTS_V_BAND_SHIFT + band)) & 1u));
 }
 
 // Every pixel of kernel row `row` of plane T (flags vf) is owned by exactly one triangle: the
@@ -17,8 +18,8 @@ static inline int row_covered(__global const float* T, uint vf, int row, uint ba
   __global const int16* bad = (__global const int16*)((__global const int*)T + V_BAD_ROW);
   int16 hit = (int16)0;
   for (int k = 0; k < NV_PAD / 16; ++k) hit |= bad[k] == (int16)row;
-  return (vf & V_COVERS) && (!(vf & V_SLIVERS) || band_covered(vf, (uint)row / band_rows)) &&
-         !any16(hit);
+  return (vf & MTS_V_COVERS) &&
+         (!(vf & MTS_V_SLIVERS) || band_covered(vf, (uint)row / band_rows)) && !any16(hit);
 }
 
 // The rows of [r0, r1) (at most 32) where a vertex of plane T lies near a pixel centre, as bits

@@ -1,7 +1,7 @@
 // The raster kernel: a row's pieces, their end codes, the pixel loop.
 
 // The fight mask of a piece [x, x_end) whose fragments are all covered and inside (finite,
-// unclipped): codes compared, or depths where the band is D_ORDERED, or plane A's cached codes
+// unclipped): codes compared, or depths where the band is MTS_D_ORDERED, or plane A's cached codes
 // (ca, CACHE_A_CODES) against B's. A piece of 16 pixels or more is taken in chunks of 16 from x,
 // the last one ending at x_end: it overlaps the one before, and evaluating pixels of the same
 // piece twice leaves the OR as it is, so no lane needs masking. A shorter piece is one chunk with
@@ -52,56 +52,53 @@ __attribute__((always_inline)) static inline int16 inside_piece16(row_plane16_t 
 // allows 3 ulp): its end codes must clear the bound by LOG_CODE_SLACK
 // (host/runtime/kernel_variant.cpp), the most codes that error can move a code either way at both
 // ends of both planes. Pieces are then taken left to right and the row stops after the first that
-// fights. In a band mts_frame_bounds certified inside (D_INSIDE, D_ORDERED) there is no end pass,
-// and the whole row is evaluated first with one reduction; only a row that fights is then taken
-// piece by piece. A work-item takes a band's rows one after the other, so a band decided clean
-// from code bounds (most of a search's descent) costs one work-item, not one per row. Global id:
-// (band, visit, probe); results at (probe * frames + visit) * kernel_h + row.
-__kernel void mts_raster(
-    __global const float* restrict probes, __global const float* restrict tris,
-    __global const uint* restrict vflags, __global const float* restrict a_tris,
-    __global const uint* restrict a_vflags, __global const uint* restrict a_rows,
-    __global const uint* restrict a_slots, const uint first_frame,
-    __global const uint* restrict a_codes, const uint frames_total, const uint kernel_w,
-    const uint kernel_h, const float origin_x, const float origin_y, const uint frames,
-    __global const uint* restrict decided, const uint bands, const uint band_rows,
-    const uint shortcuts, __global uint* restrict result) {
+// fights. In a band mts_frame_bounds certified inside (MTS_D_INSIDE, MTS_D_ORDERED) there is no end
+// pass, and the whole row is evaluated first with one reduction; only a row that fights is then
+// taken piece by piece. A work-item takes a band's rows one after the other, so a band decided
+// clean from code bounds (most of a search's descent) costs one work-item, not one per row. Global
+// id: (band, visit, probe); results at (probe * frames + visit) * kernel_h + row.
+__kernel void mts_raster(MTS_RASTER_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsRasterArgs args) {
+  const uint first_frame = args.first_frame, frames_total = args.frames_total;
+  const uint frames = args.frames, shortcuts = args.shortcuts;
+  const uint kernel_w = args.area.kernel_w, kernel_h = args.area.kernel_h;
+  const uint bands = args.area.bands, band_rows = args.area.band_rows;
+  const float origin_x = args.area.origin_x, origin_y = args.area.origin_y;
   const uint band = get_global_id(0), visit = get_global_id(1), probe = get_global_id(2);
   if (band >= bands) return;
   const uint r0 = band * band_rows, r1 = min(kernel_h, r0 + band_rows);
   const uint pf = probe * frames + visit;
   const uint ap = a_plane(a_slots, probe, visit, first_frame, frames_total);
-  const int nonfinite = (a_vflags[ap] | vflags[pf]) & V_NONFINITE;
-  __global const float* P = probes + probe * PROBE_STRIDE;
-  __global const uint* dec = decided + (size_t)(pf * bands + band) * DECIDED_WORDS;
+  const int nonfinite = (a_vflags[ap] | vflags[pf]) & MTS_V_NONFINITE;
+  __global const float* P = probes + probe * MTS_PROBE_STRIDE;
+  __global const uint* dec = decided + (size_t)(pf * bands + band) * MTS_DECIDED_WORDS;
   __global const float* TA = a_tris + (size_t)ap * PLANE_STRIDE;
   __global const float* TBp = tris + (size_t)pf * PLANE_STRIDE;
   const int W = (int)kernel_w;
   for (uint row = r0; row < r1; ++row) {
     const uint id = pf * kernel_h + row;
     if (nonfinite) {
-      result[id] = R_NONFINITE;
+      result[id] = MTS_R_NONFINITE;
       continue;
     }
     /* a row with a vertex near a pixel centre is outside its band's verdict */
     const uint band_verdict =
-        (dec[DW_BAD_ROWS] >> (row - r0)) & 1u ? D_RASTER : dec[DW_VERDICT] & D_MASK;
-    if (band_verdict == D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
-      result[id] = R_BOUNDS | (kernel_w << R_COUNT_SHIFT);
+        (dec[MTS_DW_BAD_ROWS] >> (row - r0)) & 1u ? MTS_D_RASTER : dec[MTS_DW_VERDICT] & MTS_D_MASK;
+    if (band_verdict == MTS_D_CLEAN) { /* clean from code bounds: mts_frame_bounds */
+      result[id] = MTS_R_BOUNDS | (kernel_w << MTS_R_COUNT_SHIFT);
       continue;
     }
     const float py = origin_y + (float)row + 0.5f;
-    __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * ROW_WORDS;
-    const int cached = rec[RW_N] > 0u;
-    const int b_is_a =
-        shortcuts && cached &&
-        b_coverage_is_a(((__global const float*)dec)[DW_MOVED], dec[DW_VERDICT] & DV_ORIENTED, TBp,
-                        vflags[pf], (int)row, band_rows, rec);
-    const int inside = band_verdict == D_INSIDE || band_verdict == D_ORDERED;
-    const int ordered = band_verdict == D_ORDERED;
+    __global const uint* rec = a_rows + ((size_t)ap * kernel_h + row) * MTS_ROW_WORDS;
+    const int cached = rec[MTS_RW_N] > 0u;
+    const int b_is_a = shortcuts && cached &&
+                       b_coverage_is_a(((__global const float*)dec)[MTS_DW_MOVED],
+                                       dec[MTS_DW_VERDICT] & MTS_DV_ORIENTED, TBp, vflags[pf],
+                                       (int)row, band_rows, rec);
+    const int inside = band_verdict == MTS_D_INSIDE || band_verdict == MTS_D_ORDERED;
+    const int ordered = band_verdict == MTS_D_ORDERED;
 #if CACHE_A_CODES
     __global const uint* ca =
-        cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + CODE_ROW_PAD) : 0;
+        cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + MTS_CODE_ROW_PAD) : 0;
 #else
     __global const uint* ca = 0;
 #endif
@@ -109,16 +106,16 @@ __kernel void mts_raster(
       /* The common row near the MTS: every piece covered and inside, and the pieces are plane A's
        * cached segments, taken straight from the record, one reduction for the whole row. A row
        * that fights goes on below, which finds its first fighting piece (and so its count). */
-      const int n = (int)rec[RW_N];
+      const int n = (int)rec[MTS_RW_N];
       int16 fight = (int16)0;
       for (int k = 0; k < n; ++k) {
-        const int t = (int)rec[RW_T + k];
-        fight |=
-            inside_piece16(broadcast16(row_plane(TA, t, py)), broadcast16(row_plane(TBp, t, py)), P,
-                           origin_x, (int)rec[RW_X + k], (int)rec[RW_X + k + 1], ordered, ca);
+        const int t = (int)rec[MTS_RW_T + k];
+        fight |= inside_piece16(broadcast16(row_plane(TA, t, py)),
+                                broadcast16(row_plane(TBp, t, py)), P, origin_x,
+                                (int)rec[MTS_RW_X + k], (int)rec[MTS_RW_X + k + 1], ordered, ca);
       }
       if (!any16(fight)) {
-        result[id] = R_REUSED | ((rec[RW_X + n] - rec[RW_X]) << R_COUNT_SHIFT);
+        result[id] = MTS_R_REUSED | ((rec[MTS_RW_X + n] - rec[MTS_RW_X]) << MTS_R_COUNT_SHIFT);
         continue;
       }
     }
@@ -160,7 +157,7 @@ __kernel void mts_raster(
           all += (uint)(px_end[i] - px_start[i]);
         }
         if (!any16(fight)) {
-          result[id] = all << R_COUNT_SHIFT;
+          result[id] = all << MTS_R_COUNT_SHIFT;
           continue;
         }
       }
@@ -206,7 +203,7 @@ __kernel void mts_raster(
           const int len = px_end[i] - px_start[i];
           uint v = ~0u;
           if (len <= 2) { /* the ends are the whole piece */
-            v = nfk[k] ? R_NONFINITE : clk[k] ? R_CLIPPED : fek[k] ? R_FIGHT : 0u;
+            v = nfk[k] ? MTS_R_NONFINITE : clk[k] ? MTS_R_CLIPPED : fek[k] ? MTS_R_FIGHT : 0u;
           } else if (!nfk[k] && !clk[k] && exk[k]) {
             v = 0u;
           }
@@ -220,7 +217,7 @@ __kernel void mts_raster(
       const int x = px_start[i], x_end = px_end[i];
       count += (uint)(x_end - x);
       if (p_ta[i] < 0 || p_tb[i] < 0) {
-        flags |= R_UNCOVERED;
+        flags |= MTS_R_UNCOVERED;
         continue;
       }
       uint piece = verdict[i];
@@ -229,7 +226,8 @@ __kernel void mts_raster(
         const row_plane16_t ra = broadcast16(row_plane(TA, p_ta[i], py));
         const row_plane16_t rb = broadcast16(row_plane(TBp, p_tb[i], py));
         if (ends_ok[i]) { /* only the codes matter: one reduction per piece */
-          piece = any16(inside_piece16(ra, rb, P, origin_x, x, x_end, ordered, ca)) ? R_FIGHT : 0u;
+          piece =
+              any16(inside_piece16(ra, rb, P, origin_x, x, x_end, ordered, ca)) ? MTS_R_FIGHT : 0u;
         } else
           for (int i0 = x; i0 < x_end; i0 += 16) {
             const int16 idx = i0 + LANES;
@@ -239,13 +237,13 @@ __kernel void mts_raster(
             const int16 nf = active & (fa.nonfinite | fb.nonfinite);
             const int16 cl = active & ~nf & (fa.clipped | fb.clipped);
             const int16 ok = active & ~(fa.nonfinite | fb.nonfinite | fa.clipped | fb.clipped);
-            piece |= (any16(nf) ? R_NONFINITE : 0u) | (any16(cl) ? R_CLIPPED : 0u) |
-                     (any16(ok & fights16(fa.code, fb.code)) ? R_FIGHT : 0u);
+            piece |= (any16(nf) ? MTS_R_NONFINITE : 0u) | (any16(cl) ? MTS_R_CLIPPED : 0u) |
+                     (any16(ok & fights16(fa.code, fb.code)) ? MTS_R_FIGHT : 0u);
           }
       }
       flags |= piece;
-      if (piece & R_FIGHT) break;
+      if (piece & MTS_R_FIGHT) break;
     }
-    result[id] = flags | (b_is_a ? R_REUSED : 0u) | (count << R_COUNT_SHIFT);
+    result[id] = flags | (b_is_a ? MTS_R_REUSED : 0u) | (count << MTS_R_COUNT_SHIFT);
   }
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The layer order of host/ (docs/architecture.md, "Layers"), enforced: a file may include its own
-folder, the folders of lower layers, and the headers host and kernels share (kernels/, formats/),
-never a folder of its own rank or above. Prints each include against the order as FILE:LINE and
+folder, the folders of lower layers, and the headers host and kernels both compile (interface/,
+formats/), never a folder of its own rank or above, and never a kernel source (kernels/: the
+kernels reach the host embedded, as text). Prints each include against the order as FILE:LINE and
 exits 1; exits 0 when there is none.
 
 Usage: check_layers.py [SOURCE_DIR]        checks SOURCE_DIR/host (default: this repository)
@@ -25,6 +26,7 @@ LAYERS = [
 ]
 RANK = {folder: rank for rank, folders in enumerate(LAYERS) for folder in folders}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"host/([^/"]+)/')
+KERNEL_INCLUDE = re.compile(r'^\s*#\s*include\s+"kernels/')
 
 
 def violations(root):
@@ -44,6 +46,10 @@ def violations(root):
                 rel = os.path.relpath(os.path.join(dirpath, name), root)
                 with open(os.path.join(dirpath, name), encoding="utf-8") as f:
                     for number, line in enumerate(f, 1):
+                        if KERNEL_INCLUDE.match(line):
+                            found.append(f"{rel}:{number}: includes a kernel source "
+                                         f"({line.strip()}): shared headers are in interface/")
+                            continue
                         m = INCLUDE.match(line)
                         if not m or m.group(1) == folder:
                             continue
@@ -61,13 +67,14 @@ def self_test():
     with tempfile.TemporaryDirectory() as root:
         for folder, text in [("base", ""), ("model", '#include "host/base/x.h"\n'),
                              ("mts", '#include "host/model/x.h"\n#include "host/output/y.h"\n'),
-                             ("lj", '#include "host/mts/z.h"\n'), ("output", "")]:
+                             ("lj", '#include "host/mts/z.h"\n'),
+                             ("output", '#include "interface/x.h"\n#include "kernels/y.cl"\n')]:
             os.makedirs(os.path.join(root, "host", folder))
             with open(os.path.join(root, "host", folder, "a.cpp"), "w") as f:
                 f.write(text)
         got = violations(root)
-        want = ["host/mts/a.cpp:2:", "host/lj/a.cpp:1:"]
-        ok = len(got) == 2 and all(any(g.startswith(w) for g in got) for w in want)
+        want = ["host/mts/a.cpp:2:", "host/lj/a.cpp:1:", "host/output/a.cpp:2:"]
+        ok = len(got) == 3 and all(any(g.startswith(w) for g in got) for w in want)
         print("\n".join(got))
         print("self-test " + ("passed" if ok else "FAILED: expected " + ", ".join(want)))
         return 0 if ok else 1

@@ -1,0 +1,95 @@
+// The vertex stage: clip coordinates, the divide, the window transform, snapping; and which grid
+// vertices make each triangle.
+
+// Window x and y as the rasterizer stores them (pipeline.snap, interface/snap.h).
+DP_SNAP_WINDOW_DEFINE(snap_window_bits, fabs, rint)
+
+// The vertex stage of 16 grid vertices (index j (GRID + 1) + i: column i, row j), a lane each: clip
+// coordinates, then the divide and the window transform to window x, y, depth and 1/w, and
+// whether any of those (depth only where the set-up interpolates it) is not finite.
+typedef struct {
+  vec4x16_t clip;
+  float16 x, y, d, q;
+  int16 nonfinite;
+} vertices16_t;
+
+static inline vertices16_t vertex_stage16(__global const float* P, __global const float* M,
+                                          int16 vertex, float half_w, float half_h) {
+  /* the probe constants this stage alone reads (interface/mts_layout.h) */
+  const int depth_gl = P[MTS_C_DEPTH_GL] != 0.0f;
+  const uint forms = (uint)P[MTS_C_FORMS];
+  const int snap_bits = (int)P[MTS_C_SNAP_BITS];
+  const int vertex_fma = (forms & MTS_F_VERTEX_FMA) != 0u;
+  vec4x16_t obj;
+  obj.x = convert_float16(vertex % (GRID + 1)) / (float)GRID - 0.5f;
+  obj.y = convert_float16(vertex / (GRID + 1)) / (float)GRID - 0.5f;
+  obj.z = (float16)0.0f;
+  obj.w = (float16)1.0f;
+  vertices16_t v;
+  v.clip = mat_vec16(M, obj, vertex_fma, 1);
+  if (!(forms & MTS_F_COMPOSE_PREMULT)) v.clip = mat_vec16(P, v.clip, vertex_fma, 0);
+  const vec4x16_t c = v.clip;
+#if DEPTH_FROM == 1
+  {
+    const float16 t = shader_log16(P[MTS_C_LOGK] * c.w + 1.0f);
+    v.clip.z = depth_gl ? ((2.0f * t) / P[MTS_C_LOGL] - 1.0f) * c.w : (t / P[MTS_C_LOGL]) * c.w;
+  }
+#endif
+  const float16 cz = v.clip.z;
+  const float16 inv_w = 1.0f / c.w;
+  float16 nx, ny, nz;
+  if (forms & MTS_F_DIVIDE_EXACT) {
+    nx = c.x / c.w;
+    ny = c.y / c.w;
+    nz = cz / c.w;
+  } else {
+    nx = c.x * inv_w;
+    ny = c.y * inv_w;
+    nz = cz * inv_w;
+  }
+  if (forms & MTS_F_VIEWPORT_FMA) {
+    v.x = fma(nx, (float16)half_w, (float16)half_w);
+    v.y = fma(ny, (float16)half_h, (float16)half_h);
+    v.d = depth_gl ? fma(nz, (float16)0.5f, (float16)0.5f) : nz;
+  } else {
+    v.x = nx * half_w + half_w;
+    v.y = ny * half_h + half_h;
+    v.d = depth_gl ? nz * 0.5f + 0.5f : nz;
+  }
+  if (snap_bits > 0) { /* lane by lane: the one snapping rule, shared with the host */
+    float x[16], y[16];
+    vstore16(v.x, 0, x);
+    vstore16(v.y, 0, y);
+    for (int k = 0; k < 16; ++k) {
+      x[k] = snap_window_bits(x[k], snap_bits);
+      y[k] = snap_window_bits(y[k], snap_bits);
+    }
+    v.x = vload16(0, x);
+    v.y = vload16(0, y);
+  }
+  v.q = inv_w;
+  v.nonfinite = !isfinite(v.x) | !isfinite(v.y) | !isfinite(v.q);
+#if DEPTH_FROM != 2
+  v.nonfinite |= !isfinite(v.d);
+#endif
+  return v;
+}
+
+// The vertices (a, b, c) of triangles t of the plane grid, a lane each: quad t / 2, split along the
+// diagonal from its lower-left corner a to c (flip 0: triangles (a, b, c) and (a, c, d), the
+// measured planes), or from b to d (flip 1: (a, b, d) and (b, c, d), the same quad tessellated the
+// other way: the coplanar overlay of depth bias, kernels/bias.cl). Vertex 0 anchors the plane
+// equation.
+static inline void triangle_vertices16(int16 t, int flip, int16* a, int16* b, int16* c) {
+  const int16 quad = t >> 1, qi = quad % GRID, qj = quad / GRID;
+  const int16 va = qj * (GRID + 1) + qi, vb = va + 1, vc = va + GRID + 2, vd = va + GRID + 1;
+  const int16 odd = (t & 1) != 0;
+  if (flip) { /* (a, b, d) and (b, c, d) */
+    *a = select(va, vb, odd);
+    *b = select(vb, vc, odd);
+  } else { /* (a, b, c) and (a, c, d) */
+    *a = va;
+    *b = select(vb, vc, odd);
+  }
+  *c = flip ? vd : select(vc, vd, odd);
+}
