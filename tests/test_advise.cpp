@@ -19,7 +19,7 @@ namespace {
 
 // The paper's frames: these tests check the bisections to near_precision; under worst-case
 // sampling the answer also moves past values that fail its safety checks (the test at the end).
-Scene small_scene(const std::string& pairs) {
+Scene advise_scene(const std::string& pairs) {
   return load_scene("", {"kernel=[24,24]", "frames=4", "sampling=paper", "evaluate=" + pairs});
 }
 
@@ -28,7 +28,7 @@ Scene small_scene(const std::string& pairs) {
 TEST_CASE("advise finds the smallest near plane that holds, and the next one down fails",
           "[advise]") {
   const Scene scene =
-      small_scene(R"([{"technique": "standard", "format": "unorm24", "depth_range": "gl"}])");
+      advise_scene(R"([{"technique": "standard", "format": "unorm24", "depth_range": "gl"}])");
   AdviseRequest r;
   r.z_min = 10;
   r.z_max = 1000;
@@ -106,7 +106,7 @@ TEST_CASE("advise's far plane is the farthest that holds, and the next one out f
   // 1e9 no near plane meets 0.01, pulled in to the content it does, and it may move out again
   // until (f - n) / 2^24 reaches the separation.
   const Scene scene =
-      small_scene(R"([{"technique": "linear", "format": "unorm24", "depth_range": "gl"}])");
+      advise_scene(R"([{"technique": "linear", "format": "unorm24", "depth_range": "gl"}])");
   AdviseRequest r;
   r.z_min = 100;
   r.z_max = 1000;

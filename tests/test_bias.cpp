@@ -39,7 +39,7 @@ double r_of(const BiasOptions& o, const std::string& format) {
 }
 
 // llvmpipe: with the llvmpipe profile's settings (host/model/profile.cpp).
-Scene small_scene(const std::string& technique, const std::string& format, bool llvmpipe = false) {
+Scene bias_scene(const std::string& technique, const std::string& format, bool llvmpipe = false) {
   std::vector<std::string> sets = {
       "kernel=[32,32]", "frames=6",
       fmt::format(R"(evaluate=[{{"technique": "{}", "format": "{}"}}])", technique, format)};
@@ -134,7 +134,7 @@ TEST_CASE("the bias kernel decides every probe as the host reference pipeline do
         Case{"reversed", "unorm32", 1000, 20, true}}) {
     INFO(c.technique << " " << c.format << " z=" << c.z << " tilt=" << c.tilt
                      << (c.llvmpipe ? " llvmpipe" : ""));
-    const Scene s = small_scene(c.technique, c.format, c.llvmpipe);
+    const Scene s = bias_scene(c.technique, c.format, c.llvmpipe);
     const EvalPair pair = s.evaluate[0];
     BiasOptions o;
     o.tilt_deg = c.tilt;

@@ -18,7 +18,7 @@ using depthprec::test::slurp;
 
 namespace {
 
-const std::string kSmall = "mts -t reversed -f float32 --kernel 24x24 --frames 4 --no-timing";
+const std::string kSmallMts = "mts -t reversed -f float32 --kernel 24x24 --frames 4 --no-timing";
 
 }  // namespace
 
@@ -27,7 +27,7 @@ TEST_CASE("repeated distances are refused at once, not waited on", "[cli][errors
     INFO(list);
     const auto t0 = std::chrono::steady_clock::now();
     // Under a time limit: before they were refused, repeats waited forever (exit 124 here).
-    const auto r = run_cli(kSmall + " --distances " + list, "timeout -s KILL 20");
+    const auto r = run_cli(kSmallMts + " --distances " + list, "timeout -s KILL 20");
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     CHECK(r.exit_code == 3);
@@ -43,10 +43,10 @@ TEST_CASE("repeated distances are refused at once, not waited on", "[cli][errors
 
 TEST_CASE("a technique named without a depth range runs in its own, and the row says which",
           "[cli][mts]") {
-  const auto r = run_cli(kSmall + " --distances 500 --format-out csv");
+  const auto r = run_cli(kSmallMts + " --distances 500 --format-out csv");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Contains("reversed,float32,zero_to_one,500,"));
-  const auto gl = run_cli(kSmall + " --distances 500 --format-out csv --depth-range gl");
+  const auto gl = run_cli(kSmallMts + " --distances 500 --format-out csv --depth-range gl");
   CHECK_THAT(gl.output, Contains("reversed,float32,gl,500,"));
 }
 
@@ -56,10 +56,10 @@ TEST_CASE("set-ups without a measurement are refused or get a verdict up front",
   CHECK_THAT(far_inf.output, Contains("far = inf: standard/float32/gl needs a finite far plane"));
   CHECK(run_cli("mts -t infinite -f float32 --far inf --distances 10 --kernel 16x16 --frames 2")
             .exit_code == 0);
-  const auto huge = run_cli(kSmall + " --distances 1e300");
+  const auto huge = run_cli(kSmallMts + " --distances 1e300");
   CHECK(huge.exit_code == 3);
   CHECK_THAT(huge.output, StartsWith("depthprec: --distances 1e300:"));
-  const auto near = run_cli(kSmall + " --near 10 --distances 5,20 --format-out json");
+  const auto near = run_cli(kSmallMts + " --near 10 --distances 5,20 --format-out json");
   REQUIRE(near.exit_code == 0);
   const auto rows = nlohmann::json::parse(near.output)["rows"];
   CHECK(rows[0]["verdict"] == "nearer than near plane");
@@ -75,7 +75,7 @@ TEST_CASE("set-ups without a measurement are refused or get a verdict up front",
 }
 
 TEST_CASE("options are read strictly and blamed by name", "[cli][errors]") {
-  const auto empty = run_cli(kSmall + " --distances 1,,2");
+  const auto empty = run_cli(kSmallMts + " --distances 1,,2");
   CHECK(empty.exit_code == 2);
   CHECK_THAT(empty.output, Contains("--distances: an empty entry in '1,,2'"));
   const auto frames = run_cli("mts --frames 0");
@@ -134,17 +134,17 @@ TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
 TEST_CASE("the output file's extension chooses the format", "[cli]") {
   const std::string json = fresh("/tmp/depthprec_test_ext.json"),
                     csv = fresh("/tmp/depthprec_test_ext.csv");
-  REQUIRE(run_cli(kSmall + " --distances 64 -o " + json).exit_code == 0);
+  REQUIRE(run_cli(kSmallMts + " --distances 64 -o " + json).exit_code == 0);
   CHECK(nlohmann::json::parse(slurp(json))["rows"].size() == 1);
-  REQUIRE(run_cli(kSmall + " --distances 64 -o " + csv).exit_code == 0);
+  REQUIRE(run_cli(kSmallMts + " --distances 64 -o " + csv).exit_code == 0);
   CHECK_THAT(slurp(csv), StartsWith("technique,format,depth_range,z,"));
-  const auto forced = run_cli(kSmall + " --distances 64 --format-out text -o " + json);
+  const auto forced = run_cli(kSmallMts + " --distances 64 --format-out text -o " + json);
   CHECK_THAT(forced.output, Contains("gets --format-out text, not the json its name suggests"));
   CHECK_THAT(slurp(json), StartsWith("technique  format"));
 }
 
 TEST_CASE("merge refuses a missing or repeated shard, naming it", "[cli][batch][errors]") {
-  const std::string args = kSmall + " --distances 2,64,2048 --format-out json";
+  const std::string args = kSmallMts + " --distances 2,64,2048 --format-out json";
   for (int i = 1; i <= 2; ++i)
     REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " +
                     fresh("/tmp/depthprec_test_sh" + std::to_string(i) + ".json"))
@@ -331,7 +331,7 @@ TEST_CASE("profiles side by side: each one's MTS and the spread", "[cli][profile
 // "empty x range"), and a --profiles output was called no output of mts at all.
 TEST_CASE("report and plot refuse one shard of a run and say what a --profiles output is",
           "[cli][errors]") {
-  const std::string args = kSmall + " --distances 2,64,2048 -q --format-out json";
+  const std::string args = kSmallMts + " --distances 2,64,2048 -q --format-out json";
   for (int i = 1; i <= 2; ++i)
     REQUIRE(run_cli(args + " --shard " + std::to_string(i) + "/2 -o " +
                     fresh("/tmp/depthprec_test_rs" + std::to_string(i) + ".json"))

@@ -16,12 +16,12 @@ using depthprec::test::run_cli;
 using depthprec::test::slurp;
 
 namespace {
-const std::string kSmall = "--kernel 24x24 --frames 6 --distances 2,1024 ";
+const std::string kSmallOptions = "--kernel 24x24 --frames 6 --distances 2,1024 ";
 }  // namespace
 
 TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec.md 5.4",
           "[cli][mts]") {
-  const auto r = run_cli("mts -t standard,reversed -f unorm24 --format-out csv " + kSmall);
+  const auto r = run_cli("mts -t standard,reversed -f unorm24 --format-out csv " + kSmallOptions);
   REQUIRE(r.exit_code == 0);
   std::istringstream lines(r.output);
   std::string header, line;
@@ -32,7 +32,7 @@ TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec
         "fragment_pairs,launches,seconds,kernel_s,flags");
   // Under the paper's sampling the worst-case columns are left out, as before it existed.
   const auto paper =
-      run_cli("mts -t standard -f unorm24 --format-out csv --set sampling=paper " + kSmall);
+      run_cli("mts -t standard -f unorm24 --format-out csv --set sampling=paper " + kSmallOptions);
   REQUIRE(paper.exit_code == 0);
   CHECK(paper.output.rfind("technique,format,depth_range,z,mts,lo,hi,", 0) == 0);
   std::vector<std::string> rows;
@@ -49,15 +49,15 @@ TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec
 }
 
 TEST_CASE("no-timing output is byte-identical across runs", "[cli][mts]") {
-  const auto a = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmall);
-  const auto b = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmall);
+  const auto a = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmallOptions);
+  const auto b = run_cli("mts -t log_vertex -f e4m12 --no-timing " + kSmallOptions);
   REQUIRE(a.exit_code == 0);
   CHECK(a.output == b.output);
   CHECK_THAT(a.output, !Contains("seconds"));
 }
 
 TEST_CASE("table in every output format", "[cli][table]") {
-  const std::string args = "table -t linear,w_buffer -f unorm16 --no-timing " + kSmall;
+  const std::string args = "table -t linear,w_buffer -f unorm16 --no-timing " + kSmallOptions;
   const auto md = run_cli(args + "--format-out markdown");
   REQUIRE(md.exit_code == 0);
   CHECK_THAT(md.output, Contains("| z |") || Contains("|    z |") || Contains("| z"));
@@ -86,16 +86,17 @@ TEST_CASE("output option writes the file and an unwritable path fails before the
           "[cli][table]") {
   const std::string path = fresh("/tmp/depthprec_test_table.csv");
   std::remove(path.c_str());
-  const auto r = run_cli("table -t linear -f unorm24 --format-out csv -o " + path + " " + kSmall);
+  const auto r =
+      run_cli("table -t linear -f unorm24 --format-out csv -o " + path + " " + kSmallOptions);
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(slurp(path), Contains("linear/unorm24/gl"));
-  const auto bad = run_cli("table -o /nonexistent-dir/x.csv " + kSmall);
+  const auto bad = run_cli("table -o /nonexistent-dir/x.csv " + kSmallOptions);
   CHECK(bad.exit_code == 5);
   CHECK_THAT(bad.output, Contains("cannot write output '/nonexistent-dir/x.csv'"));
 }
 
 TEST_CASE("verbose mode names the kernel variants built and only the ones needed", "[cli][mts]") {
-  const auto r = run_cli("-v mts -t standard,infinite -f unorm24 " + kSmall);
+  const auto r = run_cli("-v mts -t standard,infinite -f unorm24 " + kSmallOptions);
   REQUIRE(r.exit_code == 0);
   // standard and infinite share one variant (same depth path and format): built once
   size_t n = 0, at = 0;
@@ -145,7 +146,8 @@ TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
   const std::string json = fresh("/tmp/depthprec_test_plot.json"),
                     png = fresh("/tmp/depthprec_test_plot.png");
   std::remove(png.c_str());
-  REQUIRE(run_cli("mts -t standard,linear -f unorm24 --format-out json -o " + json + " " + kSmall)
+  REQUIRE(run_cli("mts -t standard,linear -f unorm24 --format-out json -o " + json + " " +
+                  kSmallOptions)
               .exit_code == 0);
   const auto r = run_cli("plot " + json + " -o " + png);
   REQUIRE(r.exit_code == 0);
@@ -225,7 +227,7 @@ TEST_CASE("tradeoff, cost and lj-table plot through gnuplot with --plot", "[cli]
 TEST_CASE("pipelines compares matrix precision and composition per pair", "[cli][pipelines]") {
   const auto r =
       run_cli("pipelines -t reversed_infinite,standard -f float32 --depth-range zero_to_one " +
-              kSmall + "--no-timing --format-out csv --set sampling=paper");
+              kSmallOptions + "--no-timing --format-out csv --set sampling=paper");
   REQUIRE(r.exit_code == 0);
   std::istringstream lines(r.output);
   std::string line, header;
@@ -247,11 +249,11 @@ TEST_CASE("pipelines compares matrix precision and composition per pair", "[cli]
 
 TEST_CASE("table --attribute marks each cell with its dominant factor", "[cli][table]") {
   const auto r = run_cli("table -t reversed -f unorm24,float32 --depth-range zero_to_one " +
-                         kSmall + "--no-timing --attribute");
+                         kSmallOptions + "--no-timing --attribute");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Contains("S / A / V: the dominant factor"));
   CHECK_THAT(r.output, Contains("storage"));  // reversed/unorm24 at 1024 is storage-limited
-  const auto j = run_cli("mts -t reversed -f unorm24 --depth-range zero_to_one " + kSmall +
+  const auto j = run_cli("mts -t reversed -f unorm24 --depth-range zero_to_one " + kSmallOptions +
                          "--no-timing --attribute --format-out json");
   REQUIRE(j.exit_code == 0);
   const auto out = nlohmann::json::parse(j.output);

@@ -58,7 +58,7 @@ fs::path program_of(const fs::path& so) {
 }
 
 // A small MTS run whose rows go to out, so that what run_cli returns is its stderr.
-const std::string kRun =
+const std::string kRunWritingTo =
     "mts -t reversed -f unorm16 --kernel 16x16 --frames 2 --distances 2,1024 --no-timing -q -o ";
 
 std::string env_for(const fs::path& pocl, const std::string& kernel_cache = "off") {
@@ -75,7 +75,7 @@ TEST_CASE("a damaged kernel in PoCL's cache is removed, compiled again, and said
     const fs::path kept = empty_dir("damage_kept");
     const std::string env = env_for(pocl, binaries ? kept.string() : "off");
     const std::string out = (fs::temp_directory_path() / "depthprec_test_damage.txt").string();
-    const auto first = run_cli(kRun + test::fresh(out), env);
+    const auto first = run_cli(kRunWritingTo + test::fresh(out), env);
     REQUIRE(first.exit_code == 0);
     CHECK(first.output.empty());
     const std::string rows = slurp(out);
@@ -87,7 +87,7 @@ TEST_CASE("a damaged kernel in PoCL's cache is removed, compiled again, and said
 
     // cut short: a truncated .so killed the process with SIGBUS in dlopen()
     write_bytes(so, so_bytes.substr(0, 4096));
-    const auto truncated = run_cli(kRun + test::fresh(out), env);
+    const auto truncated = run_cli(kRunWritingTo + test::fresh(out), env);
     CHECK(truncated.exit_code == 0);
     CHECK(slurp(out) == rows);
     CHECK_THAT(truncated.output,
@@ -101,7 +101,7 @@ TEST_CASE("a damaged kernel in PoCL's cache is removed, compiled again, and said
     std::string garbled = bc_bytes;
     for (size_t i = 1000; i < 1064; ++i) garbled[i] = 'x';
     write_bytes(bc, garbled);
-    const auto overwritten = run_cli(kRun + test::fresh(out), env);
+    const auto overwritten = run_cli(kRunWritingTo + test::fresh(out), env);
     CHECK(overwritten.exit_code == 0);
     CHECK(slurp(out) == rows);
     CHECK_THAT(overwritten.output,
@@ -111,7 +111,7 @@ TEST_CASE("a damaged kernel in PoCL's cache is removed, compiled again, and said
     CHECK(pocl_file_structure_problem("program.bc", bytes_of(bc)).empty());
 
     // and the cache is whole again: the next run says nothing
-    const auto again = run_cli(kRun + test::fresh(out), env);
+    const auto again = run_cli(kRunWritingTo + test::fresh(out), env);
     CHECK(again.exit_code == 0);
     CHECK(again.output.empty());
     CHECK(slurp(out) == rows);
@@ -126,7 +126,7 @@ TEST_CASE("a crash in the driver names the cause and the fix and exits 4, not by
   const fs::path pocl = empty_dir("crash_pocl");
   const std::string env = env_for(pocl);
   const std::string out = (fs::temp_directory_path() / "depthprec_test_crash.txt").string();
-  REQUIRE(run_cli(kRun + test::fresh(out), env).exit_code == 0);
+  REQUIRE(run_cli(kRunWritingTo + test::fresh(out), env).exit_code == 0);
   const std::string rows = slurp(out);
   const fs::path so = cache_file(pocl, kRasterSo);
 
@@ -134,7 +134,7 @@ TEST_CASE("a crash in the driver names the cause and the fix and exits 4, not by
   // another program) are checked for their structure: a truncated .so is still caught.
   fs::remove(pocl / kManifestName);
   write_bytes(so, bytes_of(so).substr(0, 8192));
-  const auto truncated = run_cli(kRun + test::fresh(out), env);
+  const auto truncated = run_cli(kRunWritingTo + test::fresh(out), env);
   CHECK(truncated.exit_code == 0);
   CHECK_THAT(truncated.output, Contains("mts_raster.so") && Contains("cut short"));
   CHECK(slurp(out) == rows);
@@ -147,7 +147,7 @@ TEST_CASE("a crash in the driver names the cause and the fix and exits 4, not by
   for (size_t i = garbled.size() / 4; i < garbled.size() / 2; ++i) garbled[i] = '\xff';
   write_bytes(bc, garbled);
   REQUIRE(pocl_file_structure_problem("program.bc", garbled).empty());
-  const auto crashed = run_cli(kRun + test::fresh(out), env);
+  const auto crashed = run_cli(kRunWritingTo + test::fresh(out), env);
   CHECK(crashed.exit_code == 4);  // run_cli gives -1 for a death by signal
   CHECK_THAT(crashed.output, Contains("crashed with SIGABRT") && Contains("damaged kernel cache") &&
                                  Contains(pocl.string()) && Contains("depthprec cache clear"));
@@ -157,7 +157,7 @@ TEST_CASE("a crash in the driver names the cause and the fix and exits 4, not by
   CHECK(cleared.exit_code == 0);
   CHECK_THAT(cleared.output, Contains("cleared PoCL's kernel cache " + pocl.string()));
   CHECK(pocl_code_files(pocl).empty());
-  const auto after = run_cli(kRun + test::fresh(out), env);
+  const auto after = run_cli(kRunWritingTo + test::fresh(out), env);
   CHECK(after.exit_code == 0);
   CHECK(slurp(out) == rows);
   fs::remove_all(pocl);
@@ -172,7 +172,7 @@ TEST_CASE("depthprec keeps PoCL's cache in a directory of its own, shown and cle
   const std::string env = "env -u POCL_CACHE_DIR XDG_CACHE_HOME=" + home.string() +
                           " DEPTHPREC_KERNEL_CACHE=" + kept.string();
   const std::string out = (fs::temp_directory_path() / "depthprec_test_own.txt").string();
-  REQUIRE(run_cli(kRun + test::fresh(out), env).exit_code == 0);
+  REQUIRE(run_cli(kRunWritingTo + test::fresh(out), env).exit_code == 0);
   const size_t code = pocl_code_files(own).size();
   CHECK(code >= 5);  // the set-up and mts programs with their kernels
   std::string problem;
@@ -218,10 +218,10 @@ TEST_CASE("two runs at once share a cold cache safely", "[driver_cache][cli]") {
   const std::string env = env_for(pocl);
   // Both start with the cache empty and compile the same programs into it side by side.
   const std::string one =
-      fmt::format("{} '{}' {}{} > {} 2>&1; echo $? > {}", env, DEPTHPREC_EXE, kRun,
+      fmt::format("{} '{}' {}{} > {} 2>&1; echo $? > {}", env, DEPTHPREC_EXE, kRunWritingTo,
                   (dir / "a.txt").string(), (dir / "a.err").string(), (dir / "a.rc").string());
   const std::string two =
-      fmt::format("{} '{}' {}{} > {} 2>&1; echo $? > {}", env, DEPTHPREC_EXE, kRun,
+      fmt::format("{} '{}' {}{} > {} 2>&1; echo $? > {}", env, DEPTHPREC_EXE, kRunWritingTo,
                   (dir / "b.txt").string(), (dir / "b.err").string(), (dir / "b.rc").string());
   REQUIRE(std::system(("(" + one + ") & (" + two + ") & wait").c_str()) == 0);
   CHECK(slurp((dir / "a.rc").string()) == "0\n");
@@ -234,7 +234,7 @@ TEST_CASE("two runs at once share a cold cache safely", "[driver_cache][cli]") {
   // what they left is whole and recorded: a third run finds nothing to say
   std::string problem;
   CHECK(read_manifest(pocl, &problem).size() == pocl_code_files(pocl).size());
-  const auto third = run_cli(kRun + (dir / "c.txt").string(), env);
+  const auto third = run_cli(kRunWritingTo + (dir / "c.txt").string(), env);
   CHECK(third.exit_code == 0);
   CHECK(third.output.empty());
   CHECK(slurp((dir / "c.txt").string()) == rows);
@@ -247,7 +247,7 @@ TEST_CASE("the structure checks find cut-short kernels and bitcode, and pass who
   // Real files from a cache a run filled.
   const fs::path pocl = empty_dir("structure_pocl");
   const std::string out = (fs::temp_directory_path() / "depthprec_test_structure.txt").string();
-  REQUIRE(run_cli(kRun + test::fresh(out), env_for(pocl)).exit_code == 0);
+  REQUIRE(run_cli(kRunWritingTo + test::fresh(out), env_for(pocl)).exit_code == 0);
   const fs::path so = cache_file(pocl, kRasterSo);
   const std::string elf = bytes_of(so), bc = bytes_of(program_of(so));
   CHECK(pocl_file_structure_problem("k.so", elf).empty());

@@ -27,7 +27,7 @@ using depthprec::test::slurp;
 
 namespace {
 
-const std::string kRun =
+const std::string kJsonRun =
     "mts -t standard,reversed -f unorm24 --distances 2,64,2048 --kernel 24x24 --frames 4 "
     "--no-timing -q --format-out json";
 // Long enough (about two seconds) to be caught running.
@@ -84,14 +84,14 @@ bool wait_for_lines(const std::string& journal, size_t lines) {
 TEST_CASE("a journal a failed write leaves is no rerun's obstacle", "[batch][journal]") {
   const std::string out = fresh("/tmp/depthprec_test_jfail.json"), journal = out + ".rows.jsonl";
   const std::string reference = fresh("/tmp/depthprec_test_jref.json");
-  REQUIRE(run_cli(kRun + " -o " + reference).exit_code == 0);
+  REQUIRE(run_cli(kJsonRun + " -o " + reference).exit_code == 0);
   const auto failed = run_shell("trap '' XFSZ; ulimit -f 0; '" + std::string(DEPTHPREC_EXE) + "' " +
-                                kRun + " -o " + out + " 2>&1");
+                                kJsonRun + " -o " + out + " 2>&1");
   CHECK(failed.exit_code == 5);
   CHECK_THAT(failed.output, Contains("cannot append to the row journal"));
   CHECK_FALSE(exists(journal));
   CHECK_FALSE(exists(out + ".tmp"));
-  REQUIRE(run_cli(kRun + " -o " + out).exit_code == 0);
+  REQUIRE(run_cli(kJsonRun + " -o " + out).exit_code == 0);
   CHECK(slurp(out) == slurp(reference));
 
   // The states such failures (or a kill) leave, made directly: a journal of this program's with
@@ -105,7 +105,7 @@ TEST_CASE("a journal a failed write leaves is no rerun's obstacle", "[batch][jou
       INFO("journal of " << left.size() << " bytes, --resume " << resume);
       fresh(out);
       std::ofstream(journal) << left;
-      const auto r = run_cli(kRun + " -o " + out + (resume ? " --resume" : ""));
+      const auto r = run_cli(kJsonRun + " -o " + out + (resume ? " --resume" : ""));
       INFO(r.output);
       CHECK(r.exit_code == 0);
       CHECK(slurp(out) == slurp(reference));
@@ -115,8 +115,8 @@ TEST_CASE("a journal a failed write leaves is no rerun's obstacle", "[batch][jou
   // A file that is not this program's is the user's: refused and left as it is.
   fresh(out);
   std::ofstream(journal) << "my notes\n";
-  CHECK(run_cli(kRun + " -o " + out).exit_code == 5);
-  CHECK(run_cli(kRun + " -o " + out + " --resume").exit_code == 3);
+  CHECK(run_cli(kJsonRun + " -o " + out).exit_code == 5);
+  CHECK(run_cli(kJsonRun + " -o " + out + " --resume").exit_code == 3);
   CHECK(slurp(journal) == "my notes\n");
   std::remove(journal.c_str());
 }
@@ -136,7 +136,7 @@ TEST_CASE("a failed output leaves no temporary file", "[batch][journal]") {
   }
   // An output that is a directory is refused before the run, not found at its end.
   std::system("rm -rf /tmp/depthprec_test_outdir* && mkdir /tmp/depthprec_test_outdir");
-  const auto dir = run_cli(kRun + " -o /tmp/depthprec_test_outdir");
+  const auto dir = run_cli(kJsonRun + " -o /tmp/depthprec_test_outdir");
   CHECK(dir.exit_code == 5);
   CHECK_THAT(dir.output, Contains("'/tmp/depthprec_test_outdir': it is a directory"));
   CHECK_FALSE(exists("/tmp/depthprec_test_outdir.tmp"));

@@ -15,7 +15,7 @@ using namespace depthprec::test;
 
 namespace {
 
-Scene small_scene(int kernel, int frames) {
+Scene kernel_filling_scene(int kernel, int frames) {
   Scene s = load_scene("");
   s.kernel_w = s.kernel_h = s.viewport_w = s.viewport_h = kernel;
   s.frames = frames;
@@ -31,7 +31,7 @@ Outcome probe(OpenClRuntime& rt, const Scene& s, const EvalPair& pair, double z,
 
 TEST_CASE("a non-monotone row's bracket holds real outcomes on both sides", "[stability]") {
   // standard/unorm24 in [0,1] flips around its MTS from z = 2^13 on (docs/stability.md)
-  const Scene s = small_scene(60, 20);
+  const Scene s = kernel_filling_scene(60, 20);
   const EvalPair pair{Technique::standard, "unorm24", DepthRange::zero_to_one};
   const auto rows =
       mts_rows(s, pair.technique, pair.format, pair.depth_range, powers_of_two(13, 18));
@@ -57,7 +57,7 @@ TEST_CASE("a non-monotone row's bracket holds real outcomes on both sides", "[st
 
 TEST_CASE("attribution: storage limits reversed unorm24, arithmetic limits reversed float32 in gl",
           "[stability][attribution]") {
-  Scene s = small_scene(60, 20);
+  Scene s = kernel_filling_scene(60, 20);
   s.distances = {1024.0, 65536.0, 1048576.0};
   s.evaluate = {{Technique::reversed, "unorm24", DepthRange::zero_to_one},
                 {Technique::reversed, "unorm24", DepthRange::gl},
@@ -94,7 +94,7 @@ TEST_CASE("random valid scenes: rows keep their invariants", "[stability][proper
   const auto& techniques = technique_table();
   const char* formats[] = {"float32", "unorm24", "float16"};
   for (int k = 0; k < 12; ++k) {
-    Scene s = small_scene(24, 5);
+    Scene s = kernel_filling_scene(24, 5);
     s.near = std::pow(10.0, -3 + 6 * u(rng));
     s.far = k % 4 == 3 ? INFINITY : s.near * std::pow(10.0, 1 + 11 * u(rng));
     s.distances.clear();
