@@ -35,9 +35,7 @@ using depthprec::test::bytes_of;
 using depthprec::test::empty_dir;
 using depthprec::test::write_bytes;
 
-// The whole file in a namespace of its own: the unity build puts it beside test_program_cache.cpp,
-// whose helpers have the same names.
-namespace dc {
+namespace {
 
 // The first file of the cache whose path ends with tail.
 fs::path cache_file(const fs::path& dir, const std::string& tail) {
@@ -64,6 +62,8 @@ const std::string kRunWritingTo =
 std::string env_for(const fs::path& pocl, const std::string& kernel_cache = "off") {
   return "POCL_CACHE_DIR=" + pocl.string() + " DEPTHPREC_KERNEL_CACHE=" + kernel_cache;
 }
+
+}  // namespace
 
 TEST_CASE("a damaged kernel in PoCL's cache is removed, compiled again, and said",
           "[driver_cache][cli]") {
@@ -329,5 +329,3 @@ TEST_CASE("a fatal signal is reported in words with the file mapped where it str
                        Contains("advice for the test"));
   fs::remove(file);
 }
-
-}  // namespace dc
