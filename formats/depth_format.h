@@ -96,7 +96,8 @@ DF_FN df_format df_make_float(df_i32 exp_bits, df_i32 man_bits, df_u32 ieee_styl
  * 0.5 + 2^-24 rounds down to code(0.5) = 2^23) or less than a unit (truncation; T = 0.5 + 2^-24,
  * code(0.5) = 2^23 - 1): every code from T on is k - 1, above the codes of all smaller depths.
  * Other formats: none (0xffffffff, no depth reaches it); binary32 storage is already a bit copy.
- * tests/test_storage_format.cpp checks the property on every binary32 from T's predecessor to 1. */
+ * tests/formats/storage_format.cpp checks the property on every binary32 from T's predecessor
+ * to 1. */
 DF_FN df_u32 df_order_exact_from(df_format f) {
   /* llvmpipe's unorm24, rint(fl32(d (2^24 - 1))): from 0.5 on, fl32(k - d) lies within a unit
    * of k and rounds to k - 1 (0.5 itself stores 2^23, as 0.5 + 2^-24 does): the same T as

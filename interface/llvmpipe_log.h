@@ -6,7 +6,7 @@
  * [1, 2), y = (m - 1) / (m + 1), z = y^2, and log2(x) = fma(y, P(z), e - 127), where P is the
  * degree-4 minimax fit of log2((1 + sqrt z) / (1 - sqrt z)) / sqrt z, evaluated as two Horner
  * chains over z^2 (even and odd coefficients) with fused steps. That form, with these five
- * coefficients, stores every pixel's depth as llvmpipe does (tests/test_render.cpp); the other
+ * coefficients, stores every pixel's depth as llvmpipe does (tests/render/render.cpp); the other
  * degrees and the unfused steps do not.
  *
  * The coefficients are gallivm's binary64 constants rounded to binary32, as its code generator

@@ -3,7 +3,8 @@
 # number of seconds (default 600): scene (scene files, seeded with data/), journal (row journals
 # as --resume reads them) or shard (JSON outputs as merge and compare read them), each seeded from
 # tests/fuzz/seeds/. Crashes are written to build-fuzz/crashes/TARGET/; each one becomes a
-# regression test (tests/test_scene.cpp, tests/test_fuzz_regressions.cpp). docs/fuzzing.md.
+# regression test, tagged [fuzz] (tests/model/scene.cpp, tests/analysis/compare.cpp,
+# tests/cli/cli_mts.cpp; the inputs kept in tests/fuzz/regressions/). docs/fuzzing.md.
 # Usage: scripts/fuzz.sh [scene|journal|shard] [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."

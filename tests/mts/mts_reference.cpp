@@ -1,0 +1,224 @@
+// The kernel's stored codes against the plain C++ reference pipeline (host/reference_pipeline):
+// bit for bit for every technique without transcendental functions, within one code for log_*.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+
+#include "host/model/frame_setup.h"
+#include "host/model/profile.h"
+#include "host/mts/reference_pipeline.h"
+#include "interface/snap.h"
+#include "tests/mts/reference_outcome.h"
+#include "tests/support/mts_fixture.h"
+
+using namespace depthprec;
+using namespace depthprec::test;
+
+namespace {
+
+DP_SNAP_WINDOW_DEFINE(snap_window, std::fabs, std::rint)
+
+struct Compared {
+  size_t pixels = 0, ok_pixels = 0, differ = 0, off_by_more_than_one = 0, status_differ = 0;
+};
+
+Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, int frame) {
+  MtsEvaluator ev(runtime(), scene, pair, true, MtsEvaluator::Kernels::with_tests);
+  const FrameCodes k = ev.codes(probe, frame);
+  const FrameCodes r = reference_frame(scene, pair, probe, frame);
+  Compared c;
+  c.pixels = k.code_a.size();
+  for (size_t i = 0; i < c.pixels; ++i) {
+    if (k.status_a[i] != r.status_a[i] || k.status_b[i] != r.status_b[i]) {
+      ++c.status_differ;
+      continue;
+    }
+    if (k.status_a[i] == 0 && k.status_b[i] == 0) ++c.ok_pixels;
+    for (const auto& [x, y] :
+         {std::pair{k.code_a[i], r.code_a[i]}, std::pair{k.code_b[i], r.code_b[i]}}) {
+      if (x != y) ++c.differ;
+      if (std::llabs(static_cast<long long>(x) - static_cast<long long>(y)) > 1)
+        ++c.off_by_more_than_one;
+    }
+  }
+  return c;
+}
+
+// Every probe's kernel codes against the reference's, frame frame_of(k) for the k-th probe: bit
+// for bit, or within one code where the library log is involved (log). Returns the pixels that
+// were real depth comparisons in both.
+size_t check_codes(const Scene& scene, const EvalPair& pair, const std::vector<Probe>& probes,
+                   const std::function<int(size_t)>& frame_of, bool log) {
+  size_t compared = 0;
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const Compared c = compare(scene, pair, probes[k], frame_of(k));
+    INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+    CHECK(c.status_differ == 0);
+    if (log)
+      CHECK(c.off_by_more_than_one == 0);
+    else
+      CHECK(c.differ == 0);
+    compared += c.ok_pixels;
+  }
+  return compared;
+}
+
+// The raster kernel's probe outcomes and deciding frames against the reference's, for probes at
+// the given distances and separations z * f.
+void check_outcomes(const Scene& scene, const EvalPair& pair, const std::vector<double>& zs,
+                    const std::vector<double>& fractions) {
+  MtsEvaluator ev(runtime(), scene, pair);
+  std::vector<Probe> probes;
+  for (double z : zs)
+    for (double f : fractions) probes.push_back({z, z * f});
+  const auto results = ev.run(probes);
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const ReferenceOutcome expect = reference_outcome(scene, pair, probes[k]);
+    INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+    CHECK(to_string(results[k].outcome) == std::string(to_string(expect.outcome)));
+    CHECK(results[k].frames == expect.frames);
+  }
+}
+
+// Codes and probe outcomes of a projection pair (both depth ranges, unorm24 and float32) and a
+// fragment-depth one, at distances from the near plane to 2^20.
+void check_three_pairs(const Scene& scene) {
+  for (const auto& [t, format, range] :
+       {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+        std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+        std::tuple{Technique::linear, "float32", DepthRange::gl}}) {
+    const EvalPair pair{t, format, range};
+    INFO(pair.label());
+    CHECK(check_codes(
+              scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
+              [](size_t k) { return static_cast<int>(3 * k); }, false) > 0);
+    check_outcomes(scene, pair, {1.005, 7.0, 3000.0}, {1e-7, 1e-5, 1e-3, 0.1});
+  }
+}
+
+// Sub-pixel snapping (pipeline.snap): the kernel follows the reference, codes and probe outcomes,
+// with 8 bits on the grid's vertices, and with 4 on the new vertices of llvmpipe's clip stage too.
+TEST_CASE("with snapped vertices the kernel follows the reference", "[mts][reference][snap]") {
+  for (const auto& [bits, clip] : {std::pair{"8", "none"}, std::pair{"4", "llvmpipe"}}) {
+    const Scene scene = load_scene(
+        "", {"kernel=[48,40]", "viewport=[48,40]", "frames=12",
+             std::string("pipeline.snap=") + bits, std::string("pipeline.clip=") + clip});
+    INFO("snap " << bits << " clip " << clip);
+    check_three_pairs(scene);
+  }
+}
+
+// softpipe's plane (pipeline.plane = origin_quads), stepped across 2x2 quads: the kernel follows
+// the reference, codes and probe outcomes, with the kernel at an odd offset in the viewport (so
+// its first column and row are the odd ones of their quads) and with the clip stage's fans.
+TEST_CASE("with quad-stepped planes the kernel follows the reference", "[mts][reference][quads]") {
+  for (const auto& [viewport, clip] :
+       {std::pair{"[51,43]", "none"}, std::pair{"[48,40]", "llvmpipe"}}) {
+    const Scene scene =
+        load_scene("", {"kernel=[48,40]", std::string("viewport=") + viewport, "frames=12",
+                        "pipeline.plane=origin_quads", std::string("pipeline.clip=") + clip});
+    INFO("viewport " << viewport << " clip " << clip);
+    check_three_pairs(scene);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("snapping moves window coordinates to the 2^-n pixel grid, half to even", "[snap]") {
+  CHECK(snap_window(0.3f, 2) == 0.25f);
+  CHECK(snap_window(0.375f, 2) == 0.5f);  // 1.5 quarters: to the even 2
+  CHECK(snap_window(0.625f, 2) == 0.5f);  // 2.5 quarters: to the even 2
+  CHECK(snap_window(-0.3f, 2) == -0.25f);
+  CHECK(snap_window(100.00195f, 8) == 100.0f);
+  CHECK(snap_window(100.00196f, 8) == 100.00390625f);
+  CHECK(snap_window(0.3f, 0) == 0.3f);          // none
+  CHECK(snap_window(65537.5f, 8) == 65537.5f);  // every binary32 from 2^15 is on the grid
+  CHECK(std::isnan(snap_window(NAN, 8)));
+  CHECK(std::isinf(snap_window(INFINITY, 8)));
+  // and the pipeline's depths follow the snapped positions
+  const Scene plain = load_scene("", {"kernel=[48,40]", "viewport=[48,40]"});
+  const Scene snapped = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "pipeline.snap=8"});
+  const EvalPair pair{Technique::standard, "float32", DepthRange::gl};
+  CHECK(reference_frame(plain, pair, {3.0, 1e-3}, 5).code_a !=
+        reference_frame(snapped, pair, {3.0, 1e-3}, 5).code_a);
+}
+
+TEST_CASE("kernel codes equal the host reference for every technique and depth range",
+          "[mts][reference]") {
+  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]"});
+  const std::vector<Probe> probes = {
+      {1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}, {3e8, 3e8}};
+  const int frames[] = {0, 37, 99};
+  for (const auto& ti : technique_table()) {
+    for (const DepthRange range : {DepthRange::gl, DepthRange::zero_to_one}) {
+      for (const char* format : {"float32", "unorm24", "e4m12"}) {
+        const EvalPair pair{ti.id, format, range};
+        const bool log = ti.id == Technique::log_vertex || ti.id == Technique::log_fragment;
+        const size_t compared = check_codes(
+            scene, pair, probes, [&](size_t k) { return frames[k % 3]; }, log);
+        INFO(pair.label());
+        CHECK(compared > 0);  // some pixels were real depth comparisons, not all clipped
+      }
+    }
+  }
+}
+
+TEST_CASE("the same run gives bit-identical rows", "[mts]") {
+  const Scene scene = load_scene("", {"kernel=[40,40]", "viewport=[40,40]", "frames=20"});
+  const std::vector<double> z = {1.005, 100, 1e6};
+  for (const Technique t : {Technique::standard, Technique::log_vertex, Technique::layered}) {
+    const auto a = mts_rows(scene, t, "unorm24", DepthRange::gl, z);
+    const auto b = mts_rows(scene, t, "unorm24", DepthRange::gl, z);
+    for (size_t i = 0; i < a.size(); ++i) {
+      INFO(info(t).name << " z = " << z[i]);
+      CHECK(a[i].mts == b[i].mts);
+      CHECK(a[i].lo == b[i].lo);
+      CHECK(a[i].probes == b[i].probes);
+      CHECK(a[i].frames == b[i].frames);
+      CHECK(a[i].fragment_pairs == b[i].fragment_pairs);
+      CHECK(a[i].flags() == b[i].flags());
+    }
+  }
+}
+
+// The raster kernel decides most pieces of a row from their ends; its probe outcomes (fight,
+// clean, clipped, and the frame that decided) must be what the reference's per-pixel codes say.
+TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mts][reference]") {
+  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12"});
+  for (const auto& [t, format, range] :
+       {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+        std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+        std::tuple{Technique::linear, "unorm16", DepthRange::gl},
+        std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one},
+        std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+        std::tuple{Technique::log_fragment, "float32", DepthRange::gl}}) {
+    check_outcomes(scene, {t, format, range}, {1.005, 7.0, 3000.0, 2e6},
+                   {1e-9, 1e-7, 1e-5, 1e-3, 0.1, 1.0});
+  }
+}
+
+// llvmpipe's forms (every setting of the llvmpipe profile: vertex stage, log, clip stage, set-up,
+// viewport, conversion): the kernel follows the reference in them too, codes and probe outcomes.
+TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms",
+          "[mts][reference][llvmpipe]") {
+  std::vector<std::string> sets = {"kernel=[48,40]", "viewport=[48,40]", "frames=12"};
+  for (const std::string& s : profile("llvmpipe").sets) sets.push_back(s);
+  const Scene scene = load_scene("", sets);
+  for (const auto& [t, format, range] :
+       {std::tuple{Technique::standard, "float32", DepthRange::gl},
+        std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+        std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+        std::tuple{Technique::infinite, "unorm16", DepthRange::zero_to_one},
+        std::tuple{Technique::reversed, "unorm32", DepthRange::zero_to_one},
+        std::tuple{Technique::linear, "float32", DepthRange::gl},
+        std::tuple{Technique::log_fragment, "float32", DepthRange::gl},
+        std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl}}) {
+    const EvalPair pair{t, format, range};
+    INFO(pair.label());
+    CHECK(check_codes(
+              scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
+              [](size_t) { return 5; }, t == Technique::log_vertex) > 0);
+    check_outcomes(scene, pair, {1.005, 7.0, 3000.0, 2e6}, {1e-8, 1e-6, 1e-4, 1e-2, 1.0});
+  }
+}
