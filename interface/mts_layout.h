@@ -25,8 +25,8 @@
 #define MTS_E_DY 3
 #define MTS_E_DXDY 4
 #define MTS_E_BITS 5 /* uint: bit 0 negate, bit 1 owns, then the ids of the edge's two vertices */
-#define MTS_E_ID_SHIFT \
-  2 /* 15 bits each, in the triangle's order: which vertices (b_keeps_a_edges) */
+/* 15 bits each, in the triangle's order: which vertices (b_keeps_a_edges) */
+#define MTS_E_ID_SHIFT 2
 /* Then each row of quads' y-range (grid pairs ymin, ymax), then (grid ints) how many triangle
  * records it uses from its first, 2 grid slots qj: the triangles a kernel row can meet are those
  * of the quad rows whose range holds it, a run of indices. A quad row's triangles fill its
@@ -59,12 +59,12 @@
 #define MTS_T_YMAX 22
 #define MTS_T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
 #define MTS_T_BIAS 26 /* the triangle's depth bias (kernels/bias.cl only) */
-#define MTS_T_ZMAX \
-  27                 /* the largest |window depth| of its vertices (the float rule of depth bias) */
+/* the largest |window depth| of its vertices (the float rule of depth bias) */
+#define MTS_T_ZMAX 27
 #define MTS_T_BOX 28 /* int4: the kernel pixels the triangle may own (setup.cl pixel_boxes16) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
-#define MTS_PROBE_STRIDE 27
+#define MTS_PROBE_STRIDE 36
 #define MTS_C_NEAR 16
 #define MTS_C_FAR 17
 #define MTS_C_RANGE 18
@@ -79,16 +79,25 @@
  * the probe rather than defines and every choice runs in one program. */
 #define MTS_C_DEPTH_GL 24 /* 1: OpenGL's depth range, d = z_ndc / 2 + 1/2; 0: d = z_ndc */
 #define MTS_C_FORMS 25    /* the arithmetic forms, F_* bits */
-#define MTS_C_SNAP_BITS \
-  26 /* window x, y snapped to 2^-n pixel (interface/snap.h); 0: as computed */
-#define MTS_F_DIVIDE_EXACT                                              \
-  1u /* z_clip / w_clip correctly rounded; else z_clip * fl(1 / w_clip) \
-      */
-#define MTS_F_COMPOSE_PREMULT \
-  2u                          /* the host uploads P * MV, one product per vertex; else P (MV v) */
-#define MTS_F_VIEWPORT_FMA 4u /* window coordinates as fma(ndc, scale, translate) */
-#define MTS_F_VERTEX_FMA 8u   /* matrix rows fused as llvmpipe's shader fuses them (mat_row) */
-#define MTS_MAT_STRIDE 16     /* a 4x4 matrix, row-major */
+/* window x, y snapped to 2^-n pixel (interface/snap.h); 0: as computed */
+#define MTS_C_SNAP_BITS 26
+/* Where the scene sits away from the world origin (pipeline.transform, docs/spec.md 2): the view
+ * matrix's translation, added after the model matrix under MTS_F_VIEW_TRANSLATE (absolute,
+ * compose separate), and the eye's relative-to-eye parts (interface/relative_to_eye.h), read when
+ * the set-up program is built with RELATIVE_TO_EYE 1. */
+#define MTS_C_VIEW_X 27     /* then y, z */
+#define MTS_C_EYE_HIGH_X 30 /* then y, z */
+#define MTS_C_EYE_LOW_X 33  /* then y, z */
+/* z_clip / w_clip correctly rounded; else z_clip * fl(1 / w_clip) */
+#define MTS_F_DIVIDE_EXACT 1u
+/* the host uploads P * MV, one product per vertex; else P (MV v) */
+#define MTS_F_COMPOSE_PREMULT 2u
+#define MTS_F_VIEWPORT_FMA 4u    /* window coordinates as fma(ndc, scale, translate) */
+#define MTS_F_VERTEX_FMA 8u      /* matrix rows fused as llvmpipe's shader fuses them (mat_row) */
+#define MTS_F_VIEW_TRANSLATE 16u /* eye = model * v + view translation, in binary32 */
+#define MTS_MAT_STRIDE 16        /* a 4x4 matrix, row-major */
+/* Relative to eye, a plane's binary64 world matrix instead: 16 doubles in 32 floats' place */
+#define MTS_WORLD_MAT_STRIDE 32
 
 /* A plane's flags (vflags): non-finite vertices; the coverage certificate (covers_kernel). */
 #define MTS_V_NONFINITE 1u
@@ -110,9 +119,8 @@
 /* Plane A does not depend on the separation, so the host sets it up once per (distance, frame)
  * for every probe of the distance (host/mts/mts_evaluator.cpp, the plane-A cache): its triangles,
  * its code bounds per band, and per kernel row its coverage segments and coverage margin. */
-#define MTS_MAXC                                                                  \
-  24 /* segments a cached row holds; a row with more is computed where it is used \
-      */
+/* segments a cached row holds; a row with more is computed where it is used */
+#define MTS_MAXC 24
 #define MTS_RW_N 0
 #define MTS_RW_MARGIN 1
 #define MTS_RW_X 2
@@ -142,8 +150,8 @@
 #define MTS_D_RASTER 0u /* rasterise, deciding pieces from their end codes first */
 #define MTS_D_CLEAN 1u  /* clean from code bounds or the gap certificate: not rasterised */
 #define MTS_D_INSIDE 2u /* rasterise straight through the pixel loop: see mts_frame_bounds */
-#define MTS_D_ORDERED \
-  3u /* MTS_D_INSIDE, and every depth of plane A at or above df_order_exact_from */
+/* MTS_D_INSIDE, and every depth of plane A at or above df_order_exact_from */
+#define MTS_D_ORDERED 3u
 
 /* A fragment's status (mts_codes, for the tests; host/mts/reference_pipeline.cpp likewise) */
 #define MTS_S_OK 0

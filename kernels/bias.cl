@@ -43,7 +43,7 @@ __kernel void bias_setup(BIAS_SETUP_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const BiasS
   __global const float* P = probes + (id / args.per_probe) * MTS_PROBE_STRIDE;
   __global float* T = tris + (size_t)id * PLANE_STRIDE;
   const MtsKernelArea a = args.area;
-  setup_plane(P, mats + (id >> 1) * MTS_MAT_STRIDE, args.half_w, args.half_h, a.origin_x,
+  setup_plane(P, mats + (id >> 1) * PLANE_MATRIX_WORDS, args.half_w, args.half_h, a.origin_x,
               a.origin_y, a.kernel_w, a.kernel_h, a.band_rows, T, vflags + id, is_b);
   for (int t = 0; t < NT; ++t) {
     __global float* R = T + t * MTS_TRI_STRIDE;

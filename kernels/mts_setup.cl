@@ -26,7 +26,7 @@ __kernel void mts_setup(MTS_SETUP_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsSetu
   if (k >= args.count) return;
   const uint id = args.first_plane + k;
   const MtsKernelArea a = args.area;
-  setup_plane(probes + (id / args.per_probe) * MTS_PROBE_STRIDE, mats + k * MTS_MAT_STRIDE,
+  setup_plane(probes + (id / args.per_probe) * MTS_PROBE_STRIDE, mats + k * PLANE_MATRIX_WORDS,
               args.half_w, args.half_h, a.origin_x, a.origin_y, a.kernel_w, a.kernel_h, a.band_rows,
               tris + (size_t)id * PLANE_STRIDE, vflags + id, 0);
 }

@@ -88,10 +88,8 @@ std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes)
         packed[MTS_C_BIAS_FACTOR] = static_cast<float>(p.factor);
         packed[MTS_C_BIAS_CLAMP] = static_cast<float>(options_.clamp);
         consts.insert(consts.end(), packed.begin(), packed.end());
-        for (int v = done; v < done + frames; ++v) {
-          const Mat4f m = plane_matrix(scene_, pc, p.z, (first[i] + v) % total, tilt);
-          mats.insert(mats.end(), m.begin(), m.end());
-        }
+        for (int v = done; v < done + frames; ++v)
+          append_plane_words(mats, scene_, pc, p.z, (first[i] + v) % total, tilt);
       }
       const size_t planes = 2 * active.size() * static_cast<size_t>(frames);
       const cl::Buffer const_buf = buffer_of(rt_.context(), consts);

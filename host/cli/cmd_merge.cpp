@@ -149,6 +149,7 @@ const std::map<std::string, RecordKind>& record_kinds() {
       {"pipelines", {render_pipelines_output, {"summary"}}},
       {"compare", {render_compare_output, {"summary", "pairs"}}},
       {"advise", {render_advise_output, {"ranking"}}},
+      {"world", {render_world_output, {}}},
       {"bias", {render_bias_output, {}}},
       {"profiles", {render_profiles_output, {}}}};
   return kinds;

@@ -35,6 +35,7 @@ void add_compare_command(CLI::App& app, GlobalOptions& global);
 void add_pipelines_command(CLI::App& app, GlobalOptions& global);
 void add_report_command(CLI::App& app, GlobalOptions& global);
 void add_advise_command(CLI::App& app, GlobalOptions& global);
+void add_world_command(CLI::App& app, GlobalOptions& global);
 void add_bias_command(CLI::App& app, GlobalOptions& global);
 // cache show, cache clear.
 void add_cache_command(CLI::App& app);
@@ -60,6 +61,9 @@ std::string render_cost_output(const nlohmann::json& header,
 std::string render_advise_output(const nlohmann::json& header,
                                  const std::vector<nlohmann::json>& records,
                                  const OutputOptions& out);
+std::string render_world_output(const nlohmann::json& header,
+                                const std::vector<nlohmann::json>& records,
+                                const OutputOptions& out);
 std::string render_bias_output(const nlohmann::json& header,
                                const std::vector<nlohmann::json>& records,
                                const OutputOptions& out);

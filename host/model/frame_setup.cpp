@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
 
 #include "host/base/errors.h"
 #include "host/model/tilted_plane.h"
+#include "interface/relative_to_eye.h"
 
 namespace depthprec {
 
@@ -51,6 +53,17 @@ T model_distance(double D) {
 // longer the centred square but, frame by frame, the rectangle that covers the view widened by
 // plane_margin (host/model/tilted_plane.h): longer and wider on its far side than on its near one.
 // Untilted planes are the square of docs/spec.md 5.1, built as they always were.
+// The translation of a plane's model matrix at distance D (binary64; docs/spec.md 2, "World
+// position"): its centre in the world (absolute, relative_to_eye), or that minus the camera's
+// position, formed in binary64 as camera-relative rendering forms it (camera_relative). At the
+// world origin every transform gives (0, 0, -D).
+std::array<double, 3> plane_translation(const Scene& s, double D) {
+  const auto& wp = s.world_position;
+  const std::array<double, 3> centre = {wp[0], wp[1], wp[2] - D};
+  if (s.pipeline.transform != Transform::camera_relative) return centre;
+  return {centre[0] - wp[0], centre[1] - wp[1], centre[2] - wp[2]};
+}
+
 template <class T>
 Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
   const T dist = model_distance<T>(D);
@@ -89,7 +102,8 @@ Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
   Rz[1][1] = cz;
   S[0][0] = side_x;
   S[1][1] = side_y;
-  Tr[3][2] = -dist;
+  const std::array<double, 3> at = plane_translation(s, D);
+  for (int i = 0; i < 3; ++i) Tr[3][i] = static_cast<T>(at[i]);
   if (tilt != 0) return Tr * (Rx * Ry * Rz) * offset * S;
   return Tr * (Rx * Ry * Rz) * S;
 }
@@ -115,6 +129,16 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
              (pipe.viewport == ViewportForm::fma ? MTS_F_VIEWPORT_FMA : 0u) |
              (pipe.vertex == VertexForm::fma ? MTS_F_VERTEX_FMA : 0u);
   pc.snap_bits = pipe.snap_bits;
+  // The view matrix's translation, -world_position, applied on the GPU after the model matrix
+  // (absolute, compose separate); premultiplied, the host folds it into P * V * M.
+  const auto& wp = s.world_position;
+  if (pipe.transform == Transform::absolute && pipe.compose == Compose::separate &&
+      !s.at_world_origin()) {
+    pc.forms |= MTS_F_VIEW_TRANSLATE;
+    for (int i = 0; i < 3; ++i) pc.view[i] = static_cast<float>(static_cast<T>(-wp[i]));
+  }
+  if (pipe.transform == Transform::relative_to_eye)
+    for (int i = 0; i < 3; ++i) dp_rte_encode(wp[i], &pc.eye_high[i], &pc.eye_low[i]);
   pc.layer_near = n64;
   pc.layer_far = f64;
   return pc;
@@ -133,6 +157,11 @@ std::array<float, MTS_PROBE_STRIDE> ProbeConstants::packed() const {
   out[MTS_C_DEPTH_GL] = depth_gl ? 1.0f : 0.0f;
   out[MTS_C_FORMS] = static_cast<float>(forms);
   out[MTS_C_SNAP_BITS] = static_cast<float>(snap_bits);
+  for (int i = 0; i < 3; ++i) {
+    out[MTS_C_VIEW_X + i] = view[i];
+    out[MTS_C_EYE_HIGH_X + i] = eye_high[i];
+    out[MTS_C_EYE_LOW_X + i] = eye_low[i];
+  }
   return out;
 }
 
@@ -167,7 +196,25 @@ ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z) {
   return pc;
 }
 
+namespace {
+
+// P * MV, or P * V * MV under the absolute transform away from the world origin (V: the camera's
+// translation), in precision T as glm evaluates it, left to right.
+template <class T>
+Mat<T> premultiplied(const Scene& s, const Mat<T>& P, const Mat<T>& M) {
+  if (s.pipeline.transform != Transform::absolute || s.at_world_origin()) return P * M;
+  Mat<T> V(T(1));
+  for (int i = 0; i < 3; ++i) V[3][i] = static_cast<T>(-s.world_position[i]);
+  return P * V * M;
+}
+
+}  // namespace
+
 Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame, double tilt) {
+  if (s.pipeline.transform == Transform::relative_to_eye)
+    throw Error(ExitCode::internal,
+                "plane_matrix: relative_to_eye hands the GPU world positions "
+                "(plane_world_matrix), not a model-view");
   const bool premult = s.pipeline.compose == Compose::premultiplied;
   if (s.pipeline.matrix_precision == MatrixPrecision::single) {
     const Mat<float> M = model<float>(s, D, frame_orientation(s, pc.z, frame), tilt);
@@ -175,17 +222,46 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
     Mat<float> P;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c) P[c][r] = pc.P[r * 4 + c];
-    return to_row_major(Mat<float>(P * M));
+    return to_row_major(premultiplied(s, P, M));
   }
   const Mat<double> M = model<double>(s, D, frame_orientation(s, pc.z, frame), tilt);
   if (!premult) return to_row_major(M);
   Mat<double> P;  // the binary64 P, so P * MV is rounded once, at the end
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) P[c][r] = pc.P_full[r * 4 + c];
-  return to_row_major(Mat<double>(P * M));
+  return to_row_major(premultiplied(s, P, M));
+}
+
+std::array<double, 16> plane_world_matrix(const Scene& s, const ProbeConstants& pc, double D,
+                                          int frame, double tilt) {
+  const Mat<double> M = model<double>(s, D, frame_orientation(s, pc.z, frame), tilt);
+  std::array<double, 16> out{};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r * 4 + c] = M[c][r];
+  return out;
+}
+
+void append_plane_words(std::vector<float>& words, const Scene& s, const ProbeConstants& pc,
+                        double D, int frame, double tilt) {
+  if (s.pipeline.transform == Transform::relative_to_eye) {
+    const std::array<double, 16> m = plane_world_matrix(s, pc, D, frame, tilt);
+    const size_t at = words.size();
+    words.resize(at + MTS_WORLD_MAT_STRIDE);
+    std::memcpy(words.data() + at, m.data(), sizeof m);
+    return;
+  }
+  const Mat4f m = plane_matrix(s, pc, D, frame, tilt);
+  words.insert(words.end(), m.begin(), m.end());
+}
+
+size_t plane_words(const Scene& s) {
+  return s.pipeline.transform == Transform::relative_to_eye ? MTS_WORLD_MAT_STRIDE : MTS_MAT_STRIDE;
 }
 
 double plane_matrix_distance(const Scene& s, double D) {
+  // Away from the origin the translation is formed from D in binary64 (plane_translation), so
+  // two distances that round alike may still give different matrices.
+  if (!s.at_world_origin()) return D;
   return s.pipeline.matrix_precision == MatrixPrecision::single ? model_distance<float>(D)
                                                                 : model_distance<double>(D);
 }

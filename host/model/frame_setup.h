@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "host/model/scene.h"
 #include "interface/mts_layout.h"
@@ -39,9 +40,12 @@ struct ProbeConstants {
   Mat4f P{};
   std::array<double, 16> P_full{};  // P in the matrix precision before rounding to binary32
   float near = 0, far = 0, range = 0, log_k = 0, log_L = 0;
-  bool depth_gl = false;  // the pair's depth range is OpenGL's (MTS_C_DEPTH_GL)
-  unsigned forms = 0;     // the pipeline's vertex-stage forms, F_* bits (MTS_C_FORMS)
-  int snap_bits = 0;      // the pipeline's sub-pixel snapping (MTS_C_SNAP_BITS)
+  bool depth_gl = false;        // the pair's depth range is OpenGL's (MTS_C_DEPTH_GL)
+  unsigned forms = 0;           // the pipeline's vertex-stage forms, F_* bits (MTS_C_FORMS)
+  int snap_bits = 0;            // the pipeline's sub-pixel snapping (MTS_C_SNAP_BITS)
+  std::array<float, 3> view{};  // the view's translation under MTS_F_VIEW_TRANSLATE (MTS_C_VIEW_X)
+  // The eye's relative-to-eye parts (interface/relative_to_eye.h; MTS_C_EYE_HIGH_X, _LOW_X)
+  std::array<float, 3> eye_high{}, eye_low{};
   double layer_near = 0, layer_far = 0;  // the sub-frustum used (layered), else near/far
   double z = 0;  // plane A's distance: the frames' orientations are per distance (Scene)
   std::array<float, MTS_PROBE_STRIDE> packed() const;
@@ -62,6 +66,16 @@ Angles frame_orientation(const Scene& scene, double z, int frame);
 // cover the view still (host/model/tilted_plane.h).
 Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame,
                    double tilt = 0);
+
+// Under the relative_to_eye transform, what the GPU gets instead of plane_matrix: the plane's world
+// matrix in binary64 (the application's), from which it forms each vertex's world position.
+std::array<double, 16> plane_world_matrix(const Scene& scene, const ProbeConstants& pc, double D,
+                                          int frame, double tilt = 0);
+// Appends what the set-up kernels read of one plane (plane_words(scene) floats): plane_matrix, or
+// under relative_to_eye plane_world_matrix's 16 doubles in 32 floats' place.
+void append_plane_words(std::vector<float>& words, const Scene& scene, const ProbeConstants& pc,
+                        double D, int frame, double tilt = 0);
+size_t plane_words(const Scene& scene);  // MTS_MAT_STRIDE, or MTS_WORLD_MAT_STRIDE
 
 // The distance plane_matrix builds a plane from when tilt is 0: D rounded to binary32 under
 // matrix_precision float, D itself under double. Two distances with the same value give the same

@@ -25,6 +25,25 @@
 
 namespace depthprec {
 
+const char* to_string(Transform t) {
+  switch (t) {
+    case Transform::absolute:
+      return "absolute";
+    case Transform::camera_relative:
+      return "camera_relative";
+    case Transform::relative_to_eye:
+      return "relative_to_eye";
+  }
+  return "?";
+}
+
+Transform parse_transform(const std::string& s) {
+  return named_choice<Transform>("transform", s,
+                                 {{"absolute", Transform::absolute},
+                                  {"camera_relative", Transform::camera_relative},
+                                  {"relative_to_eye", Transform::relative_to_eye}});
+}
+
 int Pipeline::clip_slots() const {
   return clip == ClipForm::llvmpipe ? MTS_CLIP_SLOTS : 1;
 }
@@ -51,6 +70,7 @@ const std::set<std::string> kTopKeys = {"name",
                                         "rotation_step",
                                         "rotation_offset",
                                         "distances",
+                                        "world_position",
                                         "rel_precision",
                                         "max_separation_factor",
                                         "stiffness_probes",
@@ -65,7 +85,8 @@ const std::set<std::string> kTopKeys = {"name",
 const std::set<std::string> kPipelineKeys = {
     "depth_range", "matrix_precision", "compose", "divide",   "rounding",
     "denormals",   "contraction",      "plane",   "viewport", "conversion",
-    "vertex",      "profile",          "log",     "clip",     "snap"};
+    "vertex",      "profile",          "log",     "clip",     "snap",
+    "transform"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 const std::set<std::string> kWorstCaseKeys = {"min_rounds", "max_rounds", "round_size",
                                               "tolerance"};
@@ -374,6 +395,11 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
                          same - s.distances.begin() + 1, s.distances.size() + 1));
     s.distances.push_back(z);
   }
+  s.world_position = r.vec3("world_position");
+  for (const double c : s.world_position)
+    if (!(std::abs(c) <= kMaxWorldCoordinate))
+      r.fail("world_position", fmt::format("coordinates must be within +-{:g} (2^40), not {:g}",
+                                           kMaxWorldCoordinate, c));
   s.rel_precision = r.positive("rel_precision");
   if (s.rel_precision >= 1) r.fail("rel_precision", "must be below 1 (e.g. 0.0009765625 = 2^-10)");
   s.max_separation_factor = r.positive("max_separation_factor");
@@ -421,6 +447,7 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   s.pipeline.clip = r.choice("pipeline.clip", parse_clip_form);
   s.pipeline.snap_bits = r.none_or_integer("pipeline.snap", 1, 16);
   s.pipeline.conversion = r.choice("pipeline.conversion", parse_conversion);
+  s.pipeline.transform = r.choice("pipeline.transform", parse_transform);
 
   s.params.log_k = r.positive("log_k");
   s.params.layers = r.integer("layers", 1, 64);

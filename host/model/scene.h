@@ -43,6 +43,18 @@ enum class LogForm { library, llvmpipe };
 // viewport never seen (none), or clipped into a fan of new triangles as llvmpipe's clip stage
 // does (Mesa 22.3 draw_pipe_clip.c), whose new vertices carry other roundings.
 enum class ClipForm { none, llvmpipe };
+// How the vertex stage reaches eye space when the scene sits at world_position (docs/spec.md 2,
+// "World position"): absolute: the planes' model matrices carry the world translation and the
+// view matrix the camera's, as matrix_precision and compose say; camera_relative: the model-view's
+// translation formed in binary64 (model minus camera) before the matrix goes to the GPU;
+// relative_to_eye: Cesium's split of binary64 world positions into binary32 high and low parts
+// (interface/relative_to_eye.h), subtracted from the eye's on the GPU.
+enum class Transform { absolute, camera_relative, relative_to_eye };
+// The bound on world_position's coordinates, 2^40: relative to eye keeps a coordinate's high part
+// (a multiple of 65536) exact in binary32 below it.
+constexpr double kMaxWorldCoordinate = 1099511627776.0;
+const char* to_string(Transform t);  // "absolute", "camera_relative", "relative_to_eye"
+Transform parse_transform(const std::string& s);  // throws InputError listing the names
 
 struct Pipeline {
   // The depth range of pairs that name none; none here ("technique" in a scene): each technique's
@@ -65,6 +77,7 @@ struct Pipeline {
   // Triangle records per grid triangle (interface/mts_layout.h): one, or a clipped fan's slots.
   int clip_slots() const;
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
+  Transform transform = Transform::absolute;
 };
 
 struct EvalPair {
@@ -109,6 +122,12 @@ struct Scene {
   double rotation_range_deg = 0;
   std::array<double, 3> rotation_step{}, rotation_offset{};
   std::vector<double> distances;
+  // Where the camera and the planes sit in the world (binary64): the camera still looks down its
+  // -z axis at the planes z away; pipeline.transform says how the GPU gets there.
+  std::array<double, 3> world_position{};
+  bool at_world_origin() const {
+    return world_position[0] == 0 && world_position[1] == 0 && world_position[2] == 0;
+  }
   double rel_precision = 0;
   double max_separation_factor = 0;
   int stiffness_probes = 0;  // per side of each resolved MTS (docs/stability.md)

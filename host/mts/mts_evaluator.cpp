@@ -77,7 +77,7 @@ MtsKernelArea MtsEvaluator::area() const {
 cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>& mats,
                               cl_uint per_probe, cl_uint first_plane, cl::Buffer& tris,
                               cl::Buffer& vflags) {
-  const size_t planes = mats.size() / 16;
+  const size_t planes = mats.size() / plane_words(scene_);
   const cl::Buffer mat_buf = buffer_of(rt_.context(), mats);
   MtsSetupBuffers b;
   b.probes = &consts;
@@ -159,11 +159,10 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     const auto packed = pc.packed();
     rt_.queue().enqueueWriteBuffer(a_.consts, CL_TRUE, sizeof(float) * kProbeStride * slot,
                                    sizeof(float) * kProbeStride, packed.data());  // packed is local
-    std::vector<float> mats(static_cast<size_t>(frames) * 16);
-    for (cl_uint f = 0; f < frames; ++f) {
-      const Mat4f m = plane_matrix(scene_, pc, z, static_cast<int>(f));
-      std::copy(m.begin(), m.end(), mats.begin() + f * 16);
-    }
+    std::vector<float> mats;
+    mats.reserve(static_cast<size_t>(frames) * plane_words(scene_));
+    for (cl_uint f = 0; f < frames; ++f)
+      append_plane_words(mats, scene_, pc, z, static_cast<int>(f));
     const auto first_plane = static_cast<cl_uint>(slot * frames);
     const cl::Event set_up = setup(a_.consts, mats, frames, first_plane, a_.tris, a_.vflags);
     MtsARowsBuffers rows_in;
@@ -217,7 +216,8 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes,
                                       int frames, cl::Buffer& probe_buf, cl::Buffer& slot_buf,
                                       cl::Buffer& tris, cl::Buffer& vflags) {
   std::vector<float> consts(active.size() * kProbeStride);
-  std::vector<float> mats(active.size() * frames * 16);
+  std::vector<float> mats;
+  mats.reserve(active.size() * frames * plane_words(scene_));
   std::vector<cl_uint> slot_and_start(2 * active.size());
   for (size_t i = 0; i < active.size(); ++i) {
     const Probe& p = probes[active[i]];
@@ -225,11 +225,8 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes,
     const auto packed = pc.packed();
     std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
     const int start = first_visited[active[i]];
-    for (int f = 0; f < frames; ++f) {
-      const Mat4f b =
-          plane_matrix(scene_, pc, p.z + p.s, (start + first_frame + f) % scene_.frames);
-      std::copy(b.begin(), b.end(), mats.begin() + (i * frames + f) * 16);
-    }
+    for (int f = 0; f < frames; ++f)
+      append_plane_words(mats, scene_, pc, p.z + p.s, (start + first_frame + f) % scene_.frames);
     slot_and_start[2 * i] = slots[i];
     slot_and_start[2 * i + 1] = static_cast<cl_uint>(start);
   }

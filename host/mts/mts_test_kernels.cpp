@@ -71,10 +71,8 @@ FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
   const cl::Buffer probe_buf =
       buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));
   std::vector<float> mats;
-  for (const double d : {probe.z, probe.z + probe.s}) {
-    const Mat4f m = plane_matrix(scene_, pc, d, frame);
-    mats.insert(mats.end(), m.begin(), m.end());
-  }
+  for (const double d : {probe.z, probe.z + probe.s})
+    append_plane_words(mats, scene_, pc, d, frame);
   cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * plane_floats_);
   cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * 2);
   setup(probe_buf, mats, 2, 0, tris, vflags);

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "formats/df_prelude.h"
@@ -9,6 +10,7 @@
 #include "host/runtime/kernel_variant.h"
 #include "interface/bias_formula.h"
 #include "interface/llvmpipe_log.h"
+#include "interface/relative_to_eye.h"
 #include "interface/snap.h"
 
 namespace depthprec {
@@ -117,8 +119,18 @@ struct Plane {
 
 // flip: each quad split along its other diagonal (b to d), as kernels/mts/setup.cl's
 // triangle_vertices16 does for the bias measurement's overlay; bias: its offsets, or none.
-Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, const Mat4f& M,
-                  bool flip = false, const BiasTerms* bias = nullptr) {
+// words: what the set-up kernel reads of the plane (append_plane_words): its model-view (or
+// P * MV), or relative to eye its binary64 world matrix.
+Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc,
+                  const std::vector<float>& words, bool flip = false,
+                  const BiasTerms* bias = nullptr) {
+  const bool rte = s.pipeline.transform == Transform::relative_to_eye;
+  Mat4f M{};
+  std::array<double, 16> W{};
+  if (rte)
+    std::memcpy(W.data(), words.data(), sizeof W);
+  else
+    std::copy(words.begin(), words.begin() + 16, M.begin());
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const bool gl = pair.depth_range == DepthRange::gl;
   const int g = s.plane_subdivisions;
@@ -131,11 +143,19 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float clip[4];
-      if (s.pipeline.compose == Compose::premultiplied) {
+      if (rte) {  // kernels/mts/setup/vertex.cl relative_to_eye16
+        float eye[4] = {0, 0, 0, 1.0f};
+        for (int r = 0; r < 3; ++r)
+          eye[r] = dp_rte_eye(dp_rte_world_row(W.data(), r, obj[0], obj[1]), pc.eye_high[r],
+                              pc.eye_low[r]);
+        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, s.pipeline.vertex);
+      } else if (s.pipeline.compose == Compose::premultiplied) {
         for (int r = 0; r < 4; ++r) clip[r] = object_row_dot(M, r, obj, s.pipeline.vertex);
       } else {
         float eye[4];
         for (int r = 0; r < 4; ++r) eye[r] = object_row_dot(M, r, obj, s.pipeline.vertex);
+        if (pc.forms & MTS_F_VIEW_TRANSLATE)  // the view matrix: the camera's translation alone
+          for (int r = 0; r < 3; ++r) eye[r] = eye[r] + pc.view[r];
         for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, s.pipeline.vertex);
       }
       if (ti.from == DepthFrom::vertex_log) {
@@ -378,8 +398,11 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
 FrameCodes reference_frame(const Scene& s, const EvalPair& pair, const Probe& probe, int frame) {
   const StorageFormat fmt = s.storage_format(pair);
   const ProbeConstants pc = probe_constants(s, pair, probe.z);
-  const Plane a = setup_plane(s, pair, pc, plane_matrix(s, pc, probe.z, frame));
-  const Plane b = setup_plane(s, pair, pc, plane_matrix(s, pc, probe.z + probe.s, frame));
+  std::vector<float> wa, wb;
+  append_plane_words(wa, s, pc, probe.z, frame);
+  append_plane_words(wb, s, pc, probe.z + probe.s, frame);
+  const Plane a = setup_plane(s, pair, pc, wa);
+  const Plane b = setup_plane(s, pair, pc, wb);
   const float ox = static_cast<float>((s.viewport_w - s.kernel_w) / 2);
   const float oy = static_cast<float>((s.viewport_h - s.kernel_h) / 2);
   FrameCodes fc;
@@ -409,7 +432,8 @@ BiasFrame reference_biased_frame(const Scene& s, const EvalPair& pair, const Ref
                                  double z, int frame) {
   const StorageFormat fmt = s.storage_format(pair);
   const ProbeConstants pc = probe_constants(s, pair, z);
-  const Mat4f m = plane_matrix(s, pc, z, frame, bias.tilt);
+  std::vector<float> m;
+  append_plane_words(m, s, pc, z, frame, bias.tilt);
   BiasTerms terms;
   terms.units_term = bias.units_term;
   terms.float_rule = bias.float_rule;

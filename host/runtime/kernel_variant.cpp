@@ -33,21 +33,23 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
                          : p.plane == PlaneForm::origin_quads ? 2
                                                               : 0;
   const int llvmpipe_log = p.log == LogForm::llvmpipe ? 1 : 0;
+  const int rte = p.transform == Transform::relative_to_eye ? 1 : 0;
   const std::string base = base_build_options(p.denormals == Denormals::flush);
   v.options = fmt::format(
       "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DCOMPARE_GREATER={} -DCONTRACT={} "
       "-DLOG_CODE_SLACK={}UL -DCACHE_A_CODES={} -DPLANE_FORM={} -DLLVMPIPE_LOG={} "
-      "-DCLIP_SLOTS={} {}",
+      "-DCLIP_SLOTS={} -DRELATIVE_TO_EYE={} {}",
       base, scene.plane_subdivisions, depth_from, frag, ti.greater ? 1 : 0, p.contraction ? 1 : 0,
-      log_slack, v.cache_a_codes ? 1 : 0, plane_form, llvmpipe_log, p.clip_slots(), f.defines());
+      log_slack, v.cache_a_codes ? 1 : 0, plane_form, llvmpipe_log, p.clip_slots(), rte,
+      f.defines());
   // The set-up takes a log only for vertex-stage log depth, so elsewhere the log's form is left
   // out of its key.
   v.setup_program = "kernels/mts_setup.cl";
   v.setup_options = fmt::format(
       "{} -DGRID={} -DDEPTH_FROM={} -DCONTRACT={} -DPLANE_FORM={} -DLLVMPIPE_LOG={} "
-      "-DCLIP_SLOTS={}",
+      "-DCLIP_SLOTS={} -DRELATIVE_TO_EYE={}",
       base, scene.plane_subdivisions, depth_from, p.contraction ? 1 : 0, plane_form,
-      depth_from == 1 ? llvmpipe_log : 0, p.clip_slots());
+      depth_from == 1 ? llvmpipe_log : 0, p.clip_slots(), rte);
   // A variant with a driver's forms names the profile they are (or "custom-forms").
   const bool driver_forms = p.plane != PlaneForm::vertex || p.viewport == ViewportForm::fma ||
                             p.vertex == VertexForm::fma || p.log == LogForm::llvmpipe ||
@@ -59,7 +61,8 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
                         to_string(ti.fragment), ti.greater ? "GEQUAL" : "LEQUAL",
                         to_string(pair.depth_range), f.name(),
                         driver_forms ? "/" + (profile == "custom" ? "custom-forms" : profile) : "",
-                        p.snap_bits ? fmt::format("/snap{}", p.snap_bits) : "");
+                        p.snap_bits ? fmt::format("/snap{}", p.snap_bits) : "") +
+            (rte ? "/relative_to_eye" : "");
   return v;
 }
 

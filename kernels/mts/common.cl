@@ -11,6 +11,12 @@
 #define NV_PAD MTS_NV_PAD(GRID)
 #define V_BAD_ROW MTS_V_BAD_ROW(GRID, CLIP_SLOTS)
 #define PLANE_STRIDE MTS_PLANE_STRIDE(GRID, CLIP_SLOTS)
+/* a plane's words in the set-up's matrix buffer (host/model/frame_setup.h append_plane_words) */
+#if RELATIVE_TO_EYE
+#define PLANE_MATRIX_WORDS MTS_WORLD_MAT_STRIDE
+#else
+#define PLANE_MATRIX_WORDS MTS_MAT_STRIDE
+#endif
 
 // A kernel's buffers as parameters, from its list in interface/mts_kernel_args.h.
 #define MTS_ARG_IN(type, name) __global const type *restrict name,

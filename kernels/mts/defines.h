@@ -16,6 +16,10 @@
  *                      (the set-up's key leaves it 0 unless DEPTH_FROM is 1)
  *   CLIP_SLOTS         1: triangles as they are; MTS_CLIP_SLOTS: those crossing the viewport edge
  *                      clipped into fans as llvmpipe does (kernels/mts/setup/clip.cl)
+ *   RELATIVE_TO_EYE    1: pipeline.transform relative_to_eye: each plane's matrix words are its
+ *                      binary64 world matrix, the vertex stage forms Cesium's relative-to-eye
+ *                      position (interface/relative_to_eye.h; needs cl_khr_fp64); 0: a binary32
+ *                      model-view (or P * MV) as for every other transform
  * The per-pixel programs read those and:
  *   FRAG_DEPTH         with DEPTH_FROM 2: 1 linear, 2 w_buffer, 3 log
  *   COMPARE_GREATER    1: GEQUAL (reversed mappings); 0: LEQUAL
@@ -28,9 +32,9 @@
  * probe constants (MTS_C_DEPTH_GL, MTS_C_FORMS, MTS_C_SNAP_BITS in interface/mts_layout.h), read
  * by that stage alone, so pairs that differ in them alone share one program. */
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(CONTRACT) || !defined(PLANE_FORM) || \
-    !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS)
+    !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(RELATIVE_TO_EYE)
 #error \
-    "the emulated pipeline needs GRID, DEPTH_FROM, CONTRACT, PLANE_FORM, LLVMPIPE_LOG and CLIP_SLOTS (kernels/mts/defines.h)"
+    "the emulated pipeline needs GRID, DEPTH_FROM, CONTRACT, PLANE_FORM, LLVMPIPE_LOG, CLIP_SLOTS and RELATIVE_TO_EYE (kernels/mts/defines.h)"
 #endif
 #ifndef MTS_SETUP_STAGE
 #if !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || !defined(LOG_CODE_SLACK) || \

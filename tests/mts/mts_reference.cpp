@@ -123,6 +123,28 @@ TEST_CASE("with quad-stepped planes the kernel follows the reference", "[mts][re
   }
 }
 
+// Away from the world origin (world_position, pipeline.transform): the kernel follows the
+// reference, codes and probe outcomes, under each transform and both compositions (the view's
+// translation on the GPU, or folded into P * V * MV on the host; relative to eye, the world
+// positions in binary64 and their binary32 split).
+TEST_CASE("away from the world origin the kernel follows the reference under every transform",
+          "[mts][reference][world]") {
+  for (const auto& [transform, compose, precision] :
+       {std::tuple{"absolute", "separate", "float"},
+        std::tuple{"absolute", "premultiplied", "float"},
+        std::tuple{"absolute", "premultiplied", "double"},
+        std::tuple{"camera_relative", "separate", "float"},
+        std::tuple{"relative_to_eye", "separate", "float"}}) {
+    const Scene scene = load_scene(
+        "",
+        {"kernel=[48,40]", "viewport=[48,40]", "frames=12", "world_position=[1e5,-2e5,3e5]",
+         std::string("pipeline.transform=") + transform, std::string("pipeline.compose=") + compose,
+         std::string("pipeline.matrix_precision=") + precision});
+    INFO(transform << " " << compose << " " << precision);
+    check_three_pairs(scene);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("snapping moves window coordinates to the 2^-n pixel grid, half to even", "[snap]") {

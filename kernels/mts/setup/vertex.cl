@@ -1,6 +1,33 @@
 // The vertex stage: clip coordinates, the divide, the window transform, snapping; and which grid
 // vertices make each triangle.
 
+#if RELATIVE_TO_EYE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#include "interface/relative_to_eye.h" /* the split and the difference, shared with the host */
+// The eye-space positions of 16 grid vertices relative to eye (pipeline.transform
+// relative_to_eye): world positions from the plane's binary64 world matrix W, as the application
+// computes them, each coordinate split into binary32 high and low parts and subtracted from the
+// eye's on the GPU (interface/relative_to_eye.h). The view has no rotation and the plane's is in
+// W, so this is eye space; w is 1. Lane by lane: the binary64 part is the CPU's.
+static inline vec4x16_t relative_to_eye16(__global const float* P, __global const float* M,
+                                          vec4x16_t obj) {
+  __global const double* W = (__global const double*)M;
+  float ox[16], oy[16], e[3][16];
+  vstore16(obj.x, 0, ox);
+  vstore16(obj.y, 0, oy);
+  for (int k = 0; k < 16; ++k)
+    for (int r = 0; r < 3; ++r)
+      e[r][k] = dp_rte_eye(dp_rte_world_row(W, r, (double)ox[k], (double)oy[k]),
+                           P[MTS_C_EYE_HIGH_X + r], P[MTS_C_EYE_LOW_X + r]);
+  vec4x16_t eye;
+  eye.x = vload16(0, e[0]);
+  eye.y = vload16(0, e[1]);
+  eye.z = vload16(0, e[2]);
+  eye.w = (float16)1.0f;
+  return eye;
+}
+#endif
+
 // Window x and y as the rasterizer stores them (pipeline.snap, interface/snap.h).
 DP_SNAP_WINDOW_DEFINE(snap_window_bits, fabs, rint)
 
@@ -26,8 +53,17 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
   obj.z = (float16)0.0f;
   obj.w = (float16)1.0f;
   vertices16_t v;
+#if RELATIVE_TO_EYE
+  v.clip = mat_vec16(P, relative_to_eye16(P, M, obj), vertex_fma, 0);
+#else
   v.clip = mat_vec16(M, obj, vertex_fma, 1);
+  if (forms & MTS_F_VIEW_TRANSLATE) { /* the view matrix: no rotation, the camera's translation */
+    v.clip.x = v.clip.x + P[MTS_C_VIEW_X];
+    v.clip.y = v.clip.y + P[MTS_C_VIEW_X + 1];
+    v.clip.z = v.clip.z + P[MTS_C_VIEW_X + 2];
+  }
   if (!(forms & MTS_F_COMPOSE_PREMULT)) v.clip = mat_vec16(P, v.clip, vertex_fma, 0);
+#endif
   const vec4x16_t c = v.clip;
 #if DEPTH_FROM == 1
   {

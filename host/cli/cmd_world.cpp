@@ -1,0 +1,166 @@
+// world: how far from the world origin content can sit, per set-up and vertex transform
+// (host/analysis/world_sweep.h). A record batch: one record per pair, so it journals, resumes,
+// shards and merges as advise does.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "host/analysis/world_sweep.h"
+#include "host/base/errors.h"
+#include "host/cli/commands.h"
+#include "host/cli/record_batch.h"
+#include "host/cli/scene_options.h"
+#include "host/output/output_guard.h"
+#include "host/output/report.h"
+#include "host/output/text_table.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct WorldOptions {
+  SceneOptions scene;
+  OutputOptions out;
+  BatchOptions batch;
+  double distance = 100, separation = 0, relative = 0;
+  std::vector<double> direction{1, 1, 1};
+  std::vector<std::string> transforms{"absolute", "camera_relative"};
+};
+
+WorldRequest request_of(const WorldOptions& o) {
+  if ((o.separation > 0) == (o.relative > 0) || o.separation < 0 || o.relative < 0)
+    throw InputError(
+        "world: give the separation the content needs as --separation S (scene units, > 0) or "
+        "--relative R (S = R * z, > 0), exactly one");
+  if (o.direction.size() != 3)
+    throw Error(ExitCode::usage, "world: --direction takes three numbers: X,Y,Z");
+  WorldRequest r;
+  r.z = o.distance;
+  r.separation = o.separation > 0 ? o.separation : o.relative * o.distance;
+  r.direction = {o.direction[0], o.direction[1], o.direction[2]};
+  r.transforms.clear();
+  for (const auto& t : o.transforms) r.transforms.push_back(parse_transform(t));
+  return r;
+}
+
+void run_world(const WorldOptions& o, const GlobalOptions& g) {
+  check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
+  const WorldRequest r = request_of(o);
+  const Scene scene = o.scene.load();
+  if (!scene.at_world_origin())
+    throw InputError("world: the scene's world_position is what world moves; leave it at [0,0,0]");
+  validate(r, scene);
+  check_planes_cover_kernel(scene);
+  check_writable(o.out.output);
+  run_record_batch(
+      "world", o.out, o.batch, g,
+      [&scene, &r](OpenClRuntime& rt, nlohmann::json& header) {
+        header["scene"] = scene.json;
+        header["scene_name"] = scene.name;
+        header["z"] = r.z;
+        header["separation"] = r.separation;
+        header["direction"] = r.direction;
+        nlohmann::json names = nlohmann::json::array();
+        for (const Transform t : r.transforms) names.push_back(to_string(t));
+        header["transforms"] = names;
+        header["world_distance_limit"] = world_distance_limit(r);
+        return pair_units(scene, [&rt, &scene, &r](const EvalPair& pair) {
+          return world_record(rt, scene, pair, r);
+        });
+      },
+      render_world_output);
+}
+
+}  // namespace
+
+std::string render_world_output(const nlohmann::json& header,
+                                const std::vector<nlohmann::json>& records,
+                                const OutputOptions& out) {
+  if (out.format_out == "json") return records_json(header, records, !out.no_timing, {});
+  const bool csv = out.format_out == "csv";
+  const std::string none = csv ? "" : "-";
+  const auto num = [&](const nlohmann::json& j, const char* k) {
+    return j.contains(k) ? number_cell(j.at(k).get<double>(), out.format_out) : none;
+  };
+  // Text: the largest world distance, ">=" when even the limit holds; CSV: the numbers, and
+  // whether the limit held, in columns of their own.
+  const auto largest = [&](const nlohmann::json& t) {
+    const std::string v = num(t, "largest_world_distance");
+    return !csv && t.value("holds_to_limit", false) ? ">= " + v : v;
+  };
+  const nlohmann::json transforms = header.value("transforms", nlohmann::json::array());
+  std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true}};
+  // Text names a transform briefly, so the transforms fit side by side.
+  const auto brief = [&](const std::string& t) -> std::string {
+    if (csv) return t + " ";
+    return t == "absolute" ? "abs " : t == "camera_relative" ? "cam-rel " : "rte ";
+  };
+  for (const auto& name : transforms) {
+    const std::string t = brief(name.get<std::string>());
+    cols.push_back({t + "mts at 0"});
+    cols.push_back({t + "largest R"});
+    cols.push_back({t + "fails at R"});
+    if (csv) cols.push_back({t + "holds to limit", true});
+  }
+  Cells cells;
+  for (const auto& rec : records) {
+    cells.push_back({rec.at("technique").get<std::string>(), rec.at("format").get<std::string>(),
+                     rec.at("depth_range").get<std::string>()});
+    for (const auto& name : transforms) {
+      const nlohmann::json& t = rec.at("transforms").at(name.get<std::string>());
+      cells.back().push_back(num(t, "mts_at_origin"));
+      cells.back().push_back(largest(t));
+      cells.back().push_back(num(t, "fails_at"));
+      if (csv) cells.back().push_back(t.value("holds_to_limit", false) ? "true" : "false");
+    }
+  }
+  const auto dir = header.value("direction", std::vector<double>{1, 1, 1});
+  return captioned(
+      fmt::format("How far from the world origin content can sit (scene {}): camera and planes "
+                  "moved a world distance R along ({}, {}, {}); content at eye distance {} needs "
+                  "a separation of {}, and R holds when the MTS there is within it (the scene's "
+                  "sampling). Powers of two from 1 are tried, then the first failure is bisected. "
+                  "largest R: every power of two up to it holds; >=: even {} (world_position's "
+                  "bound) holds; '-': not even the origin holds. abs: absolute, cam-rel: "
+                  "camera_relative, rte: relative_to_eye",
+                  header.value("scene_name", std::string("?")), human(dir[0]), human(dir[1]),
+                  human(dir[2]), human(header.value("z", 0.0)),
+                  human(header.value("separation", 0.0)),
+                  human(header.value("world_distance_limit", 0.0))),
+      cols, cells, out.format_out);
+}
+
+void add_world_command(CLI::App& app, GlobalOptions& global) {
+  auto o = std::make_shared<WorldOptions>();
+  auto* cmd = app.add_subcommand(
+      "world",
+      "How far from the world origin your content can go: per pair of the scene and vertex\n"
+      "transform (pipeline.transform: absolute, camera_relative, relative_to_eye), the largest\n"
+      "world distance of camera and content at which content at eye distance --distance still\n"
+      "keeps the separation it needs on the emulated pipeline (docs/spec.md 2, \"World\n"
+      "position\"). Absolute and camera-relative side by side by default.\n"
+      "Examples:\n"
+      "  depthprec world -t reversed -f float32 --distance 100 --separation 0.01\n"
+      "  depthprec world -t standard -f unorm24 --far 1e5 --distance 500 --relative 1e-4 "
+      "--transforms absolute,camera_relative,relative_to_eye");
+  o->scene.add_to(*cmd, true);
+  cmd->add_option("--distance", o->distance, "The content's eye distance z (scene units)")
+      ->capture_default_str();
+  cmd->add_option("--separation", o->separation,
+                  "The separation the content needs, in scene units (e.g. 0.01 for 1 cm in m)");
+  cmd->add_option("--relative", o->relative, "The separation as a fraction of z instead");
+  cmd->add_option("--direction", o->direction,
+                  "Direction of the move away from the origin: X,Y,Z (normalised)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--transforms", o->transforms,
+                  "absolute, camera_relative, relative_to_eye (comma-separated)")
+      ->delimiter(',')
+      ->capture_default_str();
+  o->out.add_to(*cmd);
+  o->batch.add_to(*cmd, "pairs (k in scene order)");
+  cmd->callback([o, &global]() { run_world(*o, global); });
+}
+
+}  // namespace depthprec::cli

@@ -1,0 +1,88 @@
+// Content away from the world origin (docs/spec.md 2, "World position"): at the origin every
+// transform but relative_to_eye is today's pipeline; far from it the absolute transform loses
+// what binary32 world coordinates must lose, camera_relative loses nothing, and relative to eye
+// keeps the binary32 grid of its low part.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+
+#include "host/base/errors.h"
+#include "interface/relative_to_eye.h"
+#include "tests/support/mts_fixture.h"
+
+using namespace depthprec;
+using depthprec::test::mts_rows;
+
+namespace {
+
+double world_mts(const std::vector<std::string>& sets, double z) {
+  const Scene scene = load_scene("", sets);
+  return mts_rows(scene, Technique::reversed, "float32", DepthRange::zero_to_one, {z}).at(0).mts;
+}
+
+}  // namespace
+
+TEST_CASE("at the world origin absolute and camera-relative are today's pipeline", "[world]") {
+  for (const double z : {2.0, 100.0, 16384.0}) {
+    INFO("z = " << z);
+    const double today = world_mts({"frames=20"}, z);
+    CHECK(world_mts({"frames=20", "world_position=[0,0,0]"}, z) == today);
+    CHECK(world_mts({"frames=20", "pipeline.transform=camera_relative"}, z) == today);
+    // premultiplied: P * V * MV with V the identity is P * MV
+    CHECK(world_mts({"frames=20", "pipeline.compose=premultiplied"}, z) ==
+          world_mts({"frames=20", "pipeline.compose=premultiplied", "world_position=[0,0,0]",
+                     "pipeline.transform=absolute"},
+                    z));
+  }
+}
+
+TEST_CASE("far from the origin the absolute transform loses the world coordinate's ulp",
+          "[world]") {
+  // The planes' translation along the view axis, 3e5 - z, is a binary32 near 3e5: spacing 2^-5.
+  // B separates from A once its translation rounds to the next binary32, at half that spacing;
+  // until then the planes coincide.
+  const double z = 100, spacing = std::ldexp(1.0, -5);
+  const std::vector<std::string> far = {"frames=20", "world_position=[1e5,-2e5,3e5]"};
+  const double absolute = world_mts(far, z);
+  CHECK(absolute >= 0.5 * spacing * 0.99);
+  CHECK(absolute <= 1.5 * spacing);
+  // camera-relative forms the translation in binary64 first: the origin's answer, exactly
+  std::vector<std::string> relative = far;
+  relative.push_back("pipeline.transform=camera_relative");
+  CHECK(world_mts(relative, z) == world_mts({"frames=20"}, z));
+  // relative to eye keeps what the low part's binary32 keeps: 3e5 - z - 4 * 65536 = 37756 has a
+  // spacing of 2^-8, and each vertex rounds on its own, so about one spacing
+  std::vector<std::string> rte = far;
+  rte.push_back("pipeline.transform=relative_to_eye");
+  const double r = world_mts(rte, z);
+  CHECK(r >= 0.5 * std::ldexp(1.0, -8));
+  CHECK(r <= 2.0 * std::ldexp(1.0, -8));
+  CHECK(r < absolute / 2);
+}
+
+TEST_CASE("relative-to-eye positions split as Cesium's EncodedCartesian3 does", "[world]") {
+  float high = 0, low = 0;
+  dp_rte_encode(100000.0, &high, &low);
+  CHECK(high == 65536.0f);
+  CHECK(low == 34464.0f);
+  dp_rte_encode(-100000.3, &high, &low);
+  CHECK(high == -65536.0f);
+  CHECK(low == static_cast<float>(-34464.3));
+  dp_rte_encode(65535.5, &high, &low);
+  CHECK(high == 0.0f);
+  CHECK(low == 65535.5f);
+  // the eye-space difference: high parts cancel exactly, the low parts' roundings remain
+  float eh = 0, el = 0;
+  dp_rte_encode(100000.0, &eh, &el);
+  CHECK(dp_rte_eye(99900.001, eh, el) == static_cast<float>(34364.001) - 34464.0f);
+}
+
+TEST_CASE("world_position out of range or malformed is refused with the key", "[world]") {
+  CHECK_THROWS_WITH(
+      load_scene("", {"world_position=[2e12,0,0]"}),
+      Catch::Matchers::Contains("world_position") && Catch::Matchers::Contains("2^40"));
+  CHECK_THROWS_WITH(load_scene("", {"world_position=[1,2]"}),
+                    Catch::Matchers::Contains("world_position"));
+  CHECK_THROWS_WITH(load_scene("", {"pipeline.transform=eye_relative"}),
+                    Catch::Matchers::Contains("camera_relative"));
+}
