@@ -23,6 +23,7 @@
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 #include "host/render/gl_context.h"
+#include "host/render/render_bias.h"
 #include "host/render/render_evaluator.h"
 #include "host/render/render_run.h"
 

@@ -12,6 +12,7 @@
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
 #include "host/mts/mts_evaluator.h"
+#include "host/render/driver_settings.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {
@@ -23,8 +24,6 @@ namespace {
 // busy. Bounded by memory: one target is a colour and a depth buffer of the viewport.
 constexpr size_t kMaxTargets = 64;
 constexpr size_t kTargetBudgetBytes = size_t(256) << 20;
-
-enum PixelBits : uint8_t { a_covers = 1, b_covers = 2, b_shows = 4 };
 
 unsigned compile(GLenum stage, const std::string& path, const std::string& defines) {
   const std::string text = "#version 450 core\n" + defines + "#line 1\n" + expand_embedded(path);
@@ -63,59 +62,6 @@ void check_gl(const char* what) {
 
 }  // namespace
 
-namespace {
-
-template <auto M>
-bool differs(const Pipeline& p) {
-  return p.*M != Pipeline{}.*M;
-}
-template <auto M>
-void to_default(Pipeline& p) {
-  p.*M = Pipeline{}.*M;
-}
-
-}  // namespace
-
-const std::vector<DriverSetting>& driver_settings() {
-  static const std::vector<DriverSetting> table = {
-      {"divide=exact", "the driver does the perspective divide itself", differs<&Pipeline::divide>,
-       nullptr},
-      {"rounding=truncate", "the driver rounds binary32 arithmetic as its hardware does",
-       differs<&Pipeline::rounding>, nullptr},
-      {"denormals=flush", "the driver decides how its arithmetic treats denormals",
-       differs<&Pipeline::denormals>, nullptr},
-      {"contraction=true", "the driver's shader compiler decides contraction into FMA",
-       differs<&Pipeline::contraction>, nullptr},
-      {"plane", "the driver sets up and interpolates its own depth planes",
-       differs<&Pipeline::plane>, to_default<&Pipeline::plane>},
-      {"viewport=fma", "the driver does the viewport transform itself",
-       differs<&Pipeline::viewport>, to_default<&Pipeline::viewport>},
-      {"clip=llvmpipe", "the driver clips triangles its own way", differs<&Pipeline::clip>,
-       to_default<&Pipeline::clip>},
-      {"log=llvmpipe", "the driver's shaders compute their own log", differs<&Pipeline::log>,
-       to_default<&Pipeline::log>},
-      {"vertex=fma", "the driver's shader compiler forms the vertex stage's products",
-       differs<&Pipeline::vertex>, to_default<&Pipeline::vertex>},
-      {"conversion=llvmpipe", "the driver converts depth to its buffer's codes itself",
-       differs<&Pipeline::conversion>, to_default<&Pipeline::conversion>},
-      {"snap", "the driver snaps vertices to its own sub-pixel precision",
-       differs<&Pipeline::snap_bits>, to_default<&Pipeline::snap_bits>},
-  };
-  return table;
-}
-
-void check_renderable(const Scene& scene) {
-  for (const DriverSetting& d : driver_settings())
-    if (d.changed(scene.pipeline))
-      throw InputError(
-          fmt::format("pipeline.{}: {}; render takes the driver's (leave it at its "
-                      "default, or measure it with `depthprec mts`)",
-                      d.setting, d.why));
-  if (scene.kernel_w > scene.viewport_w || scene.kernel_h > scene.viewport_h)
-    throw InputError(fmt::format("kernel {}x{} is larger than the viewport {}x{}", scene.kernel_w,
-                                 scene.kernel_h, scene.viewport_w, scene.viewport_h));
-}
-
 RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair)
     : gl_(gl), scene_(scene), pair_(pair), depth_(gl_depth_format(pair.format)) {
   check_renderable(scene);
@@ -151,8 +97,8 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
       xy.push_back(static_cast<float>(i) / static_cast<float>(g) - 0.5f);
       xy.push_back(static_cast<float>(j) / static_cast<float>(g) - 0.5f);
     }
-  // The bias measurement's overlay splits each quad along the other diagonal, (a, b, d) and
-  // (b, c, d), as kernels/mts/setup.cl's triangle_vertices16 does.
+  // The bias measurement's overlay (BiasRenderer, render_bias.cpp) splits each quad along the
+  // other diagonal, (a, b, d) and (b, c, d), as kernels/mts/setup.cl's triangle_vertices16 does.
   std::vector<GLuint> idx, flipped;
   for (int qj = 0; qj < g; ++qj)
     for (int qi = 0; qi < g; ++qi) {
@@ -320,55 +266,6 @@ std::vector<ProbeResult> RenderEvaluator::run(const std::vector<Probe>& probes) 
       [&](size_t i, int frame) {
         return leaves_depth_range(probes[i].z, probes[i].z, frame) ||
                leaves_depth_range(probes[i].z, probes[i].z + probes[i].s, frame);
-      });
-}
-
-void RenderEvaluator::draw_bias(const BiasProbe& probe, const BiasOptions& o, int frame,
-                                const Target& t) {
-  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
-  const Mat4f m = plane_matrix(scene_, pc, probe.z, frame, o.tilt_deg * M_PI / 180.0);
-  const bool greater = info(depth_path(scene_, pair_.technique)).greater;
-  const GLenum func =
-      greater ? (o.or_equal ? GL_GEQUAL : GL_GREATER) : (o.or_equal ? GL_LEQUAL : GL_LESS);
-  begin_frame(pc, t);
-  glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, m.data());
-  // Plane A, writing depth.
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(func);
-  glColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  // The overlay: the same plane tessellated the other way, offset as the application sets it.
-  glVertexArrayElementBuffer(vao_, ibo_flipped_);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  // The clamp as given: it is signed as the APIs take it (a negative one limits a negative
-  // offset), the emulation applies the same rule (interface/bias_formula.h).
-  if (o.clamp != 0)
-    glPolygonOffsetClamp(static_cast<float>(probe.factor), static_cast<float>(probe.units),
-                         static_cast<float>(o.clamp));
-  else
-    glPolygonOffset(static_cast<float>(probe.factor), static_cast<float>(probe.units));
-  glDepthMask(GL_FALSE);
-  glColorMask(GL_FALSE, GL_FALSE, GL_TRUE, GL_FALSE);
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  glDisable(GL_DEPTH_TEST);
-  glColorMask(GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glVertexArrayElementBuffer(vao_, ibo_);
-  glFlush();
-}
-
-std::vector<ProbeResult> RenderEvaluator::run_bias(const std::vector<BiasProbe>& probes,
-                                                   const BiasOptions& o) {
-  std::vector<double> z;
-  for (const BiasProbe& p : probes) z.push_back(p.z);
-  const double tilt = o.tilt_deg * M_PI / 180.0;
-  return run_rounds(
-      z, [&](size_t i, int frame, const Target& t) { draw_bias(probes[i], o, frame, t); },
-      // the overlay lost the depth test where both planes cover the pixel
-      [](uint8_t b) { return (b & a_covers) && (b & b_covers) && !(b & b_shows); },
-      [&](size_t i, int frame) {
-        return leaves_depth_range(probes[i].z, probes[i].z, frame, tilt);
       });
 }
 

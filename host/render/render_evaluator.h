@@ -18,7 +18,6 @@
 #include <string>
 #include <vector>
 
-#include "host/bias/bias_evaluator.h"
 #include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/mts/probe.h"
@@ -26,23 +25,6 @@
 #include "host/render/gl_depth_format.h"
 
 namespace depthprec {
-
-// A pipeline setting the driver decides for itself: render refuses any value but the default.
-// An implementation form (a profile's, reset set) is one a real rasterizer has its own of:
-// `compare` and `bias --source rendered` render the scene with it at its default
-// (rendered_counterpart). The others (divide, rounding, denormals, contraction) are refused there
-// too: an emulation that sets them has no rendered counterpart.
-struct DriverSetting {
-  const char* setting;  // as named in the refusal, e.g. "viewport=fma"
-  const char* why;
-  bool (*changed)(const Pipeline&);
-  void (*reset)(Pipeline&);  // nullptr: not an implementation form
-};
-const std::vector<DriverSetting>& driver_settings();
-
-// Throws InputError when the scene sets a driver setting or its kernel is larger than the
-// viewport.
-void check_renderable(const Scene& scene);
 
 class RenderEvaluator : public ProbeEvaluator {
  public:
@@ -54,14 +36,10 @@ class RenderEvaluator : public ProbeEvaluator {
 
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
   RowSource source() const override { return RowSource::rendered; }
-  // Depth-bias probes (`bias --source rendered`): plane A, then the same plane split along the
-  // other diagonal with glPolygonOffset(factor, units) (glPolygonOffsetClamp with a clamp), the
-  // compare LESS/GREATER (or-equal when asked). A probe fights where A shows through the overlay
-  // at a pixel both cover. The bias arithmetic, r and slope are the driver's.
-  std::vector<ProbeResult> run_bias(const std::vector<BiasProbe>& probes, const BiasOptions& o);
-
+  // What a kernel pixel read back tells: a colour channel per question (see the top of this file).
+  enum PixelBits : uint8_t { a_covers = 1, b_covers = 2, b_shows = 4 };
   // Kernel pixels of both planes of one frame, for tests and diagnosis: per pixel (row-major from
-  // the kernel's bottom-left) bit 0 A covers, bit 1 B covers, bit 2 B passes the depth test.
+  // the kernel's bottom-left) its PixelBits.
   std::vector<uint8_t> pixels(const Probe& probe, int frame);
   // The depth the driver stored for plane A at every kernel pixel (same order), read back as
   // binary32: exact for a float32 buffer, the stored code's value for the unorm ones.
@@ -80,20 +58,24 @@ class RenderEvaluator : public ProbeEvaluator {
   void begin_frame(const ProbeConstants& pc, const Target& t);
   // Draws frame `frame` of the probe into target t (nothing read back yet).
   void draw(const Probe& probe, int frame, const Target& t);
-  void draw_bias(const BiasProbe& probe, const BiasOptions& o, int frame, const Target& t);
-  // The rounds both kinds of probe share: frames drawn in growing batches into the targets and
-  // read back, a probe decided at its first frame with a pixel for which pixel_fights holds;
-  // leaves_range(probe, frame) tells a clipped frame from an uncovered one.
+  // The rounds both kinds of probe (these and BiasRenderer's) share: frames drawn in growing
+  // batches into the targets and read back, a probe decided at its first frame with a pixel for
+  // which pixel_fights holds; leaves_range(probe, frame) tells a clipped frame from an uncovered
+  // one.
   std::vector<ProbeResult> run_rounds(const std::vector<double>& z,
                                       const std::function<void(size_t, int, const Target&)>& draw,
                                       const std::function<bool(uint8_t)>& pixel_fights,
                                       const std::function<bool(size_t, int)>& leaves_range);
-  // Reads the kernel back from target t: bits as in pixels().
+  // Reads the kernel back from target t: PixelBits as in pixels().
   std::vector<uint8_t> read(const Target& t);
   // Whether a vertex of the plane at D leaves the clip volume's depth range in this frame (the
   // reason a kernel pixel can be uncovered other than the planes' extent).
   bool leaves_depth_range(double z, double D, int frame, double tilt = 0) const;
   void grow_targets(size_t n);
+
+  // Depth-bias probes (host/render/render_bias.h) are drawn with this evaluator's program, plane
+  // buffers (ibo_flipped_ is theirs) and targets and decided in its rounds.
+  friend class BiasRenderer;
 
   GlContext& gl_;
   const Scene& scene_;
@@ -107,21 +89,6 @@ class RenderEvaluator : public ProbeEvaluator {
   std::map<double, int> last_fight_frame_;  // frame order as in the emulator (MtsEvaluator)
   uint64_t frames_ = 0;
   double seconds_ = 0;
-};
-
-// The bias searches' evaluator on a real rasterizer: RenderEvaluator::run_bias.
-class BiasRenderer : public BiasEvaluator {
- public:
-  BiasRenderer(RenderEvaluator& renderer, const BiasOptions& options)
-      : renderer_(renderer), options_(options) {}
-  std::vector<ProbeResult> run(const std::vector<BiasProbe>& probes) override {
-    return renderer_.run_bias(probes, options_);
-  }
-  RowSource source() const override { return RowSource::rendered; }
-
- private:
-  RenderEvaluator& renderer_;
-  BiasOptions options_;
 };
 
 }  // namespace depthprec

@@ -7,6 +7,7 @@
 #include "host/mts/mts_search.h"
 #include "host/mts/row_json.h"
 #include "host/mts/worst_case.h"
+#include "host/render/driver_settings.h"
 #include "host/render/gl_depth_format.h"
 #include "host/render/render_evaluator.h"
 

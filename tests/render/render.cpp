@@ -19,6 +19,7 @@
 #include "host/mts/reference_pipeline.h"
 #include "host/mts/worst_case.h"
 #include "host/render/gl_context.h"
+#include "host/render/render_bias.h"
 #include "host/render/render_evaluator.h"
 #include "host/runtime/kernel_variant.h"
 #include "tests/support/mts_fixture.h"
