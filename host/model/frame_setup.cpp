@@ -132,8 +132,7 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
   // The view matrix's translation, -world_position, applied on the GPU after the model matrix
   // (absolute, compose separate); premultiplied, the host folds it into P * V * M.
   const auto& wp = s.world_position;
-  if (pipe.transform == Transform::absolute && pipe.compose == Compose::separate &&
-      !s.at_world_origin()) {
+  if (view_translated_on_gpu(s)) {
     pc.forms |= MTS_F_VIEW_TRANSLATE;
     for (int i = 0; i < 3; ++i) pc.view[i] = static_cast<float>(static_cast<T>(-wp[i]));
   }
@@ -178,6 +177,11 @@ Angles frame_angles(const Scene& s, int frame) {
     out[i] = s.rotation_range_deg * glm::pi<double>() / 180.0 *
              std::sin(s.rotation_step[i] * a + s.rotation_offset[i]);
   return out;
+}
+
+bool view_translated_on_gpu(const Scene& s) {
+  return s.pipeline.transform == Transform::absolute && s.pipeline.compose == Compose::separate &&
+         !s.at_world_origin();
 }
 
 ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z) {
@@ -252,6 +256,29 @@ void append_plane_words(std::vector<float>& words, const Scene& s, const ProbeCo
   }
   const Mat4f m = plane_matrix(s, pc, D, frame, tilt);
   words.insert(words.end(), m.begin(), m.end());
+}
+
+void plane_vertex_clip(const Scene& s, const ProbeConstants& pc, const std::vector<float>& words,
+                       const float obj[4], VertexForm form, float clip[4]) {
+  float eye[4] = {0, 0, 0, 1.0f};
+  if (s.pipeline.transform == Transform::relative_to_eye) {
+    std::array<double, 16> W{};
+    std::memcpy(W.data(), words.data(), sizeof W);
+    for (int r = 0; r < 3; ++r)
+      eye[r] =
+          dp_rte_eye(dp_rte_world_row(W.data(), r, obj[0], obj[1]), pc.eye_high[r], pc.eye_low[r]);
+  } else {
+    Mat4f M{};
+    std::copy(words.begin(), words.begin() + MTS_MAT_STRIDE, M.begin());
+    if (s.pipeline.compose == Compose::premultiplied) {  // P * MV already
+      for (int r = 0; r < 4; ++r) clip[r] = object_row_dot(M, r, obj, form);
+      return;
+    }
+    for (int r = 0; r < 4; ++r) eye[r] = object_row_dot(M, r, obj, form);
+    if (pc.forms & MTS_F_VIEW_TRANSLATE)  // the view matrix: the camera's translation alone
+      for (int r = 0; r < 3; ++r) eye[r] = eye[r] + pc.view[r];
+  }
+  for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, form);
 }
 
 size_t plane_words(const Scene& s) {

@@ -53,6 +53,10 @@ struct ProbeConstants {
 
 ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z);
 
+// Whether the GPU applies the view matrix after the model matrix (the absolute transform away from
+// the world origin, compose separate): MTS_F_VIEW_TRANSLATE in the probe constants.
+bool view_translated_on_gpu(const Scene& scene);
+
 // The rotation angles of frame k of the paper's path in radians (binary64; the animation input,
 // not GPU arithmetic).
 Angles frame_angles(const Scene& scene, int frame);
@@ -76,6 +80,14 @@ std::array<double, 16> plane_world_matrix(const Scene& scene, const ProbeConstan
 void append_plane_words(std::vector<float>& words, const Scene& scene, const ProbeConstants& pc,
                         double D, int frame, double tilt = 0);
 size_t plane_words(const Scene& scene);  // MTS_MAT_STRIDE, or MTS_WORLD_MAT_STRIDE
+
+// The vertex stage up to the clip position (kernels/mts/setup/vertex.cl) of the plane's object
+// position obj (x, y, 0, 1) from its words: relative to eye, the eye's offset from the split world
+// position; else the model-view (with the view's translation under MTS_F_VIEW_TRANSLATE); then P,
+// unless the words are P * MV already. In binary32, rows in `form`.
+void plane_vertex_clip(const Scene& scene, const ProbeConstants& pc,
+                       const std::vector<float>& words, const float obj[4], VertexForm form,
+                       float clip[4]);
 
 // The distance plane_matrix builds a plane from when tilt is 0: D rounded to binary32 under
 // matrix_precision float, D itself under double. Two distances with the same value give the same

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include "formats/df_prelude.h"
@@ -10,7 +9,6 @@
 #include "host/runtime/kernel_variant.h"
 #include "interface/bias_formula.h"
 #include "interface/llvmpipe_log.h"
-#include "interface/relative_to_eye.h"
 #include "interface/snap.h"
 
 namespace depthprec {
@@ -124,13 +122,6 @@ struct Plane {
 Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc,
                   const std::vector<float>& words, bool flip = false,
                   const BiasTerms* bias = nullptr) {
-  const bool rte = s.pipeline.transform == Transform::relative_to_eye;
-  Mat4f M{};
-  std::array<double, 16> W{};
-  if (rte)
-    std::memcpy(W.data(), words.data(), sizeof W);
-  else
-    std::copy(words.begin(), words.begin() + 16, M.begin());
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const bool gl = pair.depth_range == DepthRange::gl;
   const int g = s.plane_subdivisions;
@@ -143,21 +134,7 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float clip[4];
-      if (rte) {  // kernels/mts/setup/vertex.cl relative_to_eye16
-        float eye[4] = {0, 0, 0, 1.0f};
-        for (int r = 0; r < 3; ++r)
-          eye[r] = dp_rte_eye(dp_rte_world_row(W.data(), r, obj[0], obj[1]), pc.eye_high[r],
-                              pc.eye_low[r]);
-        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, s.pipeline.vertex);
-      } else if (s.pipeline.compose == Compose::premultiplied) {
-        for (int r = 0; r < 4; ++r) clip[r] = object_row_dot(M, r, obj, s.pipeline.vertex);
-      } else {
-        float eye[4];
-        for (int r = 0; r < 4; ++r) eye[r] = object_row_dot(M, r, obj, s.pipeline.vertex);
-        if (pc.forms & MTS_F_VIEW_TRANSLATE)  // the view matrix: the camera's translation alone
-          for (int r = 0; r < 3; ++r) eye[r] = eye[r] + pc.view[r];
-        for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, s.pipeline.vertex);
-      }
+      plane_vertex_clip(s, pc, words, obj, s.pipeline.vertex, clip);
       if (ti.from == DepthFrom::vertex_log) {
         const float t = shader_log(s.pipeline.log, pc.log_k * clip[3] + 1.0f);
         clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];

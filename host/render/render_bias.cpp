@@ -33,12 +33,11 @@ void BiasRenderer::draw(const BiasProbe& probe, int frame, const RenderEvaluator
   RenderEvaluator& r = renderer_;
   const BiasOptions& o = options_;
   const ProbeConstants pc = probe_constants(r.scene_, r.pair_, probe.z);
-  const Mat4f m = plane_matrix(r.scene_, pc, probe.z, frame, tilt_radians());
   const bool greater = info(depth_path(r.scene_, r.pair_.technique)).greater;
   const GLenum func =
       greater ? (o.or_equal ? GL_GEQUAL : GL_GREATER) : (o.or_equal ? GL_LEQUAL : GL_LESS);
   r.begin_frame(pc, t);
-  glUniformMatrix4fv(r.loc_mv_, 1, GL_TRUE, m.data());
+  r.set_plane(pc, probe.z, frame, tilt_radians());
   // Plane A, writing depth.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(func);

@@ -14,6 +14,7 @@
 #include "host/mts/mts_evaluator.h"
 #include "host/render/driver_settings.h"
 #include "host/runtime/kernel_variant.h"
+#include "interface/relative_to_eye.h"
 
 namespace depthprec {
 
@@ -49,10 +50,12 @@ std::string shader_defines(const Scene& scene, const EvalPair& pair) {
   const TechniqueInfo& ti = info(depth_path(scene, pair.technique));
   return fmt::format(
       "#define DEPTH_FROM {}\n#define FRAG_DEPTH {}\n#define DEPTH_RANGE_GL {}\n"
-      "#define COMPOSE_PREMULTIPLIED {}\n",
+      "#define COMPOSE_PREMULTIPLIED {}\n#define VIEW_TRANSLATE {}\n#define RELATIVE_TO_EYE {}\n",
       static_cast<int>(ti.from), static_cast<int>(ti.fragment),
       pair.depth_range == DepthRange::gl ? 1 : 0,
-      scene.pipeline.compose == Compose::premultiplied ? 1 : 0);
+      scene.pipeline.compose == Compose::premultiplied ? 1 : 0,
+      view_translated_on_gpu(scene) ? 1 : 0,
+      scene.pipeline.transform == Transform::relative_to_eye ? 1 : 0);
 }
 
 void check_gl(const char* what) {
@@ -86,6 +89,9 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
   loc_range_ = loc("depth_range");
   loc_vlogk_ = loc("log_k");
   loc_vlogl_ = loc("log_L");
+  loc_v_ = loc("V");
+  loc_eye_high_ = loc("eye_high");
+  loc_eye_low_ = loc("eye_low");
 
   // The plane: a grid of g x g quads over [-0.5, 0.5]^2, each split along the diagonal from its
   // lower-left corner, triangles (a, b, c) and (a, c, d) in this vertex order -- the emulator's
@@ -121,6 +127,18 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
   glEnableVertexArrayAttrib(vao_, 0);
   glVertexArrayAttribFormat(vao_, 0, 2, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribBinding(vao_, 0, 0);
+  if (scene.pipeline.transform == Transform::relative_to_eye) {
+    // Per vertex its world position's high and low parts, rewritten for every plane drawn.
+    glCreateBuffers(1, &world_vbo_);
+    glNamedBufferStorage(world_vbo_, static_cast<GLsizeiptr>(6 * sizeof(float) * (xy.size() / 2)),
+                         nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glVertexArrayVertexBuffer(vao_, 1, world_vbo_, 0, 6 * sizeof(float));
+    for (const GLuint a : {1u, 2u}) {
+      glEnableVertexArrayAttrib(vao_, a);
+      glVertexArrayAttribFormat(vao_, a, 3, GL_FLOAT, GL_FALSE, (a - 1) * 3 * sizeof(float));
+      glVertexArrayAttribBinding(vao_, a, 1);
+    }
+  }
   check_gl("setting up the plane");
 }
 
@@ -131,6 +149,7 @@ RenderEvaluator::~RenderEvaluator() {
     glDeleteRenderbuffers(1, &t.depth);
   }
   glDeleteBuffers(1, &vbo_);
+  if (world_vbo_) glDeleteBuffers(1, &world_vbo_);
   glDeleteBuffers(1, &ibo_);
   glDeleteBuffers(1, &ibo_flipped_);
   glDeleteVertexArrays(1, &vao_);
@@ -187,14 +206,42 @@ void RenderEvaluator::begin_frame(const ProbeConstants& pc, const Target& t) {
   glUniform1f(loc_range_, pc.range);
   glUniform1f(loc_vlogk_, pc.log_k);
   glUniform1f(loc_vlogl_, pc.log_L);
+  if (pc.forms & MTS_F_VIEW_TRANSLATE) {
+    const Mat4f V = {1, 0, 0, pc.view[0], 0, 1, 0, pc.view[1], 0, 0, 1, pc.view[2], 0, 0, 0, 1};
+    glUniformMatrix4fv(loc_v_, 1, GL_TRUE, V.data());
+  }
+  glUniform3fv(loc_eye_high_, 1, pc.eye_high.data());
+  glUniform3fv(loc_eye_low_, 1, pc.eye_low.data());
   glVertexArrayElementBuffer(vao_, ibo_);
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
+void RenderEvaluator::set_plane(const ProbeConstants& pc, double D, int frame, double tilt) {
+  if (scene_.pipeline.transform != Transform::relative_to_eye) {
+    const Mat4f m = plane_matrix(scene_, pc, D, frame, tilt);
+    glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, m.data());
+    return;
+  }
+  // The application's binary64 world positions of the grid's vertices, split for the GPU.
+  const std::array<double, 16> W = plane_world_matrix(scene_, pc, D, frame, tilt);
+  const int g = scene_.plane_subdivisions;
+  std::vector<float> parts;
+  for (int j = 0; j <= g; ++j)
+    for (int i = 0; i <= g; ++i) {
+      const float ox = static_cast<float>(i) / static_cast<float>(g) - 0.5f;
+      const float oy = static_cast<float>(j) / static_cast<float>(g) - 0.5f;
+      float high[3], low[3];
+      for (int r = 0; r < 3; ++r)
+        dp_rte_encode(dp_rte_world_row(W.data(), r, ox, oy), high + r, low + r);
+      parts.insert(parts.end(), high, high + 3);
+      parts.insert(parts.end(), low, low + 3);
+    }
+  glNamedBufferSubData(world_vbo_, 0, static_cast<GLsizeiptr>(parts.size() * sizeof(float)),
+                       parts.data());
+}
+
 void RenderEvaluator::draw(const Probe& probe, int frame, const Target& t) {
   const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
-  const Mat4f ma = plane_matrix(scene_, pc, probe.z, frame);
-  const Mat4f mb = plane_matrix(scene_, pc, probe.z + probe.s, frame);
   const bool greater = info(depth_path(scene_, pair_.technique)).greater;
   begin_frame(pc, t);
 
@@ -202,12 +249,12 @@ void RenderEvaluator::draw(const Probe& probe, int frame, const Target& t) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(greater ? GL_GEQUAL : GL_LEQUAL);
   glColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, ma.data());
+  set_plane(pc, probe.z, frame);
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
   // Plane B against A's depth: where it passes, it shows.
   glDepthMask(GL_FALSE);
   glColorMask(GL_FALSE, GL_FALSE, GL_TRUE, GL_FALSE);
-  glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, mb.data());
+  set_plane(pc, probe.z + probe.s, frame);
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
   // Plane B's coverage, whatever the depth test would say.
   glDisable(GL_DEPTH_TEST);
@@ -235,7 +282,8 @@ std::vector<uint8_t> RenderEvaluator::read(const Target& t) {
 
 bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double tilt) const {
   const ProbeConstants pc = probe_constants(scene_, pair_, z);
-  const Mat4f m = plane_matrix(scene_, pc, D, frame, tilt);
+  std::vector<float> words;
+  append_plane_words(words, scene_, pc, D, frame, tilt);
   const bool gl = pair_.depth_range == DepthRange::gl;
   const bool log_vertex = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
   const int g = scene_.plane_subdivisions;
@@ -243,11 +291,8 @@ bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double t
     for (int i = 0; i <= g; ++i) {
       const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
-      float clip[4], eye[4];
-      for (int r = 0; r < 4; ++r) eye[r] = mat_row_dot(m, r, obj);
-      for (int r = 0; r < 4; ++r)
-        clip[r] =
-            scene_.pipeline.compose == Compose::premultiplied ? eye[r] : mat_row_dot(pc.P, r, eye);
+      float clip[4];
+      plane_vertex_clip(scene_, pc, words, obj, VertexForm::separate, clip);
       if (log_vertex) {
         const float t = std::log(pc.log_k * clip[3] + 1.0f);
         clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];

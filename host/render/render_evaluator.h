@@ -56,6 +56,9 @@ class RenderEvaluator : public ProbeEvaluator {
   // The state every frame starts from: target t bound and cleared, the program and the probe's
   // constants set, plane A's index buffer, no polygon offset.
   void begin_frame(const ProbeConstants& pc, const Target& t);
+  // The plane at distance D in this frame for the next draw: its model-view (or P * MV) as the
+  // MV uniform, or relative to eye its vertices' split world positions.
+  void set_plane(const ProbeConstants& pc, double D, int frame, double tilt = 0);
   // Draws frame `frame` of the probe into target t (nothing read back yet).
   void draw(const Probe& probe, int frame, const Target& t);
   // The rounds both kinds of probe (these and BiasRenderer's) share: frames drawn in growing
@@ -82,9 +85,11 @@ class RenderEvaluator : public ProbeEvaluator {
   EvalPair pair_;
   GlDepthFormat depth_;
   unsigned program_ = 0, vao_ = 0, vbo_ = 0, ibo_ = 0, ibo_flipped_ = 0;
+  unsigned world_vbo_ = 0;  // relative to eye: the vertices' high and low parts (set_plane)
   int index_count_ = 0;
   int loc_p_ = -1, loc_mv_ = -1, loc_colour_ = -1, loc_vlogk_ = -1, loc_vlogl_ = -1, loc_near_ = -1,
-      loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1;
+      loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1, loc_v_ = -1,
+      loc_eye_high_ = -1, loc_eye_low_ = -1;
   std::vector<Target> targets_;
   std::map<double, int> last_fight_frame_;  // frame order as in the emulator (MtsEvaluator)
   uint64_t frames_ = 0;

@@ -1,20 +1,35 @@
 // The planes' vertex stage for `depthprec render`: object position to clip space with the host's
 // binary32 matrices, as an application's shader would; log_vertex rewrites z_clip here (Gilg
 // eq. 5). The host prepends #version and the defines DEPTH_FROM (host/model/technique.h
-// DepthFrom), DEPTH_RANGE_GL and COMPOSE_PREMULTIPLIED; the arithmetic is the driver's.
+// DepthFrom), DEPTH_RANGE_GL, COMPOSE_PREMULTIPLIED, VIEW_TRANSLATE (the absolute transform away
+// from the world origin: the camera's view matrix after the model matrix) and RELATIVE_TO_EYE
+// (Cesium's czm_translateRelativeToEye on the host's split world positions,
+// interface/relative_to_eye.h); the arithmetic is the driver's.
 layout(location = 0) in vec2 obj_xy;
+layout(location = 1) in vec3 world_high;  // RELATIVE_TO_EYE: per vertex, set per plane
+layout(location = 2) in vec3 world_low;
 
 uniform mat4 P;
 uniform mat4 MV;  // P * MV when COMPOSE_PREMULTIPLIED
+uniform mat4 V;   // VIEW_TRANSLATE: the view matrix, the camera's translation
+uniform vec3 eye_high;
+uniform vec3 eye_low;
 uniform float log_k;
 uniform float log_L;
 
 void main() {
+#if RELATIVE_TO_EYE
+  vec3 eye = (world_high - eye_high) + (world_low - eye_low);
+  vec4 clip = P * vec4(eye, 1.0);
+#else
   vec4 obj = vec4(obj_xy, 0.0, 1.0);
 #if COMPOSE_PREMULTIPLIED
   vec4 clip = MV * obj;
+#elif VIEW_TRANSLATE
+  vec4 clip = P * (V * (MV * obj));
 #else
   vec4 clip = P * (MV * obj);
+#endif
 #endif
 #if DEPTH_FROM == 1
   float t = log(log_k * clip.w + 1.0);
