@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "host/model/frame_setup.h"
+#include "interface/mts_layout.h"
 #include "tests/support/mts_fixture.h"
 
 using namespace depthprec;
@@ -68,7 +69,7 @@ TEST_CASE("no fragment of either plane is clipped at z = 1.005 in any frame", "[
       const FrameCodes fc = ev.codes(p, frame);
       int clipped = 0;
       for (size_t i = 0; i < fc.status_a.size(); ++i)
-        clipped += (fc.status_a[i] == 1) + (fc.status_b[i] == 1);
+        clipped += (fc.status_a[i] == MTS_S_CLIPPED) + (fc.status_b[i] == MTS_S_CLIPPED);
       INFO(info(t).name << " frame " << frame);
       REQUIRE(clipped == 0);
     }
