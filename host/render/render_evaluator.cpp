@@ -11,6 +11,7 @@
 #include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
+#include "host/model/shader_log.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/runtime/kernel_variant.h"
 
@@ -49,9 +50,10 @@ unsigned compile(GLenum stage, const std::string& path, const std::string& defin
 std::string shader_defines(const Scene& scene, const EvalPair& pair) {
   const TechniqueInfo& ti = info(depth_path(scene, pair.technique));
   return fmt::format(
-      "#define DEPTH_FROM {}\n#define FRAG_DEPTH {}\n#define DEPTH_RANGE_GL {}\n"
+      "#define DEPTH_FROM {}\n#define FRAG_DEPTH {}\n#define VERTEX_LOG {}\n#define DEPTH_RANGE_GL "
+      "{}\n"
       "#define COMPOSE_PREMULTIPLIED {}\n",
-      static_cast<int>(ti.from), static_cast<int>(ti.fragment),
+      static_cast<int>(ti.from), static_cast<int>(ti.fragment), static_cast<int>(vertex_log(ti)),
       pair.depth_range == DepthRange::gl ? 1 : 0,
       scene.pipeline.compose == Compose::premultiplied ? 1 : 0);
 }
@@ -140,6 +142,9 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
   loc_range_ = loc("depth_range");
   loc_vlogk_ = loc("log_k");
   loc_vlogl_ = loc("log_L");
+  loc_threejs_fc_ = loc("threejs_fc");
+  loc_cesium_far1_ = loc("cesium_far1");
+  loc_cesium_inv_log2_ = loc("cesium_inv_log2");
 
   // The plane: a grid of g x g quads over [-0.5, 0.5]^2, each split along the diagonal from its
   // lower-left corner, triangles (a, b, c) and (a, c, d) in this vertex order -- the emulator's
@@ -241,6 +246,9 @@ void RenderEvaluator::begin_frame(const ProbeConstants& pc, const Target& t) {
   glUniform1f(loc_range_, pc.range);
   glUniform1f(loc_vlogk_, pc.log_k);
   glUniform1f(loc_vlogl_, pc.log_L);
+  glUniform1f(loc_threejs_fc_, pc.threejs_fc);
+  glUniform1f(loc_cesium_far1_, pc.cesium_far1);
+  glUniform1f(loc_cesium_inv_log2_, pc.cesium_inv_log2);
   glVertexArrayElementBuffer(vao_, ibo_);
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
@@ -291,7 +299,7 @@ bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double t
   const ProbeConstants pc = probe_constants(scene_, pair_, z);
   const Mat4f m = plane_matrix(scene_, pc, D, frame, tilt);
   const bool gl = pair_.depth_range == DepthRange::gl;
-  const bool log_vertex = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
+  const bool vertex_log = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
   const int g = scene_.plane_subdivisions;
   for (int j = 0; j <= g; ++j)
     for (int i = 0; i <= g; ++i) {
@@ -302,10 +310,7 @@ bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double t
       for (int r = 0; r < 4; ++r)
         clip[r] =
             scene_.pipeline.compose == Compose::premultiplied ? eye[r] : mat_row_dot(pc.P, r, eye);
-      if (log_vertex) {
-        const float t = std::log(pc.log_k * clip[3] + 1.0f);
-        clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];
-      }
+      if (vertex_log) clip[2] = vertex_log_clip_z(pc, LogForm::library, gl, clip[3]);
       if (!(clip[3] > 0) || clip[2] > clip[3] || clip[2] < (gl ? -clip[3] : 0.0f)) return true;
     }
   return false;

@@ -102,7 +102,8 @@ class RenderEvaluator : public ProbeEvaluator {
   unsigned program_ = 0, vao_ = 0, vbo_ = 0, ibo_ = 0, ibo_flipped_ = 0;
   int index_count_ = 0;
   int loc_p_ = -1, loc_mv_ = -1, loc_colour_ = -1, loc_vlogk_ = -1, loc_vlogl_ = -1, loc_near_ = -1,
-      loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1;
+      loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1, loc_threejs_fc_ = -1,
+      loc_cesium_far1_ = -1, loc_cesium_inv_log2_ = -1;
   std::vector<Target> targets_;
   std::map<double, int> last_fight_frame_;  // frame order as in the emulator (MtsEvaluator)
   uint64_t frames_ = 0;

@@ -1,13 +1,16 @@
 // The planes' vertex stage for `depthprec render`: object position to clip space with the host's
-// binary32 matrices, as an application's shader would; log_vertex rewrites z_clip here (Gilg
-// eq. 5). The host prepends #version and the defines DEPTH_FROM (host/model/technique.h
-// DepthFrom), DEPTH_RANGE_GL and COMPOSE_PREMULTIPLIED; the arithmetic is the driver's.
+// binary32 matrices, as an application's shader would; vertex-stage log depth rewrites z_clip here
+// (VERTEX_LOG 0: Gilg eq. 5; 1: three.js's fallback, logdepthbuf_vertex.glsl.js up to r162, with
+// FC / 2 in the [0, 1] range WebGL lacks). The host prepends #version and the defines DEPTH_FROM
+// (host/model/technique.h DepthFrom), VERTEX_LOG, DEPTH_RANGE_GL and COMPOSE_PREMULTIPLIED; the
+// arithmetic is the driver's.
 layout(location = 0) in vec2 obj_xy;
 
 uniform mat4 P;
 uniform mat4 MV;  // P * MV when COMPOSE_PREMULTIPLIED
 uniform float log_k;
 uniform float log_L;
+uniform float threejs_fc;  // three.js's logDepthBufFC
 
 void main() {
   vec4 obj = vec4(obj_xy, 0.0, 1.0);
@@ -16,7 +19,15 @@ void main() {
 #else
   vec4 clip = P * (MV * obj);
 #endif
-#if DEPTH_FROM == 1
+#if DEPTH_FROM == 1 && VERTEX_LOG == 1
+  float t = log2(max(1e-6, clip.w + 1.0));
+#if DEPTH_RANGE_GL
+  clip.z = t * threejs_fc - 1.0;
+#else
+  clip.z = t * (0.5 * threejs_fc);
+#endif
+  clip.z *= clip.w;
+#elif DEPTH_FROM == 1
   float t = log(log_k * clip.w + 1.0);
 #if DEPTH_RANGE_GL
   clip.z = ((2.0 * t) / log_L - 1.0) * clip.w;
