@@ -64,7 +64,7 @@
 #define MTS_T_BOX 28 /* int4: the kernel pixels the triangle may own (setup.cl pixel_boxes16) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
-#define MTS_PROBE_STRIDE 36
+#define MTS_PROBE_STRIDE 40
 #define MTS_C_NEAR 16
 #define MTS_C_FAR 17
 #define MTS_C_RANGE 18
@@ -81,13 +81,25 @@
 #define MTS_C_FORMS 25    /* the arithmetic forms, F_* bits */
 /* window x, y snapped to 2^-n pixel (interface/snap.h); 0: as computed */
 #define MTS_C_SNAP_BITS 26
+/* The engines' log depth constants, computed in binary64 as their JavaScript does and uploaded as
+ * binary32 (docs/spec.md 3): three.js's logDepthBufFC = 2 / log2(far + 1); Cesium's
+ * czm_farDepthFromNearPlusOne = far - near + 1 and czm_oneOverLog2FarDepthFromNearPlusOne. */
+#define MTS_C_THREEJS_FC 27
+#define MTS_C_CESIUM_FAR1 28
+#define MTS_C_CESIUM_INV_LOG2 29
+/* The vertex stage's log depth (DEPTH_FROM 1): MTS_VERTEX_LOG_GILG, z_clip from ln(k w + 1) / L
+ * (log_vertex); MTS_VERTEX_LOG_THREEJS, three.js's log2(max(1e-6, w + 1)) * FC - 1
+ * (log_threejs_vertex). */
+#define MTS_C_VERTEX_LOG 30
+#define MTS_VERTEX_LOG_GILG 0
+#define MTS_VERTEX_LOG_THREEJS 1
 /* Where the scene sits away from the world origin (pipeline.transform, docs/spec.md 2): the view
  * matrix's translation, added after the model matrix under MTS_F_VIEW_TRANSLATE (absolute,
  * compose separate), and the eye's relative-to-eye parts (interface/relative_to_eye.h), read when
  * the set-up program is built with RELATIVE_TO_EYE 1. */
-#define MTS_C_VIEW_X 27     /* then y, z */
-#define MTS_C_EYE_HIGH_X 30 /* then y, z */
-#define MTS_C_EYE_LOW_X 33  /* then y, z */
+#define MTS_C_VIEW_X 31     /* then y, z */
+#define MTS_C_EYE_HIGH_X 34 /* then y, z */
+#define MTS_C_EYE_LOW_X 37  /* then y, z */
 /* z_clip / w_clip correctly rounded; else z_clip * fl(1 / w_clip) */
 #define MTS_F_DIVIDE_EXACT 1u
 /* the host uploads P * MV, one product per vertex; else P (MV v) */

@@ -4,9 +4,11 @@
  * arithmetic, no interpolation error), the technique's exact mapping D(w), then the storage
  * format's correctly rounded code (df_encode_f64). What is left is the error of storage alone.
  *
- * Defines: DEPTH_MAP (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f),
- * CLIP_W (1: the technique writes depth in the fragment stage -- clip by the standard volume
- * n <= w <= f and clamp d; 0: clip where d leaves [0, 1]), COMPARE_GREATER, and the format's. */
+ * Defines: DEPTH_MAP (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f,
+ * 7 log2(1 + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f - n + 1); host/model/technique.h
+ * DepthMap), CLIP_W (1: the technique writes depth in the fragment stage -- clip by the standard
+ * volume n <= w <= f and clamp d; 0: clip where d leaves [0, 1]), COMPARE_GREATER, and the
+ * format's. */
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define DF_ENABLE_FP64 1
 #include "formats/depth_format.h"
@@ -26,6 +28,10 @@ static double8 exact_depth8(double8 w, double n, double f, double k) {
   return log1p(k * w) / log1p(k * f);
 #elif DEPTH_MAP == 5
   return (w - n) / (f - n);
+#elif DEPTH_MAP == 7
+  return log1p(w) / log1p(f);
+#elif DEPTH_MAP == 8
+  return log1p(w - n) / log1p(f - n);
 #else
   return w / f;
 #endif

@@ -28,6 +28,7 @@ void add_merge_command(CLI::App& app);
 // lj, select, lj-table.
 void add_lj_commands(CLI::App& app, GlobalOptions& global);
 void add_resolve_command(CLI::App& app);
+void add_readback_command(CLI::App& app);
 void add_tradeoff_command(CLI::App& app, GlobalOptions& global);
 void add_cost_command(CLI::App& app, GlobalOptions& global);
 void add_plot_command(CLI::App& app);

@@ -46,6 +46,7 @@ int run(int argc, char** argv) {
   cli::add_merge_command(app);
   cli::add_lj_commands(app, global);
   cli::add_resolve_command(app);
+  cli::add_readback_command(app);
   cli::add_tradeoff_command(app, global);
   cli::add_cost_command(app, global);
   cli::add_pipelines_command(app, global);

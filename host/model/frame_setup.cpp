@@ -122,6 +122,17 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
   const T k = static_cast<T>(s.params.log_k);
   pc.log_k = static_cast<float>(k);
   pc.log_L = static_cast<float>(std::log(k * f + T(1)));
+  // The engines compute their constants in JavaScript, binary64 whatever the matrices' precision,
+  // from the camera's near and far (n64, f64), and upload them as binary32: three.js
+  // (WebGLRenderer.js) 2.0 / (Math.log(camera.far + 1.0) / Math.LN2); Cesium (UniformState.js)
+  // far - near + 1.0 and 1.0 / CesiumMath.log2 of it, CesiumMath.log2 being Math.log2.
+  pc.threejs_fc = static_cast<float>(2.0 / (std::log(f64 + 1.0) / M_LN2));
+  const double cesium_far1 = f64 - n64 + 1.0;
+  pc.cesium_far1 = static_cast<float>(cesium_far1);
+  pc.cesium_inv_log2 = static_cast<float>(1.0 / std::log2(cesium_far1));
+  static_assert(static_cast<int>(VertexLog::threejs) == MTS_VERTEX_LOG_THREEJS &&
+                static_cast<int>(VertexLog::gilg) == MTS_VERTEX_LOG_GILG);
+  pc.vertex_log = static_cast<int>(vertex_log(info(pair.technique)));
   pc.depth_gl = pair.depth_range == DepthRange::gl;
   const Pipeline& pipe = s.pipeline;
   pc.forms = (pipe.divide == Divide::exact ? MTS_F_DIVIDE_EXACT : 0u) |
@@ -153,6 +164,10 @@ std::array<float, MTS_PROBE_STRIDE> ProbeConstants::packed() const {
   out[MTS_C_RANGE] = range;
   out[MTS_C_LOGK] = log_k;
   out[MTS_C_LOGL] = log_L;
+  out[MTS_C_THREEJS_FC] = threejs_fc;
+  out[MTS_C_CESIUM_FAR1] = cesium_far1;
+  out[MTS_C_CESIUM_INV_LOG2] = cesium_inv_log2;
+  out[MTS_C_VERTEX_LOG] = static_cast<float>(vertex_log);
   out[MTS_C_DEPTH_GL] = depth_gl ? 1.0f : 0.0f;
   out[MTS_C_FORMS] = static_cast<float>(forms);
   out[MTS_C_SNAP_BITS] = static_cast<float>(snap_bits);

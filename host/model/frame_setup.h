@@ -40,6 +40,10 @@ struct ProbeConstants {
   Mat4f P{};
   std::array<double, 16> P_full{};  // P in the matrix precision before rounding to binary32
   float near = 0, far = 0, range = 0, log_k = 0, log_L = 0;
+  // The engines' log depth constants (MTS_C_THREEJS_FC, MTS_C_CESIUM_FAR1, MTS_C_CESIUM_INV_LOG2)
+  // and the vertex stage's log form (MTS_C_VERTEX_LOG: MTS_VERTEX_LOG_*).
+  float threejs_fc = 0, cesium_far1 = 0, cesium_inv_log2 = 0;
+  int vertex_log = MTS_VERTEX_LOG_GILG;
   bool depth_gl = false;        // the pair's depth range is OpenGL's (MTS_C_DEPTH_GL)
   unsigned forms = 0;           // the pipeline's vertex-stage forms, F_* bits (MTS_C_FORMS)
   int snap_bits = 0;            // the pipeline's sub-pixel snapping (MTS_C_SNAP_BITS)

@@ -75,19 +75,23 @@ CodeInterval resolve_code(const ResolveSetup& s, const StorageFormat& f, uint32_
   return ci;
 }
 
-DistanceResolution resolve_distance(const ResolveSetup& s, const StorageFormat& f, double w) {
-  validate(s);
+void check_stored_distance(const ResolveSetup& s, double w, const std::string& option) {
   if (!(w > 0) || !std::isfinite(w))
-    throw InputError(fmt::format("--distance must be a finite eye distance > 0, not {}", w));
+    throw InputError(fmt::format("{} must be a finite eye distance > 0, not {}", option, w));
   // Outside the clip volume there is no stored depth to resolve: the pipeline clips the fragment.
   if (info(s.technique).clips_near && w < s.near)
-    throw InputError(fmt::format(
-        "--distance {} is nearer than the near plane {}: {} clips it (no depth is stored)", w,
-        s.near, info(s.technique).name));
+    throw InputError(
+        fmt::format("{} {} is nearer than the near plane {}: {} clips it (no depth is stored)",
+                    option, w, s.near, info(s.technique).name));
   if (has_far_plane(s.technique) && w > s.far)
     throw InputError(
-        fmt::format("--distance {} is beyond the far plane {}: {} clips it (no depth is stored)", w,
+        fmt::format("{} {} is beyond the far plane {}: {} clips it (no depth is stored)", option, w,
                     s.far, info(s.technique).name));
+}
+
+DistanceResolution resolve_distance(const ResolveSetup& s, const StorageFormat& f, double w) {
+  validate(s);
+  check_stored_distance(s, w, "--distance");
   DistanceResolution r;
   r.distance = w;
   r.depth = depth_of_distance(s.technique, s.near, s.far, s.params, w);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "host/model/storage_format.h"
@@ -35,6 +36,10 @@ struct DistanceResolution {
 };
 
 void validate(const ResolveSetup& s);  // throws InputError
+// Throws InputError, naming `option`, when w is no eye distance or the mapping stores no depth for
+// it: not finite and > 0, nearer than the near plane of a technique that clips there, or beyond
+// the far plane.
+void check_stored_distance(const ResolveSetup& s, double w, const std::string& option);
 
 // The mapping that stores distance z: the technique's own, or for layered the layer_mapping
 // with the near and far of the layer z is drawn in.

@@ -35,6 +35,10 @@ const char* to_string(FragmentDepth f) {
       return "w_buffer";
     case FragmentDepth::log:
       return "log";
+    case FragmentDepth::threejs_log:
+      return "threejs_log";
+    case FragmentDepth::cesium_log:
+      return "cesium_log";
   }
   return "?";
 }
@@ -53,6 +57,7 @@ const std::vector<TechniqueInfo>& technique_table() {
   const char* projection_only = "projection matrix only";
   const char* fragment_write =
       "writes depth in the fragment stage: no early depth test, weaker depth compression";
+  const char* vertex_log = "a log per vertex; depth not interpolated perspective-correctly";
   // id, name, depth from, fragment depth, GEQUAL, range, clips at near, exact map, LJ buffer, GPU
   // cost
   static const std::vector<TechniqueInfo> table = {
@@ -65,9 +70,15 @@ const std::vector<TechniqueInfo>& technique_table() {
       {Technique::reversed_infinite, "reversed_infinite", D::projection, F::none, true, zo, true,
        M::n_over_w, nullptr, projection_only},
       {Technique::log_vertex, "log_vertex", D::vertex_log, F::none, false, gl, false, M::log,
-       nullptr, "a log per vertex; depth not interpolated perspective-correctly"},
+       nullptr, vertex_log},
       {Technique::log_fragment, "log_fragment", D::fragment, F::log, false, gl, true, M::log,
        nullptr, fragment_write},
+      {Technique::log_threejs, "log_threejs", D::fragment, F::threejs_log, false, gl, true,
+       M::log2_one_plus_w, nullptr, fragment_write},
+      {Technique::log_threejs_vertex, "log_threejs_vertex", D::vertex_log, F::none, false, gl,
+       false, M::log2_one_plus_w, nullptr, vertex_log},
+      {Technique::log_cesium, "log_cesium", D::fragment, F::cesium_log, false, gl, true,
+       M::log2_from_near, nullptr, fragment_write},
       {Technique::linear, "linear", D::fragment, F::linear, false, gl, true, M::linear, nullptr,
        fragment_write},
       {Technique::w_buffer, "w_buffer", D::fragment, F::w_buffer, false, gl, true, M::w_over_f, "w",
@@ -84,6 +95,15 @@ const TechniqueInfo& info(Technique t) {
   for (const auto& i : technique_table())
     if (i.id == t) return i;
   throw Error(ExitCode::internal, "technique missing from the table");
+}
+
+bool takes_shader_log(const TechniqueInfo& ti) {
+  return ti.map == DepthMap::log || ti.map == DepthMap::log2_one_plus_w ||
+         ti.map == DepthMap::log2_from_near;
+}
+
+VertexLog vertex_log(const TechniqueInfo& ti) {
+  return ti.map == DepthMap::log2_one_plus_w ? VertexLog::threejs : VertexLog::gilg;
 }
 
 bool has_far_plane(Technique t) {
@@ -130,6 +150,10 @@ double depth_of_distance(Technique t, double n, double f, const TechniqueParams&
       return n / w;
     case DepthMap::log:
       return std::log1p(p.log_k * w) / std::log1p(p.log_k * f);
+    case DepthMap::log2_one_plus_w:
+      return std::log1p(w) / std::log1p(f);
+    case DepthMap::log2_from_near:
+      return std::log1p(w - n) / std::log1p(f - n);
     case DepthMap::linear:
       return (w - n) / (f - n);
     case DepthMap::w_over_f:

@@ -17,12 +17,22 @@ DepthRange parse_depth_range(const std::string& s);  // throws InputError
 // DEPTH_FROM and FRAG_DEPTH.
 enum class DepthFrom {
   projection = 0,  // d = z_ndc of P (window transform per depth range)
-  vertex_log = 1,  // z_clip rewritten per vertex (Gilg eq. 5), then as projection
+  vertex_log = 1,  // z_clip rewritten per vertex (Gilg eq. 5, or three.js's), then as projection
   fragment = 2,    // d written by the fragment stage from the perspective-correct w
 };
-enum class FragmentDepth { none = 0, linear = 1, w_buffer = 2, log = 3 };
-const char* to_string(DepthFrom f);      // "projection", "vertex_log", "fragment"
-const char* to_string(FragmentDepth f);  // "", "linear", "w_buffer", "log"
+// The fragment stage's depth: Gilg's ln(k w + 1) / L (log), three.js's log2(1 + w) * FC * 0.5
+// (threejs_log), Cesium's log2((w - n) + 1) / log2(f - n + 1) with its discard (cesium_log).
+enum class FragmentDepth {
+  none = 0,
+  linear = 1,
+  w_buffer = 2,
+  log = 3,
+  threejs_log = 4,
+  cesium_log = 5
+};
+const char* to_string(DepthFrom f);  // "projection", "vertex_log", "fragment"
+// "", "linear", "w_buffer", "log", "threejs_log", "cesium_log"
+const char* to_string(FragmentDepth f);
 
 // The exact mapping D(w) (docs/spec.md 3), one per family of techniques; the values are
 // kernels/mts_exact.cl's DEPTH_MAP.
@@ -31,9 +41,11 @@ enum class DepthMap {
   infinite = 1,
   reversed = 2,
   n_over_w = 3,
-  log = 4,
+  log = 4,  // ln(k w + 1) / ln(k f + 1)
   linear = 5,
-  w_over_f = 6
+  w_over_f = 6,
+  log2_one_plus_w = 7,  // log2(1 + w) / log2(1 + f): three.js (near unused)
+  log2_from_near = 8,   // log2(w - n + 1) / log2(f - n + 1): Cesium
 };
 
 enum class Technique {
@@ -43,6 +55,9 @@ enum class Technique {
   reversed_infinite,
   log_vertex,
   log_fragment,
+  log_threejs,
+  log_threejs_vertex,
+  log_cesium,
   linear,
   w_buffer,
   inverse_w,
@@ -59,8 +74,8 @@ struct TechniqueInfo {
   // the reversed mappings need zero_to_one (in gl, 0.5*z_ndc + 0.5 adds 0.5 to a depth near 0
   // and throws away the floating-point precision they exist for).
   DepthRange range;
-  // Whether a plane nearer than the near plane is clipped. log_vertex rewrites z_clip so that
-  // every w in [0, far] maps into [0, 1]: it has no near clipping.
+  // Whether a plane nearer than the near plane is clipped. log_vertex and log_threejs_vertex
+  // rewrite z_clip so that every w in [0, far] maps into [0, 1]: they have no near clipping.
   bool clips_near;
   DepthMap map;           // the exact D(w) (layered: its layer mapping's, per layer)
   const char* lj_buffer;  // the Lapidous-Jiao buffer type it is (docs/spec.md 6), or nullptr
@@ -69,6 +84,14 @@ struct TechniqueInfo {
 
 const std::vector<TechniqueInfo>& technique_table();
 const TechniqueInfo& info(Technique t);
+// Whether the technique's depth goes through a shader's log (its exact map is a log): the kernel
+// then matches the reference within a code, not bit for bit (the library log's error).
+bool takes_shader_log(const TechniqueInfo& ti);
+// The formula of vertex-stage log depth (DepthFrom::vertex_log), by the technique's map: Gilg's
+// ln(k w + 1) / L (log_vertex) or three.js's log2(max(1e-6, w + 1)) * FC (log_threejs_vertex).
+// The values are interface/mts_layout.h's MTS_VERTEX_LOG_* (the probe constant MTS_C_VERTEX_LOG).
+enum class VertexLog { gilg = 0, threejs = 1 };
+VertexLog vertex_log(const TechniqueInfo& ti);
 Technique parse_technique(const std::string& s);  // throws InputError listing the names
 std::string technique_names();                    // "standard, infinite, ..." for help texts
 // Whether the technique clips at the far plane (the fragment-depth ones clip with the standard
@@ -142,6 +165,10 @@ T distance_of_depth(Technique t, T n, T f, const TechniqueParams& p, T D) {
       return D * f;
     case DepthMap::log:
       return T(std::expm1(double(D) * std::log1p(p.log_k * double(f))) / p.log_k);
+    case DepthMap::log2_one_plus_w:  // (f + 1)^D - 1
+      return T(std::expm1(double(D) * std::log1p(double(f))));
+    case DepthMap::log2_from_near:  // (f - n + 1)^D - 1 + n
+      return n + T(std::expm1(double(D) * std::log1p(double(f - n))));
   }
   throw_layered_has_no_single_mapping();
 }

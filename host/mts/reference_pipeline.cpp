@@ -4,26 +4,17 @@
 #include <cmath>
 #include <vector>
 
-#include "formats/df_prelude.h"
 #include "host/model/frame_setup.h"
+#include "host/model/shader_log.h"
 #include "host/runtime/kernel_variant.h"
 #include "interface/bias_formula.h"
-#include "interface/llvmpipe_log.h"
 #include "interface/snap.h"
 
 namespace depthprec {
 
 namespace {
 
-DP_LLVMPIPE_LOG_DEFINE(llvmpipe_log, float, df_float_bits, df_bits_float, static_cast<float>,
-                       std::fma)
-
 DP_SNAP_WINDOW_DEFINE(snap_window, std::fabs, std::rint)
-
-// The shaders' natural log in the scene's form (pipeline.log).
-float shader_log(LogForm form, float x) {
-  return form == LogForm::llvmpipe ? llvmpipe_log(x) : std::log(x);
-}
 
 struct Vertex {
   float x, y, d, q;
@@ -135,10 +126,8 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float clip[4];
       plane_vertex_clip(s, pc, words, obj, s.pipeline.vertex, clip);
-      if (ti.from == DepthFrom::vertex_log) {
-        const float t = shader_log(s.pipeline.log, pc.log_k * clip[3] + 1.0f);
-        clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];
-      }
+      if (ti.from == DepthFrom::vertex_log)
+        clip[2] = vertex_log_clip_z(pc, s.pipeline.log, gl, clip[3]);
       const float inv_w = 1.0f / clip[3];
       float ndc[3];
       for (int r = 0; r < 3; ++r)
@@ -346,13 +335,25 @@ Status fragment(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
     const float q = at(t.q0, t.dqdx, t.dqdy);
     const float w = 1.0f / q;
     if (!std::isfinite(w)) return non_finite;
-    if (w < pc.near || w > pc.far) return clipped;
+    // Cesium's varying, and its discard in place of the clip volume's near and far (writeLogDepth)
+    const float from_near_plus_one = (w - pc.near) + 1.0f;
+    if (ti.fragment == FragmentDepth::cesium_log) {
+      if (from_near_plus_one <= 0.9999999f || from_near_plus_one > pc.cesium_far1) return clipped;
+    } else if (w < pc.near || w > pc.far) {
+      return clipped;
+    }
     switch (ti.fragment) {
       case FragmentDepth::linear:
         d = (w - pc.near) / pc.range;
         break;
       case FragmentDepth::w_buffer:
         d = w / pc.far;
+        break;
+      case FragmentDepth::threejs_log:  // log2(vFragDepth) * logDepthBufFC * 0.5
+        d = (shader_log2(s.pipeline.log, 1.0f + w) * pc.threejs_fc) * 0.5f;
+        break;
+      case FragmentDepth::cesium_log:  // log2(depth) * czm_oneOverLog2FarDepthFromNearPlusOne
+        d = shader_log2(s.pipeline.log, from_near_plus_one) * pc.cesium_inv_log2;
         break;
       default:
         d = shader_log(s.pipeline.log, pc.log_k * w + 1.0f) / pc.log_L;

@@ -11,6 +11,7 @@
 #include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
+#include "host/model/shader_log.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/render/driver_settings.h"
 #include "host/runtime/kernel_variant.h"
@@ -49,9 +50,10 @@ unsigned compile(GLenum stage, const std::string& path, const std::string& defin
 std::string shader_defines(const Scene& scene, const EvalPair& pair) {
   const TechniqueInfo& ti = info(depth_path(scene, pair.technique));
   return fmt::format(
-      "#define DEPTH_FROM {}\n#define FRAG_DEPTH {}\n#define DEPTH_RANGE_GL {}\n"
-      "#define COMPOSE_PREMULTIPLIED {}\n#define VIEW_TRANSLATE {}\n#define RELATIVE_TO_EYE {}\n",
-      static_cast<int>(ti.from), static_cast<int>(ti.fragment),
+      "#define DEPTH_FROM {}\n#define FRAG_DEPTH {}\n#define VERTEX_LOG {}\n#define DEPTH_RANGE_GL "
+      "{}\n#define COMPOSE_PREMULTIPLIED {}\n#define VIEW_TRANSLATE {}\n#define RELATIVE_TO_EYE "
+      "{}\n",
+      static_cast<int>(ti.from), static_cast<int>(ti.fragment), static_cast<int>(vertex_log(ti)),
       pair.depth_range == DepthRange::gl ? 1 : 0,
       scene.pipeline.compose == Compose::premultiplied ? 1 : 0,
       view_translated_on_gpu(scene) ? 1 : 0,
@@ -92,6 +94,9 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
   loc_v_ = loc("V");
   loc_eye_high_ = loc("eye_high");
   loc_eye_low_ = loc("eye_low");
+  loc_threejs_fc_ = loc("threejs_fc");
+  loc_cesium_far1_ = loc("cesium_far1");
+  loc_cesium_inv_log2_ = loc("cesium_inv_log2");
 
   // The plane: a grid of g x g quads over [-0.5, 0.5]^2, each split along the diagonal from its
   // lower-left corner, triangles (a, b, c) and (a, c, d) in this vertex order -- the emulator's
@@ -212,6 +217,9 @@ void RenderEvaluator::begin_frame(const ProbeConstants& pc, const Target& t) {
   }
   glUniform3fv(loc_eye_high_, 1, pc.eye_high.data());
   glUniform3fv(loc_eye_low_, 1, pc.eye_low.data());
+  glUniform1f(loc_threejs_fc_, pc.threejs_fc);
+  glUniform1f(loc_cesium_far1_, pc.cesium_far1);
+  glUniform1f(loc_cesium_inv_log2_, pc.cesium_inv_log2);
   glVertexArrayElementBuffer(vao_, ibo_);
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
@@ -285,7 +293,7 @@ bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double t
   std::vector<float> words;
   append_plane_words(words, scene_, pc, D, frame, tilt);
   const bool gl = pair_.depth_range == DepthRange::gl;
-  const bool log_vertex = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
+  const bool vertex_log = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
   const int g = scene_.plane_subdivisions;
   for (int j = 0; j <= g; ++j)
     for (int i = 0; i <= g; ++i) {
@@ -293,10 +301,7 @@ bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double t
                             static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
       float clip[4];
       plane_vertex_clip(scene_, pc, words, obj, VertexForm::separate, clip);
-      if (log_vertex) {
-        const float t = std::log(pc.log_k * clip[3] + 1.0f);
-        clip[2] = gl ? ((2.0f * t) / pc.log_L - 1.0f) * clip[3] : (t / pc.log_L) * clip[3];
-      }
+      if (vertex_log) clip[2] = vertex_log_clip_z(pc, LogForm::library, gl, clip[3]);
       if (!(clip[3] > 0) || clip[2] > clip[3] || clip[2] < (gl ? -clip[3] : 0.0f)) return true;
     }
   return false;

@@ -88,8 +88,9 @@ class RenderEvaluator : public ProbeEvaluator {
   unsigned world_vbo_ = 0;  // relative to eye: the vertices' high and low parts (set_plane)
   int index_count_ = 0;
   int loc_p_ = -1, loc_mv_ = -1, loc_colour_ = -1, loc_vlogk_ = -1, loc_vlogl_ = -1, loc_near_ = -1,
-      loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1, loc_v_ = -1,
-      loc_eye_high_ = -1, loc_eye_low_ = -1;
+      loc_far_ = -1, loc_range_ = -1, loc_flogk_ = -1, loc_flogl_ = -1, loc_threejs_fc_ = -1,
+      loc_cesium_far1_ = -1, loc_cesium_inv_log2_ = -1, loc_v_ = -1, loc_eye_high_ = -1,
+      loc_eye_low_ = -1;
   std::vector<Target> targets_;
   std::map<double, int> last_fight_frame_;  // frame order as in the emulator (MtsEvaluator)
   uint64_t frames_ = 0;

@@ -15,12 +15,13 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   const StorageFormat f = scene.storage_format(pair);
   const int depth_from = static_cast<int>(ti.from), frag = static_cast<int>(ti.fragment);
   const Pipeline& p = scene.pipeline;
-  // Log depth through the library log is monotone only up to its error, <= 3 ulp in OpenCL 1.2
-  // (sec. 7.4); with the division after it, d is within 4 ulp of a monotone function of w. In
-  // codes that is at most s = ceil(4 ulp / code spacing) + 1 on each side, and a piece decided
-  // from its ends needs B's and A's end codes 4 s apart (both planes, both ends).
+  // Log depth through the library log (or log2) is monotone only up to its error, <= 3 ulp in
+  // OpenCL 1.2 (sec. 7.4); with the division or product after it, d is within 4 ulp of a monotone
+  // function of w (three.js's further * 0.5 is exact). In codes that is at most s = ceil(4 ulp /
+  // code spacing) + 1 on each side, and a piece decided from its ends needs B's and A's end codes
+  // 4 s apart (both planes, both ends).
   long long log_slack = 0;
-  if (frag == 3) {
+  if (ti.from == DepthFrom::fragment && takes_shader_log(ti)) {
     const df_format& fs = f.spec();
     const int fine = fs.kind == DF_KIND_UNORM ? static_cast<int>(fs.bits) + 2 : fs.man_bits;
     const long long s = (fine > 21 ? (1LL << (fine - 21)) : 1LL) + 1;

@@ -203,11 +203,23 @@ static inline double2 plane_gap_range(__global const float* T, __global const fl
 //            the log itself within 3 ulp (the bound LOG_CODE_SLACK assumes), so 7.02 u h + 3.001 u
 //            / L; llvmpipe's log (LLVMPIPE_LOG) is within 3.84 ulp over every binary32 x >= 1
 //            (bench/llvmpipe_log_error, every one), so 8.7 u h + 3.001 u / L
+//   three.js d = fl(fl(log2(fl(1 + w))) FC) / 2: x = 1 + w within 2.0001 u of ln x, the log2
+//            within 3 ulp and the product one rounding, so 7.02 u h + 2.0001 u (FC / 2) / ln 2;
+//            llvmpipe's log2 is within 3.60 ulp over every binary32 x >= 1 (the same bench, every
+//            one), so 8.22 u h in its place
+//   Cesium   d = fl(log2(fl(fl(w - n) + 1)) C): x = (w - n) + 1 carries w's rounding, u w, and two
+//            more, u |w - n| + u x; unclipped, x > 1 - 2^-23, so within (1.0001 max(1, n) + 2.0001)
+//            u of ln x (w / x <= max(1, n) for w >= n - 2^-23), then the log2 and the product as
+//            three.js's
 static inline double frag_h(__global const float* P, double q) {
 #if FRAG_DEPTH == 1
   return (1.0 / q - (double)P[MTS_C_NEAR]) / (double)P[MTS_C_RANGE];
 #elif FRAG_DEPTH == 2
   return 1.0 / (q * (double)P[MTS_C_FAR]);
+#elif FRAG_DEPTH == 4
+  return log2(1.0 / q + 1.0) * (0.5 * (double)P[MTS_C_THREEJS_FC]);
+#elif FRAG_DEPTH == 5
+  return log2((1.0 / q - (double)P[MTS_C_NEAR]) + 1.0) * (double)P[MTS_C_CESIUM_INV_LOG2];
 #else
   return log((double)P[MTS_C_LOGK] / q + 1.0) / (double)P[MTS_C_LOGL];
 #endif
@@ -219,6 +231,13 @@ static inline double frag_err(__global const float* P, double h_max, double w_ma
   return 2.001 * u * h_max + 1.001 * u * w_max / (double)P[MTS_C_RANGE];
 #elif FRAG_DEPTH == 2
   return 2.001 * u * h_max;
+#elif FRAG_DEPTH == 4
+  return (LLVMPIPE_LOG ? 8.22 : 7.02) * u * h_max +
+         2.0001 * u * (0.5 * (double)P[MTS_C_THREEJS_FC]) / M_LN2;
+#elif FRAG_DEPTH == 5
+  const double ln_x_err = (1.0001 * fmax(1.0, (double)P[MTS_C_NEAR]) + 2.0001) * u;
+  return (LLVMPIPE_LOG ? 8.22 : 7.02) * u * h_max +
+         ln_x_err * (double)P[MTS_C_CESIUM_INV_LOG2] / M_LN2;
 #else
   return (LLVMPIPE_LOG ? 8.7 : 7.02) * u * h_max + 3.001 * u / (double)P[MTS_C_LOGL];
 #endif

@@ -53,13 +53,17 @@ static inline vec4x16_t mat_vec16(__global const float* m, vec4x16_t v, int fuse
   return r;
 }
 
-// The shaders' natural log, of one value and of 16 (LLVMPIPE_LOG, interface/llvmpipe_log.h).
+// The shaders' natural log and log2, of one value and of 16 (LLVMPIPE_LOG,
+// interface/llvmpipe_log.h).
 #if LLVMPIPE_LOG
-DP_LLVMPIPE_LOG_DEFINE(shader_log, float, as_uint, as_float, convert_float, fma)
-DP_LLVMPIPE_LOG_DEFINE(shader_log16, float16, as_uint16, as_float16, convert_float16, fma)
+DP_LLVMPIPE_LOG_DEFINE(shader_log2, shader_log, float, as_uint, as_float, convert_float, fma)
+DP_LLVMPIPE_LOG_DEFINE(shader_log2_16, shader_log16, float16, as_uint16, as_float16,
+                       convert_float16, fma)
 #else
 #define shader_log log
 #define shader_log16 log
+#define shader_log2 log2
+#define shader_log2_16 log2
 #endif
 
 // any() of a 16-lane mask by halving ORs: PoCL expands any() into a test and branch per lane pair.

@@ -5,8 +5,9 @@
  *
  * The set-up (kernels/mts_setup.cl defines MTS_SETUP_STAGE before including this) reads:
  *   GRID               quads per plane side (vertices (GRID+1)^2, triangles 2*GRID^2)
- *   DEPTH_FROM         0 projection, 1 vertex-stage log (Gilg eq. 5), 2 fragment-stage depth (the
- *                      set-up then leaves d to the fragment stage)
+ *   DEPTH_FROM         0 projection, 1 vertex-stage log (Gilg eq. 5 or three.js's, by the probe
+ *                      constant MTS_C_VERTEX_LOG), 2 fragment-stage depth (the set-up then
+ *                      leaves d to the fragment stage)
  *   CONTRACT           1: the compiler may fuse a*b+c; 0: every operation rounds on its own
  *   PLANE_FORM         0: planes anchored at a vertex; 1: llvmpipe's, referred to the framebuffer
  *                      origin and evaluated with fma; 2: softpipe's, referred to the origin and
@@ -21,15 +22,17 @@
  *                      position (interface/relative_to_eye.h; needs cl_khr_fp64); 0: a binary32
  *                      model-view (or P * MV) as for every other transform
  * The per-pixel programs read those and:
- *   FRAG_DEPTH         with DEPTH_FROM 2: 1 linear, 2 w_buffer, 3 log
+ *   FRAG_DEPTH         with DEPTH_FROM 2: 1 linear, 2 w_buffer, 3 log, 4 three.js's log, 5
+ *                      Cesium's log
  *   COMPARE_GREATER    1: GEQUAL (reversed mappings); 0: LEQUAL
  *   LOG_CODE_SLACK     codes a piece's end codes must clear a bound by under the library log's
  *                      error (fragment-stage log depth; 0 elsewhere)
  *   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
  *   DF_*               the storage format (formats/depth_format.h; DF_KIND stands for them)
  * The vertex stage's choices are no defines: the depth range, the division, the composition of
- * the matrices, the fused forms of the matrix rows and the viewport, and sub-pixel snapping are
- * probe constants (MTS_C_DEPTH_GL, MTS_C_FORMS, MTS_C_SNAP_BITS in interface/mts_layout.h), read
+ * the matrices, the fused forms of the matrix rows and the viewport, sub-pixel snapping and the
+ * formula of vertex-stage log depth are probe constants (MTS_C_DEPTH_GL, MTS_C_FORMS,
+ * MTS_C_SNAP_BITS, MTS_C_VERTEX_LOG in interface/mts_layout.h), read
  * by that stage alone, so pairs that differ in them alone share one program. */
 #if !defined(GRID) || !defined(DEPTH_FROM) || !defined(CONTRACT) || !defined(PLANE_FORM) || \
     !defined(LLVMPIPE_LOG) || !defined(CLIP_SLOTS) || !defined(RELATIVE_TO_EYE)

@@ -108,11 +108,22 @@ static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float
   const float16 q = plane_at16(rp, px);
   const float16 w = 1.0f / q;
   const int16 nf_w = !isfinite(w);
+#if FRAG_DEPTH == 5
+  /* Cesium (writeLogDepth): the varying (w - near) + 1.0, whose discard stands in for the clip
+   * volume's near and far (its vertex stage clamps z_ndc into [-1, 1]) */
+  const float16 from_near_plus_one = (w - P[MTS_C_NEAR]) + 1.0f;
+  r.clipped = (from_near_plus_one <= 0.9999999f) || (from_near_plus_one > P[MTS_C_CESIUM_FAR1]);
+#else
   r.clipped = (w < P[MTS_C_NEAR]) || (w > P[MTS_C_FAR]);
+#endif
 #if FRAG_DEPTH == 1
   float16 d = (w - P[MTS_C_NEAR]) / P[MTS_C_RANGE];
 #elif FRAG_DEPTH == 2
   float16 d = w / P[MTS_C_FAR];
+#elif FRAG_DEPTH == 4 /* three.js: log2(vFragDepth) * logDepthBufFC * 0.5, vFragDepth = 1.0 + w */
+  float16 d = (shader_log2_16(1.0f + w) * P[MTS_C_THREEJS_FC]) * 0.5f;
+#elif FRAG_DEPTH == 5 /* log2(depth) * czm_oneOverLog2FarDepthFromNearPlusOne */
+  float16 d = shader_log2_16(from_near_plus_one) * P[MTS_C_CESIUM_INV_LOG2];
 #else
   float16 d = shader_log16(P[MTS_C_LOGK] * w + 1.0f) / P[MTS_C_LOGL];
 #endif
@@ -168,7 +179,7 @@ static inline int16 ordered_fights16(float16 da, float16 db) {
 }
 
 // Codes a piece or band decided from bounds must clear: the library log's error (mts_variant).
-#if DEPTH_FROM == 2 && FRAG_DEPTH == 3
+#if DEPTH_FROM == 2 && FRAG_DEPTH >= 3
 #define LOG_SLACK_OR_0 LOG_CODE_SLACK
 #else
 #define LOG_SLACK_OR_0 0UL

@@ -45,6 +45,9 @@ TEST_CASE("bands decided from code bounds and coverage taken from plane A change
          {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
           std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
           std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+          std::tuple{Technique::log_threejs, "float32", DepthRange::gl},
+          std::tuple{Technique::log_threejs_vertex, "unorm24", DepthRange::zero_to_one},
+          std::tuple{Technique::log_cesium, "unorm24", DepthRange::gl},
           std::tuple{Technique::linear, "unorm16", DepthRange::gl},
           std::tuple{Technique::layered, "e4m12", DepthRange::gl}}) {
       const EvalPair pair{t, format, range};

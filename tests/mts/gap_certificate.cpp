@@ -33,6 +33,8 @@ TEST_CASE("the gap certificate changes no probe result from just below the MTS u
        {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
         std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
         std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
+        std::tuple{Technique::log_threejs, "unorm24", DepthRange::gl},
+        std::tuple{Technique::log_cesium, "unorm24", DepthRange::gl},
         std::tuple{Technique::linear, "unorm24", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};
     const std::vector<MtsRow> rows = mts_rows(scene, t, format, range, {1.005, 2.0, 64.0, 4096.0});

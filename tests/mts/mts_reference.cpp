@@ -1,5 +1,6 @@
 // The kernel's stored codes against the plain C++ reference pipeline (host/reference_pipeline):
-// bit for bit for every technique without transcendental functions, within one code for log_*.
+// bit for bit for every technique without transcendental functions, within one code for the log
+// techniques (takes_shader_log).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -20,7 +21,8 @@ namespace {
 DP_SNAP_WINDOW_DEFINE(snap_window, std::fabs, std::rint)
 
 struct Compared {
-  size_t pixels = 0, ok_pixels = 0, differ = 0, off_by_more_than_one = 0, status_differ = 0;
+  size_t pixels = 0, ok_pixels = 0, differ = 0, status_differ = 0;
+  long long largest_difference = 0;  // in codes
 };
 
 Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, int frame) {
@@ -38,30 +40,38 @@ Compared compare(const Scene& scene, const EvalPair& pair, const Probe& probe, i
     for (const auto& [x, y] :
          {std::pair{k.code_a[i], r.code_a[i]}, std::pair{k.code_b[i], r.code_b[i]}}) {
       if (x != y) ++c.differ;
-      if (std::llabs(static_cast<long long>(x) - static_cast<long long>(y)) > 1)
-        ++c.off_by_more_than_one;
+      c.largest_difference = std::max(
+          c.largest_difference, std::llabs(static_cast<long long>(x) - static_cast<long long>(y)));
     }
   }
   return c;
 }
 
 // Every probe's kernel codes against the reference's, frame frame_of(k) for the k-th probe: bit
-// for bit, or within one code where the library log is involved (log). Returns the pixels that
-// were real depth comparisons in both.
+// for bit, or within `codes` codes where the library log is involved (log_codes). Returns the
+// pixels that were real depth comparisons in both.
 size_t check_codes(const Scene& scene, const EvalPair& pair, const std::vector<Probe>& probes,
-                   const std::function<int(size_t)>& frame_of, bool log) {
+                   const std::function<int(size_t)>& frame_of, long long codes) {
   size_t compared = 0;
   for (size_t k = 0; k < probes.size(); ++k) {
     const Compared c = compare(scene, pair, probes[k], frame_of(k));
-    INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+    INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s << ": " << c.differ
+                      << " codes differ, by up to " << c.largest_difference);
     CHECK(c.status_differ == 0);
-    if (log)
-      CHECK(c.off_by_more_than_one == 0);
-    else
-      CHECK(c.differ == 0);
+    CHECK(c.largest_difference <= codes);
     compared += c.ok_pixels;
   }
   return compared;
+}
+
+// How many codes the kernel's may lie from the reference's: none without a log; one with the
+// library's log (the device's within 3 ulp, the host's within 1); two for the engines' log2 in
+// float32, whose code is one ulp of d: for Cesium's log2((w - n) + 1) at w close to n, where d is
+// small, PoCL's log2 and glibc's log2f differ by two ulp on a few hundred of 3840 pixels (measured
+// at z = 1.005 and 3).
+long long log_codes(const TechniqueInfo& ti, const std::string& format) {
+  if (!takes_shader_log(ti)) return 0;
+  return ti.map != DepthMap::log && format == "float32" ? 2 : 1;
 }
 
 // The raster kernel's probe outcomes and deciding frames against the reference's, for probes at
@@ -92,7 +102,7 @@ void check_three_pairs(const Scene& scene) {
     INFO(pair.label());
     CHECK(check_codes(
               scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
-              [](size_t k) { return static_cast<int>(3 * k); }, false) > 0);
+              [](size_t k) { return static_cast<int>(3 * k); }, 0) > 0);
     check_outcomes(scene, pair, {1.005, 7.0, 3000.0}, {1e-7, 1e-5, 1e-3, 0.1});
   }
 }
@@ -176,9 +186,8 @@ TEST_CASE("kernel codes equal the host reference for every technique and depth r
     for (const DepthRange range : {DepthRange::gl, DepthRange::zero_to_one}) {
       for (const char* format : {"float32", "unorm24", "e4m12"}) {
         const EvalPair pair{ti.id, format, range};
-        const bool log = ti.id == Technique::log_vertex || ti.id == Technique::log_fragment;
         const size_t compared = check_codes(
-            scene, pair, probes, [&](size_t k) { return frames[k % 3]; }, log);
+            scene, pair, probes, [&](size_t k) { return frames[k % 3]; }, log_codes(ti, format));
         INFO(pair.label());
         CHECK(compared > 0);  // some pixels were real depth comparisons, not all clipped
       }
@@ -214,7 +223,10 @@ TEST_CASE("probe outcomes of the raster kernel follow the reference codes", "[mt
         std::tuple{Technique::linear, "unorm16", DepthRange::gl},
         std::tuple{Technique::log_vertex, "e4m12", DepthRange::zero_to_one},
         std::tuple{Technique::log_fragment, "unorm24", DepthRange::gl},
-        std::tuple{Technique::log_fragment, "float32", DepthRange::gl}}) {
+        std::tuple{Technique::log_fragment, "float32", DepthRange::gl},
+        std::tuple{Technique::log_threejs, "unorm24", DepthRange::gl},
+        std::tuple{Technique::log_threejs_vertex, "float32", DepthRange::gl},
+        std::tuple{Technique::log_cesium, "float32", DepthRange::gl}}) {
     check_outcomes(scene, {t, format, range}, {1.005, 7.0, 3000.0, 2e6},
                    {1e-9, 1e-7, 1e-5, 1e-3, 0.1, 1.0});
   }
@@ -235,12 +247,15 @@ TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms"
         std::tuple{Technique::reversed, "unorm32", DepthRange::zero_to_one},
         std::tuple{Technique::linear, "float32", DepthRange::gl},
         std::tuple{Technique::log_fragment, "float32", DepthRange::gl},
-        std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl}}) {
+        std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl},
+        std::tuple{Technique::log_threejs, "float32", DepthRange::gl},
+        std::tuple{Technique::log_threejs_vertex, "unorm24", DepthRange::gl},
+        std::tuple{Technique::log_cesium, "float32", DepthRange::gl}}) {
     const EvalPair pair{t, format, range};
     INFO(pair.label());
     CHECK(check_codes(
               scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
-              [](size_t) { return 5; }, t == Technique::log_vertex) > 0);
+              [](size_t) { return 5; }, info(t).from == DepthFrom::vertex_log ? 1 : 0) > 0);
     check_outcomes(scene, pair, {1.005, 7.0, 3000.0, 2e6}, {1e-8, 1e-6, 1e-4, 1e-2, 1.0});
   }
 }

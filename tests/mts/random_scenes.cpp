@@ -92,8 +92,7 @@ TEST_CASE("random scenes end, hold no NaN, and the reference confirms their brac
     for (const MtsRow& r : run.rows) {
       INFO(r.pair.label() << " z = " << r.z << " verdict " << to_string(r.verdict()));
       CHECK_FALSE(has_nan(r));
-      const bool log =
-          r.pair.technique == Technique::log_vertex || r.pair.technique == Technique::log_fragment;
+      const bool log = takes_shader_log(info(r.pair.technique));
       // log_* match the reference within one code, not bit for bit: no bracket check for them
       if (checked || log || r.verdict() != Verdict::resolved) continue;
       const ReferenceOutcome at_hi = reference_outcome(scene, r.pair, {r.z, r.hi});

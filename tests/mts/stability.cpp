@@ -116,7 +116,9 @@ TEST_CASE("random valid scenes: rows keep their invariants", "[stability][proper
         CHECK(r.lo < r.mts);
         CHECK(r.clean_min <= r.mts);
         CHECK(r.fight_max >= r.lo);
-        CHECK(r.non_monotone == (r.fight_max > r.clean_min));
+        // a fight above a clean probe is non-monotone; the flag may also come from an orientation
+        // of the worst case whose own bracket saw it (worst_case.cpp), so no converse
+        if (r.fight_max > r.clean_min) CHECK(r.non_monotone);
       } else {
         CHECK(std::isinf(r.mts));
       }

@@ -1,10 +1,11 @@
 // The planes' vertex stage for `depthprec render`: object position to clip space with the host's
-// binary32 matrices, as an application's shader would; log_vertex rewrites z_clip here (Gilg
-// eq. 5). The host prepends #version and the defines DEPTH_FROM (host/model/technique.h
-// DepthFrom), DEPTH_RANGE_GL, COMPOSE_PREMULTIPLIED, VIEW_TRANSLATE (the absolute transform away
-// from the world origin: the camera's view matrix after the model matrix) and RELATIVE_TO_EYE
-// (Cesium's czm_translateRelativeToEye on the host's split world positions,
-// interface/relative_to_eye.h); the arithmetic is the driver's.
+// binary32 matrices, as an application's shader would; vertex-stage log depth rewrites z_clip here
+// (VERTEX_LOG 0: Gilg eq. 5; 1: three.js's fallback, logdepthbuf_vertex.glsl.js up to r162, with
+// FC / 2 in the [0, 1] range WebGL lacks). The host prepends #version and the defines DEPTH_FROM
+// (host/model/technique.h DepthFrom), VERTEX_LOG, DEPTH_RANGE_GL, COMPOSE_PREMULTIPLIED,
+// VIEW_TRANSLATE (the absolute transform away from the world origin: the camera's view matrix
+// after the model matrix) and RELATIVE_TO_EYE (Cesium's czm_translateRelativeToEye on the host's
+// split world positions, interface/relative_to_eye.h); the arithmetic is the driver's.
 layout(location = 0) in vec2 obj_xy;
 layout(location = 1) in vec3 world_high;  // RELATIVE_TO_EYE: per vertex, set per plane
 layout(location = 2) in vec3 world_low;
@@ -16,6 +17,7 @@ uniform vec3 eye_high;
 uniform vec3 eye_low;
 uniform float log_k;
 uniform float log_L;
+uniform float threejs_fc;  // three.js's logDepthBufFC
 
 void main() {
 #if RELATIVE_TO_EYE
@@ -31,7 +33,15 @@ void main() {
   vec4 clip = P * (MV * obj);
 #endif
 #endif
-#if DEPTH_FROM == 1
+#if DEPTH_FROM == 1 && VERTEX_LOG == 1
+  float t = log2(max(1e-6, clip.w + 1.0));
+#if DEPTH_RANGE_GL
+  clip.z = t * threejs_fc - 1.0;
+#else
+  clip.z = t * (0.5 * threejs_fc);
+#endif
+  clip.z *= clip.w;
+#elif DEPTH_FROM == 1
   float t = log(log_k * clip.w + 1.0);
 #if DEPTH_RANGE_GL
   clip.z = ((2.0 * t) / log_L - 1.0) * clip.w;

@@ -65,8 +65,14 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
   if (!(forms & MTS_F_COMPOSE_PREMULT)) v.clip = mat_vec16(P, v.clip, vertex_fma, 0);
 #endif
   const vec4x16_t c = v.clip;
-#if DEPTH_FROM == 1
-  {
+#if DEPTH_FROM == 1 /* host/model/shader_log.cpp vertex_log_clip_z, the same arithmetic */
+  if (P[MTS_C_VERTEX_LOG] == (float)MTS_VERTEX_LOG_THREEJS) {
+    /* three.js's fallback: log2(max(EPSILON, w + 1.0)) * logDepthBufFC - 1.0, then times w; FC / 2
+     * in the [0, 1] range WebGL lacks, so both ranges store the same depth */
+    const float fc = P[MTS_C_THREEJS_FC];
+    const float16 t = shader_log2_16(fmax((float16)1e-6f, c.w + 1.0f));
+    v.clip.z = depth_gl ? (t * fc - 1.0f) * c.w : (t * (0.5f * fc)) * c.w;
+  } else {
     const float16 t = shader_log16(P[MTS_C_LOGK] * c.w + 1.0f);
     v.clip.z = depth_gl ? ((2.0f * t) / P[MTS_C_LOGL] - 1.0f) * c.w : (t / P[MTS_C_LOGL]) * c.w;
   }
