@@ -135,7 +135,9 @@ class MtsEvaluator : public ProbeEvaluator {
     size_t setup = 0, a_rows = 0, a_bands = 0, bounds = 0, raster = 0;
     LaunchWidths& operator|=(const LaunchWidths& o);  // the wider of each
   };
-  static LaunchWidths widest_launches(const Scene& scene, const EvalPair& pair, int evaluators);
+  // variant: the pair's, mts_variant(scene, pair), which the run has in its plan (made once).
+  static LaunchWidths widest_launches(const Scene& scene, const KernelVariant& variant,
+                                      int evaluators);
   void prime_launches(const LaunchWidths& widths, LaunchPrimer& primer);
 
  private:

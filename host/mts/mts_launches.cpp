@@ -34,14 +34,15 @@ MtsEvaluator::LaunchWidths& MtsEvaluator::LaunchWidths::operator|=(const LaunchW
   return *this;
 }
 
-MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene, const EvalPair& pair,
+MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene,
+                                                         const KernelVariant& variant,
                                                          int evaluators) {
   const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h),
                bands = band_count(scene);
   // A launch of run() takes the probes of at most distances_at_once() distances (search_pair's
   // window), one bisection probe or the stiffness probes of each, over at most kMaxBatchFrames
   // frames; the plane-A cache's launches take every frame of one distance.
-  const size_t probes = plane_a_slots(scene, mts_variant(scene, pair).cache_a_codes, evaluators) *
+  const size_t probes = plane_a_slots(scene, variant.cache_a_codes, evaluators) *
                         static_cast<size_t>(std::max(1, 2 * scene.stiffness_probes));
   const size_t frames = std::min<size_t>(f, kMaxBatchFrames), planes = probes * frames;
   LaunchWidths w;

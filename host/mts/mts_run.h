@@ -1,4 +1,5 @@
-// Runs every pair of a scene through the MTS search and gathers what the reports need.
+// Runs every pair of a scene through the MTS search and gathers what the reports need (run_scene,
+// in the steps of SceneRun, host/mts/scene_run.h).
 #pragma once
 
 #include <functional>
@@ -7,6 +8,7 @@
 
 #include "host/mts/mts_row.h"
 #include "host/mts/run_info.h"
+#include "host/runtime/kernel_variant.h"
 #include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
@@ -47,6 +49,8 @@ RunControl control_for(const SceneRows& rows, const std::vector<size_t>& todo,
 // The kernel variants the scene needs, in pair order (labels): deterministic, whatever a run
 // actually had to build.
 std::vector<std::string> scene_variants(const Scene& scene);
+// The same from the pairs' variants, one per pair in pair order, for a caller that has made them.
+std::vector<std::string> variant_labels(const std::vector<KernelVariant>& pair_variants);
 
 // log: where verbose lines go (variants built, pairs evaluated); null for silence. The rows
 // returned are the ones this run computed, in scene order.
