@@ -1,6 +1,6 @@
 // The Lapidous-Jiao experiments: the formats of a buffer's bits, a sweep of them, and the
 // paper's tables (lj-table): their f/d ratios, samplings, bit counts, buffers, its 32-bit picks,
-// and one batch unit per table row.
+// each row of which `lj-table` runs as one batch unit (host/cli/cmd_lj.cpp).
 #pragma once
 
 #include <nlohmann/json.hpp>

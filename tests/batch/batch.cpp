@@ -262,7 +262,7 @@ TEST_CASE("an output that is a pipe is written into in place and gets no journal
   std::remove(fifo.c_str());
 }
 
-// lj-table, tradeoff, cost, pipelines, advise, bias, render and compare are batches
+// lj-table, tradeoff, cost, pipelines, advise, world, bias, render and compare are batches
 // (host/batch/batch.h): the same guarantees.
 TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "[batch]") {
   const std::vector<std::pair<std::string, std::string>> batches = {
@@ -280,6 +280,9 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
       {"advise",
        "advise --range 10,1000 --separation 0.05 -t standard,reversed,linear -f unorm24 "
        "--kernel 60x60 --frames 20 --no-timing --format-out json"},
+      {"world",
+       "world -t standard,reversed,linear -f unorm24 --separation 0.05 --kernel 60x60 --frames 20 "
+       "--set sampling=paper --no-timing --format-out json"},
       {"bias",
        "bias -t standard,reversed,infinite,log_vertex -f unorm24 --distances 2,1024,1048576 "
        "--kernel 60x60 --frames 20 --no-timing --format-out json"},

@@ -86,6 +86,9 @@ COMMANDS = [
      "--frames 4 --no-timing -q", "advise", True,
      ["smallest near", "fails at z", "largest far", "steps"],
      None),
+    ("world -t standard,reversed -f unorm24 --kernel 24x24 --frames 4 --separation 0.05 "
+     "--set sampling=paper --no-timing -q", "world", True,
+     ["absolute mts at 0", "absolute largest R", "camera_relative largest R"], None),
     (f"table --profiles ideal,llvmpipe {SCENE}", "profiles", True, ["z"], None),
     (f"mts --profiles ideal,llvmpipe {SCENE}", "profiles", True,
      ["z", "ideal", "llvmpipe", "spread"], None),
