@@ -91,25 +91,39 @@ std::string render_world_output(const nlohmann::json& header,
   };
   const nlohmann::json transforms = header.value("transforms", nlohmann::json::array());
   std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true}};
-  // Text names a transform briefly, so the transforms fit side by side.
+  // Text names a transform briefly, and shows a transform's MTS at the origin only where it
+  // differs from the first one's (absolute and camera_relative are one pipeline there), so the
+  // transforms fit side by side.
   const auto brief = [&](const std::string& t) -> std::string {
     if (csv) return t + " ";
     return t == "absolute" ? "abs " : t == "camera_relative" ? "cam-rel " : "rte ";
   };
-  for (const auto& name : transforms) {
-    const std::string t = brief(name.get<std::string>());
-    cols.push_back({t + "mts at 0"});
-    cols.push_back({t + "largest R"});
-    cols.push_back({t + "fails at R"});
+  const auto origin_column = [&](size_t k) {
+    if (csv || k == 0) return true;
+    for (const auto& rec : records) {
+      const nlohmann::json& all = rec.at("transforms");
+      if (all.at(transforms[k].get<std::string>()).at("mts_at_origin") !=
+          all.at(transforms[0].get<std::string>()).at("mts_at_origin"))
+        return true;
+    }
+    return false;
+  };
+  std::vector<bool> shows_origin;
+  for (size_t k = 0; k < transforms.size(); ++k) {
+    shows_origin.push_back(origin_column(k));
+    const std::string t = brief(transforms[k].get<std::string>());
+    if (shows_origin[k]) cols.push_back({(k == 0 && !csv ? "" : t) + "mts at 0"});
+    cols.push_back({t + (csv ? "largest R" : "R holds")});
+    cols.push_back({t + (csv ? "fails at R" : "R fails")});
     if (csv) cols.push_back({t + "holds to limit", true});
   }
   Cells cells;
   for (const auto& rec : records) {
     cells.push_back({rec.at("technique").get<std::string>(), rec.at("format").get<std::string>(),
                      rec.at("depth_range").get<std::string>()});
-    for (const auto& name : transforms) {
-      const nlohmann::json& t = rec.at("transforms").at(name.get<std::string>());
-      cells.back().push_back(num(t, "mts_at_origin"));
+    for (size_t k = 0; k < transforms.size(); ++k) {
+      const nlohmann::json& t = rec.at("transforms").at(transforms[k].get<std::string>());
+      if (shows_origin[k]) cells.back().push_back(num(t, "mts_at_origin"));
       cells.back().push_back(largest(t));
       cells.back().push_back(num(t, "fails_at"));
       if (csv) cells.back().push_back(t.value("holds_to_limit", false) ? "true" : "false");
@@ -121,9 +135,11 @@ std::string render_world_output(const nlohmann::json& header,
                   "moved a world distance R along ({}, {}, {}); content at eye distance {} needs "
                   "a separation of {}, and R holds when the MTS there is within it (the scene's "
                   "sampling). Powers of two from 1 are tried, then the first failure is bisected. "
-                  "largest R: every power of two up to it holds; >=: even {} (world_position's "
-                  "bound) holds; '-': not even the origin holds. abs: absolute, cam-rel: "
-                  "camera_relative, rte: relative_to_eye",
+                  "R holds: the largest R found to hold, every power of two up to it holding too; "
+                  ">=: even {} (world_position's bound) holds; '-': not even the origin holds. R "
+                  "fails: the nearest R found to fail. mts at 0: the MTS at the origin (another "
+                  "transform's only where it differs). abs: absolute, cam-rel: camera_relative, "
+                  "rte: relative_to_eye",
                   header.value("scene_name", std::string("?")), human(dir[0]), human(dir[1]),
                   human(dir[2]), human(header.value("z", 0.0)),
                   human(header.value("separation", 0.0)),
