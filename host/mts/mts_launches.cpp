@@ -56,12 +56,15 @@ MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene,
 
 void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& primer) {
   const cl::Buffer none(rt_.context(), CL_MEM_READ_WRITE, 64);
-  // no items, planes or bands: every work-item returns at once
   MtsKernelArea none_area = area();
   none_area.bands = 0;
-  // once per kernel of a program build: its source, options and name
-  const auto prime = [&](cl::Kernel& k, const std::string& program, size_t width, int dimensions) {
+  // Once per kernel of a program build (its source, options and name): placeholder buffers and
+  // the kernel's area with no bands and no items, so every work-item returns at once.
+  const auto prime = [&](cl::Kernel& k, auto args, const std::string& program, size_t width,
+                         int dimensions) {
     primer.once(program + " " + k.getInfo<CL_KERNEL_FUNCTION_NAME>(), [&] {
+      args.area = none_area;
+      bind_placeholders(k, none, args);
       const size_t w = padded_size(width);
       rt_.queue().enqueueNDRangeKernel(
           k, cl::NullRange, dimensions == 3 ? cl::NDRange(w, 1, 1) : cl::NDRange(w),
@@ -71,26 +74,12 @@ void MtsEvaluator::prime_launches(const LaunchWidths& widths, LaunchPrimer& prim
   };
   const std::string program = variant_.program + " " + variant_.options;
   MtsSetupArgs setup_args{};
-  setup_args.area = none_area;
   setup_args.per_probe = 1;
-  bind_placeholders(setup_, none, setup_args);
-  prime(setup_, variant_.setup_program + " " + variant_.setup_options, widths.setup, 1);
-  MtsARowsArgs rows_args{};
-  rows_args.area = none_area;
-  bind_placeholders(a_rows_, none, rows_args);
-  prime(a_rows_, program, widths.a_rows, 1);
-  MtsABandsArgs bands_args{};
-  bands_args.area = none_area;
-  bind_placeholders(a_bands_, none, bands_args);
-  prime(a_bands_, program, widths.a_bands, 1);
-  MtsFrameBoundsArgs bounds_args{};
-  bounds_args.area = none_area;
-  bind_placeholders(bounds_, none, bounds_args);
-  prime(bounds_, program, widths.bounds, 1);
-  MtsRasterArgs raster_args{};
-  raster_args.area = none_area;
-  bind_placeholders(raster_, none, raster_args);
-  prime(raster_, program, widths.raster, 3);
+  prime(setup_, setup_args, variant_.setup_program + " " + variant_.setup_options, widths.setup, 1);
+  prime(a_rows_, MtsARowsArgs{}, program, widths.a_rows, 1);
+  prime(a_bands_, MtsABandsArgs{}, program, widths.a_bands, 1);
+  prime(bounds_, MtsFrameBoundsArgs{}, program, widths.bounds, 1);
+  prime(raster_, MtsRasterArgs{}, program, widths.raster, 3);
   primed_ = widths;
 }
 
