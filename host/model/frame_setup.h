@@ -14,6 +14,12 @@ namespace depthprec {
 
 using Mat4f = std::array<float, 16>;  // row-major: m[r * 4 + c]
 
+// The object coordinate of grid line i of a plane of g x g quads over [-0.5, 0.5]^2, in binary32
+// as the kernels' vertex stage computes it (kernels/mts/setup/vertex.cl).
+inline float grid_coordinate(int g, int i) {
+  return static_cast<float>(i) / static_cast<float>(g) - 0.5f;
+}
+
 // Row r of m times a computed vector v in binary32, in the kernels' order (kernels/mts/common.cl
 // mat_vec): ((m0 x + m1 y) + m2 z) + m3 w, or under VertexForm::fma the chain a shader compiler
 // fuses it into, fma(m3, w, fma(m2, z, fma(m1, y, m0 x))).

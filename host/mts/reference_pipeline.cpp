@@ -122,8 +122,7 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
   std::vector<Vertex> v((g + 1) * (g + 1));
   for (int j = 0; j <= g; ++j) {
     for (int i = 0; i <= g; ++i) {
-      const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
-                            static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
+      const float obj[4] = {grid_coordinate(g, i), grid_coordinate(g, j), 0.0f, 1.0f};
       float clip[4];
       plane_vertex_clip(s, pc, words, obj, s.pipeline.vertex, clip);
       if (ti.from == DepthFrom::vertex_log)

@@ -105,8 +105,8 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
   std::vector<float> xy;
   for (int j = 0; j <= g; ++j)
     for (int i = 0; i <= g; ++i) {
-      xy.push_back(static_cast<float>(i) / static_cast<float>(g) - 0.5f);
-      xy.push_back(static_cast<float>(j) / static_cast<float>(g) - 0.5f);
+      xy.push_back(grid_coordinate(g, i));
+      xy.push_back(grid_coordinate(g, j));
     }
   // The bias measurement's overlay (BiasRenderer, render_bias.cpp) splits each quad along the
   // other diagonal, (a, b, d) and (b, c, d), as kernels/mts/setup.cl's triangle_vertices16 does.
@@ -236,11 +236,10 @@ void RenderEvaluator::set_plane(const ProbeConstants& pc, double D, int frame, d
   std::vector<float> parts;
   for (int j = 0; j <= g; ++j)
     for (int i = 0; i <= g; ++i) {
-      const float ox = static_cast<float>(i) / static_cast<float>(g) - 0.5f;
-      const float oy = static_cast<float>(j) / static_cast<float>(g) - 0.5f;
       float high[3], low[3];
       for (int r = 0; r < 3; ++r)
-        dp_rte_encode(dp_rte_world_row(W.data(), r, ox, oy), high + r, low + r);
+        dp_rte_encode(dp_rte_world_row(W.data(), r, grid_coordinate(g, i), grid_coordinate(g, j)),
+                      high + r, low + r);
       parts.insert(parts.end(), high, high + 3);
       parts.insert(parts.end(), low, low + 3);
     }
@@ -297,8 +296,7 @@ bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double t
   const int g = scene_.plane_subdivisions;
   for (int j = 0; j <= g; ++j)
     for (int i = 0; i <= g; ++i) {
-      const float obj[4] = {static_cast<float>(i) / static_cast<float>(g) - 0.5f,
-                            static_cast<float>(j) / static_cast<float>(g) - 0.5f, 0.0f, 1.0f};
+      const float obj[4] = {grid_coordinate(g, i), grid_coordinate(g, j), 0.0f, 1.0f};
       float clip[4];
       plane_vertex_clip(scene_, pc, words, obj, VertexForm::separate, clip);
       if (vertex_log) clip[2] = vertex_log_clip_z(pc, LogForm::library, gl, clip[3]);
