@@ -27,14 +27,18 @@ void validate(const AdviseRequest& r, const Scene& scene) {
     throw InputError(
         fmt::format("--range {},{}: the content's distances must be 0 < nearest <= farthest < inf",
                     r.z_min, r.z_max));
-  if (!(r.separation > 0) || !std::isfinite(r.separation))
+  check_content_request(scene, r.z_max, r.separation);
+}
+
+void check_content_request(const Scene& scene, double farthest, double separation) {
+  if (!(separation > 0) || !std::isfinite(separation))
     throw InputError(
-        fmt::format("the separation needed must be positive and finite, not {}", r.separation));
+        fmt::format("the separation needed must be positive and finite, not {}", separation));
   for (const auto& pair : scene.evaluate)
-    if (has_far_plane(pair.technique) && !(scene.far > r.z_max))
+    if (has_far_plane(pair.technique) && !(scene.far > farthest))
       throw InputError(
           fmt::format("{}: the far plane ({}) must lie beyond the farthest content ({}); set --far",
-                      pair.label(), scene.far, r.z_max));
+                      pair.label(), scene.far, farthest));
 }
 
 std::vector<double> advise_distances(const AdviseRequest& r) {

@@ -34,6 +34,11 @@ struct AdviseRequest {
 // plane nearer than the content for a technique that clips there).
 void validate(const AdviseRequest& r, const Scene& scene);
 
+// What every question about content at distances up to `farthest` needing `separation` asks of
+// the scene (advise, world): a positive, finite separation, and every pair with a far plane
+// having it beyond the content. Throws InputError naming what is wrong.
+void check_content_request(const Scene& scene, double farthest, double separation);
+
 // The distances checked: z_min, z_min * 2, z_min * 4, ... below z_max, and z_max.
 std::vector<double> advise_distances(const AdviseRequest& r);
 

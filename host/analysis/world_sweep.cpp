@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "host/analysis/advise.h"
 #include "host/base/errors.h"
 #include "host/mts/worst_case.h"
 
@@ -89,19 +90,12 @@ nlohmann::json sweep(WorldProbe& probe) {
 void validate(const WorldRequest& r, const Scene& scene) {
   if (!(r.z > 0) || !std::isfinite(r.z))
     throw InputError(fmt::format("--distance {}: the content's eye distance must be > 0", r.z));
-  if (!(r.separation > 0) || !std::isfinite(r.separation))
-    throw InputError(
-        fmt::format("the separation needed must be positive and finite, not {}", r.separation));
   const auto& d = r.direction;
   if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0) || !std::isfinite(d[0] + d[1] + d[2]))
     throw InputError(
         fmt::format("--direction {},{},{}: must be a finite, non-zero vector", d[0], d[1], d[2]));
   if (r.transforms.empty()) throw InputError("--transforms: name at least one transform");
-  for (const auto& pair : scene.evaluate)
-    if (has_far_plane(pair.technique) && !(scene.far > r.z))
-      throw InputError(fmt::format(
-          "{}: the far plane ({}) must lie beyond the content's distance ({}); set --far",
-          pair.label(), scene.far, r.z));
+  check_content_request(scene, r.z, r.separation);
 }
 
 Scene with_world(const Scene& scene, const std::array<double, 3>& world_position, Transform t) {
