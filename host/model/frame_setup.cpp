@@ -27,6 +27,14 @@ Mat4f to_row_major(const Mat<T>& m) {
   return out;
 }
 
+// The same in binary64, never rounded.
+std::array<double, 16> row_major_f64(const Mat<double>& m) {
+  std::array<double, 16> out{};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[r * 4 + c] = m[c][r];
+  return out;
+}
+
 template <class T>
 Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
   const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
@@ -49,10 +57,6 @@ T model_distance(double D) {
   return static_cast<T>(D);
 }
 
-// tilt (radians) turns the plane about x on top of the frame's rotation; the plane is then no
-// longer the centred square but, frame by frame, the rectangle that covers the view widened by
-// plane_margin (host/model/tilted_plane.h): longer and wider on its far side than on its near one.
-// Untilted planes are the square of docs/spec.md 5.1, built as they always were.
 // The translation of a plane's model matrix at distance D (binary64; docs/spec.md 2, "World
 // position"): its centre in the world (absolute, relative_to_eye), or that minus the camera's
 // position, formed in binary64 as camera-relative rendering forms it (camera_relative). At the
@@ -64,8 +68,14 @@ std::array<double, 3> plane_translation(const Scene& s, double D) {
   return {centre[0] - wp[0], centre[1] - wp[1], centre[2] - wp[2]};
 }
 
+// The plane at distance D in frame orientation ang, translated to `at` (binary64, rounded to T
+// here). tilt (radians) turns the plane about x on top of the frame's rotation; the plane is then
+// no longer the centred square but, frame by frame, the rectangle that covers the view widened by
+// plane_margin (host/model/tilted_plane.h): longer and wider on its far side than on its near one.
+// Untilted planes are the square of docs/spec.md 5.1, built as they always were.
 template <class T>
-Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
+Mat<T> model(const Scene& s, double D, const Angles& ang, const std::array<double, 3>& at,
+             double tilt = 0) {
   const T dist = model_distance<T>(D);
   const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
   const T side = static_cast<T>(s.plane_margin) * T(2) * dist * std::tan(half_fov);
@@ -102,7 +112,6 @@ Mat<T> model(const Scene& s, double D, const Angles& ang, double tilt = 0) {
   Rz[1][1] = cz;
   S[0][0] = side_x;
   S[1][1] = side_y;
-  const std::array<double, 3> at = plane_translation(s, D);
   for (int i = 0; i < 3; ++i) Tr[3][i] = static_cast<T>(at[i]);
   if (tilt != 0) return Tr * (Rx * Ry * Rz) * offset * S;
   return Tr * (Rx * Ry * Rz) * S;
@@ -236,14 +245,16 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
                 "(plane_world_matrix), not a model-view");
   const bool premult = s.pipeline.compose == Compose::premultiplied;
   if (s.pipeline.matrix_precision == MatrixPrecision::single) {
-    const Mat<float> M = model<float>(s, D, frame_orientation(s, pc.z, frame), tilt);
+    const Mat<float> M =
+        model<float>(s, D, frame_orientation(s, pc.z, frame), plane_translation(s, D), tilt);
     if (!premult) return to_row_major(M);
     Mat<float> P;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c) P[c][r] = pc.P[r * 4 + c];
     return to_row_major(premultiplied(s, P, M));
   }
-  const Mat<double> M = model<double>(s, D, frame_orientation(s, pc.z, frame), tilt);
+  const Mat<double> M =
+      model<double>(s, D, frame_orientation(s, pc.z, frame), plane_translation(s, D), tilt);
   if (!premult) return to_row_major(M);
   Mat<double> P;  // the binary64 P, so P * MV is rounded once, at the end
   for (int r = 0; r < 4; ++r)
@@ -253,11 +264,8 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
 
 std::array<double, 16> plane_world_matrix(const Scene& s, const ProbeConstants& pc, double D,
                                           int frame, double tilt) {
-  const Mat<double> M = model<double>(s, D, frame_orientation(s, pc.z, frame), tilt);
-  std::array<double, 16> out{};
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out[r * 4 + c] = M[c][r];
-  return out;
+  return row_major_f64(
+      model<double>(s, D, frame_orientation(s, pc.z, frame), plane_translation(s, D), tilt));
 }
 
 void append_plane_words(std::vector<float>& words, const Scene& s, const ProbeConstants& pc,
@@ -309,11 +317,8 @@ double plane_matrix_distance(const Scene& s, double D) {
 }
 
 std::array<double, 16> model_matrix_f64(const Scene& s, double z, double D, int frame) {
-  const Mat<double> M = model<double>(s, D, frame_orientation(s, z, frame));
-  std::array<double, 16> out{};
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out[r * 4 + c] = M[c][r];
-  return out;
+  // The geometry as the eye sees it, wherever the world is: the plane D in front of the camera.
+  return row_major_f64(model<double>(s, D, frame_orientation(s, z, frame), {0, 0, -D}));
 }
 
 double seen_separation(double z, double s) {

@@ -104,8 +104,9 @@ void plane_vertex_clip(const Scene& scene, const ProbeConstants& pc,
 // matrix in every frame.
 double plane_matrix_distance(const Scene& scene, double D);
 
-// The model matrix of a plane at distance D in frame k of plane A's distance z in binary64, never
-// rounded: the exact geometry of the storage-limited pipeline. Row-major.
+// The model-view of a plane at distance D in frame k of plane A's distance z in binary64, never
+// rounded, in eye space whatever world_position says (the plane D in front of the camera): the
+// exact geometry of the storage-limited pipeline. Row-major.
 std::array<double, 16> model_matrix_f64(const Scene& scene, double z, double D, int frame);
 
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.

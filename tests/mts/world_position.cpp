@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/base/errors.h"
+#include "host/mts/mts_run.h"
 #include "interface/relative_to_eye.h"
 #include "tests/support/mts_fixture.h"
 
@@ -58,6 +59,29 @@ TEST_CASE("far from the origin the absolute transform loses the world coordinate
   CHECK(r >= 0.5 * std::ldexp(1.0, -8));
   CHECK(r <= 2.0 * std::ldexp(1.0, -8));
   CHECK(r < absolute / 2);
+}
+
+TEST_CASE("attribution's storage limit is the eye's geometry, wherever the world is", "[world]") {
+  // The storage-limited pipeline places the planes exactly, in eye space: moving the world moves
+  // nothing it sees, under every transform, while the emulated MTS does move (absolute).
+  RunControl c;
+  c.attribute = true;
+  const auto storage = [&](const std::vector<std::string>& sets) {
+    const Scene scene = load_scene("", sets);
+    return run_scene(test::runtime(), scene, {}, c).rows.at(0);
+  };
+  const std::vector<std::string> base = {
+      "kernel=[48,48]", "frames=10", "sampling=paper", "distances=[100]",
+      R"(evaluate=[{"technique": "reversed", "format": "unorm24"}])"};
+  const MtsRow origin = storage(base);
+  REQUIRE(std::isfinite(origin.storage_mts));
+  for (const char* transform : {"absolute", "camera_relative", "relative_to_eye"}) {
+    INFO(transform);
+    std::vector<std::string> far = base;
+    far.push_back("world_position=[1e5,1e5,1e5]");
+    far.push_back(std::string("pipeline.transform=") + transform);
+    CHECK(storage(far).storage_mts == origin.storage_mts);
+  }
 }
 
 TEST_CASE("relative-to-eye positions split as Cesium's EncodedCartesian3 does", "[world]") {
