@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers clinfo
-  libglm-dev catch2 libcli11-dev nlohmann-json3-dev libfmt-dev
+  libglm-dev libtinygltf-dev libpng-dev catch2 libcli11-dev nlohmann-json3-dev libfmt-dev
   gnuplot-nox clang-format parallel python3 chromium
   pkg-config libepoxy-dev libegl1 libgl1 libegl-mesa0 libgl1-mesa-dri dpkg-dev
 )

@@ -55,6 +55,7 @@ int run(int argc, char** argv) {
   cli::add_report_command(app, global);
   cli::add_advise_command(app, global);
   cli::add_world_command(app, global);
+  cli::add_audit_command(app, global);
   cli::add_bias_command(app, global);
   cli::add_cache_command(app);
   global.command_line = "depthprec";

@@ -14,6 +14,7 @@
 #include "host/model/shader_log.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/render/driver_settings.h"
+#include "host/render/gl_program.h"
 #include "host/runtime/kernel_variant.h"
 #include "interface/relative_to_eye.h"
 
@@ -27,39 +28,6 @@ namespace {
 constexpr size_t kMaxTargets = 64;
 constexpr size_t kTargetBudgetBytes = size_t(256) << 20;
 
-unsigned compile(GLenum stage, const std::string& path, const std::string& defines) {
-  const std::string text = "#version 450 core\n" + defines + "#line 1\n" + expand_embedded(path);
-  const GLuint sh = glCreateShader(stage);
-  const char* src = text.c_str();
-  glShaderSource(sh, 1, &src, nullptr);
-  glCompileShader(sh);
-  GLint ok = 0;
-  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    GLint len = 0;
-    glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
-    std::string log(static_cast<size_t>(std::max(len, 1)), '\0');
-    glGetShaderInfoLog(sh, len, nullptr, log.data());
-    glDeleteShader(sh);
-    throw RuntimeError(fmt::format("{} does not compile on this driver ({}): {}", path,
-                                   defines.empty() ? "no defines" : defines, log.c_str()));
-  }
-  return sh;
-}
-
-std::string shader_defines(const Scene& scene, const EvalPair& pair) {
-  const TechniqueInfo& ti = info(depth_path(scene, pair.technique));
-  return fmt::format(
-      "#define DEPTH_FROM {}\n#define FRAG_DEPTH {}\n#define VERTEX_LOG {}\n#define DEPTH_RANGE_GL "
-      "{}\n#define COMPOSE_PREMULTIPLIED {}\n#define VIEW_TRANSLATE {}\n#define RELATIVE_TO_EYE "
-      "{}\n",
-      static_cast<int>(ti.from), static_cast<int>(ti.fragment), static_cast<int>(vertex_log(ti)),
-      pair.depth_range == DepthRange::gl ? 1 : 0,
-      scene.pipeline.compose == Compose::premultiplied ? 1 : 0,
-      view_translated_on_gpu(scene) ? 1 : 0,
-      scene.pipeline.transform == Transform::relative_to_eye ? 1 : 0);
-}
-
 void check_gl(const char* what) {
   const GLenum e = glGetError();
   if (e != GL_NO_ERROR) throw RuntimeError(fmt::format("OpenGL error 0x{:x} in {}", e, what));
@@ -71,17 +39,8 @@ RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPa
     : gl_(gl), scene_(scene), pair_(pair), depth_(gl_depth_format(pair.format)) {
   check_renderable(scene);
   const std::string defines = shader_defines(scene, pair);
-  const unsigned vs = compile(GL_VERTEX_SHADER, "host/render/shaders/plane.vert", defines);
-  const unsigned fs = compile(GL_FRAGMENT_SHADER, "host/render/shaders/plane.frag", defines);
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint linked = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &linked);
-  if (!linked) throw RuntimeError("the plane shaders do not link on this driver");
+  program_ =
+      link_program("host/render/shaders/plane.vert", "host/render/shaders/plane.frag", defines);
   const auto loc = [this](const char* name) { return glGetUniformLocation(program_, name); };
   loc_p_ = loc("P");
   loc_mv_ = loc("MV");

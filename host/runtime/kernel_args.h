@@ -1,4 +1,4 @@
-// The host side of interface/mts_kernel_args.h: per kernel, a struct of its buffers by name, and
+// The host side of interface/mts_kernel_args.h (and interface/audit_layout.h): per kernel, a struct of its buffers by name, and
 // bind(), which sets them in the order the shared list gives and then the scalars' struct. A
 // buffer left unset is an error naming it, not a kernel reading whatever was bound before.
 #pragma once
@@ -7,6 +7,7 @@
 
 #include "host/base/errors.h"
 #include "host/runtime/cl.h"
+#include "interface/audit_layout.h"
 #include "interface/mts_kernel_args.h"
 
 namespace depthprec {
@@ -50,6 +51,7 @@ DEPTHPREC_KERNEL_BINDING(MtsFrameBoundsBuffers, MTS_FRAME_BOUNDS_BUFFERS, MtsFra
 DEPTHPREC_KERNEL_BINDING(MtsRasterBuffers, MTS_RASTER_BUFFERS, MtsRasterArgs)
 DEPTHPREC_KERNEL_BINDING(BiasSetupBuffers, BIAS_SETUP_BUFFERS, BiasSetupArgs)
 DEPTHPREC_KERNEL_BINDING(BiasRowsBuffers, BIAS_ROWS_BUFFERS, BiasRowsArgs)
+DEPTHPREC_KERNEL_BINDING(AuditPixelsBuffers, AUDIT_PIXELS_BUFFERS, AuditPixelsArgs)
 
 #undef DEPTHPREC_KERNEL_BINDING
 #undef DEPTHPREC_PLACEHOLDER

@@ -20,6 +20,7 @@ LAYERS = [
     ["runtime"],
     ["mts", "lj"],
     ["bias", "analysis"],
+    ["audit"],
     ["output"],
     ["batch", "render"],
     ["cli"],

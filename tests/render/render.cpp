@@ -19,6 +19,7 @@
 #include "host/mts/reference_pipeline.h"
 #include "host/mts/worst_case.h"
 #include "host/render/gl_context.h"
+#include "host/render/gl_program.h"
 #include "host/render/render_bias.h"
 #include "host/render/render_evaluator.h"
 #include "host/runtime/kernel_variant.h"
@@ -60,7 +61,7 @@ class PaperRendering {
     program_ = glCreateProgram();
     for (auto [stage, path] : {std::pair{GL_VERTEX_SHADER, "host/render/shaders/plane.vert"},
                                std::pair{GL_FRAGMENT_SHADER, "host/render/shaders/plane.frag"}}) {
-      const std::string text = head + slurp(std::string(DEPTHPREC_SOURCE_DIR) + "/" + path);
+      const std::string text = head + glsl_source(path);
       const char* src = text.c_str();
       const GLuint sh = glCreateShader(stage);
       glShaderSource(sh, 1, &src, nullptr);

@@ -15,9 +15,8 @@ uniform mat4 MV;  // P * MV when COMPOSE_PREMULTIPLIED
 uniform mat4 V;   // VIEW_TRANSLATE: the view matrix, the camera's translation
 uniform vec3 eye_high;
 uniform vec3 eye_low;
-uniform float log_k;
-uniform float log_L;
-uniform float threejs_fc;  // three.js's logDepthBufFC
+
+#include "host/render/shaders/vertex_log.glsl"
 
 void main() {
 #if RELATIVE_TO_EYE
@@ -33,21 +32,6 @@ void main() {
   vec4 clip = P * (MV * obj);
 #endif
 #endif
-#if DEPTH_FROM == 1 && VERTEX_LOG == 1
-  float t = log2(max(1e-6, clip.w + 1.0));
-#if DEPTH_RANGE_GL
-  clip.z = t * threejs_fc - 1.0;
-#else
-  clip.z = t * (0.5 * threejs_fc);
-#endif
-  clip.z *= clip.w;
-#elif DEPTH_FROM == 1
-  float t = log(log_k * clip.w + 1.0);
-#if DEPTH_RANGE_GL
-  clip.z = ((2.0 * t) / log_L - 1.0) * clip.w;
-#else
-  clip.z = (t / log_L) * clip.w;
-#endif
-#endif
+  clip.z = vertex_log_z(clip);
   gl_Position = clip;
 }

@@ -1,0 +1,12 @@
+// The scene audit's per-pixel pass on the OpenCL device (kernels/audit.cl), built with the MTS
+// variant's defines for the set-up's pair, so coverage, depth and storage are the MTS kernels'.
+#pragma once
+
+#include "host/audit/audit_reference.h"
+#include "host/runtime/opencl_runtime.h"
+
+namespace depthprec {
+
+AuditPixels audit_device(OpenClRuntime& runtime, const Scene& scene, const AuditSetup& setup);
+
+}  // namespace depthprec

@@ -1,0 +1,201 @@
+#include "host/audit/audit_fixes.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "host/bias/bias_rule.h"
+#include "host/mts/mts_run.h"
+#include "interface/audit_layout.h"
+#include "interface/bias_formula.h"
+
+namespace depthprec {
+
+namespace {
+
+// The triangles of `keep`, in their draws, as a scene of their own (draw order kept).
+SceneGeometry only(const SceneGeometry& g, const std::vector<uint32_t>& keep) {
+  SceneGeometry sub;
+  sub.source = g.source;
+  for (const Draw& d : g.draws) {
+    Draw s = d;
+    s.triangles.clear();
+    for (size_t t = 0; t < d.triangles.size(); ++t)
+      if (std::find(keep.begin(), keep.end(), d.first_triangle + t) != keep.end())
+        s.triangles.push_back(d.triangles[t]);
+    if (s.triangles.empty()) continue;
+    s.first_triangle = static_cast<uint32_t>(sub.triangles);
+    sub.triangles += s.triangles.size();
+    sub.draws.push_back(std::move(s));
+  }
+  return sub;
+}
+
+// The camera moved by d metres along its view direction (the eye and what it looks at together).
+AuditCamera along_view(AuditCamera c, double d) {
+  const double back[3] = {c.view[8], c.view[9], c.view[10]};  // the eye looks down -back
+  for (int i = 0; i < 3; ++i) c.eye[i] -= d * back[i];
+  c.view[11] += d;
+  return c;
+}
+
+bool any_fight(const AuditPixels& p) {
+  return std::any_of(p.flags.begin(), p.flags.end(),
+                     [](uint32_t f) { return (f & AUDIT_FIGHT) != 0; });
+}
+
+// Whether the sampled pixels fight under scene s and pair, with the front triangles biased by
+// `units` (0: none).
+class PairCheck {
+ public:
+  PairCheck(const SceneGeometry& sub, const AuditCamera& cam, const FightPair& fp)
+      : sub_(sub), cam_(cam), fp_(fp) {}
+  // The same check from another camera.
+  PairCheck(const SceneGeometry& sub, const AuditCamera& cam, const FightPair& fp,
+            const PairCheck& like)
+      : front_node_(like.front_node_),
+        front_primitive_(like.front_primitive_),
+        sub_(sub),
+        cam_(cam),
+        fp_(fp) {}
+  bool fights(const Scene& scene, const EvalPair& pair) const {
+    const Scene s = audit_scene(scene, cam_);
+    return any_fight(audit_reference_at(s, audit_setup(s, pair, sub_, cam_), fp_.sample));
+  }
+  // With the front draw's triangles offset by `units` of the API's constant bias.
+  bool fights_biased(const Scene& scene, const EvalPair& pair, const BiasRule& rule, int sign,
+                     double units) const {
+    const Scene s = audit_scene(scene, cam_);
+    AuditSetup a = audit_setup(s, pair, sub_, cam_);
+    const Draw& front = sub_.draws[front_draw()];
+    for (size_t r = 0; r < a.records.size(); ++r) {
+      if (a.source[r] < front.first_triangle ||
+          a.source[r] >= front.first_triangle + front.triangles.size())
+        continue;
+      const auto& z = a.window_depths[r];
+      a.records[r].bias = depth_bias(rule.units_term(sign * units), rule.float_rule ? 1 : 0, 0.0f,
+                                     0.0f, 0.0f, z[0], z[1], z[2]);
+    }
+    return any_fight(audit_reference_at(s, a, fp_.sample));
+  }
+
+ private:
+  // The front draw's index in the sub-scene: the draws keep their order and names.
+  size_t front_draw() const {
+    for (size_t k = 0; k < sub_.draws.size(); ++k)
+      if (sub_.draws[k].node_index == front_node_ && sub_.draws[k].primitive == front_primitive_)
+        return k;
+    return 0;
+  }
+
+ public:
+  int front_node_ = 0, front_primitive_ = 0;
+
+ private:
+  const SceneGeometry& sub_;
+  AuditCamera cam_;
+  const FightPair& fp_;
+};
+
+}  // namespace
+
+std::vector<EvalPair> default_alternatives(const Scene& scene, const EvalPair& audited) {
+  std::vector<EvalPair> out;
+  for (Technique t : {Technique::standard, Technique::reversed, Technique::log_threejs})
+    for (const char* f : {"unorm24", "float32"}) {
+      const EvalPair p{t, f, scene.range_for(t)};
+      if (p.label() != audited.label()) out.push_back(p);
+    }
+  return out;
+}
+
+void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
+               const SceneGeometry& g, const AuditCamera& cam, SetupAudit& audit,
+               const FixRequest& req) {
+  const EvalPair& pair = audit.pair;
+  // The MTS of a set-up at eye depth z with near plane n, in the measurement scene; NaN without a
+  // device. One search per (set-up, near, z), kept.
+  std::map<std::tuple<std::string, double, double>, double> known;
+  const auto mts_of = [&](const EvalPair& p, double n, double z) {
+    if (!req.mts || !rt) return static_cast<double>(NAN);
+    const auto key = std::make_tuple(p.label(), n, z);
+    if (!known.count(key)) {
+      Scene m = measurement;
+      m.near = n;
+      m.evaluate = {p};
+      m.distances = {z};
+      known[key] = z > n && z < m.far ? run_scene(*rt, m, req.log).rows.at(0).mts : NAN;
+    }
+    return known[key];
+  };
+  for (FightPair& fp : audit.pairs) {
+    const double z = std::stod(fmt::format("{:.3g}", fp.depth_median));
+    fp.mts = mts_of(pair, scene.near, z);
+    fp.offset = std::isnan(fp.mts) ? NAN : std::max(0.0, fp.mts - fp.separation_min);
+    const SceneGeometry sub = only(g, fp.triangles);
+    PairCheck check(sub, cam, fp);
+    check.front_node_ = g.draws[fp.front_draw].node_index;
+    check.front_primitive_ = g.draws[fp.front_draw].primitive;
+    if (fp.sample.empty() || !check.fights(scene, pair)) {
+      fp.bias_note = "the fight needs surfaces other than the pair's (not reproduced alone)";
+      continue;
+    }
+    // A fix holds when the pair's pixels no longer fight and the pair's smallest separation is at
+    // least the MTS there (so it holds for the other orientations and positions the MTS samples,
+    // not by the luck of one rounding).
+    const auto holds = [&](const Scene& s, const EvalPair& p) {
+      if (check.fights(s, p)) return false;
+      const double m = mts_of(p, s.near, z);
+      return std::isnan(m) || m <= fp.separation_min;
+    };
+    // The nearest near plane: steps of 2^(1/4) out to the pair's nearest depth.
+    for (double n = scene.near * 1.189207115002721; n < fp.depth_min / 1.01;
+         n *= 1.189207115002721) {
+      Scene s = scene;
+      s.near = n;
+      if (holds(s, pair)) {
+        fp.near_plane = n;
+        break;
+      }
+    }
+    for (const EvalPair& alt : req.alternatives)
+      if (holds(scene, alt)) fp.resolving.push_back(alt.label());
+    const std::string not_applicable = bias_not_applicable(scene, pair);
+    if (!not_applicable.empty()) {
+      fp.bias_note = not_applicable;
+      continue;
+    }
+    // The constant bias: the smallest whole number of units that resolves the pixels with the
+    // camera moved along its view by up to twice the MTS (so the surfaces' depths cross a few
+    // codes, and the answer is not one rounding's luck).
+    const BiasRule rule = bias_rule(BiasOptions{}, scene.storage_format(pair));
+    const int sign = bias_sign(scene, pair);
+    const double span = std::isnan(fp.mts) ? 0.0 : 2 * fp.mts;
+    const auto fights = [&](double units) {
+      for (int k = 0; k < 8; ++k) {
+        const PairCheck moved(sub, along_view(cam, span * k / 8), fp, check);
+        if (moved.fights_biased(scene, pair, rule, sign, units)) return true;
+      }
+      return false;
+    };
+    double lo = 0, hi = 1;
+    while (hi <= 16777216 && fights(hi)) {
+      lo = hi;
+      hi *= 2;
+    }
+    if (hi > 16777216) {
+      fp.bias_note = "no constant bias up to 2^24 units resolves it";
+      continue;
+    }
+    while (hi - lo > 1) {
+      const double mid = std::floor((lo + hi) / 2);
+      (fights(mid) ? lo : hi) = mid;
+    }
+    fp.bias_units = sign * hi;
+  }
+}
+
+}  // namespace depthprec

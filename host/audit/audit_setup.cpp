@@ -1,0 +1,320 @@
+#include "host/audit/audit_setup.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "host/base/errors.h"
+#include "host/model/shader_log.h"
+#include "host/runtime/kernel_variant.h"
+#include "interface/audit_layout.h"
+#include "interface/mts_layout.h"
+#include "interface/relative_to_eye.h"
+
+namespace depthprec {
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec3 normalized(const Vec3& a) {
+  const double n = std::sqrt(dot(a, a));
+  return {a[0] / n, a[1] / n, a[2] / n};
+}
+
+// The view of an eye at `eye` with orthonormal axes right, up and back (the eye looks down -back).
+Mat4d view_of(const Vec3& eye, const Vec3& right, const Vec3& up, const Vec3& back) {
+  Mat4d v = mat_identity();
+  const Vec3* axes[3] = {&right, &up, &back};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) v[r * 4 + c] = (*axes[r])[c];
+    v[r * 4 + 3] = -dot(*axes[r], eye);
+  }
+  return v;
+}
+
+Mat4f rounded(const Mat4d& m) {
+  Mat4f f{};
+  for (int i = 0; i < 16; ++i) f[i] = static_cast<float>(m[i]);
+  return f;
+}
+
+// Row r of m times an object position (x, y, z, 1): as the compiled vertex shader forms it, the
+// constant w folded away (host/model/frame_setup.h object_row_dot for the planes' (x, y, 0, 1)).
+float position_row_dot(const Mat4f& m, int r, const float p[3], VertexForm form) {
+  const float* row = &m[r * 4];
+  if (form == VertexForm::fma)
+    return std::fma(row[2], p[2], std::fma(row[1], p[1], std::fma(row[0], p[0], row[3])));
+  return ((row[0] * p[0] + row[1] * p[1]) + row[2] * p[2]) + row[3];
+}
+
+// The vertex stage of object position p up to its clip position.
+void vertex_clip(const Scene& s, const ProbeConstants& pc, const DrawMatrices& st,
+                 const std::array<float, 3>& p, float clip[4]) {
+  const VertexForm form = s.pipeline.vertex;
+  float eye[4] = {0, 0, 0, 1};
+  if (st.relative_to_eye) {
+    float rel[4] = {0, 0, 0, 1};
+    for (int r = 0; r < 3; ++r) {
+      const double* m = &st.world[r * 4];
+      const double world = ((m[0] * p[0] + m[1] * p[1]) + m[2] * p[2]) + m[3];
+      rel[r] = dp_rte_eye(world, st.eye_high[r], st.eye_low[r]);
+    }
+    for (int r = 0; r < 3; ++r) eye[r] = mat_row_dot(st.first, r, rel, form);
+  } else if (st.premultiplied) {
+    for (int r = 0; r < 4; ++r) clip[r] = position_row_dot(st.first, r, p.data(), form);
+    return;
+  } else {
+    for (int r = 0; r < 3; ++r) eye[r] = position_row_dot(st.first, r, p.data(), form);
+    if (st.view_on_gpu) {
+      const float model[4] = {eye[0], eye[1], eye[2], 1.0f};
+      for (int r = 0; r < 3; ++r) eye[r] = mat_row_dot(st.second, r, model, form);
+    }
+  }
+  for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, form);
+}
+
+}  // namespace
+
+DrawMatrices draw_matrices(const Scene& s, const ProbeConstants& pc, const Draw& d,
+                           const AuditCamera& cam) {
+  DrawMatrices st;
+  const Mat4d mv = mat_mul(cam.view, d.world);
+  st.world = d.world;
+  if (s.pipeline.transform == Transform::relative_to_eye) {
+    st.relative_to_eye = true;
+    Mat4d rot = cam.view;
+    rot[3] = rot[7] = rot[11] = 0;
+    st.first = rounded(rot);
+    for (int i = 0; i < 3; ++i) dp_rte_encode(cam.eye[i], &st.eye_high[i], &st.eye_low[i]);
+  } else if (s.pipeline.compose == Compose::premultiplied) {
+    Mat4d p{};
+    for (int i = 0; i < 16; ++i) p[i] = pc.P_full[i];
+    st.first = rounded(mat_mul(p, mv));
+    st.premultiplied = true;
+  } else if (s.pipeline.transform == Transform::absolute) {
+    st.first = rounded(d.world);
+    st.second = rounded(cam.view);
+    st.view_on_gpu = true;
+  } else {
+    st.first = rounded(mv);
+  }
+  return st;
+}
+
+AuditCamera look_at_camera(const std::array<double, 3>& eye, const std::array<double, 3>& target,
+                           const std::array<double, 3>& up, double fov_y_deg, int width,
+                           int height) {
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(eye[i]) || !std::isfinite(target[i]) || !std::isfinite(up[i]))
+      throw InputError("--eye, --target and --up need finite coordinates");
+  const Vec3 back = sub(eye, target);
+  if (dot(back, back) == 0)
+    throw InputError("--eye and --target are the same point: no view direction");
+  const Vec3 z = normalized(back);
+  const Vec3 x = cross(up, z);
+  if (!(dot(x, x) > 1e-24 * dot(up, up)))
+    throw InputError(fmt::format(
+        "--up ({}, {}, {}) is parallel to the view direction; give another", up[0], up[1], up[2]));
+  const Vec3 xn = normalized(x);
+  AuditCamera c;
+  c.description = fmt::format("eye ({}, {}, {}) target ({}, {}, {}) up ({}, {}, {})", eye[0],
+                              eye[1], eye[2], target[0], target[1], target[2], up[0], up[1], up[2]);
+  c.view = view_of(eye, xn, cross(z, xn), z);
+  c.eye = eye;
+  c.fov_y_deg = fov_y_deg;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+AuditCamera gltf_view(const GltfCamera& g, int width, int height) {
+  Vec3 axes[3];
+  for (int c = 0; c < 3; ++c) axes[c] = normalized({g.world[c], g.world[4 + c], g.world[8 + c]});
+  AuditCamera c;
+  c.description = "camera " + g.name;
+  c.eye = {g.world[3], g.world[7], g.world[11]};
+  c.view = view_of(c.eye, axes[0], axes[1], axes[2]);
+  c.fov_y_deg = g.yfov * 180.0 / M_PI;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+Scene audit_scene(Scene s, const AuditCamera& cam) {
+  s.viewport_w = s.kernel_w = cam.width;
+  s.viewport_h = s.kernel_h = cam.height;
+  s.fov_y_deg = cam.fov_y_deg;
+  return s;
+}
+
+double ray_depth(const std::array<double, 4>& ray, const std::array<double, 4>& plane, float px,
+                 float py) {
+  const double rx = (static_cast<double>(px) / ray[0] - 1.0) / ray[2];
+  const double ry = (static_cast<double>(py) / ray[1] - 1.0) / ray[3];
+  return plane[3] / ((plane[0] * rx + plane[1] * ry) - plane[2]);
+}
+
+AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry& g,
+                       const AuditCamera& cam) {
+  if (pair.technique == Technique::layered)
+    throw InputError(
+        "audit: the layered technique splits the depth range per distance; audit its "
+        "layers' mapping instead (-t " +
+        std::string(info(s.params.layer_mapping).name) + ")");
+  AuditSetup a;
+  a.pair = pair;
+  a.pc = probe_constants(s, pair, s.near);
+  a.width = cam.width;
+  a.height = cam.height;
+  a.tiles_x = (a.width + AUDIT_TILE - 1) / AUDIT_TILE;
+  a.tiles_y = (a.height + AUDIT_TILE - 1) / AUDIT_TILE;
+  const TechniqueInfo& ti = info(depth_path(s, pair.technique));
+  const bool gl = pair.depth_range == DepthRange::gl;
+  const float hw = 0.5f * static_cast<float>(s.viewport_w);
+  const float hh = 0.5f * static_cast<float>(s.viewport_h);
+  a.ray = {hw, hh, a.pc.P_full[0], a.pc.P_full[5]};
+  a.clear_code = s.storage_format(pair).encode(ti.greater ? 0.0f : 1.0f);
+  const unsigned planes =
+      s.pipeline.clip == ClipForm::llvmpipe ? kClipPlanesXY | kClipPlanesZ : kClipPlanesZ;
+  a.planes.resize(g.triangles);
+  std::vector<std::array<float, 4>> boxes;  // per record: x min, x max, y min, y max
+  for (const Draw& d : g.draws) {
+    const DrawMatrices st = draw_matrices(s, a.pc, d, cam);
+    const Mat4d mv = mat_mul(cam.view, d.world);
+    std::vector<SetupVertex> v(d.positions.size());
+    std::vector<char> bad(d.positions.size(), 0);
+    for (size_t i = 0; i < d.positions.size(); ++i) {
+      float clip[4];
+      vertex_clip(s, a.pc, st, d.positions[i], clip);
+      if (ti.from == DepthFrom::vertex_log)
+        clip[2] = vertex_log_clip_z(a.pc, s.pipeline.log, gl, clip[3]);
+      bool nf = false;
+      v[i] = window_vertex(s, gl, clip, static_cast<int>(i), nf);
+      for (float c : clip) nf = nf || !std::isfinite(c);
+      bad[i] = nf;
+    }
+    const int nv = static_cast<int>(d.positions.size());
+    for (size_t t = 0; t < d.triangles.size(); ++t) {
+      const uint32_t src = d.first_triangle + static_cast<uint32_t>(t);
+      const auto& tri = d.triangles[t];
+      std::array<Vec3, 3> e;
+      for (int k = 0; k < 3; ++k) {
+        const auto& p = d.positions[tri[k]];
+        e[k] = transform_point(mv, p[0], p[1], p[2]);
+      }
+      const Vec3 n = cross(sub(e[1], e[0]), sub(e[2], e[0]));
+      a.planes[src] = {n[0], n[1], n[2], dot(n, e[0])};
+      const SetupVertex* tv[3] = {&v[tri[0]], &v[tri[1]], &v[tri[2]]};
+      const unsigned m0 = clip_mask(tv[0]->c, gl, planes), m1 = clip_mask(tv[1]->c, gl, planes),
+                     m2 = clip_mask(tv[2]->c, gl, planes);
+      const auto emit = [&](const SetupVertex* const f[3]) {
+        const SetupTriangle st3 = setup_triangle(s.pipeline, f);
+        if (!st3.valid) return;
+        a.records.push_back(st3);
+        a.source.push_back(src);
+        a.window_depths.push_back({f[0]->d, f[1]->d, f[2]->d});
+        boxes.push_back(
+            {std::min({f[0]->x, f[1]->x, f[2]->x}), std::max({f[0]->x, f[1]->x, f[2]->x}),
+             std::min({f[0]->y, f[1]->y, f[2]->y}), std::max({f[0]->y, f[1]->y, f[2]->y})});
+      };
+      if (m0 & m1 & m2) {
+        ++a.culled;
+        continue;
+      }
+      if (!(m0 | m1 | m2)) {
+        if (bad[tri[0]] || bad[tri[1]] || bad[tri[2]]) {
+          ++a.non_finite;
+          continue;
+        }
+        emit(tv);
+        continue;
+      }
+      ++a.clipped;
+      const std::vector<SetupVertex> poly =
+          clip_polygon({*tv[0], *tv[1], *tv[2]}, m0 | m1 | m2, hw, hh, gl, s.pipeline.snap_bits,
+                       nv + 8 * static_cast<int>(t));
+      for (size_t i = 2; i < poly.size(); ++i) {
+        const SetupVertex* f[3] = {&poly[i - 1], &poly[i], &poly[0]};
+        bool nf = false;
+        for (const SetupVertex* p : f)
+          nf = nf || !std::isfinite(p->x) || !std::isfinite(p->y) || !std::isfinite(p->q) ||
+               (ti.from != DepthFrom::fragment && !std::isfinite(p->d));
+        if (nf) {
+          ++a.non_finite;
+          continue;
+        }
+        emit(f);
+      }
+    }
+  }
+  // Bins: each record in the tiles its pixel box meets (pixel i's centre i + 1/2 within the box),
+  // by counting, so every bin keeps draw order.
+  const int tiles = a.tiles_x * a.tiles_y;
+  std::vector<std::array<int, 4>> tile_box(a.records.size());
+  a.bins.assign(tiles + 1, 0);
+  for (size_t r = 0; r < a.records.size(); ++r) {
+    const auto& b = boxes[r];
+    const int x0 = std::max(0, static_cast<int>(std::ceil(std::max(b[0] - 0.5f, -1.0f))));
+    const int x1 = std::min(a.width - 1, static_cast<int>(std::floor(std::min(b[1] - 0.5f, 1e8f))));
+    const int y0 = std::max(0, static_cast<int>(std::ceil(std::max(b[2] - 0.5f, -1.0f))));
+    const int y1 =
+        std::min(a.height - 1, static_cast<int>(std::floor(std::min(b[3] - 0.5f, 1e8f))));
+    if (x0 > x1 || y0 > y1) {
+      tile_box[r] = {1, 0, 1, 0};
+      continue;
+    }
+    tile_box[r] = {x0 / AUDIT_TILE, x1 / AUDIT_TILE, y0 / AUDIT_TILE, y1 / AUDIT_TILE};
+    for (int ty = tile_box[r][2]; ty <= tile_box[r][3]; ++ty)
+      for (int tx = tile_box[r][0]; tx <= tile_box[r][1]; ++tx) ++a.bins[ty * a.tiles_x + tx + 1];
+  }
+  for (int t = 0; t < tiles; ++t) a.bins[t + 1] += a.bins[t];
+  a.bin_records.resize(a.bins[tiles]);
+  std::vector<uint32_t> fill(a.bins.begin(), a.bins.end() - 1);
+  for (size_t r = 0; r < a.records.size(); ++r)
+    for (int ty = tile_box[r][2]; ty <= tile_box[r][3]; ++ty)
+      for (int tx = tile_box[r][0]; tx <= tile_box[r][1]; ++tx)
+        a.bin_records[fill[ty * a.tiles_x + tx]++] = static_cast<uint32_t>(r);
+  return a;
+}
+
+std::vector<float> packed_records(const AuditSetup& a) {
+  std::vector<float> out(a.records.size() * MTS_TRI_STRIDE, 0.0f);
+  for (size_t r = 0; r < a.records.size(); ++r) {
+    const SetupTriangle& t = a.records[r];
+    float* R = &out[r * MTS_TRI_STRIDE];
+    uint32_t bits = t.valid ? 64u : 0u;
+    for (int e = 0; e < 3; ++e) {
+      R[MTS_T_EDGES + 4 * e] = t.e[e].ax;
+      R[MTS_T_EDGES + 4 * e + 1] = t.e[e].ay;
+      R[MTS_T_EDGES + 4 * e + 2] = t.e[e].dx;
+      R[MTS_T_EDGES + 4 * e + 3] = t.e[e].dy;
+      bits |= (t.e[e].negate ? 1u << e : 0u) | (t.e[e].owns ? 8u << e : 0u);
+    }
+    std::memcpy(&R[MTS_T_BITS], &bits, 4);
+    R[MTS_T_X0] = t.x0;
+    R[MTS_T_Y0] = t.y0;
+    R[MTS_T_D0] = t.d0;
+    R[MTS_T_DZDX] = t.dzdx;
+    R[MTS_T_DZDY] = t.dzdy;
+    R[MTS_T_Q0] = t.q0;
+    R[MTS_T_DQDX] = t.dqdx;
+    R[MTS_T_DQDY] = t.dqdy;
+    R[MTS_T_YMIN] = t.ymin;
+    R[MTS_T_YMAX] = t.ymax;
+  }
+  return out;
+}
+
+}  // namespace depthprec

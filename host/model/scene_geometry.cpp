@@ -1,0 +1,266 @@
+#include "host/model/scene_geometry.h"
+
+#include <fmt/format.h>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cstring>
+#include <functional>
+
+#include "host/base/errors.h"
+
+namespace depthprec {
+
+namespace {
+
+// The images a glTF file names are not needed: skip decoding them (and their files).
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                const unsigned char*, int, void*) {
+  return true;
+}
+
+// A node's local matrix: its `matrix` (column-major in glTF), else T * R * S.
+Mat4d local_matrix(const tinygltf::Node& n) {
+  Mat4d m = mat_identity();
+  if (n.matrix.size() == 16) {
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) m[r * 4 + c] = n.matrix[c * 4 + r];
+    return m;
+  }
+  Mat4d t = mat_identity(), rot = mat_identity(), s = mat_identity();
+  if (n.translation.size() == 3)
+    for (int i = 0; i < 3; ++i) t[i * 4 + 3] = n.translation[i];
+  if (n.rotation.size() == 4) {
+    const double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+    const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+                         2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+                         2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) rot[i * 4 + j] = r[i * 3 + j];
+  }
+  if (n.scale.size() == 3)
+    for (int i = 0; i < 3; ++i) s[i * 4 + i] = n.scale[i];
+  return mat_mul(t, mat_mul(rot, s));
+}
+
+// The bytes of accessor a, checked to lie inside its buffer; element k at base + k * stride.
+struct AccessorView {
+  const unsigned char* base = nullptr;
+  size_t stride = 0, count = 0;
+};
+
+AccessorView view_of(const tinygltf::Model& m, int accessor, const std::string& path,
+                     const std::string& what) {
+  const auto bad = [&](const std::string& why) {
+    return InputError(fmt::format("{}: accessor {} ({}): {}", path, accessor, what, why));
+  };
+  if (accessor < 0 || accessor >= static_cast<int>(m.accessors.size()))
+    throw bad("no such accessor");
+  const tinygltf::Accessor& a = m.accessors[accessor];
+  if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size()))
+    throw bad("no buffer view (sparse or empty accessors are not supported)");
+  const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
+  if (bv.buffer < 0 || bv.buffer >= static_cast<int>(m.buffers.size())) throw bad("no buffer");
+  const tinygltf::Buffer& b = m.buffers[bv.buffer];
+  const int comp = tinygltf::GetComponentSizeInBytes(a.componentType);
+  const int ncomp = tinygltf::GetNumComponentsInType(a.type);
+  if (comp <= 0 || ncomp <= 0) throw bad("unknown component type");
+  const size_t elem = static_cast<size_t>(comp) * ncomp;
+  const size_t stride = bv.byteStride ? bv.byteStride : elem;
+  const size_t start = bv.byteOffset + a.byteOffset;
+  const size_t need = a.count == 0 ? 0 : start + (a.count - 1) * stride + elem;
+  if (bv.byteOffset + bv.byteLength > b.data.size() || need > bv.byteOffset + bv.byteLength)
+    throw bad(
+        fmt::format("{} elements reach byte {} of a buffer view ending at byte {} (buffer of "
+                    "{} bytes)",
+                    a.count, need, bv.byteOffset + bv.byteLength, b.data.size()));
+  return {b.data.data() + start, stride, a.count};
+}
+
+uint32_t read_index(const AccessorView& v, int type, size_t k) {
+  const unsigned char* p = v.base + k * v.stride;
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return *p;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t x;
+      std::memcpy(&x, p, 2);
+      return x;
+    }
+    default: {
+      uint32_t x;
+      std::memcpy(&x, p, 4);
+      return x;
+    }
+  }
+}
+
+}  // namespace
+
+Mat4d mat_identity() {
+  Mat4d m{};
+  for (int i = 0; i < 4; ++i) m[i * 5] = 1;
+  return m;
+}
+
+Mat4d mat_mul(const Mat4d& a, const Mat4d& b) {
+  Mat4d m{};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += a[r * 4 + k] * b[k * 4 + c];
+      m[r * 4 + c] = s;
+    }
+  return m;
+}
+
+std::array<double, 3> transform_point(const Mat4d& m, double x, double y, double z) {
+  std::array<double, 3> p{};
+  for (int r = 0; r < 3; ++r)
+    p[r] = m[r * 4] * x + m[r * 4 + 1] * y + m[r * 4 + 2] * z + m[r * 4 + 3];
+  return p;
+}
+
+std::string Draw::label() const {
+  return fmt::format("{} (mesh {}, primitive {})", node, mesh, primitive);
+}
+
+const Draw& SceneGeometry::draw_of(uint32_t t) const {
+  auto it = std::upper_bound(draws.begin(), draws.end(), t,
+                             [](uint32_t v, const Draw& d) { return v < d.first_triangle; });
+  return *(it - 1);
+}
+
+SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skip_image, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!ok)
+    throw InputError(fmt::format("{}: not a readable glTF 2.0 {} file: {}", path,
+                                 binary ? "binary (.glb)" : "JSON (.gltf)",
+                                 err.empty() ? "tinygltf gave no reason" : err));
+  SceneGeometry g;
+  g.source = path;
+  // The nodes in draw order: the default scene's trees depth first (every scene's when none is
+  // named default), each with its world matrix.
+  std::vector<std::pair<int, Mat4d>> order;
+  std::vector<int> depth(model.nodes.size(), 0);
+  std::function<void(int, const Mat4d&, int)> visit = [&](int n, const Mat4d& parent, int level) {
+    if (n < 0 || n >= static_cast<int>(model.nodes.size()) || level > 64)
+      throw InputError(
+          fmt::format("{}: node {} does not exist or the node tree has a cycle", path, n));
+    const Mat4d world = mat_mul(parent, local_matrix(model.nodes[n]));
+    order.emplace_back(n, world);
+    for (int c : model.nodes[n].children) visit(c, world, level + 1);
+  };
+  if (model.scenes.empty()) {
+    for (size_t n = 0; n < model.nodes.size(); ++n) visit(static_cast<int>(n), mat_identity(), 0);
+  } else {
+    const int sc = model.defaultScene >= 0 ? model.defaultScene : 0;
+    for (int n : model.scenes[sc].nodes) visit(n, mat_identity(), 0);
+  }
+  // First the count, from the accessors alone, so a huge file is refused before anything is read.
+  uint64_t total = 0, skipped = 0;
+  for (const auto& [n, world] : order) {
+    const tinygltf::Node& node = model.nodes[n];
+    if (node.mesh < 0) continue;
+    if (node.mesh >= static_cast<int>(model.meshes.size()))
+      throw InputError(
+          fmt::format("{}: node {} names mesh {}, which does not exist", path, n, node.mesh));
+    for (const auto& prim : model.meshes[node.mesh].primitives) {
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) {
+        ++skipped;
+        continue;
+      }
+      const int acc = prim.indices >= 0 ? prim.indices : prim.attributes.at("POSITION");
+      if (acc < 0 || acc >= static_cast<int>(model.accessors.size()))
+        throw InputError(
+            fmt::format("{}: a primitive of mesh {} names accessor {}, which does not exist", path,
+                        node.mesh, acc));
+      total += model.accessors[acc].count / 3;
+    }
+  }
+  if (total > max_triangles)
+    throw InputError(fmt::format(
+        "{}: {} triangles, more than the audit takes ({}; --max-triangles raises it, at about 200 "
+        "bytes of memory per triangle)",
+        path, total, max_triangles));
+  for (const auto& [n, world] : order) {
+    const tinygltf::Node& node = model.nodes[n];
+    if (node.camera >= 0 && node.camera < static_cast<int>(model.cameras.size())) {
+      const tinygltf::Camera& c = model.cameras[node.camera];
+      if (c.type == "perspective") {
+        GltfCamera cam;
+        cam.name = !c.name.empty()      ? c.name
+                   : !node.name.empty() ? node.name
+                                        : fmt::format("camera {}", node.camera);
+        cam.world = world;
+        cam.yfov = c.perspective.yfov;
+        cam.aspect = c.perspective.aspectRatio;
+        cam.znear = c.perspective.znear;
+        cam.zfar = c.perspective.zfar;
+        g.cameras.push_back(cam);
+      }
+    }
+    if (node.mesh < 0) continue;
+    const tinygltf::Mesh& mesh = model.meshes[node.mesh];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) continue;
+      Draw d;
+      d.node_index = n;
+      d.mesh_index = node.mesh;
+      d.primitive = static_cast<int>(p);
+      d.node = !node.name.empty() ? node.name : fmt::format("node {}", n);
+      d.mesh = !mesh.name.empty() ? mesh.name : fmt::format("mesh {}", node.mesh);
+      d.world = world;
+      const int pos = prim.attributes.at("POSITION");
+      const AccessorView pv = view_of(model, pos, path, "POSITION");
+      const tinygltf::Accessor& pa = model.accessors[pos];
+      if (pa.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || pa.type != TINYGLTF_TYPE_VEC3)
+        throw InputError(
+            fmt::format("{}: mesh {}: POSITION is not a float VEC3 accessor", path, d.mesh));
+      d.positions.resize(pv.count);
+      for (size_t k = 0; k < pv.count; ++k)
+        std::memcpy(d.positions[k].data(), pv.base + k * pv.stride, 12);
+      if (prim.indices >= 0) {
+        const AccessorView iv = view_of(model, prim.indices, path, "indices");
+        const int type = model.accessors[prim.indices].componentType;
+        if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+          throw InputError(fmt::format(
+              "{}: mesh {}: indices of component type {}; glTF allows unsigned byte, short or int",
+              path, d.mesh, type));
+        for (size_t k = 0; k + 2 < iv.count; k += 3) {
+          std::array<uint32_t, 3> t = {read_index(iv, type, k), read_index(iv, type, k + 1),
+                                       read_index(iv, type, k + 2)};
+          for (uint32_t i : t)
+            if (i >= d.positions.size())
+              throw InputError(fmt::format("{}: mesh {}: index {} past its {} positions", path,
+                                           d.mesh, i, d.positions.size()));
+          d.triangles.push_back(t);
+        }
+      } else {
+        for (uint32_t k = 0; k + 2 < d.positions.size(); k += 3)
+          d.triangles.push_back({k, k + 1, k + 2});
+      }
+      if (d.triangles.empty()) continue;
+      d.first_triangle = static_cast<uint32_t>(g.triangles);
+      g.triangles += d.triangles.size();
+      g.draws.push_back(std::move(d));
+    }
+  }
+  if (g.draws.empty())
+    throw InputError(fmt::format(
+        "{}: no triangles to audit ({} primitive(s) of other modes or without POSITION skipped; "
+        "the audit draws mode 4, TRIANGLES)",
+        path, skipped));
+  return g;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,58 @@
+// A user's scene as the audit draws it (docs/audit.md): the triangles of a glTF 2.0 file (.gltf or
+// .glb, read with tinygltf), each mesh primitive under each node that instances it one draw, in
+// the order the scene's node tree lists them (depth first), which is the draw order. Object
+// positions stay the file's binary32 values, as a vertex buffer holds them; node transforms are
+// composed in binary64 into each draw's world matrix. The file's perspective cameras are kept by
+// name.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace depthprec {
+
+using Mat4d = std::array<double, 16>;  // row-major: m[r * 4 + c]
+
+// One primitive of one mesh under one node: what a report names a surface by.
+struct Draw {
+  std::string node, mesh;  // names ("node 3", "mesh 1" where the file gives none)
+  int node_index = 0, mesh_index = 0, primitive = 0;
+  Mat4d world{};  // object to world, binary64
+  // Object positions and triangle corners as the file has them.
+  std::vector<std::array<float, 3>> positions;
+  std::vector<std::array<uint32_t, 3>> triangles;
+  uint32_t first_triangle = 0;  // the scene-wide index of its first triangle
+  std::string label() const;    // "decal (mesh decal, primitive 0)"
+};
+
+struct GltfCamera {
+  std::string name;            // the camera's name, else its node's
+  Mat4d world{};               // camera to world (it looks down its -z, +y up)
+  double yfov = 0;             // radians
+  double aspect = 0;           // 0: not given
+  double znear = 0, zfar = 0;  // zfar 0: infinite
+};
+
+struct SceneGeometry {
+  std::string source;
+  std::vector<Draw> draws;
+  std::vector<GltfCamera> cameras;
+  uint64_t triangles = 0;
+  // The draw of scene-wide triangle t (binary search over first_triangle).
+  const Draw& draw_of(uint32_t t) const;
+};
+
+// Loads path; throws InputError naming the file and what is wrong: not glTF, no triangles
+// (primitives of other modes are skipped and counted in the error), an accessor reaching past its
+// buffer, or more than max_triangles triangles (checked from the accessors before any is read).
+SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles);
+
+// a * b, row-major, binary64.
+Mat4d mat_mul(const Mat4d& a, const Mat4d& b);
+Mat4d mat_identity();
+// The point m * (x, y, z, 1) in binary64.
+std::array<double, 3> transform_point(const Mat4d& m, double x, double y, double z);
+
+}  // namespace depthprec

@@ -1,0 +1,163 @@
+#include "host/output/audit_output.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "host/base/json_number.h"
+#include "host/output/report.h"
+#include "host/output/text_table.h"
+
+namespace depthprec {
+
+namespace {
+
+nlohmann::json surface_json(const SceneGeometry& g, int draw, uint32_t triangle) {
+  const Draw& d = g.draws[draw];
+  return {{"node", d.node},
+          {"mesh", d.mesh},
+          {"primitive", d.primitive},
+          {"triangle", triangle - d.first_triangle}};
+}
+
+nlohmann::json optional_number(double v) {
+  return std::isnan(v) ? nlohmann::json(nullptr) : json_number(v);
+}
+
+nlohmann::json pair_json(const SceneGeometry& g, const FightPair& p) {
+  nlohmann::json j = {{"winner", surface_json(g, p.winner_draw, p.winner_triangle)},
+                      {"front", surface_json(g, p.front_draw, p.front_triangle)},
+                      {"fighting_pixels", p.pixels},
+                      {"eye_depth_min", json_number(p.depth_min)},
+                      {"eye_depth_median", json_number(p.depth_median)},
+                      {"eye_depth_max", json_number(p.depth_max)},
+                      {"separation_min", json_number(p.separation_min)},
+                      {"separation_median", json_number(p.separation_median)},
+                      {"mts", optional_number(p.mts)},
+                      {"offset_needed", optional_number(p.offset)},
+                      {"near_plane_that_resolves",
+                       p.near_plane ? json_number(*p.near_plane) : nlohmann::json(nullptr)},
+                      {"setups_that_resolve", p.resolving},
+                      {"bias_units_that_resolve",
+                       p.bias_units ? json_number(*p.bias_units) : nlohmann::json(nullptr)}};
+  if (!p.bias_note.empty()) j["bias_note"] = p.bias_note;
+  return j;
+}
+
+std::string short_name(const SceneGeometry& g, int draw) {
+  const Draw& d = g.draws[draw];
+  return d.node == d.mesh && d.primitive == 0
+             ? d.node
+             : fmt::format("{}/{}#{}", d.node, d.mesh, d.primitive);
+}
+
+}  // namespace
+
+nlohmann::json audit_json(const AuditReport& r, bool timing) {
+  nlohmann::json j = r.header;
+  j["setups"] = nlohmann::json::array();
+  for (size_t k = 0; k < r.setups.size(); ++k) {
+    const SetupAudit& s = r.setups[k];
+    nlohmann::json sj = s.pair.fields();
+    sj.update({{"frames", s.frames},
+               {"pixels", s.pixels},
+               {"covered_pixels", s.covered_pixels},
+               {"fighting_pixels", s.fighting_pixels},
+               {"coplanar_pixels", s.coplanar_pixels},
+               {"discarded_pixels", s.discarded_pixels},
+               {"rasterised_triangles", s.records},
+               {"culled_triangles", s.culled},
+               {"clipped_triangles", s.clipped},
+               {"non_finite_triangles", s.non_finite},
+               {"pairs", nlohmann::json::array()},
+               {"coplanar_pairs", nlohmann::json::array()}});
+    for (const FightPair& p : s.pairs) sj["pairs"].push_back(pair_json(*r.geometry, p));
+    for (const FightPair& p : s.coplanar_pairs) {
+      nlohmann::json c = {{"winner", surface_json(*r.geometry, p.winner_draw, p.winner_triangle)},
+                          {"front", surface_json(*r.geometry, p.front_draw, p.front_triangle)},
+                          {"coplanar_pixels_lost", p.pixels},
+                          {"eye_depth_median", json_number(p.depth_median)}};
+      sj["coplanar_pairs"].push_back(c);
+    }
+    if (k < r.pngs.size() && !r.pngs[k].empty()) {
+      sj["png"] = r.pngs[k];
+      sj["margin_png"] = r.margin_pngs[k];
+    }
+    if (r.rendered.is_array() && k < r.rendered.size()) sj["rendered"] = r.rendered[k];
+    if (timing) {
+      sj["setup_seconds"] = json_number(s.setup_seconds);
+      sj["pixel_seconds"] = json_number(s.pixel_seconds);
+    }
+    j["setups"].push_back(sj);
+  }
+  return j;
+}
+
+std::string audit_text(const AuditReport& r, const std::string& format, bool timing) {
+  const SceneGeometry& g = *r.geometry;
+  const auto num = [&format](double v) { return number_cell(v, format); };
+  const auto opt = [&num](double v) { return std::isnan(v) ? std::string("-") : num(v); };
+  const std::vector<Column> cols = {{"technique", true},   {"format", true},
+                                    {"depth_range", true}, {"fighting_pixels"},
+                                    {"coplanar_pixels"},   {"covered_pixels"},
+                                    {"winner", true},      {"front", true},
+                                    {"pair_pixels"},       {"eye_depth"},
+                                    {"separation"},        {"mts"},
+                                    {"offset_needed"},     {"near_that_resolves"},
+                                    {"bias_units"},        {"setups_that_resolve", true}};
+  Cells cells;
+  for (const SetupAudit& s : r.setups) {
+    const std::vector<std::string> head = {
+        info(s.pair.technique).name,       s.pair.format,
+        to_string(s.pair.depth_range),     std::to_string(s.fighting_pixels),
+        std::to_string(s.coplanar_pixels), std::to_string(s.covered_pixels)};
+    if (s.pairs.empty()) {
+      std::vector<std::string> row = head;
+      row.insert(row.end(), {"-", "-", "0", "-", "-", "-", "-", "-", "-", "-"});
+      cells.push_back(row);
+    }
+    for (const FightPair& p : s.pairs) {
+      std::vector<std::string> row = head;
+      std::string resolving;
+      for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : " ") + l;
+      row.insert(row.end(),
+                 {short_name(g, p.winner_draw), short_name(g, p.front_draw),
+                  std::to_string(p.pixels), num(p.depth_median), num(p.separation_median),
+                  opt(p.mts), opt(p.offset), p.near_plane ? num(*p.near_plane) : "-",
+                  p.bias_units ? num(*p.bias_units) : "-", resolving.empty() ? "-" : resolving});
+      cells.push_back(row);
+    }
+  }
+  if (format == "csv") return render_cells(cols, cells, format);
+  const nlohmann::json& h = r.header;
+  std::string caption = fmt::format(
+      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}, near {}, far {}: per set-up the "
+      "pixels where the depth test kept a surface behind the exact front one (fighting_pixels), "
+      "those where two surfaces share a plane (coplanar_pixels), and per fighting pair (winner "
+      "drawn over front) its pixels, the front's median eye depth, the median separation along "
+      "the ray, the set-up's MTS there, the offset that MTS asks for, and the fixes checked on "
+      "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
+      "units), other set-ups",
+      h.value("file", ""), g.triangles, g.draws.size(), h.value("camera", ""), h.value("width", 0),
+      h.value("height", 0), human(h.value("near", 0.0)), human(h.value("far", 0.0)));
+  std::string text = captioned(caption, cols, cells, format);
+  for (size_t k = 0; k < r.pngs.size(); ++k)
+    if (!r.pngs[k].empty())
+      text += fmt::format("{}: {} (fights red, coplanar blue), margin {}\n",
+                          r.setups[k].pair.label(), r.pngs[k], r.margin_pngs[k]);
+  if (r.rendered.is_array())
+    for (size_t k = 0; k < r.rendered.size(); ++k)
+      text += fmt::format(
+          "{}: rendered on {}: fighting pixels equal to the emulation's on {} of "
+          "{} pixels, winners on {}\n",
+          r.setups[k].pair.label(), r.rendered[k].value("renderer", ""),
+          r.rendered[k].value("fight_agree", 0), r.rendered[k].value("pixels", 0),
+          r.rendered[k].value("winner_agree", 0));
+  if (timing)
+    for (const SetupAudit& s : r.setups)
+      text += fmt::format("{}: set-up {:.3f} s, pixels {:.3f} s\n", s.pair.label(), s.setup_seconds,
+                          s.pixel_seconds);
+  return for_terminal(text, format);
+}
+
+}  // namespace depthprec

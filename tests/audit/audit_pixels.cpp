@@ -1,0 +1,160 @@
+// The audit's per-pixel pass: the kernel (kernels/audit.cl) against the host reference, pixel for
+// pixel, on every test scene of data/audit/ under the ideal and llvmpipe pipelines; the loader's
+// node transforms; and what each scene must show (fights, none, coplanar, only along an
+// intersection, far from the origin).
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+
+#include "host/audit/audit.h"
+#include "host/audit/audit_device.h"
+#include "interface/audit_layout.h"
+#include "tests/support/mts_fixture.h"
+
+using namespace depthprec;
+
+namespace {
+
+const std::string kAuditData = std::string(DEPTHPREC_SOURCE_DIR) + "/data/audit/";
+
+SceneGeometry audit_file(const std::string& name) {
+  return load_gltf(kAuditData + name, 1u << 20);
+}
+
+Scene audit_scene_of(const std::vector<std::string>& sets) {
+  std::vector<std::string> all = {"sampling=paper", "frames=4", "kernel=[24,24]"};
+  all.insert(all.end(), sets.begin(), sets.end());
+  return load_scene("", all);
+}
+
+AuditCamera main_camera(const SceneGeometry& g, int w, int h) {
+  for (const GltfCamera& c : g.cameras)
+    if (c.name == "main") return gltf_view(c, w, h);
+  FAIL("no camera main");
+  return {};
+}
+
+SetupAudit audit_of(const std::string& file, const std::vector<std::string>& sets,
+                    bool reference = false, int w = 192, int h = 108) {
+  const SceneGeometry g = audit_file(file);
+  const Scene scene = audit_scene_of(sets);
+  AuditRequest req;
+  req.frames = {main_camera(g, w, h)};
+  req.reference = reference;
+  return audit_setup_pair(&test::runtime(), scene, scene.evaluate.at(0), g, req);
+}
+
+}  // namespace
+
+TEST_CASE("the audit kernel equals the host reference pixel for pixel", "[audit]") {
+  const auto [file, near, far] = GENERATE(
+      table<std::string, std::string, std::string>({{"decal_wall.gltf", "0.1", "1e5"},
+                                                    {"slab_railing.gltf", "0.1", "1000"},
+                                                    {"terrain_road.gltf", "0.1", "5000"},
+                                                    {"intersecting_boxes.gltf", "0.1", "1000"},
+                                                    {"far_from_origin.glb", "0.1", "1e5"}}));
+  const auto [pairs, profile] = GENERATE(table<std::string, std::string>(
+      {{R"([{"technique":"standard","format":"unorm24","depth_range":"gl"}])", "ideal"},
+       {R"([{"technique":"reversed","format":"float32","depth_range":"zero_to_one"}])", "llvmpipe"},
+       // the fragment-stage log in llvmpipe's form, which host and kernel share; the library's
+       // (OpenCL's log, within 3 ulp) is not the host's std::log
+       {R"([{"technique":"log_fragment","format":"unorm24","depth_range":"gl"}])", "llvmpipe"},
+       {R"([{"technique":"log_vertex","format":"float32","depth_range":"gl"}])", "ideal"}}));
+  CAPTURE(file, pairs, profile);
+  const SceneGeometry g = audit_file(file);
+  const Scene scene = audit_scene_of(
+      {"near=" + near, "far=" + far, "evaluate=" + pairs, "pipeline.profile=" + profile});
+  const AuditCamera cam = main_camera(g, 96, 54);
+  const Scene s = audit_scene(scene, cam);
+  const AuditSetup a = audit_setup(s, scene.evaluate.at(0), g, cam);
+  const AuditPixels host = audit_reference(s, a);
+  const AuditPixels dev = audit_device(test::runtime(), s, a);
+  size_t differ = 0, covered = 0;
+  for (size_t i = 0; i < host.flags.size(); ++i) {
+    differ += host.winner[i] != dev.winner[i] || host.front[i] != dev.front[i] ||
+              host.margin[i] != dev.margin[i] || host.flags[i] != dev.flags[i];
+    covered += (host.flags[i] & AUDIT_COVERED) != 0;
+  }
+  CHECK(differ == 0);
+  CHECK(covered > host.flags.size() / 20);  // the camera sees the scene
+}
+
+TEST_CASE("the glTF loader composes node transforms and keeps names and draw order", "[audit]") {
+  const SceneGeometry g = audit_file("far_from_origin.glb");
+  REQUIRE(g.draws.size() == 2);
+  CHECK(g.draws[0].node == "wall");
+  CHECK(g.draws[1].node == "decal");  // drawn after the wall
+  CHECK(g.draws[1].first_triangle == g.draws[0].triangles.size());
+  // the parent "site" at (1e6, 0, 1e6) moves the children
+  CHECK(g.draws[0].world[3] == 1e6);
+  CHECK(g.draws[0].world[11] == 1e6);
+  REQUIRE(g.cameras.size() == 1);
+  CHECK(g.cameras[0].world[3] == 1e6);
+  const SceneGeometry binary = audit_file("decal_wall.glb"), text = audit_file("decal_wall.gltf");
+  REQUIRE(binary.triangles == text.triangles);
+  CHECK(binary.draws[1].positions == text.draws[1].positions);
+}
+
+TEST_CASE("the decal 1 mm before a wall at 500 m fights in unorm24, not in reversed float32",
+          "[audit]") {
+  const SetupAudit standard = audit_of(
+      "decal_wall.gltf",
+      {"near=0.1", "far=1e5", R"(evaluate=[{"technique":"standard","format":"unorm24"}])"});
+  CHECK(standard.fighting_pixels > 50);
+  REQUIRE(standard.pairs.size() == 1);
+  const SceneGeometry g = audit_file("decal_wall.gltf");
+  CHECK(g.draws[standard.pairs[0].winner_draw].node == "wall");
+  CHECK(g.draws[standard.pairs[0].front_draw].node == "decal");
+  CHECK(standard.pairs[0].depth_median == Approx(500).epsilon(0.01));
+  CHECK(standard.pairs[0].separation_median == Approx(0.001).epsilon(0.05));
+  // every pixel the decal covers fights: the wall's code is the decal's or below it
+  uint64_t decal_pixels = 0;
+  for (size_t i = 0; i < standard.image.front.size(); ++i)
+    decal_pixels +=
+        standard.image.front[i] != AUDIT_NONE && &g.draw_of(standard.image.front[i]) == &g.draws[1];
+  CHECK(standard.fighting_pixels == decal_pixels);
+  const SetupAudit reversed = audit_of(
+      "decal_wall.gltf",
+      {"near=0.1", "far=1e5",
+       R"(evaluate=[{"technique":"reversed","format":"float32","depth_range":"zero_to_one"}])"});
+  CHECK(reversed.fighting_pixels == 0);
+  CHECK(reversed.covered_pixels == standard.covered_pixels);
+}
+
+TEST_CASE("surfaces in one plane are coplanar pixels, not fights", "[audit]") {
+  const SetupAudit a = audit_of(
+      "slab_railing.gltf",
+      {"near=0.1", "far=1000",
+       R"(evaluate=[{"technique":"reversed","format":"float32","depth_range":"zero_to_one"}])"},
+      false, 384, 216);
+  CHECK(a.coplanar_pixels > 100);
+  CHECK(a.fighting_pixels == 0);
+  const SceneGeometry g = audit_file("slab_railing.gltf");
+  for (const FightPair& p : a.pairs) {  // no fight between the slab and the base in its plane
+    CAPTURE(g.draws[p.winner_draw].node, g.draws[p.front_draw].node, p.pixels);
+    CHECK(p.separation_median > 0);
+  }
+}
+
+TEST_CASE("intersecting boxes fight only along their intersection", "[audit]") {
+  const SetupAudit a = audit_of(
+      "intersecting_boxes.gltf",
+      {"near=0.1", "far=1000", R"(evaluate=[{"technique":"standard","format":"unorm16"}])"}, false,
+      384, 216);
+  REQUIRE(a.fighting_pixels > 0);
+  CHECK(a.fighting_pixels < a.covered_pixels / 20);
+  for (const FightPair& p : a.pairs) CHECK(p.separation_min < 0.05);
+}
+
+TEST_CASE("far from the origin the absolute transform fights where camera-relative does not",
+          "[audit]") {
+  const std::string pair =
+      R"(evaluate=[{"technique":"reversed","format":"float32","depth_range":"zero_to_one"}])";
+  const SetupAudit absolute =
+      audit_of("far_from_origin.glb", {"near=0.1", "far=1e5", pair, "pipeline.transform=absolute"});
+  const SetupAudit relative = audit_of(
+      "far_from_origin.glb", {"near=0.1", "far=1e5", pair, "pipeline.transform=camera_relative"});
+  CHECK(absolute.fighting_pixels > 50);
+  CHECK(relative.fighting_pixels == 0);
+  CHECK(relative.covered_pixels > 0);
+}
