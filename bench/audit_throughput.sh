@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The scene audit's speed and memory on a large scene: a terrain with a road of about 2 N^2
-# triangles (scripts/make_audit_scenes.py --terrain N; N = 708 gives 1,002,528), audited at
+# triangles (scripts/make_audit_scenes.py --terrain N; N = 708 gives 1,005,360 with the road), audited at
 # 1920x1080 for one set-up without fixes. Prints the set-up and pixel seconds the JSON reports,
 # the command's wall time and peak RSS. Not a test.
 # Usage: bench/audit_throughput.sh [N] [technique] [format]

@@ -1,17 +1,21 @@
 #!/usr/bin/env python3
 """Writes the glTF 2.0 test scenes of `depthprec audit` (docs/audit.md) into data/audit/.
 
-Each scene is a small, named, deterministic file built here from the standard library alone (no
-downloads, no packages), so the tests' inputs are reproducible from the repository: run it again
-and the files come out byte for byte the same (a test checks that). Each file has a camera node
-"main" looking at what the scene is about, and its surfaces are drawn in node order, the surface
-meant to be in front last.
+The audit finds z-fighting pixels in a user's scene; its tests need scenes whose fights are known
+by construction: a decal 1 mm before a wall at 500 m, a strip in a slab's plane, a road 5 cm above
+a terrain, two boxes through each other, and the decal layout 10^6 m from the origin. They are
+built here from Python's standard library alone (no packages, no downloads), so the test inputs
+can be regenerated from the repository, and the same run writes the same bytes.
 
-  scripts/make_audit_scenes.py                  the five test scenes into data/audit/
+Every visible surface is its own named mesh and node, so a report can say which surfaces fight;
+nodes are drawn in scene order (depth first), so the surface meant to be in front comes last.
+Each file has a perspective camera "main" (node and camera) looking at what the scene is about.
+
+  scripts/make_audit_scenes.py                  the five scenes into data/audit/
   scripts/make_audit_scenes.py --out DIR        ... into DIR
   scripts/make_audit_scenes.py --terrain N OUT.glb
-                                                a terrain of N x N quads (about 2 N^2 triangles)
-                                                with a road, for bench/audit_throughput.sh
+                                                terrain_road with N x N terrain quads (about
+                                                2 N^2 triangles) for bench/audit_throughput.sh
 """
 import argparse
 import array
@@ -22,43 +26,49 @@ import struct
 from pathlib import Path
 
 GENERATOR = "depthprec scripts/make_audit_scenes.py"
+ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
+FLOAT, UNSIGNED_INT = 5126, 5125
+TRIANGLES = 4
+GLB_MAGIC, GLB_JSON, GLB_BIN = 0x46546C67, 0x4E4F534A, 0x004E4942
 
 
 class Scene:
-    """Meshes, nodes and one camera, packed into one buffer."""
+    """Named meshes, a node tree and one camera "main", all data in one buffer."""
 
     def __init__(self):
         self.buffer = bytearray()
-        self.views, self.accessors, self.meshes, self.nodes, self.roots = [], [], [], [], []
+        self.views, self.accessors, self.meshes = [], [], []
+        self.nodes, self.roots, self.cameras = [], [], []
 
     def _view(self, data, target):
-        while len(self.buffer) % 4:
-            self.buffer.append(0)
-        self.views.append({"buffer": 0, "byteOffset": len(self.buffer),
-                           "byteLength": len(data), "target": target})
+        # glTF wants each accessor aligned to its component size; 4 covers float and uint32
+        self.buffer.extend(b"\0" * (-len(self.buffer) % 4))
+        self.views.append({"buffer": 0, "byteOffset": len(self.buffer), "byteLength": len(data),
+                           "target": target})
         self.buffer.extend(data)
         return len(self.views) - 1
 
-    def mesh(self, name, positions, triangles):
-        """A mesh of float positions [(x, y, z)] and triangles [(a, b, c)]; returns its index."""
-        flat = array.array("f", [c for p in positions for c in p])
-        stored = [flat[i:i + 3] for i in range(0, len(flat), 3)]  # as binary32, for min/max
-        pos = self._view(flat.tobytes(), 34962)
-        idx = self._view(array.array("I", [i for t in triangles for i in t]).tobytes(), 34963)
-        self.accessors.append({"bufferView": pos, "componentType": 5126, "count": len(positions),
-                               "type": "VEC3",
-                               "min": [min(p[k] for p in stored) for k in range(3)],
-                               "max": [max(p[k] for p in stored) for k in range(3)]})
-        self.accessors.append({"bufferView": idx, "componentType": 5125,
-                               "count": 3 * len(triangles), "type": "SCALAR"})
+    def mesh(self, name, positions, indices):
+        """A one-primitive mesh from flat xyz floats and flat triangle indices; its index."""
+        xyz = array.array("f", positions)
+        # min/max of the binary32 values stored, as validators compare them with those
+        lo = [min(xyz[k::3]) for k in range(3)]
+        hi = [max(xyz[k::3]) for k in range(3)]
+        position = len(self.accessors)
+        self.accessors.append({"bufferView": self._view(xyz.tobytes(), ARRAY_BUFFER),
+                               "componentType": FLOAT, "count": len(xyz) // 3, "type": "VEC3",
+                               "min": lo, "max": hi})
+        self.accessors.append({"bufferView": self._view(array.array("I", indices).tobytes(),
+                                                        ELEMENT_ARRAY_BUFFER),
+                               "componentType": UNSIGNED_INT, "count": len(indices),
+                               "type": "SCALAR"})
         self.meshes.append({"name": name, "primitives": [{
-            "attributes": {"POSITION": len(self.accessors) - 2},
-            "indices": len(self.accessors) - 1, "mode": 4}]})
+            "attributes": {"POSITION": position}, "indices": position + 1, "mode": TRIANGLES}]})
         return len(self.meshes) - 1
 
     def node(self, name, parent=None, **fields):
-        """A node (mesh=..., camera=..., translation=..., rotation=...), a root or a child."""
-        self.nodes.append(dict(name=name, **fields))
+        """A node (mesh=, camera=, translation=, rotation=, scale=): a root, or parent's child."""
+        self.nodes.append({"name": name, **fields})
         index = len(self.nodes) - 1
         if parent is None:
             self.roots.append(index)
@@ -66,55 +76,61 @@ class Scene:
             self.nodes[parent].setdefault("children", []).append(index)
         return index
 
-    def surface(self, name, positions, triangles, parent=None, **fields):
-        return self.node(name, parent, mesh=self.mesh(name, positions, triangles), **fields)
+    def surface(self, name, geometry, parent=None, **fields):
+        """A mesh and the node that draws it, both called name."""
+        return self.node(name, parent, mesh=self.mesh(name, *geometry), **fields)
 
-    def camera(self, eye, target, yfov_deg, znear, zfar, parent=None):
-        """The camera "main" at eye looking at target (local coordinates of parent), +y up."""
-        self.cameras = [{"name": "main", "type": "perspective", "perspective": {
-            "yfov": math.radians(yfov_deg), "aspectRatio": 16 / 9, "znear": znear,
-            "zfar": zfar}}]
-        self.node("main", parent, camera=0, translation=list(eye),
-                  rotation=look_at_quaternion(eye, target))
+    def camera(self, eye, target, yfov_degrees, znear, zfar, parent=None):
+        """The camera "main" at eye looking at target (both in parent's frame), +y up."""
+        self.cameras.append({"name": "main", "type": "perspective", "perspective": {
+            "yfov": math.radians(yfov_degrees), "aspectRatio": 16 / 9, "znear": znear,
+            "zfar": zfar}})
+        return self.node("main", parent, camera=len(self.cameras) - 1,
+                         translation=list(eye), rotation=look_at(eye, target))
 
-    def gltf(self, uri):
-        g = {"asset": {"version": "2.0", "generator": GENERATOR}, "scene": 0,
-             "scenes": [{"nodes": self.roots}], "nodes": self.nodes, "meshes": self.meshes,
-             "cameras": self.cameras, "accessors": self.accessors, "bufferViews": self.views,
-             "buffers": [{"byteLength": len(self.buffer)}]}
-        if uri:
-            g["buffers"][0]["uri"] = ("data:application/octet-stream;base64," +
-                                      base64.b64encode(bytes(self.buffer)).decode())
-        return json.dumps(g, separators=(",", ":"))
-
-    def write(self, path):
-        path = Path(path)
-        if path.suffix == ".glb":
-            path.write_bytes(glb(self.gltf(uri=False).encode(), bytes(self.buffer)))
-        else:
-            path.write_text(self.gltf(uri=True) + "\n")
+    def document(self, uri=None):
+        buffer = {"byteLength": len(self.buffer)}
+        if uri is not None:
+            buffer["uri"] = uri
+        return {"asset": {"version": "2.0", "generator": GENERATOR}, "scene": 0,
+                "scenes": [{"nodes": self.roots}], "nodes": self.nodes, "meshes": self.meshes,
+                "cameras": self.cameras, "accessors": self.accessors,
+                "bufferViews": self.views, "buffers": [buffer]}
 
 
-def glb(json_bytes, binary):
+def dumps(document):
+    return json.dumps(document, separators=(",", ":"))
+
+
+def write_gltf(scene, path):
+    """A .gltf with its buffer embedded, so the file stands alone."""
+    uri = "data:application/octet-stream;base64," + base64.b64encode(scene.buffer).decode()
+    Path(path).write_text(dumps(scene.document(uri)) + "\n", encoding="utf-8")
+
+
+def write_glb(scene, path):
     """The GLB container: header, JSON chunk padded with spaces, BIN chunk padded with zeros."""
-    json_bytes += b" " * (-len(json_bytes) % 4)
-    binary += b"\0" * (-len(binary) % 4)
-    total = 12 + 8 + len(json_bytes) + 8 + len(binary)
-    return (struct.pack("<III", 0x46546C67, 2, total) +
-            struct.pack("<II", len(json_bytes), 0x4E4F534A) + json_bytes +
-            struct.pack("<II", len(binary), 0x004E4942) + binary)
+    text = dumps(scene.document()).encode()
+    text += b" " * (-len(text) % 4)
+    binary = bytes(scene.buffer) + b"\0" * (-len(scene.buffer) % 4)
+    total = 12 + 8 + len(text) + 8 + len(binary)
+    Path(path).write_bytes(struct.pack("<3I", GLB_MAGIC, 2, total) +
+                           struct.pack("<2I", len(text), GLB_JSON) + text +
+                           struct.pack("<2I", len(binary), GLB_BIN) + binary)
 
 
-def look_at_quaternion(eye, target):
-    """The rotation (x, y, z, w) turning the camera's -z towards target with +y up."""
+def write(scene, path):
+    (write_glb if Path(path).suffix == ".glb" else write_gltf)(scene, path)
+
+
+def look_at(eye, target):
+    """The unit quaternion (x, y, z, w) turning local -z towards target, local +y up."""
     f = [t - e for t, e in zip(target, eye)]
-    n = math.sqrt(sum(c * c for c in f))
-    back = [-c / n for c in f]  # the camera's +z
-    right = [back[2], 0.0, -back[0]]  # up x back with up = +y
-    rn = math.sqrt(sum(c * c for c in right)) or 1.0
-    right = [c / rn for c in right]
-    up = [back[1] * right[2] - back[2] * right[1], back[2] * right[0] - back[0] * right[2],
-          back[0] * right[1] - back[1] * right[0]]
+    back = normalised([-c for c in f])  # the camera's +z: glTF cameras look down -z
+    right = normalised([back[2], 0.0, -back[0]])  # +y x back
+    up = cross(back, right)
+    # the rotation matrix has columns right, up, back; Shepperd's method picks the largest
+    # of w, x, y, z to divide by, so no branch loses precision
     m = [[right[0], up[0], back[0]], [right[1], up[1], back[1]], [right[2], up[2], back[2]]]
     trace = m[0][0] + m[1][1] + m[2][2]
     if trace > 0:
@@ -125,112 +141,140 @@ def look_at_quaternion(eye, target):
         j, k = (i + 1) % 3, (i + 2) % 3
         s = 2 * math.sqrt(1 + m[i][i] - m[j][j] - m[k][k])
         q = [0.0] * 4
-        q[i] = s / 4
-        q[j] = (m[j][i] + m[i][j]) / s
-        q[k] = (m[k][i] + m[i][k]) / s
+        q[i], q[j], q[k] = s / 4, (m[j][i] + m[i][j]) / s, (m[k][i] + m[i][k]) / s
         q[3] = (m[k][j] - m[j][k]) / s
-    return [round(c, 12) for c in q]
+    return normalised(q)
 
 
-def quad(x0, x1, y0, y1, z):
-    """A quad in the plane z facing +z: 4 corners, 2 counter-clockwise triangles."""
-    return [(x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z)], [(0, 1, 2), (0, 2, 3)]
+def normalised(v):
+    n = math.sqrt(sum(c * c for c in v))
+    if n == 0:
+        raise ValueError("cannot normalise a zero vector (camera looking straight up or down?)")
+    return [c / n for c in v]
 
 
-def box(cx, cy, cz, sx, sy, sz):
-    """An axis-aligned box of 12 outward-facing triangles."""
-    p = [(cx + dx * sx / 2, cy + dy * sy / 2, cz + dz * sz / 2)
-         for dz in (-1, 1) for dy in (-1, 1) for dx in (-1, 1)]
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def quad(origin, u, v):
+    """The parallelogram origin, +u, +u+v, +v: 2 triangles facing u x v."""
+    corners = [origin, [o + a for o, a in zip(origin, u)],
+               [o + a + b for o, a, b in zip(origin, u, v)], [o + b for o, b in zip(origin, v)]]
+    return [c for p in corners for c in p], [0, 1, 2, 0, 2, 3]
+
+
+def box(lo, hi):
+    """The axis-aligned box from corner lo to corner hi: 12 triangles facing outwards."""
+    # corner k takes hi on x if bit 0 of k is set, on y for bit 1, on z for bit 2
+    corners = [[(lo, hi)[k >> a & 1][a] for a in range(3)] for k in range(8)]
     faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
-    return p, [t for a, b, c, d in faces for t in ((a, b, c), (a, c, d))]
+    return ([c for p in corners for c in p],
+            [i for a, b, c, d in faces for i in (a, b, c, a, c, d)])
 
 
-def grid(columns, rows, position):
-    """A height field of columns x rows quads: position(i, j) gives vertex (i, j)."""
-    p = [position(i, j) for j in range(rows + 1) for i in range(columns + 1)]
-    t = []
-    for j in range(rows):
-        for i in range(columns):
-            a = j * (columns + 1) + i
-            b, c, d = a + 1, a + columns + 2, a + columns + 1
-            t += [(a, d, c), (a, c, b)]  # counter-clockwise seen from above
-    return p, t
+def centred_box(centre, size):
+    return box([c - s / 2 for c, s in zip(centre, size)],
+               [c + s / 2 for c, s in zip(centre, size)])
 
 
-def height(x, z):
+def height_field(xs, zs, y):
+    """Vertices (x, y(x, z), z) on the grid xs by zs, 2 triangles a quad facing +y."""
+    positions = [c for z in zs for x in xs for c in (x, y(x, z), z)]
+    row = len(xs)
+    indices = []
+    for j in range(len(zs) - 1):
+        for a in range(j * row, j * row + row - 1):
+            # a at (x, z), a + 1 at (x+, z), a + row at (x, z+): counter-clockwise from above
+            indices += (a, a + row, a + row + 1, a, a + row + 1, a + 1)
+    return positions, indices
+
+
+def terrain_height(x, z):
     return 8 * math.sin(x / 90) * math.cos(z / 70)
 
 
-def decal_wall(distance, gap):
-    s = Scene()
-    s.surface("wall", *quad(-50, 50, -50, 50, -distance))
-    s.surface("decal", *quad(0, 10, -2, 8, -distance + gap))
+def decal_wall(distance, gap, parent=None, scene=None):
+    """The 100 m wall facing the camera at distance and a 10 m decal, centred on (5, 3), gap
+    before it."""
+    s = Scene() if scene is None else scene
+    s.surface("wall", quad([-50, -50, -distance], [100, 0, 0], [0, 100, 0]), parent)
+    s.surface("decal", quad([0, -2, -distance + gap], [10, 0, 0], [0, 10, 0]), parent)
+    s.camera([0, 0, 0], [0, 0, -1], 10, 0.1, 100000, parent)
     return s
 
 
 def slab_railing():
     s = Scene()
-    s.surface("slab", *box(0, -0.15, 0, 20, 0.3, 20))
-    railing = s.node("railing", translation=[0, 0, -8.9])  # along the slab's far edge
+    s.surface("slab", box([-10, -0.3, -10], [10, 0, 10]))
+    # the railing along the slab's near edge: the base strip there covers enough pixels
+    railing = s.node("railing", translation=[0, 0, 9.9])
     for k in range(10):
-        s.surface(f"post_{k}", *box(-9 + 2 * k, 0.5, 0, 0.05, 1.0, 0.05), parent=railing)
-    s.surface("top_rail", *box(0, 1.0, 0, 18.1, 0.05, 0.05), parent=railing)
-    # in the slab's top plane y = 0 exactly: coplanar by construction
-    p, t = quad(-10, 10, -1.0, 1.0, 0)
-    s.surface("railing_base", [(x, 0.0, -y) for x, y, _ in p], [(a, c, b) for a, b, c in t],
-              parent=railing)
-    s.camera((0, 8, 25), (0, 0, 0), 50, 0.1, 1000)
+        x = -9 + 2 * k
+        s.surface(f"post_{k}", box([x - 0.025, 0, -0.025], [x + 0.025, 1.0, 0.025]), railing)
+    # on the posts' tops rather than through them: only the base is meant to share a plane
+    s.surface("top_rail", box([-9.025, 1.0, -0.025], [9.025, 1.05, 0.025]), railing)
+    # in the slab's top plane y = 0 exactly, by construction: coplanar, not fighting
+    s.surface("railing_base", quad([-10, 0, -0.1], [0, 0, 0.2], [20, 0, 0]), railing)
+    s.camera([0, 8, 25], [0, 0, 0], 50, 0.1, 1000)
     return s
 
 
 def terrain_road(n):
+    """A 1 km height field of n x n quads and an 8 m road 5 cm above it along z."""
     s = Scene()
-    size = 1000.0
-    s.surface("terrain", *grid(n, n, lambda i, j: (
-        -size / 2 + size * i / n, height(-size / 2 + size * i / n, -size / 2 + size * j / n),
-        -size / 2 + size * j / n)))
-    s.surface("road", *grid(2, n, lambda i, j: (
-        -4.0 + 4.0 * i, height(-4.0 + 4.0 * i, -size / 2 + size * j / n) + 0.05,
-        -size / 2 + size * j / n)))
-    s.camera((0, 250, 700), (0, 0, -100), 45, 0.1, 5000)
+    rows = [-500 + 1000 * j / n for j in range(n + 1)]
+    s.surface("terrain", height_field(rows, rows, terrain_height))
+    # the same z rows; across, x = -4, 0, 4, which the terrain only interpolates between, so
+    # the gap is 5 cm at the road's vertices only (for n = 64, -0.9 to 10.9 cm in between)
+    s.surface("road", height_field([-4, 0, 4], rows, lambda x, z: terrain_height(x, z) + 0.05))
+    # from 250 m up: seen from near the ground the gap along each ray grows with the distance as
+    # fast as unorm24's resolution shrinks, and nothing fights before 4 km
+    s.camera([0, 250, 700], [0, 0, -100], 45, 0.1, 5000)
     return s
 
 
 def intersecting_boxes():
     s = Scene()
-    s.surface("box_a", *box(-1, 0, -20, 4, 4, 4))
-    s.surface("box_b", *box(1, 0.5, -21, 4, 4, 4))
-    s.camera((6, 5, 0), (0, 0, -20), 40, 0.1, 1000)
+    s.surface("box_a", centred_box([-1, 0, -20], [4, 4, 4]))
+    s.surface("box_b", centred_box([1, 0.5, -21], [4, 4, 4]))
+    s.camera([6, 5, 0], [0, 0, -20], 40, 0.1, 1000)
     return s
 
 
 def far_from_origin():
+    """The decal layout at 50 m with a 1 cm gap, under a node 10^6 m from the origin."""
     s = Scene()
     site = s.node("site", translation=[1000000, 0, 1000000])
-    s.surface("wall", *quad(-50, 50, -50, 50, -50), parent=site)
-    s.surface("decal", *quad(0, 10, -2, 8, -49.99), parent=site)
-    s.camera((0, 0, 0), (0, 0, -1), 10, 0.1, 100000, parent=site)
-    return s
+    return decal_wall(50, 0.01, site, s)
+
+
+def write_test_scenes(out):
+    out.mkdir(parents=True, exist_ok=True)
+    decal = decal_wall(500, 0.001)
+    write(decal, out / "decal_wall.gltf")
+    write(decal, out / "decal_wall.glb")
+    write(slab_railing(), out / "slab_railing.gltf")
+    write(terrain_road(64), out / "terrain_road.gltf")
+    write(intersecting_boxes(), out / "intersecting_boxes.gltf")
+    write(far_from_origin(), out / "far_from_origin.glb")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", type=Path,
-                        default=Path(__file__).resolve().parent.parent / "data" / "audit")
-    parser.add_argument("--terrain", nargs=2, metavar=("N", "OUT.glb"))
+                        default=Path(__file__).resolve().parent.parent / "data" / "audit",
+                        help="directory for the five test scenes (default: data/audit/)")
+    parser.add_argument("--terrain", nargs=2, metavar=("N", "OUT.glb"),
+                        help="write only a terrain of N x N quads with a road, for benchmarks")
     args = parser.parse_args()
     if args.terrain:
-        terrain_road(int(args.terrain[0])).write(args.terrain[1])
-        return
-    args.out.mkdir(parents=True, exist_ok=True)
-    decal = decal_wall(500, 0.001)
-    decal.camera((0, 0, 0), (0, 0, -1), 10, 0.1, 100000)
-    decal.write(args.out / "decal_wall.gltf")
-    decal.write(args.out / "decal_wall.glb")
-    slab_railing().write(args.out / "slab_railing.gltf")
-    terrain_road(64).write(args.out / "terrain_road.gltf")
-    intersecting_boxes().write(args.out / "intersecting_boxes.gltf")
-    far_from_origin().write(args.out / "far_from_origin.glb")
+        n = int(args.terrain[0]) if args.terrain[0].isdigit() else 0
+        if n < 1:
+            parser.error("--terrain N needs a whole number N >= 1")
+        write(terrain_road(n), args.terrain[1])
+    else:
+        write_test_scenes(args.out)
 
 
 if __name__ == "__main__":

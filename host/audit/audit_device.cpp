@@ -9,13 +9,14 @@ namespace depthprec {
 
 namespace {
 
-// A read-only buffer holding v (OpenCL has no empty buffers: one element at least).
+// A read-only buffer holding v, copied by the driver (OpenCL has no empty buffers: one zero
+// element for an empty v).
 template <class T>
 cl::Buffer input(cl::Context& ctx, const std::vector<T>& v) {
-  std::vector<T> data = v;
-  if (data.empty()) data.resize(1);
-  return cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * data.size(),
-                    data.data());
+  static const T zero{};
+  return cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                    sizeof(T) * std::max<size_t>(v.size(), 1),
+                    const_cast<T*>(v.empty() ? &zero : v.data()));
 }
 
 }  // namespace

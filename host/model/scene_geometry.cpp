@@ -186,7 +186,7 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
   }
   if (total > max_triangles)
     throw InputError(fmt::format(
-        "{}: {} triangles, more than the audit takes ({}; --max-triangles raises it, at about 200 "
+        "{}: {} triangles, more than the audit takes ({}; --max-triangles raises it, at about 560 "
         "bytes of memory per triangle)",
         path, total, max_triangles));
   for (const auto& [n, world] : order) {

@@ -5,7 +5,9 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "tests/support/files.h"
 #include "tests/support/run_cli.h"
@@ -142,4 +144,66 @@ TEST_CASE("audit refuses bad input with a specific error", "[audit][cli]") {
     CHECK(r.exit_code == 3);
     CHECK_THAT(r.output, Contains("the same point"));
   }
+}
+
+TEST_CASE("scripts/make_audit_scenes.py writes data/audit/ byte for byte", "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_scenes");
+  const auto r =
+      test::run_shell("python3 '" + std::string(DEPTHPREC_SOURCE_DIR) +
+                      "/scripts/make_audit_scenes.py' --out '" + dir.string() + "' 2>&1");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kAuditDir)) {
+    CAPTURE(entry.path().filename().string());
+    CHECK(test::bytes_of(entry.path()) == test::bytes_of(dir / entry.path().filename()));
+    ++files;
+  }
+  CHECK(files == 6);
+}
+
+TEST_CASE("audit's views: --frames adds jittered views, --path reads them from a file",
+          "[audit][cli]") {
+  const std::string base = kAuditDir +
+                           "decal_wall.gltf -t standard -f unorm24 --size 160x90 "
+                           "--no-fixes";
+  const auto one = audit_json_of(base);
+  const auto four = audit_json_of(base + " --frames 4 --jitter 0.5");
+  const auto& s1 = one.at("setups").at(0);
+  const auto& s4 = four.at("setups").at(0);
+  CHECK(s4.at("frames") == 4);
+  CHECK(s4.at("pixels").get<int>() == 4 * s1.at("pixels").get<int>());
+  CHECK(s4.at("fighting_pixels").get<int>() > 3 * s1.at("fighting_pixels").get<int>());
+  // the same first view from a path file gives frame 0's counts
+  const auto dir = test::empty_dir("audit_path");
+  test::write_bytes(dir / "path.txt", "# eye, then target\n0,0,0, 0,0,-1\n0.5,0,0, 0.5,0,-1\n");
+  const auto path = audit_json_of(base + " --fov-y 10 --path " + (dir / "path.txt").string());
+  CHECK(path.at("setups").at(0).at("frames") == 2);
+  CHECK(path.at("setups").at(0).at("pixels") == 2 * s1.at("pixels").get<int>());
+  test::write_bytes(dir / "bad.txt", "0,0,0\n");
+  const auto bad = run_cli("audit " + base + " --path " + (dir / "bad.txt").string());
+  CHECK(bad.exit_code == 3);
+  CHECK_THAT(bad.output, Contains("bad.txt:1: expected ex,ey,ez,tx,ty,tz"));
+}
+
+TEST_CASE("audit's CSV has a row per set-up and pair, with the JSON's counts", "[audit][cli]") {
+  const std::string args = kAuditDir +
+                           "decal_wall.glb -t standard,reversed -f unorm24 --size "
+                           "160x90 --no-fixes --no-timing -q";
+  const auto csv = run_cli("audit " + args + " --format-out csv");
+  REQUIRE(csv.exit_code == 0);
+  const auto j = audit_json_of(kAuditDir +
+                               "decal_wall.glb -t standard,reversed -f unorm24 "
+                               "--size 160x90 --no-fixes");
+  std::istringstream lines(csv.output);
+  std::string header, row;
+  std::getline(lines, header);
+  CHECK_THAT(header, Contains("fighting_pixels"));
+  int rows = 0;
+  while (std::getline(lines, row)) {
+    const auto& s = j.at("setups").at(rows);
+    CHECK_THAT(row, Contains("," + std::to_string(s.at("fighting_pixels").get<int>()) + ","));
+    ++rows;
+  }
+  CHECK(rows == 2);  // standard: the wall over the decal; reversed: one row, no pair
 }
