@@ -159,6 +159,7 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
                         {"near", scene.near},
                         {"far", scene.far},
                         {"source", o.source},
+                        {"scene_name", scene.name},
                         {"scene", scene.json}});
   if (o.source == "rendered") report.rendered = nlohmann::json::array();
   std::unique_ptr<GlContext> gl;

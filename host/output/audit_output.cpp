@@ -96,7 +96,9 @@ nlohmann::json audit_json(const AuditReport& r, bool timing) {
 std::string audit_text(const AuditReport& r, const std::string& format, bool timing) {
   const SceneGeometry& g = *r.geometry;
   const auto num = [&format](double v) { return number_cell(v, format); };
-  const auto opt = [&num](double v) { return std::isnan(v) ? std::string("-") : num(v); };
+  // a value the set-up has not (no pair, no fix): "-" in text, an empty CSV field
+  const std::string none = format == "csv" ? "" : "-";
+  const auto opt = [&](double v) { return std::isnan(v) ? none : num(v); };
   const std::vector<Column> cols = {{"technique", true},   {"format", true},
                                     {"depth_range", true}, {"fighting_pixels"},
                                     {"coplanar_pixels"},   {"covered_pixels"},
@@ -113,7 +115,7 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
         std::to_string(s.coplanar_pixels), std::to_string(s.covered_pixels)};
     if (s.pairs.empty()) {
       std::vector<std::string> row = head;
-      row.insert(row.end(), {"-", "-", "0", "-", "-", "-", "-", "-", "-", "-"});
+      row.insert(row.end(), {none, none, "0", none, none, none, none, none, none, none});
       cells.push_back(row);
     }
     for (const FightPair& p : s.pairs) {
@@ -123,8 +125,8 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       row.insert(row.end(),
                  {short_name(g, p.winner_draw), short_name(g, p.front_draw),
                   std::to_string(p.pixels), num(p.depth_median), num(p.separation_median),
-                  opt(p.mts), opt(p.offset), p.near_plane ? num(*p.near_plane) : "-",
-                  p.bias_units ? num(*p.bias_units) : "-", resolving.empty() ? "-" : resolving});
+                  opt(p.mts), opt(p.offset), p.near_plane ? num(*p.near_plane) : none,
+                  p.bias_units ? num(*p.bias_units) : none, resolving.empty() ? none : resolving});
       cells.push_back(row);
     }
   }

@@ -13,12 +13,15 @@ import csv
 import io
 import json
 import math
+import os
 import subprocess
 import sys
 
 EXE = sys.argv[1]
 SCENE = ("-t standard,reversed -f unorm24 --kernel 24x24 --frames 4 --distances 2,1000 "
          "--no-timing -q")
+AUDIT_SCENE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "audit",
+                           "decal_wall.gltf")
 NON_FINITE = {"inf", "-inf", "nan"}
 failures = []
 
@@ -92,6 +95,10 @@ COMMANDS = [
     (f"table --profiles ideal,llvmpipe {SCENE}", "profiles", True, ["z"], None),
     (f"mts --profiles ideal,llvmpipe {SCENE}", "profiles", True,
      ["z", "ideal", "llvmpipe", "spread"], None),
+    (f"audit {AUDIT_SCENE} -t standard,reversed -f unorm24 --size 160x90 --set sampling=paper "
+     "--no-timing -q", "audit", True,
+     ["fighting_pixels", "coplanar_pixels", "covered_pixels", "pair_pixels", "eye_depth",
+      "separation", "mts", "offset_needed", "near_that_resolves", "bias_units"], None),
     (f"bias {SCENE}", "bias", True,
      ["z", "units", "factor", "set factor", "set units", "offset", "eye separation", "MTS"], None),
 ]
