@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 
 #include "host/audit/audit.h"
 #include "host/audit/audit_device.h"
@@ -157,4 +159,47 @@ TEST_CASE("far from the origin the absolute transform fights where camera-relati
   CHECK(absolute.fighting_pixels > 50);
   CHECK(relative.fighting_pixels == 0);
   CHECK(relative.covered_pixels > 0);
+}
+
+TEST_CASE("the glTF loader reads node matrices, 16-bit indices and unindexed triangles",
+          "[audit]") {
+  // One triangle's positions (0,0,0) (1,0,0) (0,1,0), then 16-bit indices 0 1 2 (padded).
+  std::string bytes;
+  for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+    bytes.append(reinterpret_cast<const char*>(&f), 4);
+  for (uint16_t i : {0, 1, 2, 0}) bytes.append(reinterpret_cast<const char*>(&i), 2);
+  bytes.resize(45, '\0');  // a whole number of base64 groups: no padding characters
+  static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string enc;
+  for (size_t k = 0; k < bytes.size(); k += 3) {
+    const uint32_t v =
+        (uint8_t(bytes[k]) << 16) | (uint8_t(bytes[k + 1]) << 8) | uint8_t(bytes[k + 2]);
+    for (int c = 0; c < 4; ++c) enc += b64[(v >> (18 - 6 * c)) & 63];
+  }
+  const auto dir = std::filesystem::temp_directory_path() / "depthprec_test_gltf_forms";
+  std::filesystem::create_directories(dir);
+  const std::string gltf = fmt::format(
+      R"({{"asset":{{"version":"2.0"}},"scenes":[{{"nodes":[0,1]}}],
+"nodes":[{{"name":"moved","mesh":0,"matrix":[2,0,0,0, 0,2,0,0, 0,0,2,0, 10,20,30,1]}},
+{{"name":"plain","mesh":1}}],
+"meshes":[{{"name":"indexed","primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}},
+{{"name":"unindexed","primitives":[{{"attributes":{{"POSITION":0}}}}]}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}},
+{{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}}],
+"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":6}}],
+"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}]}})",
+      bytes.size(), enc);
+  std::ofstream((dir / "forms.gltf").string()) << gltf;
+  const SceneGeometry g = load_gltf((dir / "forms.gltf").string(), 100);
+  REQUIRE(g.draws.size() == 2);
+  CHECK(g.triangles == 2);
+  CHECK(g.draws[0].triangles.at(0) == std::array<uint32_t, 3>{0, 1, 2});
+  CHECK(g.draws[1].triangles.at(0) == std::array<uint32_t, 3>{0, 1, 2});
+  // glTF's matrix is column-major: scale 2, then translation (10, 20, 30)
+  const auto p = transform_point(g.draws[0].world, 1, 0, 0);
+  CHECK(p == std::array<double, 3>{12, 20, 30});
+  CHECK(g.draws[0].mesh == "indexed");
+  CHECK(g.draws[1].node == "plain");
+  CHECK_THROWS_WITH(load_gltf((dir / "forms.gltf").string(), 1),
+                    Catch::Contains("2 triangles, more than the audit takes (1;"));
 }
