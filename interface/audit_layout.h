@@ -17,11 +17,11 @@
 #define AUDIT_NONE 0xffffffffu
 
 /* A pixel's flags. */
-#define AUDIT_COVERED 1u     /* at least one fragment survived to the depth test */
-#define AUDIT_FIGHT 2u       /* the stored winner is not the exact front surface, nor coplanar */
-#define AUDIT_COPLANAR 4u    /* another surface lies in the front surface's plane at the pixel */
-#define AUDIT_DISCARDED 8u   /* a covering fragment was clipped, or not finite */
-#define AUDIT_NO_MARGIN 16u  /* one surface only: margin_codes means nothing */
+#define AUDIT_COVERED 1u    /* at least one fragment survived to the depth test */
+#define AUDIT_FIGHT 2u      /* the stored winner is not the exact front surface, nor coplanar */
+#define AUDIT_COPLANAR 4u   /* another surface lies in the front surface's plane at the pixel */
+#define AUDIT_DISCARDED 8u  /* a covering fragment was clipped, or not finite */
+#define AUDIT_NO_MARGIN 16u /* one surface only: margin_codes means nothing */
 
 /* Two surfaces are one plane at a pixel when their exact eye depths there differ by at most this
  * much relative to the depth: binary64 rounding of transforms and plane equations, far below any
@@ -41,11 +41,12 @@
  * width x height): the record's source triangle that won the depth test, the exact front surface,
  * the margin (codes between the front surface and the next distinct one, in the depth test's
  * direction; <= 0 where it fights; INT_MAX with no surface behind it) and the flags. */
-#define AUDIT_PIXELS_BUFFERS(IN, OUT)                                                           \
-  IN(float, probe)                                                                              \
-  IN(float, records)                                                                            \
-  IN(uint, source) IN(double, ray) IN(double, planes) IN(uint, bins) IN(uint, bin_records)      \
-      OUT(uint, winner) OUT(uint, front) OUT(int, margin) OUT(uint, flags)
+#define AUDIT_PIXELS_BUFFERS(IN, OUT)                                                       \
+  IN(float, probe)                                                                          \
+  IN(float, records)                                                                        \
+  IN(uint, source)                                                                          \
+  IN(double, ray) IN(double, planes) IN(uint, bins) IN(uint, bin_records) OUT(uint, winner) \
+      OUT(uint, front) OUT(int, margin) OUT(uint, flags)
 typedef struct {
   df_u32 width, height, tiles_x, tiles_y;
   df_u32 clear_code; /* the cleared depth buffer's code (far: 1.0, reversed 0.0) */

@@ -5,8 +5,8 @@
 // The host reference (host/audit/audit_reference.cpp) computes the same per pixel in C++.
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 
-#include "kernels/mts/pipeline.cl" /* the defines checked; formats, layout, fragments */
 #include "interface/audit_layout.h"
+#include "kernels/mts/pipeline.cl" /* the defines checked; formats, layout, fragments */
 
 // Coverage of 16 pixel centres by record R: every edge test passes, ties to the owning edge
 // (host/mts/triangle_setup.cpp covers).

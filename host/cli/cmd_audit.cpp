@@ -238,8 +238,9 @@ void add_audit_command(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--source", o->source,
                   "emulated, or rendered: the winners drawn by the system's OpenGL");
   add_gl_device_option(cmd, o->gl_device);
-  cmd->add_option("--max-triangles", o->max_triangles,
-                  "Refuse larger scenes (default 4194304: about 560 bytes of memory a triangle, 2.4 GB)");
+  cmd->add_option(
+      "--max-triangles", o->max_triangles,
+      "Refuse larger scenes (default 4194304: about 560 bytes of memory a triangle, 2.4 GB)");
   cmd->add_flag("--no-fixes", o->no_fixes, "Leave out the fixes (and their MTS measurements)");
   cmd->add_flag("--reference", o->reference,
                 "Run the per-pixel pass in the host reference instead of OpenCL (slow; checks)");

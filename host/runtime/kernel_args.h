@@ -1,6 +1,7 @@
-// The host side of interface/mts_kernel_args.h (and interface/audit_layout.h): per kernel, a struct of its buffers by name, and
-// bind(), which sets them in the order the shared list gives and then the scalars' struct. A
-// buffer left unset is an error naming it, not a kernel reading whatever was bound before.
+// The host side of interface/mts_kernel_args.h (and interface/audit_layout.h): per kernel, a struct
+// of its buffers by name, and bind(), which sets them in the order the shared list gives and then
+// the scalars' struct. A buffer left unset is an error naming it, not a kernel reading whatever was
+// bound before.
 #pragma once
 
 #include <string>
