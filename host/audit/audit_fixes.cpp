@@ -47,20 +47,17 @@ bool any_fight(const AuditPixels& p) {
                      [](uint32_t f) { return (f & AUDIT_FIGHT) != 0; });
 }
 
-// Whether the sampled pixels fight under scene s and pair, with the front triangles biased by
-// `units` (0: none).
+// Whether a fighting pair's sampled pixels still fight under a scene and set-up, drawn from a
+// camera with only the pair's triangles (sub), optionally with the front surface's draw biased.
 class PairCheck {
  public:
-  PairCheck(const SceneGeometry& sub, const AuditCamera& cam, const FightPair& fp)
-      : sub_(sub), cam_(cam), fp_(fp) {}
-  // The same check from another camera.
+  // front_draw: the front surface's draw in sub.
   PairCheck(const SceneGeometry& sub, const AuditCamera& cam, const FightPair& fp,
-            const PairCheck& like)
-      : front_node_(like.front_node_),
-        front_primitive_(like.front_primitive_),
-        sub_(sub),
-        cam_(cam),
-        fp_(fp) {}
+            size_t front_draw)
+      : sub_(sub), cam_(cam), fp_(fp), front_draw_(front_draw) {}
+  // The same pair from another camera.
+  PairCheck from(const AuditCamera& cam) const { return PairCheck(sub_, cam, fp_, front_draw_); }
+
   bool fights(const Scene& scene, const EvalPair& pair) const {
     const Scene s = audit_scene(scene, cam_);
     return any_fight(audit_reference_at(s, audit_setup(s, pair, sub_, cam_), fp_.sample));
@@ -70,7 +67,7 @@ class PairCheck {
                      double units) const {
     const Scene s = audit_scene(scene, cam_);
     AuditSetup a = audit_setup(s, pair, sub_, cam_);
-    const Draw& front = sub_.draws[front_draw()];
+    const Draw& front = sub_.draws[front_draw_];
     for (size_t r = 0; r < a.records.size(); ++r) {
       if (a.source[r] < front.first_triangle ||
           a.source[r] >= front.first_triangle + front.triangles.size())
@@ -83,22 +80,20 @@ class PairCheck {
   }
 
  private:
-  // The front draw's index in the sub-scene: the draws keep their order and names.
-  size_t front_draw() const {
-    for (size_t k = 0; k < sub_.draws.size(); ++k)
-      if (sub_.draws[k].node_index == front_node_ && sub_.draws[k].primitive == front_primitive_)
-        return k;
-    return 0;
-  }
-
- public:
-  int front_node_ = 0, front_primitive_ = 0;
-
- private:
   const SceneGeometry& sub_;
   AuditCamera cam_;
   const FightPair& fp_;
+  size_t front_draw_;
 };
+
+// The index in sub of draw d of the whole scene (sub keeps the draws' order, nodes and primitives).
+size_t draw_in(const SceneGeometry& sub, const Draw& d) {
+  for (size_t k = 0; k < sub.draws.size(); ++k)
+    if (sub.draws[k].node_index == d.node_index && sub.draws[k].primitive == d.primitive &&
+        sub.draws[k].mesh_index == d.mesh_index)
+      return k;
+  return 0;
+}
 
 }  // namespace
 
@@ -136,9 +131,7 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
     fp.mts = mts_of(pair, scene.near, z);
     fp.offset = std::isnan(fp.mts) ? NAN : std::max(0.0, fp.mts - fp.separation_min);
     const SceneGeometry sub = only(g, fp.triangles);
-    PairCheck check(sub, cam, fp);
-    check.front_node_ = g.draws[fp.front_draw].node_index;
-    check.front_primitive_ = g.draws[fp.front_draw].primitive;
+    const PairCheck check(sub, cam, fp, draw_in(sub, g.draws[fp.front_draw]));
     if (fp.sample.empty() || !check.fights(scene, pair)) {
       fp.bias_note = "the fight needs surfaces other than the pair's (not reproduced alone)";
       continue;
@@ -176,8 +169,8 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
     const double span = std::isnan(fp.mts) ? 0.0 : 2 * fp.mts;
     const auto fights = [&](double units) {
       for (int k = 0; k < 8; ++k) {
-        const PairCheck moved(sub, along_view(cam, span * k / 8), fp, check);
-        if (moved.fights_biased(scene, pair, rule, sign, units)) return true;
+        if (check.from(along_view(cam, span * k / 8)).fights_biased(scene, pair, rule, sign, units))
+          return true;
       }
       return false;
     };
