@@ -3,6 +3,7 @@
 // fixes, a PNG of the view with the fights marked and one of the margin.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -31,7 +32,7 @@ struct AuditOptions {
   std::string gl_device = "auto";
   double fov_y = 0;
   int frames = 1;
-  double jitter = 0.01;
+  double jitter = -1;  // unset: 10^-4 of the distance from the eye to the geometry's centre
   uint64_t max_triangles = 1ull << 22;  // about 2.4 GB at 560 bytes a triangle
   bool no_fixes = false, reference = false;
 };
@@ -117,13 +118,19 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
                 fmt::format("--size '{}': expected WxH in pixels, each 1 to 16384", o.size));
   if (o.frames < 1 || o.frames > 1000)
     throw Error(ExitCode::usage, fmt::format("--frames {}: 1 to 1000", o.frames));
-  if (!(o.jitter >= 0) || !std::isfinite(o.jitter))
+  if (o.jitter != -1 && (!(o.jitter >= 0) || !std::isfinite(o.jitter)))
     throw Error(ExitCode::usage, "--jitter: a distance in metres, 0 or more");
   if (o.source != "emulated" && o.source != "rendered")
     throw Error(ExitCode::usage, "--source: emulated or rendered");
   const SceneGeometry geometry = load_gltf(o.file, o.max_triangles);
   const GltfCamera* file_camera = nullptr;
   const AuditCamera camera = camera_of(o, geometry, w, h, &file_camera);
+  // The views' moves scale with the scene: a ten-thousandth of the eye's distance to the centre
+  // of what it looks at moves depths by a few storage codes at most set-ups' resolutions.
+  if (o.jitter == -1) {
+    const auto c = bounding_box_centre(geometry);
+    o.jitter = 1e-4 * std::hypot(c[0] - camera.eye[0], c[1] - camera.eye[1], c[2] - camera.eye[2]);
+  }
   // The glTF camera's planes where the command line (--near, --far or --set) gives none.
   const auto set_in_scene = [&o](const std::string& key) {
     for (const std::string& s : o.scene.sets)
@@ -131,10 +138,18 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
     return false;
   };
   if (file_camera && o.scene.near.empty() && file_camera->znear > 0 && !set_in_scene("near"))
-    o.scene.near = fmt::format("{}", file_camera->znear);
+    o.scene.sets.push_back(fmt::format("near={}", file_camera->znear));
   if (file_camera && o.scene.far.empty() && !set_in_scene("far"))
-    o.scene.far = file_camera->zfar > 0 ? fmt::format("{}", file_camera->zfar) : "inf";
-  const Scene scene = o.scene.load();
+    o.scene.sets.push_back(file_camera->zfar > 0 ? fmt::format("far={}", file_camera->zfar)
+                                                 : std::string("far=inf"));
+  Scene scene = o.scene.load();
+  // The scene's own pairs less layered, whose depth range depends on the distance; named with
+  // -t, audit_setup refuses it with the reason.
+  if (o.scene.techniques.empty())
+    scene.evaluate.erase(
+        std::remove_if(scene.evaluate.begin(), scene.evaluate.end(),
+                       [](const EvalPair& p) { return p.technique == Technique::layered; }),
+        scene.evaluate.end());
   check_writable(o.out.output);
   std::unique_ptr<OpenClRuntime> rt;
   if (!o.reference || !o.no_fixes) rt = std::make_unique<OpenClRuntime>(g.device);
@@ -230,7 +245,10 @@ void add_audit_command(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--size", o->size, "Image WxH in pixels (default 1280x720)");
   cmd->add_option("--frames", o->frames,
                   "Views: the camera, then frames - 1 with eye and target moved by up to --jitter");
-  cmd->add_option("--jitter", o->jitter, "Largest camera move of --frames, metres (default 0.01)");
+  cmd->add_option(
+      "--jitter", o->jitter,
+      "Largest camera move of --frames, metres (default: 10^-4 of the eye's distance to "
+      "the geometry's centre)");
   cmd->add_option("--path", o->path,
                   "Views from a file, one per line: ex,ey,ez,tx,ty,tz (eye, target); the first is "
                   "the PNG's and the fixes'");

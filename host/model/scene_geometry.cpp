@@ -4,7 +4,10 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 
 #include "host/base/errors.h"
@@ -121,6 +124,19 @@ std::array<double, 3> transform_point(const Mat4d& m, double x, double y, double
   return p;
 }
 
+std::array<double, 3> bounding_box_centre(const SceneGeometry& g) {
+  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (const Draw& d : g.draws)
+    for (const auto& p : d.positions) {
+      const auto w = transform_point(d.world, p[0], p[1], p[2]);
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], w[i]);
+        hi[i] = std::max(hi[i], w[i]);
+      }
+    }
+  return {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+}
+
 std::string Draw::label() const {
   return fmt::format("{} (mesh {}, primitive {})", node, mesh, primitive);
 }
@@ -132,6 +148,9 @@ const Draw& SceneGeometry::draw_of(uint32_t t) const {
 }
 
 SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(fmt::format("{} is a directory, not a glTF file", path));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
   tinygltf::Model model;
@@ -139,6 +158,7 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
   const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                          : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  while (!err.empty() && std::isspace(static_cast<unsigned char>(err.back()))) err.pop_back();
   if (!ok)
     throw InputError(fmt::format("{}: not a readable glTF 2.0 {} file: {}", path,
                                  binary ? "binary (.glb)" : "JSON (.gltf)",

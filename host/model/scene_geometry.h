@@ -49,6 +49,9 @@ struct SceneGeometry {
 // buffer, or more than max_triangles triangles (checked from the accessors before any is read).
 SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles);
 
+// The centre of the world-space bounding box of every draw's positions.
+std::array<double, 3> bounding_box_centre(const SceneGeometry& geometry);
+
 // a * b, row-major, binary64.
 Mat4d mat_mul(const Mat4d& a, const Mat4d& b);
 Mat4d mat_identity();

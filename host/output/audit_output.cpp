@@ -155,6 +155,10 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
           r.setups[k].pair.label(), r.rendered[k].value("renderer", ""),
           r.rendered[k].value("fight_agree", 0), r.rendered[k].value("pixels", 0),
           r.rendered[k].value("winner_agree", 0));
+  if (h.value("frames", 1) == 1)
+    text +=
+        "One view: a camera moved by a fraction of a code's depth can fight where this one "
+        "does not; --frames N adds N - 1 views moved by up to --jitter.\n";
   if (timing)
     for (const SetupAudit& s : r.setups)
       text += fmt::format("{}: set-up {:.3f} s, pixels {:.3f} s\n", s.pair.label(), s.setup_seconds,
