@@ -18,10 +18,16 @@
 
 /* A pixel's flags. */
 #define AUDIT_COVERED 1u    /* at least one fragment survived to the depth test */
-#define AUDIT_FIGHT 2u      /* the stored winner is not the exact front surface, nor coplanar */
+#define AUDIT_FIGHT 2u      /* a drawn winner that is not the exact front surface, nor coplanar */
 #define AUDIT_COPLANAR 4u   /* another surface lies in the front surface's plane at the pixel */
 #define AUDIT_DISCARDED 8u  /* a covering fragment was clipped, or not finite */
 #define AUDIT_NO_MARGIN 16u /* one surface only: margin_codes means nothing */
+/* covered, but no fragment passed the test against the cleared buffer (its code is the clear
+ * value's, as a far plane too near or a format too coarse makes it): nothing is drawn */
+#define AUDIT_UNDRAWN 32u
+/* set by the host after the pass (host/audit/audit.cpp): the winner is a neighbour of the front
+ * surface on its own surface (same draw, a corner in common), at their seam: no fight */
+#define AUDIT_SEAM 64u
 
 /* Two surfaces are one plane at a pixel when their exact eye depths there differ by at most this
  * much relative to the depth: binary64 rounding of transforms and plane equations, far below any

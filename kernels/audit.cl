@@ -92,7 +92,8 @@ __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPi
   const int16 lost = covered & (win != frnt);
   const int16 tie =
       convert_int16(fabs(winner_s - front_s) <= AUDIT_COPLANAR_RELATIVE * fmin(winner_s, front_s));
-  const int16 fight = lost & ~tie;
+  const int16 undrawn = covered & (win < 0);
+  const int16 fight = lost & ~tie & ~undrawn;
   /* margin: how far the front surface's code is ahead of the next one's; where it lost, how far
    * the winner's is ahead of it (negative) */
   long16 m = test_margin16(second_code, front_code);
@@ -104,7 +105,8 @@ __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPi
                     select((uint16)0u, (uint16)AUDIT_FIGHT, fight) |
                     select((uint16)0u, (uint16)AUDIT_COPLANAR, coplanar | (lost & tie)) |
                     select((uint16)0u, (uint16)AUDIT_DISCARDED, discarded) |
-                    select((uint16)0u, (uint16)AUDIT_NO_MARGIN, no_margin);
+                    select((uint16)0u, (uint16)AUDIT_NO_MARGIN, no_margin) |
+                    select((uint16)0u, (uint16)AUDIT_UNDRAWN, undrawn);
   uint w[16], fr[16], flg[16];
   int mg[16];
   vstore16(as_uint16(win), 0, w);

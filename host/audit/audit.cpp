@@ -34,7 +34,7 @@ double median(std::vector<double> v) {
 // The pixels of one frame with `flag` (and, for coplanar, another surface winning), added to the
 // pairs by (winner draw, front draw).
 void gather(const AuditSetup& a, const SceneGeometry& g, const AuditPixels& px, uint32_t flag,
-            bool first_frame, std::map<std::pair<int, int>, PairPixels>& pairs) {
+            int frame, std::map<std::pair<int, int>, PairPixels>& pairs) {
   const auto draw_index = [&g](uint32_t t) {
     return static_cast<int>(&g.draw_of(t) - g.draws.data());
   };
@@ -56,7 +56,8 @@ void gather(const AuditSetup& a, const SceneGeometry& g, const AuditPixels& px, 
       const double df = ray_depth(a.ray, a.planes[f], fx, fy);
       p.depths.push_back(df);
       p.separations.push_back(ray_depth(a.ray, a.planes[w], fx, fy) - df);
-      if (first_frame && p.pair.sample.size() < kFixPixels) {
+      if (p.pair.sample.empty()) p.pair.sample_frame = frame;
+      if (p.pair.sample_frame == frame && p.pair.sample.size() < kFixPixels) {
         p.pair.sample.emplace_back(x, y);
         for (uint32_t t : {w, f})
           if (std::find(p.pair.triangles.begin(), p.pair.triangles.end(), t) ==
@@ -98,6 +99,9 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
     t0 = std::chrono::steady_clock::now();
     AuditPixels px = req.reference ? audit_reference(s, a) : audit_device(*rt, s, a);
     out.pixel_seconds += seconds_since(t0);
+    for (size_t i = 0; i < px.flags.size(); ++i)  // a surface's own seam is no fight
+      if ((px.flags[i] & AUDIT_FIGHT) && g.neighbours(px.winner[i], px.front[i]))
+        px.flags[i] = (px.flags[i] & ~AUDIT_FIGHT) | AUDIT_SEAM;
     ++out.frames;
     out.pixels += px.flags.size();
     for (uint32_t f : px.flags) {
@@ -105,9 +109,11 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
       out.fighting_pixels += (f & AUDIT_FIGHT) != 0;
       out.coplanar_pixels += (f & AUDIT_COPLANAR) != 0;
       out.discarded_pixels += (f & AUDIT_DISCARDED) != 0;
+      out.undrawn_pixels += (f & AUDIT_UNDRAWN) != 0;
+      out.seam_pixels += (f & AUDIT_SEAM) != 0;
     }
-    gather(a, g, px, AUDIT_FIGHT, k == 0, fights);
-    gather(a, g, px, AUDIT_COPLANAR, k == 0, coplanar);
+    gather(a, g, px, AUDIT_FIGHT, static_cast<int>(k), fights);
+    gather(a, g, px, AUDIT_COPLANAR, static_cast<int>(k), coplanar);
     if (k == 0) {
       out.records = a.records.size();
       out.culled = a.culled;

@@ -21,8 +21,10 @@ struct FightPair {
   uint64_t pixels = 0;                                    // over every frame
   double depth_min = 0, depth_median = 0, depth_max = 0;  // the front surface's eye depth, m
   double separation_min = 0, separation_median = 0;       // winner's minus front's, along the ray
-  std::vector<std::pair<int, int>> sample;  // frame 0's pixels (x, y), up to kFixPixels
-  std::vector<uint32_t> triangles;          // the triangles fighting at the sampled pixels
+  // Pixels (x, y) of the first view it fights in (sample_frame), up to kFixPixels: the fixes'.
+  std::vector<std::pair<int, int>> sample;
+  int sample_frame = 0;
+  std::vector<uint32_t> triangles;  // the triangles fighting at the sampled pixels
   // The fixes (audit_fixes.h): NaN / empty / nullopt where none was found or asked for.
   double mts = NAN;     // the set-up's MTS at depth_median (the scene's measurement)
   double offset = NAN;  // move the front surface this much nearer: mts - separation_median
@@ -36,6 +38,9 @@ struct SetupAudit {
   EvalPair pair;
   uint64_t frames = 0, pixels = 0, covered_pixels = 0, fighting_pixels = 0, coplanar_pixels = 0,
            discarded_pixels = 0;
+  // covered but nothing drawn (every fragment at the cleared value); a surface's own seams
+  uint64_t undrawn_pixels = 0, seam_pixels = 0;
+  double fix_seconds = 0;
   uint64_t records = 0, culled = 0, clipped = 0, non_finite = 0;  // frame 0's triangles
   std::vector<FightPair> pairs;                                   // by pixels, most first
   std::vector<FightPair> coplanar_pairs;  // surfaces in one plane where the later one lost

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -108,8 +109,9 @@ std::vector<EvalPair> default_alternatives(const Scene& scene, const EvalPair& a
 }
 
 void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
-               const SceneGeometry& g, const AuditCamera& cam, SetupAudit& audit,
+               const SceneGeometry& g, const std::vector<AuditCamera>& frames, SetupAudit& audit,
                const FixRequest& req) {
+  const auto start = std::chrono::steady_clock::now();
   const EvalPair& pair = audit.pair;
   // The MTS of a set-up at eye depth z with near plane n, in the measurement scene; NaN without a
   // device. One search per (set-up, near, z), kept.
@@ -130,6 +132,7 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
     const double z = std::stod(fmt::format("{:.3g}", fp.depth_median));
     fp.mts = mts_of(pair, scene.near, z);
     fp.offset = std::isnan(fp.mts) ? NAN : std::max(0.0, fp.mts - fp.separation_min);
+    const AuditCamera& cam = frames.at(fp.sample_frame);
     const SceneGeometry sub = only(g, fp.triangles);
     const PairCheck check(sub, cam, fp, draw_in(sub, g.draws[fp.front_draw]));
     if (fp.sample.empty() || !check.fights(scene, pair)) {
@@ -156,6 +159,13 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
     }
     for (const EvalPair& alt : req.alternatives)
       if (holds(scene, alt)) fp.resolving.push_back(alt.label());
+    // The vertex transform: far from the world origin binary32 world matrices lose the positions
+    // (docs/spec.md 2, "World position"); camera-relative rendering keeps them.
+    if (scene.pipeline.transform == Transform::absolute) {
+      Scene relative = scene;
+      relative.pipeline.transform = Transform::camera_relative;
+      if (holds(relative, pair)) fp.resolving.push_back(pair.label() + " camera_relative");
+    }
     const std::string not_applicable = bias_not_applicable(scene, pair);
     if (!not_applicable.empty()) {
       fp.bias_note = not_applicable;
@@ -175,12 +185,12 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
       return false;
     };
     double lo = 0, hi = 1;
-    while (hi <= 16777216 && fights(hi)) {
+    while (hi <= kMaxBiasUnits && fights(hi)) {
       lo = hi;
       hi *= 2;
     }
-    if (hi > 16777216) {
-      fp.bias_note = "no constant bias up to 2^24 units resolves it";
+    if (hi > kMaxBiasUnits) {
+      fp.bias_note = fmt::format("no constant bias up to {} units resolves it", kMaxBiasUnits);
       continue;
     }
     while (hi - lo > 1) {
@@ -189,6 +199,8 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
     }
     fp.bias_units = sign * hi;
   }
+  audit.fix_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace depthprec

@@ -70,7 +70,9 @@ void finish(const PixelState& p, bool greater, size_t i, AuditPixels& out) {
                           std::numeric_limits<int32_t>::max());
   uint32_t f = 0;
   if (covered) f |= AUDIT_COVERED;
-  if (lost && !tie) f |= AUDIT_FIGHT;
+  const bool undrawn = covered && p.winner < 0;
+  if (lost && !tie && !undrawn) f |= AUDIT_FIGHT;
+  if (undrawn) f |= AUDIT_UNDRAWN;
   if (p.coplanar || (lost && tie)) f |= AUDIT_COPLANAR;
   if (p.discarded) f |= AUDIT_DISCARDED;
   if (covered && !lost && std::isinf(p.second_s)) f |= AUDIT_NO_MARGIN;

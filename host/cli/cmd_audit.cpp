@@ -32,9 +32,10 @@ struct AuditOptions {
   std::string gl_device = "auto";
   double fov_y = 0;
   int frames = 1;
-  double jitter = -1;  // unset: 10^-4 of the distance from the eye to the geometry's centre
+  double jitter = NAN;  // unset: 10^-4 of the distance from the eye to the geometry's centre
   uint64_t max_triangles = 1ull << 22;  // about 2.4 GB at 560 bytes a triangle
   bool no_fixes = false, reference = false;
+  bool jitter_given = false, fov_given = false;
 };
 
 std::array<double, 3> parse_vec3(const std::string& option, const std::string& text) {
@@ -57,7 +58,7 @@ AuditCamera camera_of(const AuditOptions& o, const SceneGeometry& g, int w, int 
   if (o.eye.empty() != o.target.empty())
     throw Error(ExitCode::usage, "--eye and --target go together");
   if (!o.eye.empty()) {
-    const double fov = o.fov_y > 0 ? o.fov_y : 60.0;
+    const double fov = o.fov_given ? o.fov_y : 60.0;
     return look_at_camera(parse_vec3("--eye", o.eye), parse_vec3("--target", o.target),
                           parse_vec3("--up", o.up), fov, w, h);
   }
@@ -71,7 +72,12 @@ AuditCamera camera_of(const AuditOptions& o, const SceneGeometry& g, int w, int 
     if (o.camera.empty() || c.name == o.camera) {
       *from_file = &c;
       AuditCamera cam = gltf_view(c, w, h);
-      if (o.fov_y > 0) cam.fov_y_deg = o.fov_y;
+      if (o.fov_given) cam.fov_y_deg = o.fov_y;
+      if (!(cam.fov_y_deg > 0 && cam.fov_y_deg < 180))
+        throw InputError(
+            fmt::format("{}: camera '{}' has yfov {} radians; a perspective camera's "
+                        "is above 0 and below pi",
+                        o.file, c.name, c.yfov));
       return cam;
     }
   throw InputError(fmt::format("{}: no camera named '{}' (the file has: {})", o.file, o.camera,
@@ -108,6 +114,7 @@ std::string png_name(const std::string& prefix, const EvalPair& p, const char* k
 }
 
 void run_audit(AuditOptions o, const GlobalOptions& g) {
+  check_output_spares_inputs("-o", o.out.output, {{"the --path file", o.path}});
   check_output_spares_inputs("-o", o.out.output,
                              {{"the glTF file", o.file}, {"the scene file", o.scene.scene_file}});
   int w = 0, h = 0;
@@ -118,8 +125,18 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
                 fmt::format("--size '{}': expected WxH in pixels, each 1 to 16384", o.size));
   if (o.frames < 1 || o.frames > 1000)
     throw Error(ExitCode::usage, fmt::format("--frames {}: 1 to 1000", o.frames));
-  if (o.jitter != -1 && (!(o.jitter >= 0) || !std::isfinite(o.jitter)))
+  if (o.jitter_given && (!(o.jitter >= 0) || !std::isfinite(o.jitter)))
     throw Error(ExitCode::usage, "--jitter: a distance in metres, 0 or more");
+  if (o.fov_given && !(o.fov_y > 0 && o.fov_y < 180))
+    throw Error(ExitCode::usage,
+                fmt::format("--fov-y {}: degrees, above 0 and below 180", o.fov_y));
+  if (!o.path.empty() && (!o.eye.empty() || !o.target.empty()))
+    throw Error(ExitCode::usage, "--path gives the views: not with --eye and --target");
+  if (static_cast<uint64_t>(w) * h > (1ull << 26))
+    throw Error(ExitCode::usage,
+                fmt::format("--size {}: {} pixels, more than the audit takes (67,108,864, e.g. "
+                            "8192x8192: 16 bytes a pixel)",
+                            o.size, static_cast<uint64_t>(w) * h));
   if (o.source != "emulated" && o.source != "rendered")
     throw Error(ExitCode::usage, "--source: emulated or rendered");
   const SceneGeometry geometry = load_gltf(o.file, o.max_triangles);
@@ -127,7 +144,7 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
   const AuditCamera camera = camera_of(o, geometry, w, h, &file_camera);
   // The views' moves scale with the scene: a ten-thousandth of the eye's distance to the centre
   // of what it looks at moves depths by a few storage codes at most set-ups' resolutions.
-  if (o.jitter == -1) {
+  if (!o.jitter_given) {
     const auto c = bounding_box_centre(geometry);
     o.jitter = 1e-4 * std::hypot(c[0] - camera.eye[0], c[1] - camera.eye[1], c[2] - camera.eye[2]);
   }
@@ -162,20 +179,23 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
   AuditReport report;
   report.geometry = &geometry;
   report.header = output_header("audit", rt ? rt->description() : "");
-  report.header.update({{"file", o.file},
-                        {"triangles", geometry.triangles},
-                        {"draws", geometry.draws.size()},
-                        {"camera", camera.description},
-                        {"fov_y_deg", camera.fov_y_deg},
-                        {"width", w},
-                        {"height", h},
-                        {"frames", o.frames},
-                        {"jitter", o.frames > 1 ? o.jitter : 0.0},
-                        {"near", scene.near},
-                        {"far", scene.far},
-                        {"source", o.source},
-                        {"scene_name", scene.name},
-                        {"scene", scene.json}});
+  report.header.update(
+      {{"file", o.file},
+       {"triangles", geometry.triangles},
+       {"draws", geometry.draws.size()},
+       {"camera", o.path.empty() ? camera.description
+                                 : req.frames[0].description + " (first of " +
+                                       std::to_string(req.frames.size()) + " views)"},
+       {"fov_y_deg", camera.fov_y_deg},
+       {"width", w},
+       {"height", h},
+       {"frames", req.frames.size()},
+       {"jitter", o.path.empty() && o.frames > 1 ? o.jitter : 0.0},
+       {"near", scene.near},
+       {"far", scene.far},
+       {"source", o.source},
+       {"scene_name", scene.name},
+       {"scene", scene.json}});
   if (o.source == "rendered") report.rendered = nlohmann::json::array();
   std::unique_ptr<GlContext> gl;
   for (const EvalPair& pair : scene.evaluate) {
@@ -187,7 +207,7 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
     if (!o.no_fixes) {
       FixRequest fix;
       fix.alternatives = default_alternatives(scene, pair);
-      add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames[0], audit,
+      add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames, audit,
                 fix);
     }
     if (!o.png.empty()) {
@@ -261,9 +281,14 @@ void add_audit_command(CLI::App& app, GlobalOptions& global) {
       "Refuse larger scenes (default 4194304: about 560 bytes of memory a triangle, 2.4 GB)");
   cmd->add_flag("--no-fixes", o->no_fixes, "Leave out the fixes (and their MTS measurements)");
   cmd->add_flag("--reference", o->reference,
-                "Run the per-pixel pass in the host reference instead of OpenCL (slow; checks)");
+                "Run the per-pixel pass in the host reference, one thread, instead of OpenCL: no "
+                "kernel to build, so quicker for a small image, far slower for a large one");
   o->out.add_to(*cmd);
-  cmd->callback([o, &global]() { run_audit(*o, global); });
+  cmd->callback([o, &global, cmd]() {
+    o->jitter_given = cmd->count("--jitter") > 0;
+    o->fov_given = cmd->count("--fov-y") > 0;
+    run_audit(*o, global);
+  });
 }
 
 }  // namespace depthprec::cli

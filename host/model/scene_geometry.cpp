@@ -124,6 +124,17 @@ std::array<double, 3> transform_point(const Mat4d& m, double x, double y, double
   return p;
 }
 
+bool SceneGeometry::neighbours(uint32_t a, uint32_t b) const {
+  const Draw& d = draw_of(a);
+  if (&d != &draw_of(b)) return false;
+  const auto& ta = d.triangles[a - d.first_triangle];
+  const auto& tb = d.triangles[b - d.first_triangle];
+  for (uint32_t i : ta)
+    for (uint32_t j : tb)
+      if (i == j) return true;
+  return false;
+}
+
 std::array<double, 3> bounding_box_centre(const SceneGeometry& g) {
   std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
   for (const Draw& d : g.draws)

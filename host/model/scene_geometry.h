@@ -42,6 +42,10 @@ struct SceneGeometry {
   uint64_t triangles = 0;
   // The draw of scene-wide triangle t (binary search over first_triangle).
   const Draw& draw_of(uint32_t t) const;
+  // Whether triangles a and b are neighbours on one surface: the same draw, a corner in common.
+  // At a pixel on their seam the coverage rule gives it to one; whichever, no surface shows
+  // through.
+  bool neighbours(uint32_t a, uint32_t b) const;
 };
 
 // Loads path; throws InputError naming the file and what is wrong: not glTF, no triangles

@@ -41,6 +41,7 @@ std::vector<uint8_t> margin_image(const SetupAudit& a) {
   return image(a, [&a](size_t i) -> std::array<uint8_t, 3> {
     const uint32_t f = a.image.flags[i];
     if (f & AUDIT_FIGHT) return {255, 0, 0};
+    if (f & AUDIT_COPLANAR) return {40, 90, 255};
     if (!(f & AUDIT_COVERED)) return {0, 0, 0};
     if (f & AUDIT_NO_MARGIN) {
       const uint8_t s = static_cast<uint8_t>(a.shade[i] / 2);

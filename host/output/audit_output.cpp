@@ -25,21 +25,22 @@ nlohmann::json optional_number(double v) {
 }
 
 nlohmann::json pair_json(const SceneGeometry& g, const FightPair& p) {
-  nlohmann::json j = {{"winner", surface_json(g, p.winner_draw, p.winner_triangle)},
-                      {"front", surface_json(g, p.front_draw, p.front_triangle)},
-                      {"fighting_pixels", p.pixels},
-                      {"eye_depth_min", json_number(p.depth_min)},
-                      {"eye_depth_median", json_number(p.depth_median)},
-                      {"eye_depth_max", json_number(p.depth_max)},
-                      {"separation_min", json_number(p.separation_min)},
-                      {"separation_median", json_number(p.separation_median)},
-                      {"mts", optional_number(p.mts)},
-                      {"offset_needed", optional_number(p.offset)},
-                      {"near_plane_that_resolves",
-                       p.near_plane ? json_number(*p.near_plane) : nlohmann::json(nullptr)},
-                      {"setups_that_resolve", p.resolving},
-                      {"bias_units_that_resolve",
-                       p.bias_units ? json_number(*p.bias_units) : nlohmann::json(nullptr)}};
+  nlohmann::json j = {
+      {"winner", surface_json(g, p.winner_draw, p.winner_triangle)},
+      {"front", surface_json(g, p.front_draw, p.front_triangle)},
+      {"fighting_pixels", p.pixels},
+      {"eye_depth_min", json_number(p.depth_min)},
+      {"eye_depth_median", json_number(p.depth_median)},
+      {"eye_depth_max", json_number(p.depth_max)},
+      {"separation_min", json_number(p.separation_min)},
+      {"separation_median", json_number(p.separation_median)},
+      {"mts", optional_number(p.mts)},
+      {"offset_needed", optional_number(p.offset)},
+      {"near_plane_that_resolves",
+       p.near_plane ? json_number(*p.near_plane) : nlohmann::json(nullptr)},
+      {"setups_that_resolve", p.resolving},
+      {"bias_units_that_resolve", p.bias_units ? nlohmann::json(static_cast<int64_t>(*p.bias_units))
+                                               : nlohmann::json(nullptr)}};
   if (!p.bias_note.empty()) j["bias_note"] = p.bias_note;
   return j;
 }
@@ -65,6 +66,8 @@ nlohmann::json audit_json(const AuditReport& r, bool timing) {
                {"fighting_pixels", s.fighting_pixels},
                {"coplanar_pixels", s.coplanar_pixels},
                {"discarded_pixels", s.discarded_pixels},
+               {"undrawn_pixels", s.undrawn_pixels},
+               {"seam_pixels", s.seam_pixels},
                {"rasterised_triangles", s.records},
                {"culled_triangles", s.culled},
                {"clipped_triangles", s.clipped},
@@ -87,6 +90,7 @@ nlohmann::json audit_json(const AuditReport& r, bool timing) {
     if (timing) {
       sj["setup_seconds"] = json_number(s.setup_seconds);
       sj["pixel_seconds"] = json_number(s.pixel_seconds);
+      sj["fix_seconds"] = json_number(s.fix_seconds);
     }
     j["setups"].push_back(sj);
   }
@@ -104,7 +108,7 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
                                     {"coplanar_pixels"},   {"covered_pixels"},
                                     {"winner", true},      {"front", true},
                                     {"pair_pixels"},       {"eye_depth"},
-                                    {"separation"},        {"mts"},
+                                    {"min_separation"},    {"mts"},
                                     {"offset_needed"},     {"near_that_resolves"},
                                     {"bias_units"},        {"setups_that_resolve", true}};
   Cells cells;
@@ -124,9 +128,10 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : " ") + l;
       row.insert(row.end(),
                  {short_name(g, p.winner_draw), short_name(g, p.front_draw),
-                  std::to_string(p.pixels), num(p.depth_median), num(p.separation_median),
-                  opt(p.mts), opt(p.offset), p.near_plane ? num(*p.near_plane) : none,
-                  p.bias_units ? num(*p.bias_units) : none, resolving.empty() ? none : resolving});
+                  std::to_string(p.pixels), num(p.depth_median), num(p.separation_min), opt(p.mts),
+                  opt(p.offset), p.near_plane ? num(*p.near_plane) : none,
+                  p.bias_units ? std::to_string(static_cast<int64_t>(*p.bias_units)) : none,
+                  resolving.empty() ? none : resolving});
       cells.push_back(row);
     }
   }
@@ -143,26 +148,44 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       h.value("file", ""), g.triangles, g.draws.size(), h.value("camera", ""), h.value("width", 0),
       h.value("height", 0), human(h.value("near", 0.0)), human(h.value("far", 0.0)));
   std::string text = captioned(caption, cols, cells, format);
+  // what the tables do not show, said in words (a blank line first, so Markdown ends the table)
+  std::string notes;
+  for (const SetupAudit& s : r.setups) {
+    const std::string label = s.pair.label();
+    if (s.covered_pixels == 0)
+      notes += label +
+               ": no pixel is covered: the camera sees nothing between the near and far "
+               "planes\n";
+    if (s.undrawn_pixels)
+      notes += fmt::format(
+          "{}: {} covered pixels draw nothing: every fragment stores the cleared "
+          "buffer's code (far plane too near, or the format too coarse there)\n",
+          label, s.undrawn_pixels);
+    if (s.non_finite)
+      notes +=
+          fmt::format("{}: {} triangles dropped: a vertex is not finite\n", label, s.non_finite);
+  }
   for (size_t k = 0; k < r.pngs.size(); ++k)
     if (!r.pngs[k].empty())
-      text += fmt::format("{}: {} (fights red, coplanar blue), margin {}\n",
-                          r.setups[k].pair.label(), r.pngs[k], r.margin_pngs[k]);
+      notes += fmt::format("{}: {} (fights red, coplanar blue), margin {}\n",
+                           r.setups[k].pair.label(), r.pngs[k], r.margin_pngs[k]);
   if (r.rendered.is_array())
     for (size_t k = 0; k < r.rendered.size(); ++k)
-      text += fmt::format(
+      notes += fmt::format(
           "{}: rendered on {}: fighting pixels equal to the emulation's on {} of "
           "{} pixels, winners on {}\n",
           r.setups[k].pair.label(), r.rendered[k].value("renderer", ""),
           r.rendered[k].value("fight_agree", 0), r.rendered[k].value("pixels", 0),
           r.rendered[k].value("winner_agree", 0));
   if (h.value("frames", 1) == 1)
-    text +=
+    notes +=
         "One view: a camera moved by a fraction of a code's depth can fight where this one "
         "does not; --frames N adds N - 1 views moved by up to --jitter.\n";
   if (timing)
     for (const SetupAudit& s : r.setups)
-      text += fmt::format("{}: set-up {:.3f} s, pixels {:.3f} s\n", s.pair.label(), s.setup_seconds,
-                          s.pixel_seconds);
+      notes += fmt::format("{}: set-up {:.3f} s, pixels {:.3f} s, fixes {:.3f} s\n", s.pair.label(),
+                           s.setup_seconds, s.pixel_seconds, s.fix_seconds);
+  if (!notes.empty()) text += "\n" + notes;
   return for_terminal(text, format);
 }
 

@@ -104,25 +104,6 @@ std::vector<uint32_t> render_winners(GlContext&, const Scene& scene, const EvalP
   return ids;
 }
 
-namespace {
-
-// Whether scene-wide triangles a and b are neighbours on one surface: the same draw, a corner in
-// common. At a pixel on their seam the coverage rule picks one, and the rasterizers' rules (fixed
-// point in llvmpipe, binary32 edge functions in the emulation) may pick differently there; no
-// surface shows through.
-bool neighbours(const SceneGeometry& g, uint32_t a, uint32_t b) {
-  const Draw& d = g.draw_of(a);
-  if (&d != &g.draw_of(b)) return false;
-  const auto& ta = d.triangles[a - d.first_triangle];
-  const auto& tb = d.triangles[b - d.first_triangle];
-  for (uint32_t i : ta)
-    for (uint32_t j : tb)
-      if (i == j) return true;
-  return false;
-}
-
-}  // namespace
-
 nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& pair,
                             const SceneGeometry& g, const AuditCamera& cam,
                             const SetupAudit& audit) {
@@ -149,7 +130,7 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
       const size_t i = static_cast<size_t>(y) * e.width + x;
       const uint32_t rw = rendered[i], ew = e.winner[i], front = e.front[i];
       bool fight = false;
-      if (rw != AUDIT_NONE && front != AUDIT_NONE && rw != front && !neighbours(g, rw, front)) {
+      if (rw != AUDIT_NONE && front != AUDIT_NONE && rw != front && !g.neighbours(rw, front)) {
         const float px = static_cast<float>(x) + 0.5f, py = static_cast<float>(y) + 0.5f;
         const double sw = ray_depth(a.ray, a.planes[rw], px, py);
         const double sf = ray_depth(a.ray, a.planes[front], px, py);
@@ -157,7 +138,7 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
       }
       const bool emulated = (e.flags[i] & AUDIT_FIGHT) != 0;
       const auto classify = [&](Why& why) {
-        if (rw != AUDIT_NONE && ew != AUDIT_NONE && neighbours(g, rw, ew))
+        if (rw != AUDIT_NONE && ew != AUDIT_NONE && g.neighbours(rw, ew))
           ++why.seam;
         else if (e.flags[i] & AUDIT_COPLANAR)
           ++why.coplanar;

@@ -207,3 +207,49 @@ TEST_CASE("audit's CSV has a row per set-up and pair, with the JSON's counts", "
   }
   CHECK(rows == 2);  // standard: the wall over the decal; reversed: one row, no pair
 }
+
+TEST_CASE("audit says what the counts leave out: nothing drawn, seams, a transform fix",
+          "[audit][cli]") {
+  SECTION("a format too coarse draws nothing: undrawn, not fighting") {
+    const auto j = audit_json_of(kAuditDir +
+                                 "decal_wall.gltf -t standard -f float16 --size "
+                                 "160x90 --no-fixes");
+    const auto& s = j.at("setups").at(0);
+    CHECK(s.at("fighting_pixels") == 0);
+    CHECK(s.at("undrawn_pixels") == s.at("covered_pixels"));
+  }
+  SECTION("a box's own faces at its silhouette are seams, not fights") {
+    const auto j = audit_json_of(kAuditDir +
+                                 "intersecting_boxes.gltf -t standard -f unorm24 "
+                                 "--size 1280x720 --no-fixes");
+    const auto& s = j.at("setups").at(0);
+    CHECK(s.at("seam_pixels").get<int>() > 0);
+    for (const auto& p : s.at("pairs"))
+      CHECK(p.at("winner").at("node") != p.at("front").at("node"));
+  }
+  SECTION("far from the origin, camera-relative is the fix") {
+    const auto j = audit_json_of(kAuditDir +
+                                 "far_from_origin.glb -t standard -f unorm24 --size "
+                                 "160x90");
+    const auto& p = j.at("setups").at(0).at("pairs").at(0);
+    CHECK_THAT(p.at("setups_that_resolve").dump(), Contains("standard/unorm24/gl camera_relative"));
+    CHECK(p.at("offset_needed") == 0);  // its 1 cm is more than the MTS: the transform fights
+  }
+  SECTION("bad fields of view and views given twice are refused") {
+    CHECK(run_cli("audit " + kAuditDir + "decal_wall.gltf --fov-y 0").exit_code == 2);
+    CHECK(run_cli("audit " + kAuditDir + "decal_wall.gltf --fov-y 180").exit_code == 2);
+    CHECK(run_cli("audit " + kAuditDir + "decal_wall.gltf --size 16384x16384").exit_code == 2);
+    const auto dir = test::empty_dir("audit_views");
+    test::write_bytes(dir / "p.txt", "0,0,0,0,0,-1\n");
+    const auto r = run_cli("audit " + kAuditDir +
+                           "decal_wall.gltf --eye 0,0,0 --target 0,0,-1 "
+                           "--path " +
+                           (dir / "p.txt").string());
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Contains("--path gives the views"));
+    const auto o = run_cli("audit " + kAuditDir + "decal_wall.gltf --path " +
+                           (dir / "p.txt").string() + " -o " + (dir / "p.txt").string());
+    CHECK(o.exit_code == 3);
+    CHECK(test::bytes_of(dir / "p.txt") == "0,0,0,0,0,-1\n");
+  }
+}

@@ -98,7 +98,7 @@ COMMANDS = [
     (f"audit {AUDIT_SCENE} -t standard,reversed -f unorm24 --size 160x90 --set sampling=paper "
      "--no-timing -q", "audit", True,
      ["fighting_pixels", "coplanar_pixels", "covered_pixels", "pair_pixels", "eye_depth",
-      "separation", "mts", "offset_needed", "near_that_resolves", "bias_units"], None),
+      "min_separation", "mts", "offset_needed", "near_that_resolves", "bias_units"], None),
     (f"bias {SCENE}", "bias", True,
      ["z", "units", "factor", "set factor", "set units", "offset", "eye separation", "MTS"], None),
 ]
