@@ -103,32 +103,38 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   // a value the set-up has not (no pair, no fix): "-" in text, an empty CSV field
   const std::string none = format == "csv" ? "" : "-";
   const auto opt = [&](double v) { return std::isnan(v) ? none : num(v); };
+  // technique, format, depth_range, winner and front lead, so a table too wide for the terminal
+  // repeats them in each block (host/output/text_table.h grid)
   const std::vector<Column> cols = {{"technique", true},   {"format", true},
-                                    {"depth_range", true}, {"fighting_pixels"},
+                                    {"depth_range", true}, {"winner", true},
+                                    {"front", true},       {"fighting_pixels"},
                                     {"coplanar_pixels"},   {"covered_pixels"},
-                                    {"winner", true},      {"front", true},
                                     {"pair_pixels"},       {"eye_depth"},
                                     {"min_separation"},    {"mts"},
                                     {"offset_needed"},     {"near_that_resolves"},
                                     {"bias_units"},        {"setups_that_resolve", true}};
   Cells cells;
   for (const SetupAudit& s : r.setups) {
-    const std::vector<std::string> head = {
-        info(s.pair.technique).name,       s.pair.format,
-        to_string(s.pair.depth_range),     std::to_string(s.fighting_pixels),
-        std::to_string(s.coplanar_pixels), std::to_string(s.covered_pixels)};
+    const std::vector<std::string> head = {info(s.pair.technique).name, s.pair.format,
+                                           to_string(s.pair.depth_range)};
+    const std::vector<std::string> counts = {std::to_string(s.fighting_pixels),
+                                             std::to_string(s.coplanar_pixels),
+                                             std::to_string(s.covered_pixels)};
     if (s.pairs.empty()) {
       std::vector<std::string> row = head;
-      row.insert(row.end(), {none, none, "0", none, none, none, none, none, none, none});
+      row.insert(row.end(), {none, none});
+      row.insert(row.end(), counts.begin(), counts.end());
+      row.insert(row.end(), {"0", none, none, none, none, none, none, none});
       cells.push_back(row);
     }
     for (const FightPair& p : s.pairs) {
       std::vector<std::string> row = head;
       std::string resolving;
       for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : " ") + l;
+      row.insert(row.end(), {short_name(g, p.winner_draw), short_name(g, p.front_draw)});
+      row.insert(row.end(), counts.begin(), counts.end());
       row.insert(row.end(),
-                 {short_name(g, p.winner_draw), short_name(g, p.front_draw),
-                  std::to_string(p.pixels), num(p.depth_median), num(p.separation_min), opt(p.mts),
+                 {std::to_string(p.pixels), num(p.depth_median), num(p.separation_min), opt(p.mts),
                   opt(p.offset), p.near_plane ? num(*p.near_plane) : none,
                   p.bias_units ? std::to_string(static_cast<int64_t>(*p.bias_units)) : none,
                   resolving.empty() ? none : resolving});
