@@ -252,8 +252,10 @@ void add_audit_command(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("-t,--technique", o->scene.techniques, "Technique(s)")->delimiter(',');
   cmd->add_option("-f,--format", o->scene.formats, "Storage format(s)")->delimiter(',');
   cmd->add_option("--depth-range", o->scene.depth_ranges, "gl and/or zero_to_one")->delimiter(',');
-  cmd->add_option("--near", o->scene.near, "Near plane (default: the glTF camera's, else the scene's, 1)");
-  cmd->add_option("--far", o->scene.far, "Far plane, inf for none (default: the glTF camera's, else the scene's, 1e9)");
+  cmd->add_option("--near", o->scene.near,
+                  "Near plane (default: the glTF camera's, else the scene's, 1)");
+  cmd->add_option("--far", o->scene.far,
+                  "Far plane, inf for none (default: the glTF camera's, else the scene's, 1e9)");
   cmd->add_option("--profile", o->scene.profile, "Implementation profile: ideal, llvmpipe, ...");
   cmd->add_option("--eye", o->eye, "Camera position X,Y,Z");
   cmd->add_option("--target", o->target, "Point the camera looks at X,Y,Z");
