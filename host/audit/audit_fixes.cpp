@@ -164,7 +164,7 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
     if (scene.pipeline.transform == Transform::absolute) {
       Scene relative = scene;
       relative.pipeline.transform = Transform::camera_relative;
-      if (holds(relative, pair)) fp.resolving.push_back(pair.label() + " camera_relative");
+      if (holds(relative, pair)) fp.resolving.push_back(pair.label() + "/camera_relative");
     }
     const std::string not_applicable = bias_not_applicable(scene, pair);
     if (!not_applicable.empty()) {

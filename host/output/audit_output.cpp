@@ -130,7 +130,8 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
     for (const FightPair& p : s.pairs) {
       std::vector<std::string> row = head;
       std::string resolving;
-      for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : " ") + l;
+      // one word, so the text never folds a row inside it
+      for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : ",") + l;
       row.insert(row.end(), {short_name(g, p.winner_draw), short_name(g, p.front_draw)});
       row.insert(row.end(), counts.begin(), counts.end());
       row.insert(row.end(),

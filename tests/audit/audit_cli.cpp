@@ -232,7 +232,7 @@ TEST_CASE("audit says what the counts leave out: nothing drawn, seams, a transfo
                                  "far_from_origin.glb -t standard -f unorm24 --size "
                                  "160x90");
     const auto& p = j.at("setups").at(0).at("pairs").at(0);
-    CHECK_THAT(p.at("setups_that_resolve").dump(), Contains("standard/unorm24/gl camera_relative"));
+    CHECK_THAT(p.at("setups_that_resolve").dump(), Contains("standard/unorm24/gl/camera_relative"));
     CHECK(p.at("offset_needed") == 0);  // its 1 cm is more than the MTS: the transform fights
   }
   SECTION("bad fields of view and views given twice are refused") {
