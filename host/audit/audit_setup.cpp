@@ -50,19 +50,11 @@ Mat4f rounded(const Mat4d& m) {
   return f;
 }
 
-// Row r of m times an object position (x, y, z, 1): as the compiled vertex shader forms it, the
-// constant w folded away (host/model/frame_setup.h object_row_dot for the planes' (x, y, 0, 1)).
-float position_row_dot(const Mat4f& m, int r, const float p[3], VertexForm form) {
-  const float* row = &m[r * 4];
-  if (form == VertexForm::fma)
-    return std::fma(row[2], p[2], std::fma(row[1], p[1], std::fma(row[0], p[0], row[3])));
-  return ((row[0] * p[0] + row[1] * p[1]) + row[2] * p[2]) + row[3];
-}
-
 // The vertex stage of object position p up to its clip position.
 void vertex_clip(const Scene& s, const ProbeConstants& pc, const DrawMatrices& st,
                  const std::array<float, 3>& p, float clip[4]) {
   const VertexForm form = s.pipeline.vertex;
+  const float obj[4] = {p[0], p[1], p[2], 1.0f};
   float eye[4] = {0, 0, 0, 1};
   if (st.relative_to_eye) {
     float rel[4] = {0, 0, 0, 1};
@@ -73,10 +65,10 @@ void vertex_clip(const Scene& s, const ProbeConstants& pc, const DrawMatrices& s
     }
     for (int r = 0; r < 3; ++r) eye[r] = mat_row_dot(st.first, r, rel, form);
   } else if (st.premultiplied) {
-    for (int r = 0; r < 4; ++r) clip[r] = position_row_dot(st.first, r, p.data(), form);
+    for (int r = 0; r < 4; ++r) clip[r] = object_row_dot(st.first, r, obj, form);
     return;
   } else {
-    for (int r = 0; r < 3; ++r) eye[r] = position_row_dot(st.first, r, p.data(), form);
+    for (int r = 0; r < 3; ++r) eye[r] = object_row_dot(st.first, r, obj, form);
     if (st.view_on_gpu) {
       const float model[4] = {eye[0], eye[1], eye[2], 1.0f};
       for (int r = 0; r < 3; ++r) eye[r] = mat_row_dot(st.second, r, model, form);
@@ -159,6 +151,28 @@ Scene audit_scene(Scene s, const AuditCamera& cam) {
   return s;
 }
 
+std::array<double, 4> pixel_ray(const Scene& s, const ProbeConstants& pc) {
+  return {0.5f * static_cast<float>(s.viewport_w), 0.5f * static_cast<float>(s.viewport_h),
+          pc.P_full[0], pc.P_full[5]};
+}
+
+std::vector<std::array<double, 4>> exact_planes(const SceneGeometry& g, const AuditCamera& cam) {
+  std::vector<std::array<double, 4>> planes(g.triangles);
+  for (const Draw& d : g.draws) {
+    const Mat4d mv = mat_mul(cam.view, d.world);
+    for (size_t t = 0; t < d.triangles.size(); ++t) {
+      std::array<Vec3, 3> e;
+      for (int k = 0; k < 3; ++k) {
+        const auto& p = d.positions[d.triangles[t][k]];
+        e[k] = transform_point(mv, p[0], p[1], p[2]);
+      }
+      const Vec3 n = cross(sub(e[1], e[0]), sub(e[2], e[0]));
+      planes[d.first_triangle + t] = {n[0], n[1], n[2], dot(n, e[0])};
+    }
+  }
+  return planes;
+}
+
 double ray_depth(const std::array<double, 4>& ray, const std::array<double, 4>& plane, float px,
                  float py) {
   const double rx = (static_cast<double>(px) / ray[0] - 1.0) / ray[2];
@@ -184,15 +198,14 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
   const bool gl = pair.depth_range == DepthRange::gl;
   const float hw = 0.5f * static_cast<float>(s.viewport_w);
   const float hh = 0.5f * static_cast<float>(s.viewport_h);
-  a.ray = {hw, hh, a.pc.P_full[0], a.pc.P_full[5]};
+  a.ray = pixel_ray(s, a.pc);
   a.clear_code = s.storage_format(pair).encode(ti.greater ? 0.0f : 1.0f);
   const unsigned planes =
       s.pipeline.clip == ClipForm::llvmpipe ? kClipPlanesXY | kClipPlanesZ : kClipPlanesZ;
-  a.planes.resize(g.triangles);
+  a.planes = exact_planes(g, cam);
   std::vector<std::array<float, 4>> boxes;  // per record: x min, x max, y min, y max
   for (const Draw& d : g.draws) {
     const DrawMatrices st = draw_matrices(s, a.pc, d, cam);
-    const Mat4d mv = mat_mul(cam.view, d.world);
     std::vector<SetupVertex> v(d.positions.size());
     std::vector<char> bad(d.positions.size(), 0);
     for (size_t i = 0; i < d.positions.size(); ++i) {
@@ -209,13 +222,6 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
     for (size_t t = 0; t < d.triangles.size(); ++t) {
       const uint32_t src = d.first_triangle + static_cast<uint32_t>(t);
       const auto& tri = d.triangles[t];
-      std::array<Vec3, 3> e;
-      for (int k = 0; k < 3; ++k) {
-        const auto& p = d.positions[tri[k]];
-        e[k] = transform_point(mv, p[0], p[1], p[2]);
-      }
-      const Vec3 n = cross(sub(e[1], e[0]), sub(e[2], e[0]));
-      a.planes[src] = {n[0], n[1], n[2], dot(n, e[0])};
       const SetupVertex* tv[3] = {&v[tri[0]], &v[tri[1]], &v[tri[2]]};
       const unsigned m0 = clip_mask(tv[0]->c, gl, planes), m1 = clip_mask(tv[1]->c, gl, planes),
                      m2 = clip_mask(tv[2]->c, gl, planes);

@@ -72,6 +72,15 @@ AuditSetup audit_setup(const Scene& scene, const EvalPair& pair, const SceneGeom
 // The records as the kernel reads them: MTS_TRI_STRIDE floats each (interface/mts_layout.h).
 std::vector<float> packed_records(const AuditSetup& setup);
 
+// The pixel ray's constants (hw, hh, sx, sy; interface/audit_layout.h): half the viewport, the
+// projection's x and y scales in the matrix precision.
+std::array<double, 4> pixel_ray(const Scene& scene, const ProbeConstants& pc);
+// Per scene-wide triangle its exact eye-space plane (nx, ny, nz, c) seen from the camera: the
+// binary32 object positions through the binary64 world and view matrices, never rounded. The
+// same for every set-up.
+std::vector<std::array<double, 4>> exact_planes(const SceneGeometry& geometry,
+                                                const AuditCamera& camera);
+
 // The exact eye depth of the plane (nx, ny, nz, c) along the ray of window pixel centre (px, py),
 // in binary64 as kernels/audit.cl computes it.
 double ray_depth(const std::array<double, 4>& ray, const std::array<double, 4>& plane, float px,

@@ -31,12 +31,15 @@ inline float mat_row_dot(const Mat4f& m, int r, const float v[4],
   return ((row[0] * v[0] + row[1] * v[1]) + row[2] * v[2]) + row[3] * v[3];
 }
 
-// Row r of m times a plane's object position (x, y, 0, 1) (kernels/mts/common.cl obj_row16): as
-// mat_row_dot, except that under VertexForm::fma the compiler, which sees the constant z and w,
-// folds them away and fuses what is left as fma(m1, y, fma(m0, x, m3)).
+// Row r of m times an object position (x, y, z, 1) (kernels/mts/common.cl obj_row16 for the
+// planes' z = 0): as mat_row_dot, except that under VertexForm::fma the compiler, which sees the
+// constant w, folds it away and fuses what is left as fma(m2, z, fma(m1, y, fma(m0, x, m3))). For
+// a plane's z = 0 the outer fma adds an exact zero: fma(m1, y, fma(m0, x, m3)), what the compiler
+// makes of the planes' positions, whose z it folds too.
 inline float object_row_dot(const Mat4f& m, int r, const float obj[4], VertexForm form) {
   const float* row = &m[r * 4];
-  if (form == VertexForm::fma) return std::fma(row[1], obj[1], std::fma(row[0], obj[0], row[3]));
+  if (form == VertexForm::fma)
+    return std::fma(row[2], obj[2], std::fma(row[1], obj[1], std::fma(row[0], obj[0], row[3])));
   return mat_row_dot(m, r, obj);
 }
 

@@ -109,7 +109,8 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
                             const SetupAudit& audit) {
   const std::vector<uint32_t> rendered = render_winners(gl, scene, pair, g, cam);
   const Scene s = audit_scene(scene, cam);
-  const AuditSetup a = audit_setup(s, pair, g, cam);  // the exact planes and rays
+  const std::vector<std::array<double, 4>> planes = exact_planes(g, cam);
+  const std::array<double, 4> ray = pixel_ray(s, probe_constants(s, pair, s.near));
   const AuditPixels& e = audit.image;
   // Pixels whose winners (or fight verdicts) differ, by why: on a seam between neighbours of one
   // surface, where two surfaces share a plane (coplanar: the draw order decides), where the
@@ -132,8 +133,8 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
       bool fight = false;
       if (rw != AUDIT_NONE && front != AUDIT_NONE && rw != front && !g.neighbours(rw, front)) {
         const float px = static_cast<float>(x) + 0.5f, py = static_cast<float>(y) + 0.5f;
-        const double sw = ray_depth(a.ray, a.planes[rw], px, py);
-        const double sf = ray_depth(a.ray, a.planes[front], px, py);
+        const double sw = ray_depth(ray, planes[rw], px, py);
+        const double sf = ray_depth(ray, planes[front], px, py);
         fight = !(std::fabs(sw - sf) <= AUDIT_COPLANAR_RELATIVE * std::fmin(sw, sf));
       }
       const bool emulated = (e.flags[i] & AUDIT_FIGHT) != 0;
