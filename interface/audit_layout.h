@@ -29,6 +29,30 @@
  * surface on its own surface (same draw, a corner in common), at their seam: no fight */
 #define AUDIT_SEAM 64u
 
+/* set by the pass: the front surface wins, but by less than the depths of the front and the next
+ * surface behind it may move on another conformant implementation (the record's tolerance) plus
+ * the conversion's freedom: it fights on some implementation or view */
+#define AUDIT_AT_RISK 128u
+
+/* Per record, AUDIT_TOL_WORDS floats (host/audit/depth_tolerance.h): at a covered pixel the
+ * interpolated value (depth, or q = 1/w for fragment-stage depth) of any conformant
+ * implementation lies within C + max(0, E0 + EX (px - x0) + EY (py - y0)) of the emulated one,
+ * (x0, y0) the record's anchor (MTS_T_X0, MTS_T_Y0), and a fragment shader's depth from it within
+ * SHADER more. Rounded up to binary32. */
+#define AUDIT_TOL_WORDS 5
+#define AUDIT_TOL_C 0
+#define AUDIT_TOL_E0 1
+#define AUDIT_TOL_EX 2
+#define AUDIT_TOL_EY 3
+#define AUDIT_TOL_SHADER 4
+
+/* How many codes two conformant conversions of one depth may lie apart: unorm round to nearest,
+ * truncation (softpipe), llvmpipe's double rounding (bounds.cl GAP_CODE_WIDTH: under 3 codes for
+ * unorm32, 2 for the others); another float format's rounding direction, 1; binary32 is stored as
+ * it is. */
+#define AUDIT_CONVERSION_CODES(unorm, bits, binary32) \
+  ((unorm) ? ((bits) >= 32 ? 3 : 2) : ((binary32) ? 0 : 1))
+
 /* Two surfaces are one plane at a pixel when their exact eye depths there differ by at most this
  * much relative to the depth: binary64 rounding of transforms and plane equations, far below any
  * separation a depth buffer resolves (2^-53 per step, a few dozen steps). */
@@ -51,6 +75,7 @@
   IN(float, probe)                                                                          \
   IN(float, records)                                                                        \
   IN(uint, source)                                                                          \
+  IN(float, tolerance)                                                                      \
   IN(double, ray) IN(double, planes) IN(uint, bins) IN(uint, bin_records) OUT(uint, winner) \
       OUT(uint, front) OUT(int, margin) OUT(uint, flags)
 typedef struct {

@@ -40,6 +40,35 @@ static inline long16 test_margin16(uint16 behind, uint16 front) { /* > 0: front 
 #endif
 }
 
+/* the conversion's freedom in codes (AUDIT_CONVERSION_CODES) */
+#if DF_KIND == 0
+#define AUDIT_W AUDIT_CONVERSION_CODES(1, DF_BITS, 0)
+#else
+#define AUDIT_W AUDIT_CONVERSION_CODES(0, 0, (DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH))
+#endif
+
+/* The depths [lo, hi] a conformant implementation may store for these fragments: the record's
+ * tolerance plane at the pixels around the interpolated value v, through the fragment shader's
+ * depth where it computes one (h is monotone in q: its ends are the interval's), widened by the
+ * shader's own error. Rounded outwards by 2^-20 of the tolerance; a value the sum cannot
+ * represent apart from v stays v, which is then the only binary32 within the tolerance. */
+static inline void tolerance16(__global const float* TL, __global const float* R, float16 v,
+                               float16 d, __global const float* P, float16 px, float py,
+                               float16* lo, float16* hi) {
+  const float16 plane = TL[AUDIT_TOL_E0] + TL[AUDIT_TOL_EX] * (px - R[MTS_T_X0]) +
+                        TL[AUDIT_TOL_EY] * (py - R[MTS_T_Y0]);
+  const float16 tv = (TL[AUDIT_TOL_C] + fmax(plane, 0.0f)) * (1.0f + 0x1.0p-20f);
+#if DEPTH_FROM == 2
+  const float16 d1 = depth_of_value16(v - tv, P).d, d2 = depth_of_value16(v + tv, P).d;
+  const float shader = TL[AUDIT_TOL_SHADER] * (1.0f + 0x1.0p-20f);
+  *lo = fmin(d1, d2) - shader;
+  *hi = fmax(d1, d2) + shader;
+#else
+  *lo = d - tv;
+  *hi = d + tv;
+#endif
+}
+
 __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPixelsArgs args) {
   const uint id = get_global_id(0);
   const uint tile = id / AUDIT_TILE, row = id % AUDIT_TILE;
@@ -55,16 +84,25 @@ __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPi
   int16 win = (int16)-1, frnt = (int16)-1, coplanar = (int16)0, discarded = (int16)0;
   double16 winner_s = (double16)INFINITY, front_s = (double16)INFINITY;
   double16 second_s = (double16)INFINITY;
+  float16 front_lo = 0.0f, front_hi = 0.0f, second_lo = 0.0f, second_hi = 0.0f;
   for (uint k = bins[tile]; k < bins[tile + 1]; ++k) {
     const uint r = bin_records[k];
     __global const float* R = records + (size_t)r * MTS_TRI_STRIDE;
     if (!(as_uint(R[MTS_T_BITS]) & 64u) || py < R[MTS_T_YMIN] || py > R[MTS_T_YMAX]) continue;
     const int16 in = covers16(R, px, py);
     if (!any16(in)) continue;
-    const frag16_t f = fragment16(broadcast16(row_plane(records, (int)r, py)), probe, px);
+    /* fragment16's code, with the interpolated value kept for the tolerance */
+    const float16 v = plane_at16(broadcast16(row_plane(records, (int)r, py)), px);
+    const depth16_t z = depth_of_value16(v, probe);
+    frag16_t f;
+    f.code = df_encode16(z.d, DF_FORMAT_FROM_DEFINES());
+    f.nonfinite = z.nonfinite;
+    f.clipped = z.clipped;
     const int16 ok = in & ~(f.nonfinite | f.clipped);
     discarded |= in & (f.nonfinite | f.clipped);
     if (!any16(ok)) continue;
+    float16 lo, hi;
+    tolerance16(tolerance + (size_t)r * AUDIT_TOL_WORDS, R, v, z.d, probe, px, py, &lo, &hi);
     const uint src = source[r];
     __global const double* pl = planes + (size_t)src * AUDIT_PLANE_WORDS;
     const double16 s = pl[3] / ((pl[0] * ray_x + pl[1] * ray_y) - pl[2]);
@@ -79,14 +117,21 @@ __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPi
     const long16 same = ok_l & (fabs(s - front_s) <= AUDIT_COPLANAR_RELATIVE * fmin(s, front_s));
     const long16 nearer = ok_l & ~same & (s < front_s);
     const long16 behind = ok_l & ~same & ~nearer & (s < second_s);
-    coplanar |= convert_int16(same);
+    /* coplanar with the front surface; a nearer surface hides the pair, so it starts afresh */
+    coplanar = (coplanar | convert_int16(same)) & ~convert_int16(nearer);
     second_s = select(select(second_s, front_s, nearer), s, behind);
     second_code = select(select(second_code, front_code, convert_int16(nearer)), f.code,
                          convert_int16(behind));
+    second_lo =
+        select(select(second_lo, front_lo, convert_int16(nearer)), lo, convert_int16(behind));
+    second_hi =
+        select(select(second_hi, front_hi, convert_int16(nearer)), hi, convert_int16(behind));
     const long16 take = nearer | (same & (s < front_s));
     front_s = select(front_s, s, take);
     frnt = select(frnt, (int16)src, convert_int16(take));
     front_code = select(front_code, f.code, convert_int16(take));
+    front_lo = select(front_lo, lo, convert_int16(take));
+    front_hi = select(front_hi, hi, convert_int16(take));
   }
   const int16 covered = frnt >= 0;
   const int16 lost = covered & (win != frnt);
@@ -101,12 +146,24 @@ __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPi
   m = clamp(m, (long16)INT_MIN, (long16)INT_MAX);
   const int16 no_margin = covered & ~lost & convert_int16(isinf(second_s));
   m = select(m, (long16)INT_MAX, convert_long16(no_margin | ~covered));
+  /* at risk: the front surface wins, but with both depths moved towards each other within their
+   * tolerances it leads by at most the conversion's freedom */
+#if COMPARE_GREATER
+  const float16 front_edge = front_lo, second_edge = second_hi;
+#else
+  const float16 front_edge = front_hi, second_edge = second_lo;
+#endif
+  const uint16 front_worst = df_encode16(clamp(front_edge, 0.0f, 1.0f), DF_FORMAT_FROM_DEFINES());
+  const uint16 second_worst = df_encode16(clamp(second_edge, 0.0f, 1.0f), DF_FORMAT_FROM_DEFINES());
+  const int16 at_risk = covered & ~lost & ~no_margin & ~coplanar &
+                        convert_int16(test_margin16(second_worst, front_worst) <= (long16)AUDIT_W);
   const uint16 fl = select((uint16)0u, (uint16)AUDIT_COVERED, covered) |
                     select((uint16)0u, (uint16)AUDIT_FIGHT, fight) |
                     select((uint16)0u, (uint16)AUDIT_COPLANAR, coplanar | (lost & tie)) |
                     select((uint16)0u, (uint16)AUDIT_DISCARDED, discarded) |
                     select((uint16)0u, (uint16)AUDIT_NO_MARGIN, no_margin) |
-                    select((uint16)0u, (uint16)AUDIT_UNDRAWN, undrawn);
+                    select((uint16)0u, (uint16)AUDIT_UNDRAWN, undrawn) |
+                    select((uint16)0u, (uint16)AUDIT_AT_RISK, at_risk);
   uint w[16], fr[16], flg[16];
   int mg[16];
   vstore16(as_uint16(win), 0, w);

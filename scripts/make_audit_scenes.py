@@ -11,7 +11,7 @@ Every visible surface is its own named mesh and node, so a report can say which 
 nodes are drawn in scene order (depth first), so the surface meant to be in front comes last.
 Each file has a perspective camera "main" (node and camera) looking at what the scene is about.
 
-  scripts/make_audit_scenes.py                  the five scenes into data/audit/
+  scripts/make_audit_scenes.py                  the test scenes into data/audit/
   scripts/make_audit_scenes.py --out DIR        ... into DIR
   scripts/make_audit_scenes.py --terrain N OUT.glb
                                                 terrain_road with N x N terrain quads (about
@@ -249,6 +249,48 @@ def far_from_origin():
     return decal_wall(50, 0.01, site, s)
 
 
+def drone_road():
+    """An 800 m road 1 cm above the ground, reaching behind a drone camera 60 m up: the ground and
+    the road cross the near plane, as ground planes do in almost every game view."""
+    s = Scene()
+    s.surface("ground", quad([-2500, 0, 2500], [5000, 0, 0], [0, 0, -5000]))
+    s.surface("road", quad([-10, 0.01, 400], [20, 0, 0], [0, 0, -800]))
+    s.camera([0, 60, 300], [0, 0, -300], 50, 0.1, 5000)
+    return s
+
+
+def ground_strip():
+    """A 20 km ground crossing the near plane (near 1 mm) with a strip 1 cm above it, seen from
+    eye height: whether it fights in one view is a matter of where the eye stands to the mm."""
+    s = Scene()
+    s.surface("ground", quad([-10000, 0, 10000], [20000, 0, 0], [0, 0, -20000]))
+    s.surface("strip", quad([-2, 0.01, 10000], [4, 0, 0], [0, 0, -20000]))
+    s.camera([0, 1.7, 0], [0, 0, -100], 60, 0.001, 10000)
+    return s
+
+
+def shelf_wall():
+    """A shelf whose back face lies in the wall, drawn after the wall: the shelf's top and front
+    hide both, so no pixel of it is coplanar."""
+    s = Scene()
+    s.surface("wall", quad([-5, 0, -5], [10, 0, 0], [0, 4, 0]))
+    s.surface("shelf", box([-1, 1.0, -5], [1, 1.05, -4.7]))
+    s.camera([0, 1.8, 0], [0, 1.0, -5], 50, 0.1, 100)
+    return s
+
+
+def rug_tiles():
+    """A rug 0.1 mm above a floor drawn twice, as two coplanar meshes of other tessellations, seen
+    25 m away with near 3 cm: the floors are coplanar where they show, not under the rug."""
+    s = Scene()
+    s.surface("floor_coarse", quad([-10, 0, 0], [20, 0, 0], [0, 0, -40]))
+    s.surface("floor_tiles", height_field([-10 + 2.5 * k for k in range(9)],
+                                          [-5 * k for k in range(9)], lambda x, z: 0.0))
+    s.surface("rug", quad([-1, 0.0001, -23.5], [2, 0, 0], [0, 0, -3]))
+    s.camera([0, 1.7, 0], [0, 0, -25], 50, 0.03, 1000)
+    return s
+
+
 def write_test_scenes(out):
     out.mkdir(parents=True, exist_ok=True)
     decal = decal_wall(500, 0.001)
@@ -258,13 +300,17 @@ def write_test_scenes(out):
     write(terrain_road(64), out / "terrain_road.gltf")
     write(intersecting_boxes(), out / "intersecting_boxes.gltf")
     write(far_from_origin(), out / "far_from_origin.glb")
+    write(drone_road(), out / "drone_road.gltf")
+    write(ground_strip(), out / "ground_strip.gltf")
+    write(shelf_wall(), out / "shelf_wall.gltf")
+    write(rug_tiles(), out / "rug_tiles.gltf")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", type=Path,
                         default=Path(__file__).resolve().parent.parent / "data" / "audit",
-                        help="directory for the five test scenes (default: data/audit/)")
+                        help="directory for the test scenes (default: data/audit/)")
     parser.add_argument("--terrain", nargs=2, metavar=("N", "OUT.glb"),
                         help="write only a terrain of N x N quads with a road, for benchmarks")
     args = parser.parse_args()

@@ -56,9 +56,10 @@ void gather(const AuditSetup& a, const SceneGeometry& g, const AuditPixels& px, 
       const double df = ray_depth(a.ray, a.planes[f], fx, fy);
       p.depths.push_back(df);
       p.separations.push_back(ray_depth(a.ray, a.planes[w], fx, fy) - df);
-      if (p.pair.sample.empty()) p.pair.sample_frame = frame;
-      if (p.pair.sample_frame == frame && p.pair.sample.size() < kFixPixels) {
-        p.pair.sample.emplace_back(x, y);
+      auto& samples = p.pair.samples;
+      if (samples.empty() || samples.back().frame != frame) samples.push_back({frame, {}});
+      if (samples.back().pixels.size() < kFixPixels) {
+        samples.back().pixels.emplace_back(x, y);
         for (uint32_t t : {w, f})
           if (std::find(p.pair.triangles.begin(), p.pair.triangles.end(), t) ==
               p.pair.triangles.end())
@@ -111,6 +112,7 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
       out.discarded_pixels += (f & AUDIT_DISCARDED) != 0;
       out.undrawn_pixels += (f & AUDIT_UNDRAWN) != 0;
       out.seam_pixels += (f & AUDIT_SEAM) != 0;
+      out.at_risk_pixels += (f & AUDIT_AT_RISK) != 0;
     }
     gather(a, g, px, AUDIT_FIGHT, static_cast<int>(k), fights);
     gather(a, g, px, AUDIT_COPLANAR, static_cast<int>(k), coplanar);

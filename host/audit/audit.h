@@ -13,6 +13,12 @@
 
 namespace depthprec {
 
+// Pixels of one view (an index into AuditRequest::frames).
+struct PixelSample {
+  int frame = 0;
+  std::vector<std::pair<int, int>> pixels;
+};
+
 // One pair of surfaces (draws) that fight: the one the depth test kept (winner) where the other
 // (front) is nearer.
 struct FightPair {
@@ -21,13 +27,12 @@ struct FightPair {
   uint64_t pixels = 0;                                    // over every frame
   double depth_min = 0, depth_median = 0, depth_max = 0;  // the front surface's eye depth, m
   double separation_min = 0, separation_median = 0;       // winner's minus front's, along the ray
-  // Pixels (x, y) of the first view it fights in (sample_frame), up to kFixPixels: the fixes'.
-  std::vector<std::pair<int, int>> sample;
-  int sample_frame = 0;
+  // Per view it fights in, up to kFixPixels of its pixels (x, y): every fix is checked on each.
+  std::vector<PixelSample> samples;
   std::vector<uint32_t> triangles;  // the triangles fighting at the sampled pixels
   // The fixes (audit_fixes.h): NaN / empty / nullopt where none was found or asked for.
   double mts = NAN;     // the set-up's MTS at depth_median (the scene's measurement)
-  double offset = NAN;  // move the front surface this much nearer: mts - separation_median
+  double offset = NAN;  // move the front surface this much nearer: mts - separation_min
   std::optional<double> near_plane;    // the nearest near plane that resolves the sample
   std::vector<std::string> resolving;  // other set-ups that resolve the sample
   std::optional<double> bias_units;    // constant depth bias on the front surface (API units)
@@ -40,6 +45,9 @@ struct SetupAudit {
            discarded_pixels = 0;
   // covered but nothing drawn (every fragment at the cleared value); a surface's own seams
   uint64_t undrawn_pixels = 0, seam_pixels = 0;
+  // won by the front surface, but within what another conformant implementation may store
+  // (AUDIT_AT_RISK): fights on some implementation or view
+  uint64_t at_risk_pixels = 0;
   double fix_seconds = 0;
   uint64_t records = 0, culled = 0, clipped = 0, non_finite = 0;  // frame 0's triangles
   std::vector<FightPair> pairs;                                   // by pixels, most first

@@ -33,9 +33,9 @@ AuditPixels audit_device(OpenClRuntime& rt, const Scene& scene, const AuditSetup
   for (const auto& p : a.planes) planes.insert(planes.end(), p.begin(), p.end());
   const std::vector<double> ray(a.ray.begin(), a.ray.end());
   const cl::Buffer b_probe = input(ctx, probe), b_records = input(ctx, packed_records(a)),
-                   b_source = input(ctx, a.source), b_ray = input(ctx, ray),
-                   b_planes = input(ctx, planes), b_bins = input(ctx, a.bins),
-                   b_bin_records = input(ctx, a.bin_records);
+                   b_source = input(ctx, a.source), b_tolerance = input(ctx, a.tolerance),
+                   b_ray = input(ctx, ray), b_planes = input(ctx, planes),
+                   b_bins = input(ctx, a.bins), b_bin_records = input(ctx, a.bin_records);
   const size_t n = static_cast<size_t>(a.width) * a.height;
   cl::Buffer b_winner(ctx, CL_MEM_WRITE_ONLY, sizeof(uint32_t) * n),
       b_front(ctx, CL_MEM_WRITE_ONLY, sizeof(uint32_t) * n),
@@ -45,6 +45,7 @@ AuditPixels audit_device(OpenClRuntime& rt, const Scene& scene, const AuditSetup
   b.probe = &b_probe;
   b.records = &b_records;
   b.source = &b_source;
+  b.tolerance = &b_tolerance;
   b.ray = &b_ray;
   b.planes = &b_planes;
   b.bins = &b_bins;

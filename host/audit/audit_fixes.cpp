@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -48,44 +49,73 @@ bool any_fight(const AuditPixels& p) {
                      [](uint32_t f) { return (f & AUDIT_FIGHT) != 0; });
 }
 
-// Whether a fighting pair's sampled pixels still fight under a scene and set-up, drawn from a
-// camera with only the pair's triangles (sub), optionally with the front surface's draw biased.
+// Whether a fighting pair's sampled pixels still fight under a scene and set-up, in every view
+// the pair fought in (each with its own pixels), drawn with only the pair's triangles (sub),
+// optionally with the front surface's draw biased and every view moved along its view direction.
 class PairCheck {
  public:
   // front_draw: the front surface's draw in sub.
-  PairCheck(const SceneGeometry& sub, const AuditCamera& cam, const FightPair& fp,
+  PairCheck(const SceneGeometry& sub, const std::vector<AuditCamera>& frames, const FightPair& fp,
             size_t front_draw)
-      : sub_(sub), cam_(cam), fp_(fp), front_draw_(front_draw) {}
-  // The same pair from another camera.
-  PairCheck from(const AuditCamera& cam) const { return PairCheck(sub_, cam, fp_, front_draw_); }
+      : sub_(sub), frames_(frames), fp_(fp), front_draw_(front_draw) {}
 
   bool fights(const Scene& scene, const EvalPair& pair) const {
-    const Scene s = audit_scene(scene, cam_);
-    return any_fight(audit_reference_at(s, audit_setup(s, pair, sub_, cam_), fp_.sample));
-  }
-  // With the front draw's triangles offset by `units` of the API's constant bias.
-  bool fights_biased(const Scene& scene, const EvalPair& pair, const BiasRule& rule, int sign,
-                     double units) const {
-    const Scene s = audit_scene(scene, cam_);
-    AuditSetup a = audit_setup(s, pair, sub_, cam_);
-    const Draw& front = sub_.draws[front_draw_];
-    for (size_t r = 0; r < a.records.size(); ++r) {
-      if (a.source[r] < front.first_triangle ||
-          a.source[r] >= front.first_triangle + front.triangles.size())
-        continue;
-      const auto& z = a.window_depths[r];
-      a.records[r].bias = depth_bias(rule.units_term(sign * units), rule.float_rule ? 1 : 0, 0.0f,
-                                     0.0f, 0.0f, z[0], z[1], z[2]);
+    for (const PixelSample& ps : fp_.samples) {
+      const AuditCamera& cam = frames_.at(ps.frame);
+      const Scene s = audit_scene(scene, cam);
+      if (any_fight(audit_reference_at(s, audit_setup(s, pair, sub_, cam), ps.pixels))) return true;
     }
-    return any_fight(audit_reference_at(s, a, fp_.sample));
+    return false;
+  }
+  // With the front draw's triangles offset by `units` of the API's constant bias, each view moved
+  // by `move` metres along its view direction.
+  bool fights_biased(const Scene& scene, const EvalPair& pair, const BiasRule& rule, int sign,
+                     double units, double move) const {
+    for (const PixelSample& ps : fp_.samples) {
+      const AuditCamera cam = along_view(frames_.at(ps.frame), move);
+      const Scene s = audit_scene(scene, cam);
+      AuditSetup a = audit_setup(s, pair, sub_, cam);
+      const Draw& front = sub_.draws[front_draw_];
+      for (size_t r = 0; r < a.records.size(); ++r) {
+        if (a.source[r] < front.first_triangle ||
+            a.source[r] >= front.first_triangle + front.triangles.size())
+          continue;
+        const auto& z = a.window_depths[r];
+        a.records[r].bias = depth_bias(rule.units_term(sign * units), rule.float_rule ? 1 : 0, 0.0f,
+                                       0.0f, 0.0f, z[0], z[1], z[2]);
+      }
+      if (any_fight(audit_reference_at(s, a, ps.pixels))) return true;
+    }
+    return false;
   }
 
  private:
   const SceneGeometry& sub_;
-  AuditCamera cam_;
+  const std::vector<AuditCamera>& frames_;
   const FightPair& fp_;
   size_t front_draw_;
 };
+
+// How far, in eye depth, a constant window-depth offset of `units` moves a surface at eye depths
+// [z_lo, z_hi]: the offset r * units over the steepest the technique's map D(w) is there (the least
+// movement), with r taken at the depth whose exponent is smallest under the float rule (again the
+// least). Zero where the map is flat or unknown.
+double bias_eye_shift(const Scene& scene, const EvalPair& pair, const BiasRule& rule, double units,
+                      double z_lo, double z_hi) {
+  double shift = INFINITY;
+  for (const double w : {z_lo, z_hi}) {
+    const double h = 1e-6 * w;
+    const auto D = [&](double x) {
+      return depth_of_distance(pair.technique, scene.near, scene.far, scene.params, x);
+    };
+    const double slope = std::fabs(D(w + h) - D(w - h)) / (2 * h);
+    const double r = rule.float_rule ? std::min(rule.r_at(static_cast<float>(D(z_lo))),
+                                                rule.r_at(static_cast<float>(D(z_hi))))
+                                     : rule.r_fixed;
+    shift = std::min(shift, slope > 0 ? r * units / slope : 0.0);
+  }
+  return std::isfinite(shift) ? shift : 0.0;
+}
 
 // The index in sub of draw d of the whole scene (sub keeps the draws' order, nodes and primitives).
 size_t draw_in(const SceneGeometry& sub, const Draw& d) {
@@ -113,38 +143,44 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
                const FixRequest& req) {
   const auto start = std::chrono::steady_clock::now();
   const EvalPair& pair = audit.pair;
-  // The MTS of a set-up at eye depth z with near plane n, in the measurement scene; NaN without a
-  // device. One search per (set-up, near, z), kept.
-  std::map<std::tuple<std::string, double, double>, double> known;
-  const auto mts_of = [&](const EvalPair& p, double n, double z) {
+  // The MTS of a set-up at eye depth z with near plane n, in the measurement scene placed where the
+  // pair is (world_position: the eye of the view it fights in, so the vertex transform's rounding
+  // far from the origin is the pair's) under the transform tried; NaN without a device. One search
+  // per (set-up, transform, near, z, place), kept.
+  std::map<std::tuple<std::string, Transform, double, double, std::array<double, 3>>, double> known;
+  const auto mts_of = [&](const EvalPair& p, const Scene& tried, double z,
+                          const std::array<double, 3>& at) {
     if (!req.mts || !rt) return static_cast<double>(NAN);
-    const auto key = std::make_tuple(p.label(), n, z);
+    const auto key = std::make_tuple(p.label(), tried.pipeline.transform, tried.near, z, at);
     if (!known.count(key)) {
       Scene m = measurement;
-      m.near = n;
+      m.near = tried.near;
+      m.pipeline.transform = tried.pipeline.transform;
       m.evaluate = {p};
       m.distances = {z};
-      known[key] = z > n && z < m.far ? run_scene(*rt, m, req.log).rows.at(0).mts : NAN;
+      m.world_position = at;
+      known[key] = z > tried.near && z < m.far ? run_scene(*rt, m, req.log).rows.at(0).mts : NAN;
     }
     return known[key];
   };
   for (FightPair& fp : audit.pairs) {
     const double z = std::stod(fmt::format("{:.3g}", fp.depth_median));
-    fp.mts = mts_of(pair, scene.near, z);
+    const std::array<double, 3> at =
+        fp.samples.empty() ? std::array<double, 3>{} : frames.at(fp.samples[0].frame).eye;
+    fp.mts = mts_of(pair, scene, z, at);
     fp.offset = std::isnan(fp.mts) ? NAN : std::max(0.0, fp.mts - fp.separation_min);
-    const AuditCamera& cam = frames.at(fp.sample_frame);
     const SceneGeometry sub = only(g, fp.triangles);
-    const PairCheck check(sub, cam, fp, draw_in(sub, g.draws[fp.front_draw]));
-    if (fp.sample.empty() || !check.fights(scene, pair)) {
+    const PairCheck check(sub, frames, fp, draw_in(sub, g.draws[fp.front_draw]));
+    if (fp.samples.empty() || !check.fights(scene, pair)) {
       fp.bias_note = "the fight needs surfaces other than the pair's (not reproduced alone)";
       continue;
     }
-    // A fix holds when the pair's pixels no longer fight and the pair's smallest separation is at
-    // least the MTS there (so it holds for the other orientations and positions the MTS samples,
-    // not by the luck of one rounding).
+    // A fix holds when the pair's pixels no longer fight in any view and the pair's smallest
+    // separation is at least the MTS there (so it holds for the other orientations and positions
+    // the MTS samples, not by the luck of one rounding).
     const auto holds = [&](const Scene& s, const EvalPair& p) {
       if (check.fights(s, p)) return false;
-      const double m = mts_of(p, s.near, z);
+      const double m = mts_of(p, s, z, at);
       return std::isnan(m) || m <= fp.separation_min;
     };
     // The nearest near plane: steps of 2^(1/4) out to the pair's nearest depth.
@@ -171,17 +207,19 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
       fp.bias_note = not_applicable;
       continue;
     }
-    // The constant bias: the smallest whole number of units that resolves the pixels with the
-    // camera moved along its view by up to twice the MTS (so the surfaces' depths cross a few
-    // codes, and the answer is not one rounding's luck).
+    // The constant bias: the smallest whole number of units that resolves the pixels in every view
+    // the pair fought in, each moved along its view by up to twice the MTS (so the surfaces'
+    // depths cross a few codes, and the answer is not one rounding's luck), and that moves the
+    // front surface by at least what the MTS asks beyond the separation (offset).
     const BiasRule rule = bias_rule(BiasOptions{}, scene.storage_format(pair));
     const int sign = bias_sign(scene, pair);
     const double span = std::isnan(fp.mts) ? 0.0 : 2 * fp.mts;
     const auto fights = [&](double units) {
-      for (int k = 0; k < 8; ++k) {
-        if (check.from(along_view(cam, span * k / 8)).fights_biased(scene, pair, rule, sign, units))
-          return true;
-      }
+      if (!std::isnan(fp.offset) &&
+          bias_eye_shift(scene, pair, rule, units, fp.depth_min, fp.depth_max) < fp.offset)
+        return true;
+      for (int k = 0; k < 8; ++k)
+        if (check.fights_biased(scene, pair, rule, sign, units, span * k / 8)) return true;
       return false;
     };
     double lo = 0, hi = 1;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "host/audit/depth_tolerance.h"
 #include "interface/audit_layout.h"
 
 namespace depthprec {
@@ -12,6 +13,7 @@ namespace {
 
 struct PixelState {
   uint32_t stored, front_code = 0, second_code = 0;
+  float front_lo = 0, front_hi = 0, second_lo = 0, second_hi = 0;  // tolerance16's intervals
   int64_t winner = -1, front = -1;
   double winner_s = INFINITY, front_s = INFINITY, second_s = INFINITY;
   bool coplanar = false, discarded = false;
@@ -28,9 +30,23 @@ void take(const Scene& s, const AuditSetup& a, const StorageFormat& fmt, bool gr
   const SetupTriangle& t = a.records[r];
   if (!t.valid || py < t.ymin || py > t.ymax || !covers(t, px, py)) return;
   uint32_t code = 0;
-  if (fragment_code(s, a.pair, fmt, a.pc, t, px, py, code, t.bias != 0.0f) != fragment_ok) {
+  float v = 0, d = 0;
+  if (fragment_code(s, a.pair, fmt, a.pc, t, px, py, code, t.bias != 0.0f, &v, &d) != fragment_ok) {
     p.discarded = true;
     return;
+  }
+  // kernels/audit.cl tolerance16
+  const float* TL = &a.tolerance[r * AUDIT_TOL_WORDS];
+  const float plane =
+      TL[AUDIT_TOL_E0] + TL[AUDIT_TOL_EX] * (px - t.x0) + TL[AUDIT_TOL_EY] * (py - t.y0);
+  const float tv = (TL[AUDIT_TOL_C] + std::fmax(plane, 0.0f)) * (1.0f + 0x1.0p-20f);
+  float lo = d - tv, hi = d + tv;
+  if (info(depth_path(s, a.pair.technique)).from == DepthFrom::fragment) {
+    const float d1 = depth_of_value(s, a.pair, a.pc, v - tv),
+                d2 = depth_of_value(s, a.pair, a.pc, v + tv);
+    const float shader = TL[AUDIT_TOL_SHADER] * (1.0f + 0x1.0p-20f);
+    lo = std::fmin(d1, d2) - shader;
+    hi = std::fmax(d1, d2) + shader;
   }
   const uint32_t src = a.source[r];
   const double sd = ray_depth(a.ray, a.planes[src], px, py);
@@ -42,22 +58,30 @@ void take(const Scene& s, const AuditSetup& a, const StorageFormat& fmt, bool gr
   const bool same = same_depth(sd, p.front_s);
   const bool nearer = !same && sd < p.front_s;
   const bool behind = !same && !nearer && sd < p.second_s;
-  p.coplanar = p.coplanar || same;
+  // coplanar with the front surface; a nearer surface hides the pair, so it starts afresh
+  p.coplanar = (p.coplanar || same) && !nearer;
   if (nearer) {
     p.second_s = p.front_s;
     p.second_code = p.front_code;
+    p.second_lo = p.front_lo;
+    p.second_hi = p.front_hi;
   } else if (behind) {
     p.second_s = sd;
     p.second_code = code;
+    p.second_lo = lo;
+    p.second_hi = hi;
   }
   if (nearer || (same && sd < p.front_s)) {
     p.front_s = sd;
     p.front = src;
     p.front_code = code;
+    p.front_lo = lo;
+    p.front_hi = hi;
   }
 }
 
-void finish(const PixelState& p, bool greater, size_t i, AuditPixels& out) {
+void finish(const PixelState& p, const StorageFormat& fmt, bool greater, size_t i,
+            AuditPixels& out) {
   const auto ahead = [greater](uint32_t behind, uint32_t front) {
     return greater ? static_cast<int64_t>(front) - behind : static_cast<int64_t>(behind) - front;
   };
@@ -75,7 +99,15 @@ void finish(const PixelState& p, bool greater, size_t i, AuditPixels& out) {
   if (undrawn) f |= AUDIT_UNDRAWN;
   if (p.coplanar || (lost && tie)) f |= AUDIT_COPLANAR;
   if (p.discarded) f |= AUDIT_DISCARDED;
-  if (covered && !lost && std::isinf(p.second_s)) f |= AUDIT_NO_MARGIN;
+  const bool no_margin = covered && !lost && std::isinf(p.second_s);
+  if (no_margin) f |= AUDIT_NO_MARGIN;
+  // kernels/audit.cl's at_risk
+  const auto unit = [](float x) { return std::fmin(std::fmax(x, 0.0f), 1.0f); };
+  const uint32_t front_worst = fmt.encode(unit(greater ? p.front_lo : p.front_hi));
+  const uint32_t second_worst = fmt.encode(unit(greater ? p.second_hi : p.second_lo));
+  if (covered && !lost && !no_margin && !p.coplanar &&
+      ahead(second_worst, front_worst) <= conversion_codes(fmt))
+    f |= AUDIT_AT_RISK;
   out.winner[i] = static_cast<uint32_t>(p.winner);
   out.front[i] = static_cast<uint32_t>(p.front);
   out.margin[i] = static_cast<int32_t>(m);
@@ -109,7 +141,7 @@ AuditPixels audit_reference(const Scene& s, const AuditSetup& a) {
       PixelState p;
       p.stored = a.clear_code;
       for (size_t r : row) take(s, a, fmt, greater, r, px, py, p);
-      finish(p, greater, static_cast<size_t>(y) * a.width + x, out);
+      finish(p, fmt, greater, static_cast<size_t>(y) * a.width + x, out);
     }
   }
   return out;
@@ -132,7 +164,7 @@ AuditPixels audit_reference_at(const Scene& s, const AuditSetup& a,
     PixelState p;
     p.stored = a.clear_code;
     for (size_t r : records) take(s, a, fmt, greater, r, px, py, p);
-    finish(p, greater, i, out);
+    finish(p, fmt, greater, i, out);
   }
   return out;
 }

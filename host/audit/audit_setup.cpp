@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "host/audit/depth_tolerance.h"
 #include "host/base/errors.h"
 #include "host/model/shader_log.h"
 #include "host/runtime/kernel_variant.h"
@@ -42,6 +43,12 @@ Mat4d view_of(const Vec3& eye, const Vec3& right, const Vec3& up, const Vec3& ba
     v[r * 4 + 3] = -dot(*axes[r], eye);
   }
   return v;
+}
+
+// x rounded to binary32 upwards (a bound stays a bound).
+float rounded_up(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) >= x ? f : std::nextafter(f, INFINITY);
 }
 
 Mat4f rounded(const Mat4d& m) {
@@ -200,17 +207,26 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
   const float hh = 0.5f * static_cast<float>(s.viewport_h);
   a.ray = pixel_ray(s, a.pc);
   a.clear_code = s.storage_format(pair).encode(ti.greater ? 0.0f : 1.0f);
-  const unsigned planes =
-      s.pipeline.clip == ClipForm::llvmpipe ? kClipPlanesXY | kClipPlanesZ : kClipPlanesZ;
+  // A triangle that crosses the near or far plane is clipped against all six planes, whatever
+  // pipeline.clip says: clipped at the near plane alone, its new vertices would land at the near
+  // plane's projection, up to millions of pixels off screen, where a binary32 set-up loses the
+  // depth plane (one anchored there, or at the origin, cancels away every bit that matters on
+  // screen). Real rasterizers never set up such a triangle: llvmpipe clips it to the viewport,
+  // hardware to a guard band a few viewports wide, homogeneous rasterizers never form the
+  // vertex. A triangle within the z planes is rasterised whole unless pipeline.clip is llvmpipe.
+  const unsigned planes = kClipPlanesXY | kClipPlanesZ;
+  const bool clip_xy_alone = s.pipeline.clip == ClipForm::llvmpipe;
   a.planes = exact_planes(g, cam);
   std::vector<std::array<float, 4>> boxes;  // per record: x min, x max, y min, y max
   for (const Draw& d : g.draws) {
     const DrawMatrices st = draw_matrices(s, a.pc, d, cam);
     std::vector<SetupVertex> v(d.positions.size());
+    std::vector<ClipError> v_error(d.positions.size());
     std::vector<char> bad(d.positions.size(), 0);
     for (size_t i = 0; i < d.positions.size(); ++i) {
       float clip[4];
       vertex_clip(s, a.pc, st, d.positions[i], clip);
+      v_error[i] = vertex_clip_error(s, a.pc, st, d.positions[i]);
       if (ti.from == DepthFrom::vertex_log)
         clip[2] = vertex_log_clip_z(a.pc, s.pipeline.log, gl, clip[3]);
       bool nf = false;
@@ -225,9 +241,29 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
       const SetupVertex* tv[3] = {&v[tri[0]], &v[tri[1]], &v[tri[2]]};
       const unsigned m0 = clip_mask(tv[0]->c, gl, planes), m1 = clip_mask(tv[1]->c, gl, planes),
                      m2 = clip_mask(tv[2]->c, gl, planes);
+      // The clip errors of a polygon's vertices: the triangle's own, and for a vertex the clip
+      // stage made (ids from nv on) clipped_vertex_error's, from the triangle's largest clip
+      // coordinates and vertex errors and the planes it crosses.
+      ClipError made{};
+      std::array<float, 4> largest{};
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 4; ++c) {
+          made[c] = std::max(made[c], v_error[tri[k]][c]);
+          largest[c] = std::max(largest[c], std::fabs(tv[k]->c[c]));
+        }
+      int planes_crossed = 0;
       const auto emit = [&](const SetupVertex* const f[3]) {
         const SetupTriangle st3 = setup_triangle(s.pipeline, f);
         if (!st3.valid) return;
+        ClipError made_error[3];
+        const ClipError* fe[3];
+        for (int k = 0; k < 3; ++k) {
+          made_error[k] = clipped_vertex_error(largest, made, planes_crossed, f[k]->c);
+          fe[k] = f[k]->id < nv ? &v_error[f[k]->id] : &made_error[k];
+        }
+        const RecordTolerance tol = record_tolerance(s, pair, a.pc, f, fe, st3.x0, st3.y0);
+        for (const double x : {tol.constant, tol.e0, tol.ex, tol.ey, tol.shader})
+          a.tolerance.push_back(rounded_up(x));
         a.records.push_back(st3);
         a.source.push_back(src);
         a.window_depths.push_back({f[0]->d, f[1]->d, f[2]->d});
@@ -239,7 +275,8 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
         ++a.culled;
         continue;
       }
-      if (!(m0 | m1 | m2)) {
+      const unsigned crossed = m0 | m1 | m2;
+      if (!(crossed & kClipPlanesZ) && !(clip_xy_alone && crossed)) {
         if (bad[tri[0]] || bad[tri[1]] || bad[tri[2]]) {
           ++a.non_finite;
           continue;
@@ -248,6 +285,7 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
         continue;
       }
       ++a.clipped;
+      for (int plane = 0; plane < 6; ++plane) planes_crossed += (crossed >> plane) & 1u;
       const std::vector<SetupVertex> poly =
           clip_polygon({*tv[0], *tv[1], *tv[2]}, m0 | m1 | m2, hw, hh, gl, s.pipeline.snap_bits,
                        nv + 8 * static_cast<int>(t));

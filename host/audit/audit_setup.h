@@ -56,6 +56,9 @@ struct AuditSetup {
   std::vector<SetupTriangle> records;  // the rasterised triangles in draw order (fans in place)
   std::vector<uint32_t> source;        // each record's scene-wide triangle
   std::vector<std::array<float, 3>> window_depths;  // each record's vertices' window depth
+  // Each record's bound on how far another conformant implementation's depth lies from the
+  // emulated one (host/audit/depth_tolerance.h), AUDIT_TOL_WORDS floats each, rounded up.
+  std::vector<float> tolerance;
   // Per scene-wide triangle its exact eye-space plane n.p = c (nx, ny, nz, c), binary64
   // (interface/audit_layout.h), and the pixel ray's constants (hw, hh, sx, sy).
   std::vector<std::array<double, 4>> planes;

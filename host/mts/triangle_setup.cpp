@@ -200,9 +200,39 @@ bool covers(const SetupTriangle& t, float px, float py) {
   return true;
 }
 
+namespace {
+
+// The fragment shader's depth at eye distance w (fragment-stage depth), before gl_FragDepth's
+// clamp; from_near_plus_one is Cesium's varying.
+float shader_depth(const Scene& s, const TechniqueInfo& ti, const ProbeConstants& pc, float w,
+                   float from_near_plus_one) {
+  switch (ti.fragment) {
+    case FragmentDepth::linear:
+      return (w - pc.near) / pc.range;
+    case FragmentDepth::w_buffer:
+      return w / pc.far;
+    case FragmentDepth::threejs_log:  // log2(vFragDepth) * logDepthBufFC * 0.5
+      return (shader_log2(s.pipeline.log, 1.0f + w) * pc.threejs_fc) * 0.5f;
+    case FragmentDepth::cesium_log:  // log2(depth) * czm_oneOverLog2FarDepthFromNearPlusOne
+      return shader_log2(s.pipeline.log, from_near_plus_one) * pc.cesium_inv_log2;
+    default:
+      return shader_log(s.pipeline.log, pc.log_k * w + 1.0f) / pc.log_L;
+  }
+}
+
+}  // namespace
+
+float depth_of_value(const Scene& s, const EvalPair& pair, const ProbeConstants& pc, float v) {
+  const TechniqueInfo& ti = info(depth_path(s, pair.technique));
+  if (ti.from != DepthFrom::fragment) return v;
+  const float w = 1.0f / v;
+  const float d = shader_depth(s, ti, pc, w, (w - pc.near) + 1.0f);
+  return std::fmin(std::fmax(d, 0.0f), 1.0f);
+}
+
 FragmentStatus fragment_code(const Scene& s, const EvalPair& pair, const StorageFormat& fmt,
                              const ProbeConstants& pc, const SetupTriangle& t, float px, float py,
-                             uint32_t& code, bool biased) {
+                             uint32_t& code, bool biased, float* value, float* depth) {
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const float tx = px - t.x0, ty = py - t.y0;
   // The plane at the pixel, in the set-up's form (docs/spec.md 2.4).
@@ -225,6 +255,7 @@ FragmentStatus fragment_code(const Scene& s, const EvalPair& pair, const Storage
   float d;
   if (ti.from == DepthFrom::fragment) {
     const float q = at(t.q0, t.dqdx, t.dqdy);
+    if (value) *value = q;
     const float w = 1.0f / q;
     if (!std::isfinite(w)) return fragment_non_finite;
     // Cesium's varying, and its discard in place of the clip volume's near and far (writeLogDepth)
@@ -235,31 +266,17 @@ FragmentStatus fragment_code(const Scene& s, const EvalPair& pair, const Storage
     } else if (w < pc.near || w > pc.far) {
       return fragment_clipped;
     }
-    switch (ti.fragment) {
-      case FragmentDepth::linear:
-        d = (w - pc.near) / pc.range;
-        break;
-      case FragmentDepth::w_buffer:
-        d = w / pc.far;
-        break;
-      case FragmentDepth::threejs_log:  // log2(vFragDepth) * logDepthBufFC * 0.5
-        d = (shader_log2(s.pipeline.log, 1.0f + w) * pc.threejs_fc) * 0.5f;
-        break;
-      case FragmentDepth::cesium_log:  // log2(depth) * czm_oneOverLog2FarDepthFromNearPlusOne
-        d = shader_log2(s.pipeline.log, from_near_plus_one) * pc.cesium_inv_log2;
-        break;
-      default:
-        d = shader_log(s.pipeline.log, pc.log_k * w + 1.0f) / pc.log_L;
-        break;
-    }
+    d = shader_depth(s, ti, pc, w, from_near_plus_one);
     if (std::isnan(d)) return fragment_non_finite;
     d = std::fmin(std::fmax(d, 0.0f), 1.0f);
   } else {
     d = at(t.d0, t.dzdx, t.dzdy);
+    if (value) *value = d;
     if (!std::isfinite(d)) return fragment_non_finite;
     if (!(d >= 0.0f && d <= 1.0f)) return fragment_clipped;
     if (biased) d = std::fmin(std::fmax(d + t.bias, 0.0f), 1.0f);  // the offset, then the clamp
   }
+  if (depth) *depth = d;
   code = fmt.encode(d);
   return fragment_ok;
 }

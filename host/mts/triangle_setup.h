@@ -67,9 +67,15 @@ SetupTriangle setup_triangle(const Pipeline& pipeline, const SetupVertex* const 
 bool covers(const SetupTriangle& t, float px, float py);
 
 // The fragment of t at pixel centre (px, py): its status, and when fragment_ok its stored code
-// (biased: with t.bias added before the clamp).
+// (biased: with t.bias added before the clamp), and where asked the interpolated value (depth, or
+// q = 1/w) and the depth converted.
 FragmentStatus fragment_code(const Scene& scene, const EvalPair& pair, const StorageFormat& fmt,
                              const ProbeConstants& pc, const SetupTriangle& t, float px, float py,
-                             uint32_t& code, bool biased = false);
+                             uint32_t& code, bool biased = false, float* value = nullptr,
+                             float* depth = nullptr);
+
+// The depth of interpolated value v, clamped into [0, 1] (a NaN to 0) as the kernels'
+// depth_of_value16 gives it: v itself, or the fragment shader's depth at w = 1/v.
+float depth_of_value(const Scene& scene, const EvalPair& pair, const ProbeConstants& pc, float v);
 
 }  // namespace depthprec

@@ -65,6 +65,7 @@ nlohmann::json audit_json(const AuditReport& r, bool timing) {
                {"covered_pixels", s.covered_pixels},
                {"fighting_pixels", s.fighting_pixels},
                {"coplanar_pixels", s.coplanar_pixels},
+               {"at_risk_pixels", s.at_risk_pixels},
                {"discarded_pixels", s.discarded_pixels},
                {"undrawn_pixels", s.undrawn_pixels},
                {"seam_pixels", s.seam_pixels},

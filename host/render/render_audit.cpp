@@ -114,17 +114,33 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
   const AuditPixels& e = audit.image;
   // Pixels whose winners (or fight verdicts) differ, by why: on a seam between neighbours of one
   // surface, where two surfaces share a plane (coplanar: the draw order decides), where the
-  // emulation's own codes tie or are one apart (one rounding decides), or none of these.
+  // emulation's own codes tie or are one apart (one rounding decides), where the emulation marks
+  // the pixel at risk (another conformant implementation may store the other order), on the
+  // border of the front surface's coverage (edge: the coverage rules decide), or none of these.
   struct Why {
-    uint64_t seam = 0, coplanar = 0, tie = 0, other = 0;
+    uint64_t seam = 0, coplanar = 0, tie = 0, at_risk = 0, edge = 0, other = 0;
     nlohmann::json json() const {
-      return {{"seam", seam}, {"coplanar", coplanar}, {"tie", tie}, {"other", other}};
+      return {{"seam", seam},       {"coplanar", coplanar}, {"tie", tie},
+              {"at_risk", at_risk}, {"edge", edge},         {"other", other}};
     }
   } winners_differ, fights_differ;
   uint64_t winner_agree = 0, fight_agree = 0, fights = 0, fights_emulated = 0;
   nlohmann::json examples = nlohmann::json::array();  // the first pixels whose winners differ
   const auto id = [](uint32_t t) {
     return t == AUDIT_NONE ? nlohmann::json(nullptr) : nlohmann::json(t);
+  };
+  // Whether the pixel lies on the border of its front surface's coverage (a 4-neighbour's front is
+  // another draw's, or none): there each rasterizer's coverage rule (llvmpipe's fixed point, the
+  // emulation's binary32 edges) decides which surface the pixel sees at all.
+  const auto draw_at = [&](int x, int y) -> int {
+    if (x < 0 || y < 0 || x >= e.width || y >= e.height) return -1;
+    const uint32_t t = e.front[static_cast<size_t>(y) * e.width + x];
+    return t == AUDIT_NONE ? -1 : static_cast<int>(&g.draw_of(t) - g.draws.data());
+  };
+  const auto on_edge = [&](int x, int y) {
+    const int d = draw_at(x, y);
+    return draw_at(x - 1, y) != d || draw_at(x + 1, y) != d || draw_at(x, y - 1) != d ||
+           draw_at(x, y + 1) != d;
   };
   for (int y = 0; y < e.height; ++y)
     for (int x = 0; x < e.width; ++x) {
@@ -145,6 +161,10 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
           ++why.coplanar;
         else if (std::abs(e.margin[i]) <= 1)
           ++why.tie;
+        else if (e.flags[i] & AUDIT_AT_RISK)
+          ++why.at_risk;
+        else if (on_edge(x, y))
+          ++why.edge;
         else
           ++why.other;
       };

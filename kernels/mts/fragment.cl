@@ -102,10 +102,11 @@ typedef struct {
   int16 nonfinite, clipped;
 } depth16_t;
 
-static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float16 px) {
+// Depth and status of 16 fragments whose interpolated value (depth, or q = 1/w) is v.
+static inline depth16_t depth_of_value16(float16 v, __global const float* P) {
   depth16_t r;
 #if DEPTH_FROM == 2
-  const float16 q = plane_at16(rp, px);
+  const float16 q = v;
   const float16 w = 1.0f / q;
   const int16 nf_w = !isfinite(w);
 #if FRAG_DEPTH == 5
@@ -130,11 +131,15 @@ static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float
   r.nonfinite = nf_w || isnan(d);
   r.d = fmin(fmax(d, 0.0f), 1.0f); /* gl_FragDepth is clamped */
 #else
-  r.d = plane_at16(rp, px);
+  r.d = v;
   r.nonfinite = !isfinite(r.d);
   r.clipped = !((r.d >= 0.0f) && (r.d <= 1.0f));
 #endif
   return r;
+}
+
+static inline depth16_t depth16(row_plane16_t rp, __global const float* P, float16 px) {
+  return depth_of_value16(plane_at16(rp, px), P);
 }
 
 // Stored code and status of 16 fragments.
