@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 
 #include "host/base/errors.h"
+#include "host/model/gltf_nodes.h"
 
 namespace depthprec {
 
@@ -20,30 +20,6 @@ namespace {
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                 const unsigned char*, int, void*) {
   return true;
-}
-
-// A node's local matrix: its `matrix` (column-major in glTF), else T * R * S.
-Mat4d local_matrix(const tinygltf::Node& n) {
-  Mat4d m = mat_identity();
-  if (n.matrix.size() == 16) {
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) m[r * 4 + c] = n.matrix[c * 4 + r];
-    return m;
-  }
-  Mat4d t = mat_identity(), rot = mat_identity(), s = mat_identity();
-  if (n.translation.size() == 3)
-    for (int i = 0; i < 3; ++i) t[i * 4 + 3] = n.translation[i];
-  if (n.rotation.size() == 4) {
-    const double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
-    const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-                         2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-                         2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) rot[i * 4 + j] = r[i * 3 + j];
-  }
-  if (n.scale.size() == 3)
-    for (int i = 0; i < 3; ++i) s[i * 4 + i] = n.scale[i];
-  return mat_mul(t, mat_mul(rot, s));
 }
 
 // The bytes of accessor a, checked to lie inside its buffer; element k at base + k * stride.
@@ -176,32 +152,13 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
                                  err.empty() ? "tinygltf gave no reason" : err));
   SceneGeometry g;
   g.source = path;
-  // The nodes in draw order: the default scene's trees depth first (every scene's when none is
-  // named default), each with its world matrix.
-  std::vector<std::pair<int, Mat4d>> order;
-  std::vector<int> depth(model.nodes.size(), 0);
-  std::function<void(int, const Mat4d&, int)> visit = [&](int n, const Mat4d& parent, int level) {
-    if (n < 0 || n >= static_cast<int>(model.nodes.size()) || level > 64)
-      throw InputError(
-          fmt::format("{}: node {} does not exist or the node tree has a cycle", path, n));
-    const Mat4d world = mat_mul(parent, local_matrix(model.nodes[n]));
-    order.emplace_back(n, world);
-    for (int c : model.nodes[n].children) visit(c, world, level + 1);
-  };
-  if (model.scenes.empty()) {
-    for (size_t n = 0; n < model.nodes.size(); ++n) visit(static_cast<int>(n), mat_identity(), 0);
-  } else {
-    const int sc = model.defaultScene >= 0 ? model.defaultScene : 0;
-    for (int n : model.scenes[sc].nodes) visit(n, mat_identity(), 0);
-  }
+  const NodeOrder order = node_order(model, path);
+  if (!order.note.empty()) g.notes.push_back(order.note);
   // First the count, from the accessors alone, so a huge file is refused before anything is read.
   uint64_t total = 0, skipped = 0;
-  for (const auto& [n, world] : order) {
+  for (const auto& [n, world] : order.nodes) {
     const tinygltf::Node& node = model.nodes[n];
     if (node.mesh < 0) continue;
-    if (node.mesh >= static_cast<int>(model.meshes.size()))
-      throw InputError(
-          fmt::format("{}: node {} names mesh {}, which does not exist", path, n, node.mesh));
     for (const auto& prim : model.meshes[node.mesh].primitives) {
       if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) {
         ++skipped;
@@ -220,9 +177,9 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
         "{}: {} triangles, more than the audit takes ({}; --max-triangles raises it, at about 560 "
         "bytes of memory per triangle)",
         path, total, max_triangles));
-  for (const auto& [n, world] : order) {
+  for (const auto& [n, world] : order.nodes) {
     const tinygltf::Node& node = model.nodes[n];
-    if (node.camera >= 0 && node.camera < static_cast<int>(model.cameras.size())) {
+    if (node.camera >= 0) {
       const tinygltf::Camera& c = model.cameras[node.camera];
       if (c.type == "perspective") {
         GltfCamera cam;
