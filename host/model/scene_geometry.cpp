@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
+#include <map>
+#include <numeric>
 
 #include "host/base/errors.h"
+#include "host/model/gltf_accessors.h"
 #include "host/model/gltf_nodes.h"
 
 namespace depthprec {
@@ -22,56 +24,43 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-// The bytes of accessor a, checked to lie inside its buffer; element k at base + k * stride.
-struct AccessorView {
-  const unsigned char* base = nullptr;
-  size_t stride = 0, count = 0;
-};
-
-AccessorView view_of(const tinygltf::Model& m, int accessor, const std::string& path,
-                     const std::string& what) {
-  const auto bad = [&](const std::string& why) {
-    return InputError(fmt::format("{}: accessor {} ({}): {}", path, accessor, what, why));
-  };
-  if (accessor < 0 || accessor >= static_cast<int>(m.accessors.size()))
-    throw bad("no such accessor");
-  const tinygltf::Accessor& a = m.accessors[accessor];
-  if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size()))
-    throw bad("no buffer view (sparse or empty accessors are not supported)");
-  const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
-  if (bv.buffer < 0 || bv.buffer >= static_cast<int>(m.buffers.size())) throw bad("no buffer");
-  const tinygltf::Buffer& b = m.buffers[bv.buffer];
-  const int comp = tinygltf::GetComponentSizeInBytes(a.componentType);
-  const int ncomp = tinygltf::GetNumComponentsInType(a.type);
-  if (comp <= 0 || ncomp <= 0) throw bad("unknown component type");
-  const size_t elem = static_cast<size_t>(comp) * ncomp;
-  const size_t stride = bv.byteStride ? bv.byteStride : elem;
-  const size_t start = bv.byteOffset + a.byteOffset;
-  const size_t need = a.count == 0 ? 0 : start + (a.count - 1) * stride + elem;
-  if (bv.byteOffset + bv.byteLength > b.data.size() || need > bv.byteOffset + bv.byteLength)
-    throw bad(
-        fmt::format("{} elements reach byte {} of a buffer view ending at byte {} (buffer of "
-                    "{} bytes)",
-                    a.count, need, bv.byteOffset + bv.byteLength, b.data.size()));
-  return {b.data.data() + start, stride, a.count};
+std::string primitive_name(const tinygltf::Mesh& mesh, int index, size_t p) {
+  return fmt::format("mesh {}, primitive {}", mesh.name.empty() ? std::to_string(index) : mesh.name,
+                     p);
 }
 
-uint32_t read_index(const AccessorView& v, int type, size_t k) {
-  const unsigned char* p = v.base + k * v.stride;
-  switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return *p;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t x;
-      std::memcpy(&x, p, 2);
-      return x;
-    }
-    default: {
-      uint32_t x;
-      std::memcpy(&x, p, 4);
-      return x;
-    }
+const char* const kModeNames[] = {"POINTS",    "LINES",          "LINE_LOOP",   "LINE_STRIP",
+                                  "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+
+// The triangles prim makes, from its accessors' counts alone; 0 with *why (for the note that
+// counts what is not drawn) when it is not drawn.
+uint64_t drawn_triangles(const tinygltf::Model& m, const tinygltf::Primitive& prim,
+                         const std::string& path, const std::string& where, std::string* why) {
+  if (prim.mode < 0 || prim.mode > 6)
+    throw InputError(fmt::format("{}: {}: mode {}; glTF's modes are 0 (POINTS) to 6 (TRIANGLE_FAN)",
+                                 path, where, prim.mode));
+  if (!triangle_mode(prim.mode)) {
+    *why = fmt::format("of mode {}", kModeNames[prim.mode]);
+    return 0;
   }
+  const auto pos = prim.attributes.find("POSITION");
+  if (pos == prim.attributes.end()) {
+    *why = "without POSITION";
+    return 0;
+  }
+  const int list = prim.indices >= 0 ? prim.indices : pos->second;
+  for (int a : {pos->second, list})
+    if (a < 0 || static_cast<size_t>(a) >= m.accessors.size())
+      throw InputError(
+          fmt::format("{}: {} names accessor {}, which does not exist", path, where, a));
+  const uint64_t n = triangle_count(prim.mode, m.accessors[list].count);
+  if (n == 0) *why = fmt::format("of mode {} with fewer than 3 vertices", kModeNames[prim.mode]);
+  return n;
+}
+
+// a + b, or UINT64_MAX for a sum past it: a file's counts are its own to claim.
+uint64_t add_counts(uint64_t a, uint64_t b) {
+  return b > UINT64_MAX - a ? UINT64_MAX : a + b;
 }
 
 }  // namespace
@@ -154,22 +143,23 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
   g.source = path;
   const NodeOrder order = node_order(model, path);
   if (!order.note.empty()) g.notes.push_back(order.note);
-  // First the count, from the accessors alone, so a huge file is refused before anything is read.
-  uint64_t total = 0, skipped = 0;
+  // First the counts, from the accessors alone, so a huge file is refused before anything is read.
+  uint64_t total = 0, vertices = 0;
+  std::map<std::string, uint64_t> skipped;  // by why
+  std::string why;
   for (const auto& [n, world] : order.nodes) {
-    const tinygltf::Node& node = model.nodes[n];
-    if (node.mesh < 0) continue;
-    for (const auto& prim : model.meshes[node.mesh].primitives) {
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) {
-        ++skipped;
+    const int mi = model.nodes[n].mesh;
+    if (mi < 0) continue;
+    const tinygltf::Mesh& mesh = model.meshes[mi];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      const uint64_t t = drawn_triangles(model, prim, path, primitive_name(mesh, mi, p), &why);
+      if (t == 0) {
+        ++skipped[why];
         continue;
       }
-      const int acc = prim.indices >= 0 ? prim.indices : prim.attributes.at("POSITION");
-      if (acc < 0 || acc >= static_cast<int>(model.accessors.size()))
-        throw InputError(
-            fmt::format("{}: a primitive of mesh {} names accessor {}, which does not exist", path,
-                        node.mesh, acc));
-      total += model.accessors[acc].count / 3;
+      total = add_counts(total, t);
+      vertices = add_counts(vertices, model.accessors[prim.attributes.at("POSITION")].count);
     }
   }
   if (total > max_triangles)
@@ -177,6 +167,13 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
         "{}: {} triangles, more than the audit takes ({}; --max-triangles raises it, at about 560 "
         "bytes of memory per triangle)",
         path, total, max_triangles));
+  // A sparse accessor without a buffer view claims elements the file does not hold: the vertices
+  // are bounded too, at three a triangle, as many as an unindexed mesh has.
+  if (vertices / 3 > max_triangles)
+    throw InputError(fmt::format(
+        "{}: {} vertices, more than the audit takes (3 a triangle of its limit of {} triangles; "
+        "--max-triangles raises it)",
+        path, vertices, max_triangles));
   for (const auto& [n, world] : order.nodes) {
     const tinygltf::Node& node = model.nodes[n];
     if (node.camera >= 0) {
@@ -196,9 +193,12 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
     }
     if (node.mesh < 0) continue;
     const tinygltf::Mesh& mesh = model.meshes[node.mesh];
+    // glTF 2.0 3.7.4: the node's morph weights, else the mesh's, else none
+    const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) continue;
+      const std::string where = primitive_name(mesh, node.mesh, p);
+      if (drawn_triangles(model, prim, path, where, &why) == 0) continue;
       Draw d;
       d.node_index = n;
       d.mesh_index = node.mesh;
@@ -206,48 +206,39 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
       d.node = !node.name.empty() ? node.name : fmt::format("node {}", n);
       d.mesh = !mesh.name.empty() ? mesh.name : fmt::format("mesh {}", node.mesh);
       d.world = world;
-      const int pos = prim.attributes.at("POSITION");
-      const AccessorView pv = view_of(model, pos, path, "POSITION");
-      const tinygltf::Accessor& pa = model.accessors[pos];
-      if (pa.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || pa.type != TINYGLTF_TYPE_VEC3)
-        throw InputError(
-            fmt::format("{}: mesh {}: POSITION is not a float VEC3 accessor", path, d.mesh));
-      d.positions.resize(pv.count);
-      for (size_t k = 0; k < pv.count; ++k)
-        std::memcpy(d.positions[k].data(), pv.base + k * pv.stride, 12);
+      d.positions = primitive_positions(model, prim, weights, path, where);
+      std::vector<uint32_t> list;
       if (prim.indices >= 0) {
-        const AccessorView iv = view_of(model, prim.indices, path, "indices");
-        const int type = model.accessors[prim.indices].componentType;
-        if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-          throw InputError(fmt::format(
-              "{}: mesh {}: indices of component type {}; glTF allows unsigned byte, short or int",
-              path, d.mesh, type));
-        for (size_t k = 0; k + 2 < iv.count; k += 3) {
-          std::array<uint32_t, 3> t = {read_index(iv, type, k), read_index(iv, type, k + 1),
-                                       read_index(iv, type, k + 2)};
-          for (uint32_t i : t)
-            if (i >= d.positions.size())
-              throw InputError(fmt::format("{}: mesh {}: index {} past its {} positions", path,
-                                           d.mesh, i, d.positions.size()));
-          d.triangles.push_back(t);
-        }
+        list = read_indices(model, prim.indices, path, where);
+        for (uint32_t i : list)
+          if (i >= d.positions.size())
+            throw InputError(fmt::format("{}: {}: index {} past its {} positions", path, where, i,
+                                         d.positions.size()));
       } else {
-        for (uint32_t k = 0; k + 2 < d.positions.size(); k += 3)
-          d.triangles.push_back({k, k + 1, k + 2});
+        list.resize(d.positions.size());
+        std::iota(list.begin(), list.end(), 0u);
       }
-      if (d.triangles.empty()) continue;
+      d.triangles = triangulate(prim.mode, list);
       d.first_triangle = static_cast<uint32_t>(g.triangles);
       g.triangles += d.triangles.size();
       g.draws.push_back(std::move(d));
     }
   }
+  std::string undrawn;
+  for (const auto& [reason, count] : skipped) {
+    g.skipped += count;
+    undrawn += fmt::format("{}{} {}", undrawn.empty() ? "" : ", ", count, reason);
+  }
+  constexpr const char* drawn_modes = "the audit draws TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN";
+  if (g.draws.empty() && g.skipped == 0)
+    throw InputError(
+        fmt::format("{}: no triangles to audit: none of the nodes drawn has a mesh", path));
   if (g.draws.empty())
-    throw InputError(fmt::format(
-        "{}: no triangles to audit ({} primitive(s) of other modes or without POSITION skipped; "
-        "the audit draws mode 4, TRIANGLES)",
-        path, skipped));
+    throw InputError(fmt::format("{}: no triangles to audit ({} primitive(s) not drawn: {}; {})",
+                                 path, g.skipped, undrawn, drawn_modes));
+  if (g.skipped)
+    g.notes.push_back(
+        fmt::format("{} primitive(s) not drawn: {} ({})", g.skipped, undrawn, drawn_modes));
   return g;
 }
 

@@ -1,6 +1,6 @@
 // The glTF loader on files made here, one feature or fault each: it reads what glTF 2.0 defines
-// (files without scenes) as the spec says, and refuses the rest by name: the file, what is wrong,
-// what is allowed.
+// (strips, fans, morph weights, quantized and strided positions, sparse accessors, files without
+// scenes) as the spec says, and refuses the rest by name: the file, what is wrong, what is allowed.
 #include <fmt/format.h>
 
 #include <catch2/catch.hpp>
@@ -10,6 +10,7 @@
 
 #include "host/base/errors.h"
 #include "host/model/scene_geometry.h"
+#include "host/output/audit_output.h"
 #include "tests/support/files.h"
 
 using namespace depthprec;
@@ -102,6 +103,14 @@ std::string gltf_refusal(const std::string& path, uint64_t max_triangles = 1000)
   return "(loaded)";
 }
 
+// Twice the signed area of triangle t of d in the xy plane: its sign is its gltf_winding.
+double gltf_winding(const Draw& d, const std::array<uint32_t, 3>& t) {
+  const auto &a = d.positions[t[0]], &b = d.positions[t[1]], &c = d.positions[t[2]];
+  return double(b[0] - a[0]) * (c[1] - a[1]) - double(b[1] - a[1]) * (c[0] - a[0]);
+}
+
+using GltfTri = std::array<uint32_t, 3>;
+
 }  // namespace
 
 TEST_CASE("glTF: a default scene the file lacks is refused with the index and the scene count",
@@ -119,6 +128,158 @@ TEST_CASE("glTF: a default scene the file lacks is refused with the index and th
   f.j.erase("scenes");
   f.j["scene"] = 0;
   CHECK_THAT(gltf_refusal(f.write("scene_none.gltf")), Contains("the file has no scenes"));
+}
+
+TEST_CASE("glTF: strips and fans are triangulated as glTF 2.0 defines them, indexed or not",
+          "[gltf]") {
+  GltfFile f;
+  // a zigzag strip: every triangle faces the way the first does
+  const int strip = f.positions({{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {2, 0, 0}});
+  const int fan = f.positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}});
+  const int reversed = f.indices({4, 3, 2, 1, 0});
+  const int degenerate = f.indices({0, 1, 1, 2});
+  f.mesh({{strip, 5, -1},
+          {strip, 5, reversed},
+          {fan, 6, -1},
+          {fan, 6, reversed},
+          {strip, 5, degenerate}});
+  f.j["nodes"] = {{{"mesh", 0}}};
+  f.j["scenes"] = {{{"nodes", {0}}}};
+  const SceneGeometry g = load_gltf(f.write("strips_fans.gltf"), 100);
+  REQUIRE(g.draws.size() == 5);
+  // p_i = {v_i, v_(i+1+i%2), v_(i+2-i%2)}
+  CHECK(g.draws[0].triangles == std::vector<GltfTri>{{0, 1, 2}, {1, 3, 2}, {2, 3, 4}});
+  CHECK(g.draws[1].triangles == std::vector<GltfTri>{{4, 3, 2}, {3, 1, 2}, {2, 1, 0}});
+  // p_i = {v_(i+1), v_(i+2), v_0}
+  CHECK(g.draws[2].triangles == std::vector<GltfTri>{{1, 2, 0}, {2, 3, 0}, {3, 4, 0}});
+  CHECK(g.draws[3].triangles == std::vector<GltfTri>{{3, 2, 4}, {2, 1, 4}, {1, 0, 4}});
+  // degenerate triangles are kept (the rasteriser draws nothing of them)
+  CHECK(g.draws[4].triangles == std::vector<GltfTri>{{0, 1, 1}, {1, 2, 1}});
+  CHECK(g.triangles == 14);
+  CHECK(g.skipped == 0);
+  for (int k : {0, 2}) {
+    const Draw& d = g.draws[k];
+    for (const GltfTri& t : d.triangles)
+      CHECK(gltf_winding(d, t) == gltf_winding(d, d.triangles[0]));
+  }
+}
+
+TEST_CASE("glTF: points and lines are not drawn, and the geometry and the audit's text say so",
+          "[gltf]") {
+  GltfFile f = gltf_one_triangle();
+  const int line = f.positions({{0, 0, 0}, {1, 1, 1}});
+  f.mesh({{line, 1, -1}, {line, 0, -1}, {line, 3, -1}});
+  f.j["nodes"].push_back({{"mesh", 1}});
+  f.j["scenes"][0]["nodes"].push_back(1);
+  const SceneGeometry g = load_gltf(f.write("lines_points.gltf"), 100);
+  CHECK(g.draws.size() == 1);
+  CHECK(g.skipped == 3);
+  REQUIRE(g.notes.size() == 1);
+  CHECK_THAT(g.notes[0],
+             Contains("3 primitive(s) not drawn: 1 of mode LINES, 1 of mode LINE_STRIP, 1 of mode "
+                      "POINTS"));
+  AuditReport r;
+  r.geometry = &g;
+  r.header = {{"file", "lines_points.gltf"}};
+  CHECK_THAT(audit_text(r, "text", false), Contains("3 primitive(s) not drawn"));
+  // with nothing else, the gltf_refusal counts them
+  GltfFile only_lines;
+  only_lines.mesh({{only_lines.positions({{0, 0, 0}, {1, 1, 1}}), 1, -1}});
+  only_lines.j["nodes"] = {{{"mesh", 0}}};
+  only_lines.j["scenes"] = {{{"nodes", {0}}}};
+  CHECK_THAT(gltf_refusal(only_lines.write("only_lines.gltf")),
+             Contains("no triangles to audit (1 primitive(s) not drawn: 1 of mode LINES"));
+}
+
+TEST_CASE("glTF: default morph weights move POSITION, a node's over its mesh's, zero ones none",
+          "[gltf]") {
+  GltfFile f;
+  const float up = std::ldexp(3.0f, -25);  // 0.75 of binary32's unit at 1
+  const int pos = f.positions({{1, 0, 0}, {2, 0, 0}, {0, 1, 0}});
+  const int t0 = f.positions({{up, 0, 0}, {1, 0, 0}, {0, 0, 0}});
+  const int t1 = f.positions({{up, 0, 0}, {0, 2, 0}, {0, 0, 0}});
+  // a sparse target without a buffer view, as Blender writes them: zeros but for vertex 2
+  std::vector<uint16_t> at = {2};
+  std::vector<float> value = {0, 0, 8};
+  f.add(GltfFile::bytes_of(at), {{"componentType", 5123}, {"count", 1}, {"type", "SCALAR"}});
+  f.add(GltfFile::bytes_of(value), {{"componentType", 5126}, {"count", 1}, {"type", "VEC3"}});
+  const int views = static_cast<int>(f.j["bufferViews"].size());
+  f.j["accessors"].push_back({{"componentType", 5126},
+                              {"count", 3},
+                              {"type", "VEC3"},
+                              {"sparse",
+                               {{"count", 1},
+                                {"indices", {{"bufferView", views - 2}, {"componentType", 5123}}},
+                                {"values", {{"bufferView", views - 1}}}}}});
+  const int t2 = static_cast<int>(f.j["accessors"].size()) - 1;
+  f.mesh({{pos, 4, -1}});
+  f.j["meshes"][0]["primitives"][0]["targets"] = {
+      {{"POSITION", t0}}, {{"POSITION", t1}}, {{"POSITION", t2}}};
+  f.j["meshes"][0]["weights"] = {0.5, 0.5, 0.25};
+  f.j["nodes"] = {{{"name", "mesh weights"}, {"mesh", 0}},
+                  {{"name", "node weights"}, {"mesh", 0}, {"weights", {0, 1, 0}}},
+                  {{"name", "rest"}, {"mesh", 0}, {"weights", {0, 0, 0}}}};
+  f.j["scenes"] = {{{"nodes", {0, 1, 2}}}};
+  const SceneGeometry g = load_gltf(f.write("morph.gltf"), 100);
+  REQUIRE(g.draws.size() == 3);
+  using P = std::vector<std::array<float, 3>>;
+  // 1 + 0.5 * up + 0.5 * up is 0.75 of a unit past 1 in binary64, rounded once to 1 unit; in
+  // binary32 each half (0.375 of a unit) would round away and leave 1
+  CHECK(g.draws[0].positions == P{{std::nextafter(1.0f, 2.0f), 0, 0}, {2.5f, 1, 0}, {0, 1, 2}});
+  CHECK(g.draws[1].positions == P{{std::nextafter(1.0f, 2.0f), 0, 0}, {2, 2, 0}, {0, 1, 0}});
+  CHECK(g.draws[2].positions == P{{1, 0, 0}, {2, 0, 0}, {0, 1, 0}});
+  f.j["nodes"][1]["weights"] = {1, 0};
+  CHECK_THAT(gltf_refusal(f.write("morph_weights.gltf")),
+             Contains("mesh 0, primitive 0: 2 morph weights for 3 morph targets"));
+}
+
+TEST_CASE("glTF: quantized positions are dequantized, and byteStride is respected", "[gltf]") {
+  GltfFile f;
+  // byte VEC3s padded to 4 bytes, short VEC3s to 8, as glTF aligns vertex attributes
+  const std::vector<int8_t> b = {-128, -127, 127, 0, 64, 1, -1, 0, 0, 0, 0, 0};
+  const std::vector<uint8_t> ub = {255, 128, 0, 0, 1, 2, 3, 0, 0, 0, 0, 0};
+  const std::vector<int16_t> s = {-32768, 16384, 32767, 0, 5, -5, 7, 0, 0, 0, 0, 0};
+  const std::vector<uint16_t> us = {65535, 1, 0, 0, 300, 2, 9, 0, 0, 0, 0, 0};
+  std::vector<int> acc;
+  for (bool normalized : {true, false}) {
+    const auto fields = [&](int type) {
+      return json{
+          {"componentType", type}, {"count", 3}, {"type", "VEC3"}, {"normalized", normalized}};
+    };
+    acc.push_back(f.add(GltfFile::bytes_of(b), fields(5120), 4));
+    acc.push_back(f.add(GltfFile::bytes_of(ub), fields(5121), 4));
+    acc.push_back(f.add(GltfFile::bytes_of(s), fields(5122), 8));
+    acc.push_back(f.add(GltfFile::bytes_of(us), fields(5123), 8));
+  }
+  // floats interleaved with 4 bytes of something else
+  const std::vector<float> interleaved = {1, 2, 3, -9, 4, 5, 6, -9, 7, 8, 9, -9};
+  acc.push_back(f.add(GltfFile::bytes_of(interleaved),
+                      {{"componentType", 5126}, {"count", 3}, {"type", "VEC3"}}, 16));
+  std::vector<std::array<int, 3>> prims;
+  for (int a : acc) prims.push_back({a, 4, -1});
+  f.mesh(prims);
+  f.j["nodes"] = {{{"mesh", 0}}};
+  f.j["scenes"] = {{{"nodes", {0}}}};
+  f.j["extensionsUsed"] = {"KHR_mesh_quantization"};
+  f.j["extensionsRequired"] = {"KHR_mesh_quantization"};
+  const SceneGeometry g = load_gltf(f.write("quantized.gltf"), 100);
+  REQUIRE(g.draws.size() == 9);
+  using P = std::vector<std::array<float, 3>>;
+  CHECK(g.draws[0].positions == P{{-1, -1, 1}, {64 / 127.0f, 1 / 127.0f, -1 / 127.0f}, {0, 0, 0}});
+  CHECK(g.draws[1].positions ==
+        P{{1, 128 / 255.0f, 0}, {1 / 255.0f, 2 / 255.0f, 3 / 255.0f}, {0, 0, 0}});
+  CHECK(g.draws[2].positions ==
+        P{{-1, 16384 / 32767.0f, 1}, {5 / 32767.0f, -5 / 32767.0f, 7 / 32767.0f}, {0, 0, 0}});
+  CHECK(g.draws[3].positions ==
+        P{{1, 1 / 65535.0f, 0}, {300 / 65535.0f, 2 / 65535.0f, 9 / 65535.0f}, {0, 0, 0}});
+  CHECK(g.draws[4].positions == P{{-128, -127, 127}, {64, 1, -1}, {0, 0, 0}});
+  CHECK(g.draws[5].positions == P{{255, 128, 0}, {1, 2, 3}, {0, 0, 0}});
+  CHECK(g.draws[6].positions == P{{-32768, 16384, 32767}, {5, -5, 7}, {0, 0, 0}});
+  CHECK(g.draws[7].positions == P{{65535, 1, 0}, {300, 2, 9}, {0, 0, 0}});
+  CHECK(g.draws[8].positions == P{{1, 2, 3}, {4, 5, 6}, {7, 8, 9}});
+  // an integer type glTF has no position of
+  f.j["accessors"][acc[0]]["componentType"] = 5125;
+  CHECK_THAT(gltf_refusal(f.write("quantized_int.gltf")), Contains("positions are VEC3 of float"));
 }
 
 TEST_CASE("glTF: a node naming a mesh, camera or child that does not exist is refused", "[gltf]") {
@@ -203,4 +364,24 @@ TEST_CASE("glTF: without scenes each root node is drawn once; without `scene`, s
   const SceneGeometry second = load_gltf(f.write("scene_1.gltf"), 100);
   CHECK(second.draws.size() == 2);
   CHECK(second.notes.empty());
+}
+
+TEST_CASE("glTF: counts no buffer can hold are refused, not allocated", "[gltf]") {
+  // 2^62 + 1 positions of 12 bytes: their end wraps past 2^64 to byte 12
+  GltfFile f = gltf_one_triangle();
+  f.j["accessors"][0]["count"] = (uint64_t(1) << 62) + 1;
+  f.j["meshes"][0]["primitives"][0]["indices"] = f.indices({0, 1, 2});
+  CHECK_THAT(gltf_refusal(f.write("wrap.gltf"), UINT64_MAX),
+             Contains("elements of 12 bytes, 12 bytes apart, from byte 0 do not fit in buffer "
+                      "view 0 of 36 bytes"));
+  // a sparse accessor without a buffer view holds as many elements as it claims
+  GltfFile sparse = gltf_one_triangle();
+  sparse.j["accessors"][0].erase("bufferView");
+  sparse.j["accessors"][0]["count"] = 1000000000;
+  sparse.j["accessors"][0]["sparse"] = {{"count", 1},
+                                        {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
+                                        {"values", {{"bufferView", 0}}}};
+  sparse.j["meshes"][0]["primitives"][0]["indices"] = sparse.indices({0, 1, 2});
+  CHECK_THAT(gltf_refusal(sparse.write("sparse_huge.gltf")),
+             Contains("1000000000 vertices, more than the audit takes"));
 }
