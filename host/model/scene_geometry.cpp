@@ -24,9 +24,59 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
+// Required extensions that change no position, index or node the audit reads (materials,
+// textures, lights, metadata). Any other may change the geometry: refused, not ignored.
+bool geometry_neutral(const std::string& e) {
+  for (const char* prefix : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "MSFT_texture_"})
+    if (e.rfind(prefix, 0) == 0) return true;
+  for (const char* name : {"KHR_lights_punctual", "EXT_lights_image_based", "KHR_xmp_json_ld"})
+    if (e == name) return true;
+  return false;
+}
+
+constexpr const char* kUncompress =
+    "write it without mesh compression first (e.g. with glTF-Transform, or from Blender's glTF "
+    "exporter with compression off)";
+
 std::string primitive_name(const tinygltf::Mesh& mesh, int index, size_t p) {
   return fmt::format("mesh {}, primitive {}", mesh.name.empty() ? std::to_string(index) : mesh.name,
                      p);
+}
+
+// Also run on what tinygltf returns when it fails: extensionsRequired and the meshes are parsed
+// before the check a Draco primitive fails ("accessor[3] invalid bufferView"), so the refusal
+// names the cause, not that symptom.
+void check_extensions(const tinygltf::Model& m, const std::string& path) {
+  for (const std::string& e : m.extensionsRequired) {
+    if (e == "KHR_mesh_quantization" || geometry_neutral(e)) continue;
+    if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" ||
+        e == "KHR_meshopt_compression")
+      throw InputError(fmt::format(
+          "{}: its geometry is compressed with {} (extensionsRequired), which the audit does not "
+          "decode: {}",
+          path, e, kUncompress));
+    throw InputError(fmt::format(
+        "{}: it requires the extension {}, which the audit does not read; it reads glTF 2.0 with "
+        "KHR_mesh_quantization and extensions that change no geometry (KHR_materials_*, "
+        "KHR_texture_*, KHR_lights_punctual, ...)",
+        path, e));
+  }
+  // Without extensionsRequired, a Draco primitive may carry an uncompressed copy for readers
+  // without Draco (accessors with buffer views), which is read; with none, it is refused.
+  for (size_t mi = 0; mi < m.meshes.size(); ++mi)
+    for (size_t p = 0; p < m.meshes[mi].primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = m.meshes[mi].primitives[p];
+      if (!prim.extensions.count("KHR_draco_mesh_compression")) continue;
+      std::vector<int> used = {prim.indices};
+      if (prim.attributes.count("POSITION")) used.push_back(prim.attributes.at("POSITION"));
+      for (int a : used)
+        if (a >= 0 && static_cast<size_t>(a) < m.accessors.size() &&
+            m.accessors[a].bufferView < 0 && !m.accessors[a].sparse.isSparse)
+          throw InputError(fmt::format(
+              "{}: {} is compressed with KHR_draco_mesh_compression and has no uncompressed copy; "
+              "the audit does not decode Draco: {}",
+              path, primitive_name(m.meshes[mi], static_cast<int>(mi), p), kUncompress));
+    }
 }
 
 const char* const kModeNames[] = {"POINTS",    "LINES",          "LINE_LOOP",   "LINE_STRIP",
@@ -135,6 +185,7 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                          : loader.LoadASCIIFromFile(&model, &err, &warn, path);
   while (!err.empty() && std::isspace(static_cast<unsigned char>(err.back()))) err.pop_back();
+  check_extensions(model, path);
   if (!ok)
     throw InputError(fmt::format("{}: not a readable glTF 2.0 {} file: {}", path,
                                  binary ? "binary (.glb)" : "JSON (.gltf)",

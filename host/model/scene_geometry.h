@@ -53,7 +53,8 @@ struct SceneGeometry {
   bool neighbours(uint32_t a, uint32_t b) const;
 };
 
-// Loads path; throws InputError naming the file and what is wrong: not glTF, a node, mesh, camera,
+// Loads path; throws InputError naming the file and what is wrong: not glTF, a required
+// extension the audit does not read (compressed geometry among them), a node, mesh, camera,
 // accessor or scene that does not exist, a node hierarchy that is not a set of trees or is deeper
 // than kMaxNodeDepth (gltf_nodes.h), no triangles, an accessor reaching past its buffer, or more
 // than max_triangles triangles (or 3 vertices a triangle; checked from the accessors before any

@@ -233,6 +233,40 @@ TEST_CASE("glTF: default morph weights move POSITION, a node's over its mesh's, 
              Contains("mesh 0, primitive 0: 2 morph weights for 3 morph targets"));
 }
 
+TEST_CASE("glTF: a required extension the audit does not read is refused by name", "[gltf]") {
+  for (const char* e : {"EXT_meshopt_compression", "KHR_draco_mesh_compression"}) {
+    GltfFile f = gltf_one_triangle();
+    f.j["extensionsUsed"] = {e};
+    f.j["extensionsRequired"] = {e};
+    const std::string msg = gltf_refusal(f.write("compressed.gltf"));
+    CHECK_THAT(msg, Contains(fmt::format("compressed with {}", e)));
+    CHECK_THAT(msg, Contains("without mesh compression"));
+  }
+  GltfFile instanced = gltf_one_triangle();
+  instanced.j["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+  CHECK_THAT(gltf_refusal(instanced.write("instanced.gltf")),
+             Contains("requires the extension EXT_mesh_gpu_instancing"));
+  // extensions that change no geometry, and quantization, which is read
+  GltfFile plain = gltf_one_triangle();
+  plain.j["extensionsRequired"] = {"KHR_texture_transform", "KHR_materials_variants",
+                                   "KHR_mesh_quantization", "KHR_lights_punctual"};
+  CHECK(load_gltf(plain.write("neutral.gltf"), 100).triangles == 1);
+  // Draco only in extensionsUsed: refused when the primitive has no uncompressed copy...
+  GltfFile draco = gltf_one_triangle();
+  draco.j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  draco.j["accessors"].push_back({{"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}});
+  json& prim = draco.j["meshes"][0]["primitives"][0];
+  prim["indices"] = 1;
+  prim["extensions"] = {
+      {"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", {{"POSITION", 0}}}}}};
+  const std::string msg = gltf_refusal(draco.write("draco.gltf"));
+  CHECK_THAT(msg, Contains("mesh 0, primitive 0 is compressed with KHR_draco_mesh_compression"));
+  CHECK_THAT(msg, !Contains("invalid bufferView"));
+  // ...and read from the copy when it has one
+  prim["indices"] = draco.indices({0, 1, 2});
+  CHECK(load_gltf(draco.write("draco_fallback.gltf"), 100).triangles == 1);
+}
+
 TEST_CASE("glTF: quantized positions are dequantized, and byteStride is respected", "[gltf]") {
   GltfFile f;
   // byte VEC3s padded to 4 bytes, short VEC3s to 8, as glTF aligns vertex attributes
