@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <functional>
+#include <map>
+#include <numeric>
 
 #include "host/base/errors.h"
+#include "host/model/gltf_accessors.h"
+#include "host/model/gltf_nodes.h"
 
 namespace depthprec {
 
@@ -22,80 +24,93 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-// A node's local matrix: its `matrix` (column-major in glTF), else T * R * S.
-Mat4d local_matrix(const tinygltf::Node& n) {
-  Mat4d m = mat_identity();
-  if (n.matrix.size() == 16) {
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) m[r * 4 + c] = n.matrix[c * 4 + r];
-    return m;
-  }
-  Mat4d t = mat_identity(), rot = mat_identity(), s = mat_identity();
-  if (n.translation.size() == 3)
-    for (int i = 0; i < 3; ++i) t[i * 4 + 3] = n.translation[i];
-  if (n.rotation.size() == 4) {
-    const double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
-    const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-                         2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-                         2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) rot[i * 4 + j] = r[i * 3 + j];
-  }
-  if (n.scale.size() == 3)
-    for (int i = 0; i < 3; ++i) s[i * 4 + i] = n.scale[i];
-  return mat_mul(t, mat_mul(rot, s));
+// Required extensions that change no position, index or node the audit reads (materials,
+// textures, lights, metadata). Any other may change the geometry: refused, not ignored.
+bool geometry_neutral(const std::string& e) {
+  for (const char* prefix : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "MSFT_texture_"})
+    if (e.rfind(prefix, 0) == 0) return true;
+  for (const char* name : {"KHR_lights_punctual", "EXT_lights_image_based", "KHR_xmp_json_ld"})
+    if (e == name) return true;
+  return false;
 }
 
-// The bytes of accessor a, checked to lie inside its buffer; element k at base + k * stride.
-struct AccessorView {
-  const unsigned char* base = nullptr;
-  size_t stride = 0, count = 0;
-};
+constexpr const char* kUncompress =
+    "write it without mesh compression first (e.g. with glTF-Transform, or from Blender's glTF "
+    "exporter with compression off)";
 
-AccessorView view_of(const tinygltf::Model& m, int accessor, const std::string& path,
-                     const std::string& what) {
-  const auto bad = [&](const std::string& why) {
-    return InputError(fmt::format("{}: accessor {} ({}): {}", path, accessor, what, why));
-  };
-  if (accessor < 0 || accessor >= static_cast<int>(m.accessors.size()))
-    throw bad("no such accessor");
-  const tinygltf::Accessor& a = m.accessors[accessor];
-  if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size()))
-    throw bad("no buffer view (sparse or empty accessors are not supported)");
-  const tinygltf::BufferView& bv = m.bufferViews[a.bufferView];
-  if (bv.buffer < 0 || bv.buffer >= static_cast<int>(m.buffers.size())) throw bad("no buffer");
-  const tinygltf::Buffer& b = m.buffers[bv.buffer];
-  const int comp = tinygltf::GetComponentSizeInBytes(a.componentType);
-  const int ncomp = tinygltf::GetNumComponentsInType(a.type);
-  if (comp <= 0 || ncomp <= 0) throw bad("unknown component type");
-  const size_t elem = static_cast<size_t>(comp) * ncomp;
-  const size_t stride = bv.byteStride ? bv.byteStride : elem;
-  const size_t start = bv.byteOffset + a.byteOffset;
-  const size_t need = a.count == 0 ? 0 : start + (a.count - 1) * stride + elem;
-  if (bv.byteOffset + bv.byteLength > b.data.size() || need > bv.byteOffset + bv.byteLength)
-    throw bad(
-        fmt::format("{} elements reach byte {} of a buffer view ending at byte {} (buffer of "
-                    "{} bytes)",
-                    a.count, need, bv.byteOffset + bv.byteLength, b.data.size()));
-  return {b.data.data() + start, stride, a.count};
+std::string primitive_name(const tinygltf::Mesh& mesh, int index, size_t p) {
+  return fmt::format("mesh {}, primitive {}", mesh.name.empty() ? std::to_string(index) : mesh.name,
+                     p);
 }
 
-uint32_t read_index(const AccessorView& v, int type, size_t k) {
-  const unsigned char* p = v.base + k * v.stride;
-  switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return *p;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t x;
-      std::memcpy(&x, p, 2);
-      return x;
-    }
-    default: {
-      uint32_t x;
-      std::memcpy(&x, p, 4);
-      return x;
-    }
+// Also run on what tinygltf returns when it fails: extensionsRequired and the meshes are parsed
+// before the check a Draco primitive fails ("accessor[3] invalid bufferView"), so the refusal
+// names the cause, not that symptom.
+void check_extensions(const tinygltf::Model& m, const std::string& path) {
+  for (const std::string& e : m.extensionsRequired) {
+    if (e == "KHR_mesh_quantization" || geometry_neutral(e)) continue;
+    if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" ||
+        e == "KHR_meshopt_compression")
+      throw InputError(fmt::format(
+          "{}: its geometry is compressed with {} (extensionsRequired), which the audit does not "
+          "decode: {}",
+          path, e, kUncompress));
+    throw InputError(fmt::format(
+        "{}: it requires the extension {}, which the audit does not read; it reads glTF 2.0 with "
+        "KHR_mesh_quantization and extensions that change no geometry (KHR_materials_*, "
+        "KHR_texture_*, KHR_lights_punctual, ...)",
+        path, e));
   }
+  // Without extensionsRequired, a Draco primitive may carry an uncompressed copy for readers
+  // without Draco (accessors with buffer views), which is read; with none, it is refused.
+  for (size_t mi = 0; mi < m.meshes.size(); ++mi)
+    for (size_t p = 0; p < m.meshes[mi].primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = m.meshes[mi].primitives[p];
+      if (!prim.extensions.count("KHR_draco_mesh_compression")) continue;
+      std::vector<int> used = {prim.indices};
+      if (prim.attributes.count("POSITION")) used.push_back(prim.attributes.at("POSITION"));
+      for (int a : used)
+        if (a >= 0 && static_cast<size_t>(a) < m.accessors.size() &&
+            m.accessors[a].bufferView < 0 && !m.accessors[a].sparse.isSparse)
+          throw InputError(fmt::format(
+              "{}: {} is compressed with KHR_draco_mesh_compression and has no uncompressed copy; "
+              "the audit does not decode Draco: {}",
+              path, primitive_name(m.meshes[mi], static_cast<int>(mi), p), kUncompress));
+    }
+}
+
+const char* const kModeNames[] = {"POINTS",    "LINES",          "LINE_LOOP",   "LINE_STRIP",
+                                  "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+
+// The triangles prim makes, from its accessors' counts alone; 0 with *why (for the note that
+// counts what is not drawn) when it is not drawn.
+uint64_t drawn_triangles(const tinygltf::Model& m, const tinygltf::Primitive& prim,
+                         const std::string& path, const std::string& where, std::string* why) {
+  if (prim.mode < 0 || prim.mode > 6)
+    throw InputError(fmt::format("{}: {}: mode {}; glTF's modes are 0 (POINTS) to 6 (TRIANGLE_FAN)",
+                                 path, where, prim.mode));
+  if (!triangle_mode(prim.mode)) {
+    *why = fmt::format("of mode {}", kModeNames[prim.mode]);
+    return 0;
+  }
+  const auto pos = prim.attributes.find("POSITION");
+  if (pos == prim.attributes.end()) {
+    *why = "without POSITION";
+    return 0;
+  }
+  const int list = prim.indices >= 0 ? prim.indices : pos->second;
+  for (int a : {pos->second, list})
+    if (a < 0 || static_cast<size_t>(a) >= m.accessors.size())
+      throw InputError(
+          fmt::format("{}: {} names accessor {}, which does not exist", path, where, a));
+  const uint64_t n = triangle_count(prim.mode, m.accessors[list].count);
+  if (n == 0) *why = fmt::format("of mode {} with fewer than 3 vertices", kModeNames[prim.mode]);
+  return n;
+}
+
+// a + b, or UINT64_MAX for a sum past it: a file's counts are its own to claim.
+uint64_t add_counts(uint64_t a, uint64_t b) {
+  return b > UINT64_MAX - a ? UINT64_MAX : a + b;
 }
 
 }  // namespace
@@ -170,49 +185,32 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                          : loader.LoadASCIIFromFile(&model, &err, &warn, path);
   while (!err.empty() && std::isspace(static_cast<unsigned char>(err.back()))) err.pop_back();
+  check_extensions(model, path);
   if (!ok)
     throw InputError(fmt::format("{}: not a readable glTF 2.0 {} file: {}", path,
                                  binary ? "binary (.glb)" : "JSON (.gltf)",
                                  err.empty() ? "tinygltf gave no reason" : err));
   SceneGeometry g;
   g.source = path;
-  // The nodes in draw order: the default scene's trees depth first (every scene's when none is
-  // named default), each with its world matrix.
-  std::vector<std::pair<int, Mat4d>> order;
-  std::vector<int> depth(model.nodes.size(), 0);
-  std::function<void(int, const Mat4d&, int)> visit = [&](int n, const Mat4d& parent, int level) {
-    if (n < 0 || n >= static_cast<int>(model.nodes.size()) || level > 64)
-      throw InputError(
-          fmt::format("{}: node {} does not exist or the node tree has a cycle", path, n));
-    const Mat4d world = mat_mul(parent, local_matrix(model.nodes[n]));
-    order.emplace_back(n, world);
-    for (int c : model.nodes[n].children) visit(c, world, level + 1);
-  };
-  if (model.scenes.empty()) {
-    for (size_t n = 0; n < model.nodes.size(); ++n) visit(static_cast<int>(n), mat_identity(), 0);
-  } else {
-    const int sc = model.defaultScene >= 0 ? model.defaultScene : 0;
-    for (int n : model.scenes[sc].nodes) visit(n, mat_identity(), 0);
-  }
-  // First the count, from the accessors alone, so a huge file is refused before anything is read.
-  uint64_t total = 0, skipped = 0;
-  for (const auto& [n, world] : order) {
-    const tinygltf::Node& node = model.nodes[n];
-    if (node.mesh < 0) continue;
-    if (node.mesh >= static_cast<int>(model.meshes.size()))
-      throw InputError(
-          fmt::format("{}: node {} names mesh {}, which does not exist", path, n, node.mesh));
-    for (const auto& prim : model.meshes[node.mesh].primitives) {
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) {
-        ++skipped;
+  const NodeOrder order = node_order(model, path);
+  if (!order.note.empty()) g.notes.push_back(order.note);
+  // First the counts, from the accessors alone, so a huge file is refused before anything is read.
+  uint64_t total = 0, vertices = 0;
+  std::map<std::string, uint64_t> skipped;  // by why
+  std::string why;
+  for (const auto& [n, world] : order.nodes) {
+    const int mi = model.nodes[n].mesh;
+    if (mi < 0) continue;
+    const tinygltf::Mesh& mesh = model.meshes[mi];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      const uint64_t t = drawn_triangles(model, prim, path, primitive_name(mesh, mi, p), &why);
+      if (t == 0) {
+        ++skipped[why];
         continue;
       }
-      const int acc = prim.indices >= 0 ? prim.indices : prim.attributes.at("POSITION");
-      if (acc < 0 || acc >= static_cast<int>(model.accessors.size()))
-        throw InputError(
-            fmt::format("{}: a primitive of mesh {} names accessor {}, which does not exist", path,
-                        node.mesh, acc));
-      total += model.accessors[acc].count / 3;
+      total = add_counts(total, t);
+      vertices = add_counts(vertices, model.accessors[prim.attributes.at("POSITION")].count);
     }
   }
   if (total > max_triangles)
@@ -220,9 +218,16 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
         "{}: {} triangles, more than the audit takes ({}; --max-triangles raises it, at about 560 "
         "bytes of memory per triangle)",
         path, total, max_triangles));
-  for (const auto& [n, world] : order) {
+  // A sparse accessor without a buffer view claims elements the file does not hold: the vertices
+  // are bounded too, at three a triangle, as many as an unindexed mesh has.
+  if (vertices / 3 > max_triangles)
+    throw InputError(fmt::format(
+        "{}: {} vertices, more than the audit takes (3 a triangle of its limit of {} triangles; "
+        "--max-triangles raises it)",
+        path, vertices, max_triangles));
+  for (const auto& [n, world] : order.nodes) {
     const tinygltf::Node& node = model.nodes[n];
-    if (node.camera >= 0 && node.camera < static_cast<int>(model.cameras.size())) {
+    if (node.camera >= 0) {
       const tinygltf::Camera& c = model.cameras[node.camera];
       if (c.type == "perspective") {
         GltfCamera cam;
@@ -239,9 +244,12 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
     }
     if (node.mesh < 0) continue;
     const tinygltf::Mesh& mesh = model.meshes[node.mesh];
+    // glTF 2.0 3.7.4: the node's morph weights, else the mesh's, else none
+    const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) continue;
+      const std::string where = primitive_name(mesh, node.mesh, p);
+      if (drawn_triangles(model, prim, path, where, &why) == 0) continue;
       Draw d;
       d.node_index = n;
       d.mesh_index = node.mesh;
@@ -249,48 +257,39 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
       d.node = !node.name.empty() ? node.name : fmt::format("node {}", n);
       d.mesh = !mesh.name.empty() ? mesh.name : fmt::format("mesh {}", node.mesh);
       d.world = world;
-      const int pos = prim.attributes.at("POSITION");
-      const AccessorView pv = view_of(model, pos, path, "POSITION");
-      const tinygltf::Accessor& pa = model.accessors[pos];
-      if (pa.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || pa.type != TINYGLTF_TYPE_VEC3)
-        throw InputError(
-            fmt::format("{}: mesh {}: POSITION is not a float VEC3 accessor", path, d.mesh));
-      d.positions.resize(pv.count);
-      for (size_t k = 0; k < pv.count; ++k)
-        std::memcpy(d.positions[k].data(), pv.base + k * pv.stride, 12);
+      d.positions = primitive_positions(model, prim, weights, path, where);
+      std::vector<uint32_t> list;
       if (prim.indices >= 0) {
-        const AccessorView iv = view_of(model, prim.indices, path, "indices");
-        const int type = model.accessors[prim.indices].componentType;
-        if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-          throw InputError(fmt::format(
-              "{}: mesh {}: indices of component type {}; glTF allows unsigned byte, short or int",
-              path, d.mesh, type));
-        for (size_t k = 0; k + 2 < iv.count; k += 3) {
-          std::array<uint32_t, 3> t = {read_index(iv, type, k), read_index(iv, type, k + 1),
-                                       read_index(iv, type, k + 2)};
-          for (uint32_t i : t)
-            if (i >= d.positions.size())
-              throw InputError(fmt::format("{}: mesh {}: index {} past its {} positions", path,
-                                           d.mesh, i, d.positions.size()));
-          d.triangles.push_back(t);
-        }
+        list = read_indices(model, prim.indices, path, where);
+        for (uint32_t i : list)
+          if (i >= d.positions.size())
+            throw InputError(fmt::format("{}: {}: index {} past its {} positions", path, where, i,
+                                         d.positions.size()));
       } else {
-        for (uint32_t k = 0; k + 2 < d.positions.size(); k += 3)
-          d.triangles.push_back({k, k + 1, k + 2});
+        list.resize(d.positions.size());
+        std::iota(list.begin(), list.end(), 0u);
       }
-      if (d.triangles.empty()) continue;
+      d.triangles = triangulate(prim.mode, list);
       d.first_triangle = static_cast<uint32_t>(g.triangles);
       g.triangles += d.triangles.size();
       g.draws.push_back(std::move(d));
     }
   }
+  std::string undrawn;
+  for (const auto& [reason, count] : skipped) {
+    g.skipped += count;
+    undrawn += fmt::format("{}{} {}", undrawn.empty() ? "" : ", ", count, reason);
+  }
+  constexpr const char* drawn_modes = "the audit draws TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN";
+  if (g.draws.empty() && g.skipped == 0)
+    throw InputError(
+        fmt::format("{}: no triangles to audit: none of the nodes drawn has a mesh", path));
   if (g.draws.empty())
-    throw InputError(fmt::format(
-        "{}: no triangles to audit ({} primitive(s) of other modes or without POSITION skipped; "
-        "the audit draws mode 4, TRIANGLES)",
-        path, skipped));
+    throw InputError(fmt::format("{}: no triangles to audit ({} primitive(s) not drawn: {}; {})",
+                                 path, g.skipped, undrawn, drawn_modes));
+  if (g.skipped)
+    g.notes.push_back(
+        fmt::format("{} primitive(s) not drawn: {} ({})", g.skipped, undrawn, drawn_modes));
   return g;
 }
 

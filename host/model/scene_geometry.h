@@ -1,9 +1,10 @@
-// A user's scene as the audit draws it (docs/audit.md): the triangles of a glTF 2.0 file (.gltf or
-// .glb, read with tinygltf), each mesh primitive under each node that instances it one draw, in
-// the order the scene's node tree lists them (depth first), which is the draw order. Object
-// positions stay the file's binary32 values, as a vertex buffer holds them; node transforms are
-// composed in binary64 into each draw's world matrix. The file's perspective cameras are kept by
-// name.
+// A user's scene as the audit draws it (docs/audit.md "Input"): the triangles of a glTF 2.0 file
+// (.gltf or .glb, read with tinygltf), each triangle primitive (TRIANGLES, TRIANGLE_STRIP,
+// TRIANGLE_FAN) under each node that instances it one draw, in the order the scene's node trees
+// list them (depth first), which is the draw order. Object positions are binary32, as a vertex
+// buffer holds them: the file's floats, its quantized integers dequantized, or the pose its
+// default morph weights give; node transforms are composed in binary64 into each draw's world
+// matrix. The file's perspective cameras are kept by name.
 #pragma once
 
 #include <array>
@@ -40,6 +41,10 @@ struct SceneGeometry {
   std::vector<Draw> draws;
   std::vector<GltfCamera> cameras;
   uint64_t triangles = 0;
+  uint64_t skipped = 0;  // primitives under the scene's nodes not drawn (points, lines, ...)
+  // What a report says about how the file was read: the primitives not drawn and why, the nodes
+  // drawn when the file names no scene. Sentences, without the file's name.
+  std::vector<std::string> notes;
   // The draw of scene-wide triangle t (binary search over first_triangle).
   const Draw& draw_of(uint32_t t) const;
   // Whether triangles a and b are neighbours on one surface: the same draw, a corner in common.
@@ -48,9 +53,12 @@ struct SceneGeometry {
   bool neighbours(uint32_t a, uint32_t b) const;
 };
 
-// Loads path; throws InputError naming the file and what is wrong: not glTF, no triangles
-// (primitives of other modes are skipped and counted in the error), an accessor reaching past its
-// buffer, or more than max_triangles triangles (checked from the accessors before any is read).
+// Loads path; throws InputError naming the file and what is wrong: not glTF, a required
+// extension the audit does not read (compressed geometry among them), a node, mesh, camera,
+// accessor or scene that does not exist, a node hierarchy that is not a set of trees or is deeper
+// than kMaxNodeDepth (gltf_nodes.h), no triangles, an accessor reaching past its buffer, or more
+// than max_triangles triangles (or 3 vertices a triangle; checked from the accessors before any
+// is read).
 SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles);
 
 // The centre of the world-space bounding box of every draw's positions.

@@ -158,6 +158,7 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   std::string text = captioned(caption, cols, cells, format);
   // what the tables do not show, said in words (a blank line first, so Markdown ends the table)
   std::string notes;
+  for (const std::string& n : g.notes) notes += n + "\n";  // how the file was read
   for (const SetupAudit& s : r.setups) {
     const std::string label = s.pair.label();
     if (s.covered_pixels == 0)
