@@ -120,9 +120,10 @@ nlohmann::json sweep(WorldProbe& probe) {
     return origin + 2 * (u + eye) * (std::sqrt(3.0) + 2 * slope) <= r.separation;
   };
   // The binades below the limit (those of one spacing merged: relative to eye's low part has the
-  // same grid from 32768 on), lowest first; each that the bound leaves open is searched at its
-  // sawtooth's peak and just below its end, and the first to fail lowers the limit to its start.
-  // The binade just below the limit is searched whatever the bound says, as evidence.
+  // same grid from 32768 on), lowest first; each that `decided` leaves open is searched at its
+  // sawtooth's peak and just below its end, where its coordinates are largest, and the first to
+  // fail lowers the limit to its start. The binade just below the limit is searched whatever
+  // `decided` says, as evidence.
   double fails_at = -1, mts_at_fail = 0;
   for (int e = kFirstExponent; e < kLastExponent && fails_at < 0; ++e) {
     const double M = std::ldexp(1.0, e);
