@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "host/analysis/advise.h"
@@ -17,8 +18,46 @@ std::array<double, 3> unit(const std::array<double, 3>& d) {
   return {d[0] / n, d[1] / n, d[2] / n};
 }
 
+const char* const kAxisNames[] = {"x", "y", "z"};
+
+// The spacing of a `precision`-bit significand in the binade holding m.
+double grid_spacing(double m, int precision) {
+  if (!(m > 0)) return 0;
+  int e = 0;
+  std::frexp(m, &e);
+  return std::ldexp(1.0, e - precision);
+}
+
+// The magnitudes the sweep considers: from below any vertex's reach to above world_position's
+// bound plus the content's distance.
+constexpr int kFirstExponent = -30, kLastExponent = 62;
+
+// The largest vertex coordinate at world distance R (the centre's, plus the plane's reach) and
+// its axis.
+double largest_coordinate(const WorldRequest& r, double reach, double R, int* axis) {
+  const auto d = unit(r.direction);
+  const std::array<double, 3> centre = {R * d[0], R * d[1], R * d[2] - r.z};
+  double m = -1;
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(centre[i]) + reach > m) {
+      m = std::abs(centre[i]) + reach;
+      *axis = i;
+    }
+  return m;
+}
+
+// The planes' steepest slope against the view over the orientations the scene allows (each axis
+// within +-rotation_range_deg; the turn about z tilts nothing): a lateral error e of a vertex moves
+// the depth under a pixel by up to e times this.
+double steepest_slope(const Scene& scene) {
+  const double a = scene.rotation_range_deg * M_PI / 180;
+  const double nz = std::cos(a) * std::cos(a);  // the normal's view component, turned about x and y
+  if (!(nz > 0) || a >= M_PI / 2) return INFINITY;
+  return std::sqrt(1 - nz * nz) / nz;
+}
+
 // The MTS at eye distance z with the world at distance R along the direction (infinite when the
-// search does not resolve it), and how many searches ran.
+// search does not resolve it), every position searched, and how many searches ran.
 struct WorldProbe {
   const WorldRequest& r;
   OpenClRuntime& rt;
@@ -26,63 +65,129 @@ struct WorldProbe {
   const EvalPair& pair;
   Transform t;
   int searches = 0;
+  nlohmann::json probes = nlohmann::json::array();
 
   double mts_at(double R) {
+    for (const auto& p : probes)
+      if (p[0].get<double>() == R) return p[1].get<double>();
     const auto d = unit(r.direction);
     const Scene s = with_world(scene, {R * d[0], R * d[1], R * d[2]}, t);
     ++searches;
     const std::vector<MtsRow> rows = search_sampled(rt, s, pair, {r.z});
     const MtsRow& row = rows.at(0);
-    return row.verdict() == Verdict::resolved ? row.mts : INFINITY;
+    const double mts = row.verdict() == Verdict::resolved ? row.mts : INFINITY;
+    probes.push_back({R, mts});
+    return mts;
   }
 };
 
 nlohmann::json sweep(WorldProbe& probe) {
   const WorldRequest& r = probe.r;
+  const Scene& scene = probe.scene;
+  const Transform t = probe.t;
   nlohmann::json j;
   const double origin = probe.mts_at(0);
   j["mts_at_origin"] = origin;
   const auto holds = [&](double mts) { return mts <= r.separation; };
-  if (!holds(origin)) {
-    j["holds_to_limit"] = false;
+  const auto finish = [&]() {
+    j["probes"] = probe.probes;
     j["searches"] = probe.searches;
     return j;
+  };
+  if (!holds(origin)) {
+    j["holds_to_bound"] = false;
+    return finish();
   }
-  const double limit = world_distance_limit(r);
-  double good = 0, good_mts = origin, bad = 0, bad_mts = 0;
-  // Powers of two up to the limit, then the limit itself.
-  for (double R = 1; bad == 0 && good < limit; R = std::min(2 * R, limit)) {
-    const double m = probe.mts_at(R);
-    if (!holds(m)) {
-      bad = R;
-      bad_mts = m;
+  const double bound = world_distance_limit(r);
+  const double reach = plane_reach(scene, r);
+  const SpacingLimit by_spacing = spacing_limit(r, scene, t);
+  double limit = std::min(by_spacing.distance, bound);
+  int axis = by_spacing.axis;
+  double coordinate = by_spacing.coordinate, spacing = by_spacing.spacing;
+  std::string from = "spacing";
+  if (!std::isfinite(by_spacing.distance)) {
+    coordinate = largest_coordinate(r, reach, bound, &axis);
+    spacing = coordinate_spacing(t, scene, coordinate);
+    from = "bound";
+  }
+  // A binade decided without a search: each plane's vertex coordinates are off by at most a
+  // spacing (the translation rounds, then its sum with the vertex's offset), so the planes'
+  // separation along any view moves by at most two spacings per axis, lateral ones through the
+  // planes' slope; the eye-space coordinates round too where the view's subtraction is inexact.
+  const double eye = grid_spacing(r.z + reach, 24);
+  const double slope = steepest_slope(scene);
+  const auto decided = [&](double u) {
+    return origin + 2 * (u + eye) * (std::sqrt(3.0) + 2 * slope) <= r.separation;
+  };
+  // The binades below the limit (those of one spacing merged: relative to eye's low part has the
+  // same grid from 32768 on), lowest first; each that `decided` leaves open is searched at its
+  // sawtooth's peak and just below its end, where its coordinates are largest, and the first to
+  // fail lowers the limit to its start. The binade just below the limit is searched whatever
+  // `decided` says, as evidence.
+  double fails_at = -1, mts_at_fail = 0;
+  for (int e = kFirstExponent; e < kLastExponent && fails_at < 0; ++e) {
+    const double M = std::ldexp(1.0, e);
+    if (M >= coordinate) break;
+    const double u = coordinate_spacing(t, scene, M);
+    int top_e = e;
+    while (top_e + 1 < kLastExponent && std::ldexp(1.0, top_e + 1) < coordinate &&
+           coordinate_spacing(t, scene, std::ldexp(1.0, top_e + 1)) == u)
+      ++top_e;
+    int start_axis = -1, unused = -1;
+    const double a = first_reach(r, scene, M, &start_axis);
+    const double b = std::min(first_reach(r, scene, std::ldexp(1.0, top_e + 1), &unused), limit);
+    e = top_e;
+    if (!(a < b) || (decided(u) && b < limit)) continue;
+    const double top = std::max(a, b * (1 - std::ldexp(1.0, -12)));
+    for (const double R : {sawtooth_peak(r, scene, t, top), top}) {
+      if (R < a) continue;
+      const double m = probe.mts_at(R);
+      if (holds(m)) continue;
+      fails_at = R;
+      mts_at_fail = m;
+      limit = a;
+      coordinate = M;
+      spacing = u;
+      axis = start_axis;
+      from = "measured";
       break;
     }
-    good = R;
-    good_mts = m;
   }
-  if (bad > 0 && good > 0) {
-    while (bad / good > 1 + r.precision) {
-      const double mid = std::sqrt(good * bad);
-      const double m = probe.mts_at(mid);
-      if (holds(m)) {
-        good = mid;
-        good_mts = m;
-      } else {
-        bad = mid;
-        bad_mts = m;
+  // The evidence past a spacing limit: the depth axis's own sawtooth peak just inside the binade
+  // where its spacing reaches the separation (a lateral axis has none: this view sees it only
+  // through the planes' slope).
+  const auto d = unit(r.direction);
+  if (fails_at < 0 && from == "spacing" && limit > 0 && d[2] != 0) {
+    const double past = by_spacing.coordinate * (1 + std::ldexp(1.0, -8));
+    const double R0 = ((d[2] > 0 ? past : -past) + r.z) / d[2];
+    if (R0 > 0 && R0 <= bound) {
+      const double R = sawtooth_peak(r, scene, t, R0);
+      const double m = probe.mts_at(R);
+      if (!holds(m)) {
+        fails_at = R;
+        mts_at_fail = m;
       }
     }
   }
-  j["largest_world_distance"] = good;
-  j["mts_there"] = good_mts;
-  j["holds_to_limit"] = bad == 0;
-  if (bad > 0) {
-    j["fails_at"] = bad;
-    j["mts_at_fail"] = bad_mts;
+  double below = origin, below_at = 0;
+  for (const auto& p : probe.probes)
+    if (p[0].get<double>() < limit && p[1].get<double>() > below) {
+      below = p[1].get<double>();
+      below_at = p[0].get<double>();
+    }
+  j["limit"] = limit;
+  j["holds_to_bound"] = from == "bound";
+  j["limit_from"] = from;
+  j["spacing"] = spacing;
+  j["coordinate"] = coordinate;
+  j["axis"] = kAxisNames[axis];
+  j["mts_below"] = below;
+  j["mts_below_at"] = below_at;
+  if (fails_at >= 0) {
+    j["fails_at"] = fails_at;
+    j["mts_at_fail"] = mts_at_fail;
   }
-  j["searches"] = probe.searches;
-  return j;
+  return finish();
 }
 
 }  // namespace
@@ -111,6 +216,85 @@ double world_distance_limit(const WorldRequest& r) {
   const auto d = unit(r.direction);
   const double m = std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])});
   return kMaxWorldCoordinate / m;
+}
+
+double coordinate_spacing(Transform t, const Scene& scene, double magnitude) {
+  switch (t) {
+    case Transform::absolute: {
+      // Premultiplied in binary64, the host forms P * V * M before anything is rounded.
+      const bool host64 = scene.pipeline.compose == Compose::premultiplied &&
+                          scene.pipeline.matrix_precision == MatrixPrecision::binary64;
+      return grid_spacing(magnitude, host64 ? 53 : 24);
+    }
+    case Transform::camera_relative:
+      return grid_spacing(magnitude, 53);
+    case Transform::relative_to_eye: {
+      // The low part is below 65536 (interface/relative_to_eye.h), whatever the coordinate.
+      const double low = std::min(magnitude, static_cast<double>(std::nextafter(65536.0f, 0.0f)));
+      return std::max(grid_spacing(low, 24), grid_spacing(magnitude, 53));
+    }
+  }
+  return 0;
+}
+
+double plane_reach(const Scene& scene, const WorldRequest& r) {
+  // The square of docs/spec.md 5.1 (side plane_margin times the view at its distance) at plane
+  // B's distance, B as far behind as twice the separation the search needs.
+  const double D = r.z + 2 * r.separation;
+  const double side = scene.plane_margin * 2 * D * std::tan(scene.fov_y_deg * M_PI / 360);
+  return side / std::sqrt(2.0);
+}
+
+double first_reach(const WorldRequest& r, const Scene& scene, double magnitude, int* axis) {
+  const auto d = unit(r.direction);
+  const double need = magnitude - plane_reach(scene, r);  // of the centre's coordinate
+  const std::array<double, 3> o = {0, 0, -r.z};
+  double best = INFINITY;
+  for (int i = 0; i < 3; ++i) {
+    double R = INFINITY;
+    if (std::abs(o[i]) >= need)
+      R = 0;
+    else if (d[i] > 0)
+      R = (need - o[i]) / d[i];
+    else if (d[i] < 0)
+      R = (need + o[i]) / -d[i];
+    if (R < best) {
+      best = R;
+      *axis = i;
+    }
+  }
+  return best;
+}
+
+SpacingLimit spacing_limit(const WorldRequest& r, const Scene& scene, Transform t) {
+  SpacingLimit out;
+  out.distance = INFINITY;
+  for (int e = kFirstExponent; e <= kLastExponent; ++e) {
+    const double M = std::ldexp(1.0, e);
+    const double u = coordinate_spacing(t, scene, M);
+    if (u < r.separation) continue;
+    out.coordinate = M;
+    out.spacing = u;
+    const double R = first_reach(r, scene, M, &out.axis);
+    if (R <= world_distance_limit(r)) out.distance = R;
+    return out;
+  }
+  return out;
+}
+
+double sawtooth_peak(const WorldRequest& r, const Scene& scene, Transform t, double at) {
+  const auto d = unit(r.direction);
+  if (d[2] == 0) return at;
+  // Plane A's translation along the view, t0 = R d_z - z; B's is t0 - s. fl(t0 - s) leaves
+  // fl(t0) once s > (t0 - fl(t0)) + u/2, which approaches u as t0 approaches the midpoint above
+  // fl(t0); 1/256 of a spacing below it keeps clear of ties and of B's own rounding to binary32.
+  const double t0 = at * d[2] - r.z;
+  const double u = coordinate_spacing(t, scene, std::abs(t0));
+  if (!(u > 0)) return at;
+  double peak = std::floor(t0 / u) * u + u / 2 - u / 256;
+  if (d[2] > 0 && peak > t0) peak -= u;
+  if (d[2] < 0 && peak < t0) peak += u;
+  return std::max(0.0, (peak + r.z) / d[2]);
 }
 
 nlohmann::json world_record(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,

@@ -83,11 +83,15 @@ std::string render_world_output(const nlohmann::json& header,
   const auto num = [&](const nlohmann::json& j, const char* k) {
     return j.contains(k) ? number_cell(j.at(k).get<double>(), out.format_out) : none;
   };
-  // Text: the largest world distance, ">=" when even the limit holds; CSV: the numbers, and
-  // whether the limit held, in columns of their own.
-  const auto largest = [&](const nlohmann::json& t) {
-    const std::string v = num(t, "largest_world_distance");
-    return !csv && t.value("holds_to_limit", false) ? ">= " + v : v;
+  // Text: the limit, ">=" when even world_position's bound holds, and the spacing with its axis
+  // in one cell; CSV: the numbers, the axis and what decided the limit in columns of their own.
+  const auto limit = [&](const nlohmann::json& t) {
+    const std::string v = num(t, "limit");
+    return !csv && t.value("holds_to_bound", false) ? ">= " + v : v;
+  };
+  const auto spacing = [&](const nlohmann::json& t) {
+    const std::string v = num(t, "spacing");
+    return csv || !t.contains("axis") ? v : v + " " + t.at("axis").get<std::string>();
   };
   const nlohmann::json transforms = header.value("transforms", nlohmann::json::array());
   std::vector<Column> cols = {{"technique", true}, {"format", true}, {"depth_range", true}};
@@ -113,9 +117,14 @@ std::string render_world_output(const nlohmann::json& header,
     shows_origin.push_back(origin_column(k));
     const std::string t = brief(transforms[k].get<std::string>());
     if (shows_origin[k]) cols.push_back({(k == 0 && !csv ? "" : t) + "mts at 0"});
-    cols.push_back({t + (csv ? "largest R" : "R holds")});
+    cols.push_back({t + "limit R"});
+    cols.push_back({t + "spacing"});
+    if (csv) cols.push_back({t + "axis", true});
+    if (csv) cols.push_back({t + "limit from", true});
+    cols.push_back({t + "mts below"});
     cols.push_back({t + (csv ? "fails at R" : "R fails")});
-    if (csv) cols.push_back({t + "holds to limit", true});
+    if (csv) cols.push_back({t + "mts at fail"});
+    if (csv) cols.push_back({t + "holds to bound", true});
   }
   Cells cells;
   for (const auto& rec : records) {
@@ -123,27 +132,39 @@ std::string render_world_output(const nlohmann::json& header,
                      rec.at("depth_range").get<std::string>()});
     for (size_t k = 0; k < transforms.size(); ++k) {
       const nlohmann::json& t = rec.at("transforms").at(transforms[k].get<std::string>());
-      if (shows_origin[k]) cells.back().push_back(num(t, "mts_at_origin"));
-      cells.back().push_back(largest(t));
-      cells.back().push_back(num(t, "fails_at"));
-      if (csv) cells.back().push_back(t.value("holds_to_limit", false) ? "true" : "false");
+      auto& row = cells.back();
+      if (shows_origin[k]) row.push_back(num(t, "mts_at_origin"));
+      row.push_back(limit(t));
+      row.push_back(spacing(t));
+      if (csv) row.push_back(t.value("axis", ""));
+      if (csv) row.push_back(t.value("limit_from", ""));
+      row.push_back(num(t, "mts_below"));
+      row.push_back(num(t, "fails_at"));
+      if (csv) row.push_back(num(t, "mts_at_fail"));
+      if (csv) row.push_back(t.value("holds_to_bound", false) ? "true" : "false");
     }
   }
   const auto dir = header.value("direction", std::vector<double>{1, 1, 1});
   return captioned(
-      fmt::format("How far from the world origin content can sit (scene {}): camera and planes "
-                  "moved a world distance R along ({}, {}, {}); content at eye distance {} needs "
-                  "a separation of {}, and R holds when the MTS there is within it (the scene's "
-                  "sampling). Powers of two from 1 are tried, then the first failure is bisected. "
-                  "R holds: the largest R found to hold, every power of two up to it holding too; "
-                  ">=: even {} (world_position's bound) holds; '-': not even the origin holds. R "
-                  "fails: the nearest R found to fail. mts at 0: the MTS at the origin (another "
-                  "transform's only where it differs). abs: absolute, cam-rel: camera_relative, "
-                  "rte: relative_to_eye",
-                  header.value("scene_name", std::string("?")), human(dir[0]), human(dir[1]),
-                  human(dir[2]), human(header.value("z", 0.0)),
-                  human(header.value("separation", 0.0)),
-                  human(header.value("world_distance_limit", 0.0))),
+      fmt::format(
+          "How far from the world origin content can sit (scene {}): camera and planes moved a "
+          "world distance R along ({}, {}, {}); content at eye distance {} needs a separation of "
+          "{}. What the vertex stage keeps of a world coordinate is a grid whose spacing is "
+          "constant within a binade of the coordinate, and within one the MTS saws from about 0 "
+          "to a full spacing as the planes' translation moves between grid points, so the limit "
+          "is decided per binade. limit R: every position below it holds: the start of the first "
+          "binade whose spacing reaches the separation, or of an earlier one whose sawtooth peak "
+          "was measured to fail; >=: even {} (world_position's bound) holds; '-': not even the "
+          "origin holds. spacing: the grid's spacing there and the axis whose coordinate reaches "
+          "it first (z: along this view; x or y: across it, which this view sees only through the "
+          "planes' slope, but a camera turned toward that axis sees it in depth, so the limit "
+          "stands for any view). mts below: the largest MTS measured below the limit. R fails: a "
+          "position measured to fail, the view's depth coordinate at its sawtooth peak just past "
+          "its own limit. mts at 0: the MTS at the origin (another transform's only where it "
+          "differs). abs: absolute, cam-rel: camera_relative, rte: relative_to_eye",
+          header.value("scene_name", std::string("?")), human(dir[0]), human(dir[1]), human(dir[2]),
+          human(header.value("z", 0.0)), human(header.value("separation", 0.0)),
+          human(header.value("world_distance_limit", 0.0))),
       cols, cells, out.format_out);
 }
 
@@ -152,10 +173,11 @@ void add_world_command(CLI::App& app, GlobalOptions& global) {
   auto* cmd = app.add_subcommand(
       "world",
       "How far from the world origin your content can go: per pair of the scene and vertex\n"
-      "transform (pipeline.transform: absolute, camera_relative, relative_to_eye), the largest\n"
-      "world distance of camera and content at which content at eye distance --distance still\n"
-      "keeps the separation it needs on the emulated pipeline (docs/spec.md 2, \"World\n"
-      "position\"). Absolute and camera-relative side by side by default.\n"
+      "transform (pipeline.transform: absolute, camera_relative, relative_to_eye), the world\n"
+      "distance of camera and content below which content at eye distance --distance keeps the\n"
+      "separation it needs everywhere on the emulated pipeline, and the spacing of the world\n"
+      "coordinates there (docs/spec.md 2, \"World position\"). Absolute and camera-relative\n"
+      "side by side by default.\n"
       "Examples:\n"
       "  depthprec world -t reversed -f float32 --distance 100 --separation 0.01\n"
       "  depthprec world -t standard -f unorm24 --far 1e5 --distance 500 --relative 1e-4 "

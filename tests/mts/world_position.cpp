@@ -40,8 +40,9 @@ TEST_CASE("at the world origin absolute and camera-relative are today's pipeline
 TEST_CASE("far from the origin the absolute transform loses the world coordinate's ulp",
           "[world]") {
   // The planes' translation along the view axis, 3e5 - z, is a binary32 near 3e5: spacing 2^-5.
-  // B separates from A once its translation rounds to the next binary32, at half that spacing;
-  // until then the planes coincide.
+  // B separates from A once its translation rounds to the next binary32: at half that spacing,
+  // as 299,900 is itself a binary32 (elsewhere in the binade anywhere from about 0 to a full
+  // spacing: tests/analysis/world_sweep.cpp); until then the planes coincide.
   const double z = 100, spacing = std::ldexp(1.0, -5);
   const std::vector<std::string> far = {"frames=20", "world_position=[1e5,-2e5,3e5]"};
   const double absolute = world_mts(far, z);

@@ -91,7 +91,8 @@ COMMANDS = [
      None),
     ("world -t standard,reversed -f unorm24 --kernel 24x24 --frames 4 --separation 0.05 "
      "--set sampling=paper --no-timing -q", "world", True,
-     ["absolute mts at 0", "absolute largest R", "camera_relative largest R"], None),
+     ["absolute mts at 0", "absolute limit R", "absolute spacing", "absolute mts below",
+      "camera_relative limit R", "camera_relative spacing"], None),
     (f"table --profiles ideal,llvmpipe {SCENE}", "profiles", True, ["z"], None),
     (f"mts --profiles ideal,llvmpipe {SCENE}", "profiles", True,
      ["z", "ideal", "llvmpipe", "spread"], None),
