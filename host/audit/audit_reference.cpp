@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "host/audit/depth_tolerance.h"
+#include "host/runtime/kernel_variant.h"
 #include "interface/audit_layout.h"
 
 namespace depthprec {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host/runtime/kernel_variant.h"
 #include "interface/audit_layout.h"
 
 namespace depthprec {
