@@ -48,7 +48,7 @@ TEST_CASE("audit reports the decal-wall pair with its fixes and marks it in the 
   const auto dir = test::empty_dir("audit_png");
   const auto j = audit_json_of(kAuditDir +
                                "decal_wall.gltf -t standard -f unorm24 --near 0.1 "
-                               "--far 1e5 --size 320x180 --png " +
+                               "--far 1e5 --size 320x180 --frames 1 --png " +
                                (dir / "decal").string());
   const auto& s = j.at("setups").at(0);
   REQUIRE(s.at("fighting_pixels").get<int>() > 100);
@@ -167,8 +167,9 @@ TEST_CASE("audit's views: --frames adds jittered views, --path reads them from a
   const std::string base = kAuditDir +
                            "decal_wall.gltf -t standard -f unorm24 --size 160x90 "
                            "--no-fixes";
-  const auto one = audit_json_of(base);
+  const auto one = audit_json_of(base + " --frames 1");
   const auto four = audit_json_of(base + " --frames 4 --jitter 0.5");
+  CHECK(audit_json_of(base).at("setups").at(0).at("frames") == 8);  // the default
   const auto& s1 = one.at("setups").at(0);
   const auto& s4 = four.at("setups").at(0);
   CHECK(s4.at("frames") == 4);
