@@ -114,8 +114,8 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
   const AuditPixels& e = audit.image;
   // Pixels whose winners (or fight verdicts) differ, by why: on a seam between neighbours of one
   // surface, where two surfaces share a plane (coplanar: the draw order decides), where the
-  // emulation's own codes tie or are one apart (one rounding decides), where the emulation marks
-  // the pixel at risk (another conformant implementation may store the other order), on the
+  // emulation marks the pixel at risk (another conformant implementation may store the other
+  // order), where the emulation's own codes tie or are one apart (one rounding decides), on the
   // border of the front surface's coverage (edge: the coverage rules decide), or none of these.
   struct Why {
     uint64_t seam = 0, coplanar = 0, tie = 0, at_risk = 0, edge = 0, other = 0;
@@ -123,7 +123,7 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
       return {{"seam", seam},       {"coplanar", coplanar}, {"tie", tie},
               {"at_risk", at_risk}, {"edge", edge},         {"other", other}};
     }
-  } winners_differ, fights_differ;
+  } winners_differ, fights_differ, fights_missed;
   uint64_t winner_agree = 0, fight_agree = 0, fights = 0, fights_emulated = 0;
   nlohmann::json examples = nlohmann::json::array();  // the first pixels whose winners differ
   const auto id = [](uint32_t t) {
@@ -159,10 +159,10 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
           ++why.seam;
         else if (e.flags[i] & AUDIT_COPLANAR)
           ++why.coplanar;
-        else if (std::abs(e.margin[i]) <= 1)
-          ++why.tie;
         else if (e.flags[i] & AUDIT_AT_RISK)
           ++why.at_risk;
+        else if (std::abs(e.margin[i]) <= 1)
+          ++why.tie;
         else if (on_edge(x, y))
           ++why.edge;
         else
@@ -174,6 +174,7 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
       fights_emulated += emulated;
       if (rw != ew) classify(winners_differ);
       if (fight != emulated) classify(fights_differ);
+      if (fight && !emulated) classify(fights_missed);  // rendered fights the emulation did not
       if (rw != ew && examples.size() < 8)
         examples.push_back({{"x", x},
                             {"y", y},
@@ -182,10 +183,15 @@ nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& p
                             {"front", id(front)},
                             {"emulated_margin_codes", e.margin[i]}});
     }
-  return {{"renderer", gl.description()}, {"pixels", e.flags.size()},
-          {"winner_agree", winner_agree}, {"winners_differ", winners_differ.json()},
-          {"fight_agree", fight_agree},   {"fights_differ", fights_differ.json()},
-          {"fighting_pixels", fights},    {"fighting_pixels_emulated", fights_emulated},
+  return {{"renderer", gl.description()},
+          {"pixels", e.flags.size()},
+          {"winner_agree", winner_agree},
+          {"winners_differ", winners_differ.json()},
+          {"fight_agree", fight_agree},
+          {"fights_differ", fights_differ.json()},
+          {"fights_missed", fights_missed.json()},
+          {"fighting_pixels", fights},
+          {"fighting_pixels_emulated", fights_emulated},
           {"winners_differ_at", examples}};
 }
 
