@@ -31,6 +31,7 @@ std::vector<uint8_t> fight_image(const SetupAudit& a) {
     const uint32_t f = a.image.flags[i];
     if (f & AUDIT_FIGHT) return {255, 0, 0};
     if (f & AUDIT_COPLANAR) return {40, 90, 255};
+    if (f & AUDIT_AT_RISK) return {255, 150, 0};
     if (!(f & AUDIT_COVERED)) return {0, 0, 0};
     const uint8_t s = a.shade[i];
     return {s, s, s};

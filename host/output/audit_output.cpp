@@ -106,21 +106,30 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   const auto opt = [&](double v) { return std::isnan(v) ? none : num(v); };
   // technique, format, depth_range, winner and front lead, so a table too wide for the terminal
   // repeats them in each block (host/output/text_table.h grid)
-  const std::vector<Column> cols = {{"technique", true},   {"format", true},
-                                    {"depth_range", true}, {"winner", true},
-                                    {"front", true},       {"fighting_pixels"},
-                                    {"coplanar_pixels"},   {"covered_pixels"},
-                                    {"pair_pixels"},       {"eye_depth"},
-                                    {"min_separation"},    {"mts"},
-                                    {"offset_needed"},     {"near_that_resolves"},
-                                    {"bias_units"},        {"setups_that_resolve", true}};
+  const std::vector<Column> cols = {{"technique", true},
+                                    {"format", true},
+                                    {"depth_range", true},
+                                    {"winner", true},
+                                    {"front", true},
+                                    {"fighting_pixels"},
+                                    {"at_risk_pixels"},
+                                    {"coplanar_pixels"},
+                                    {"covered_pixels"},
+                                    {"pair_pixels"},
+                                    {"eye_depth"},
+                                    {"min_separation"},
+                                    {"mts"},
+                                    {"offset_needed"},
+                                    {"near_that_resolves"},
+                                    {"bias_units"},
+                                    {"setups_that_resolve", true}};
   Cells cells;
   for (const SetupAudit& s : r.setups) {
     const std::vector<std::string> head = {info(s.pair.technique).name, s.pair.format,
                                            to_string(s.pair.depth_range)};
-    const std::vector<std::string> counts = {std::to_string(s.fighting_pixels),
-                                             std::to_string(s.coplanar_pixels),
-                                             std::to_string(s.covered_pixels)};
+    const std::vector<std::string> counts = {
+        std::to_string(s.fighting_pixels), std::to_string(s.at_risk_pixels),
+        std::to_string(s.coplanar_pixels), std::to_string(s.covered_pixels)};
     if (s.pairs.empty()) {
       std::vector<std::string> row = head;
       row.insert(row.end(), {none, none});
@@ -148,7 +157,9 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   std::string caption = fmt::format(
       "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}, near {}, far {}: per set-up the "
       "pixels where the depth test kept a surface behind the exact front one (fighting_pixels), "
-      "those where two surfaces share a plane (coplanar_pixels), and per fighting pair (winner "
+      "those the front surface wins by less than another conformant implementation may store "
+      "(at_risk_pixels), those where two surfaces share a plane (coplanar_pixels), and per "
+      "fighting pair (winner "
       "drawn over front) its pixels, the front's median eye depth, the median separation along "
       "the ray, the set-up's MTS there, the offset that MTS asks for, and the fixes checked on "
       "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
@@ -176,7 +187,7 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   }
   for (size_t k = 0; k < r.pngs.size(); ++k)
     if (!r.pngs[k].empty())
-      notes += fmt::format("{}: {} (fights red, coplanar blue), margin {}\n",
+      notes += fmt::format("{}: {} (fights red, at risk orange, coplanar blue), margin {}\n",
                            r.setups[k].pair.label(), r.pngs[k], r.margin_pngs[k]);
   if (r.rendered.is_array())
     for (size_t k = 0; k < r.rendered.size(); ++k)
