@@ -44,9 +44,24 @@
 #define MTS_V_BAD_ROW(g, s) ((MTS_Q_BOX_ROWS(g, s) + 2 * (g) + 15) / 16 * 16)
 #define MTS_PLANE_STRIDE(g, s) (MTS_V_BAD_ROW(g, s) + MTS_NV_PAD(g))
 
+/* A triangle record's bits (MTS_T_BITS): edge e's function is negated (it runs from its
+ * lower-id vertex, against the triangle's orientation), edge e is owned (a pixel centre on it is
+ * covered: a top or left edge), and the triangle rasterises at all (non-zero finite area). */
+#define MTS_BIT_NEGATE(e) (1u << (e))
+#define MTS_BIT_OWNS(e) (8u << (e))
+#define MTS_BIT_NEGATE_ALL 7u
+#define MTS_BIT_VALID 64u
+
+/* Edge e at pixel centre (px, py): its function from the edge's lower-id vertex (ax, ay) along
+ * (dx, dy), and whether it passes once negated as its bit says (positive, or zero on an edge the
+ * triangle owns; `owns` 0 / 1 for scalars, 0 / -1 for vector masks). One expression for the host's
+ * covers, the kernels' coverage and the audit, scalar or vector, so all agree on every pixel. */
+#define MTS_EDGE_FUNCTION(ax, ay, dx, dy, px, py) ((dx) * ((py) - (ay)) - (dy) * ((px) - (ax)))
+#define MTS_EDGE_PASSES(E, owns) (((E) > 0.0f) | (((E) == 0.0f) & (owns)))
+
 /* Triangle record offsets */
 #define MTS_T_EDGES 0 /* 3 x (ax, ay, dx, dy) */
-#define MTS_T_BITS 12 /* uint: bit e negate edge e, bit 3+e owns edge e, bit 6 valid */
+#define MTS_T_BITS 12 /* uint: MTS_BIT_NEGATE(e), MTS_BIT_OWNS(e), MTS_BIT_VALID */
 #define MTS_T_X0 13
 #define MTS_T_Y0 14
 #define MTS_T_D0 15

@@ -16,10 +16,10 @@ static inline int16 covers16(__global const float* R, float16 px, float py) {
   for (int e = 0; e < 3; ++e) {
     const float ax = R[MTS_T_EDGES + 4 * e], ay = R[MTS_T_EDGES + 4 * e + 1];
     const float dx = R[MTS_T_EDGES + 4 * e + 2], dy = R[MTS_T_EDGES + 4 * e + 3];
-    float16 E = dx * (py - ay) - dy * (px - ax);
-    if ((bits >> e) & 1u) E = -E;
-    const int16 owns = (int16)(((bits >> (3 + e)) & 1u) ? -1 : 0);
-    in &= (E > 0.0f) | ((E == 0.0f) & owns);
+    float16 E = MTS_EDGE_FUNCTION(ax, ay, dx, dy, px, py);
+    if (bits & MTS_BIT_NEGATE(e)) E = -E;
+    const int16 owns = (int16)((bits & MTS_BIT_OWNS(e)) ? -1 : 0);
+    in &= MTS_EDGE_PASSES(E, owns);
   }
   return in;
 }
@@ -88,7 +88,8 @@ __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPi
   for (uint k = bins[tile]; k < bins[tile + 1]; ++k) {
     const uint r = bin_records[k];
     __global const float* R = records + (size_t)r * MTS_TRI_STRIDE;
-    if (!(as_uint(R[MTS_T_BITS]) & 64u) || py < R[MTS_T_YMIN] || py > R[MTS_T_YMAX]) continue;
+    if (!(as_uint(R[MTS_T_BITS]) & MTS_BIT_VALID) || py < R[MTS_T_YMIN] || py > R[MTS_T_YMAX])
+      continue;
     const int16 in = covers16(R, px, py);
     if (!any16(in)) continue;
     /* fragment16's code, with the interpolated value kept for the tolerance */

@@ -338,13 +338,13 @@ std::vector<float> packed_records(const AuditSetup& a) {
   for (size_t r = 0; r < a.records.size(); ++r) {
     const SetupTriangle& t = a.records[r];
     float* R = &out[r * MTS_TRI_STRIDE];
-    uint32_t bits = t.valid ? 64u : 0u;
+    uint32_t bits = t.valid ? MTS_BIT_VALID : 0u;
     for (int e = 0; e < 3; ++e) {
       R[MTS_T_EDGES + 4 * e] = t.e[e].ax;
       R[MTS_T_EDGES + 4 * e + 1] = t.e[e].ay;
       R[MTS_T_EDGES + 4 * e + 2] = t.e[e].dx;
       R[MTS_T_EDGES + 4 * e + 3] = t.e[e].dy;
-      bits |= (t.e[e].negate ? 1u << e : 0u) | (t.e[e].owns ? 8u << e : 0u);
+      bits |= (t.e[e].negate ? MTS_BIT_NEGATE(e) : 0u) | (t.e[e].owns ? MTS_BIT_OWNS(e) : 0u);
     }
     std::memcpy(&R[MTS_T_BITS], &bits, 4);
     R[MTS_T_X0] = t.x0;

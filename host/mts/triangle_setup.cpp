@@ -193,9 +193,9 @@ SetupTriangle setup_triangle(const Pipeline& pipeline, const SetupVertex* const 
 
 bool covers(const SetupTriangle& t, float px, float py) {
   for (const SetupEdge& e : t.e) {
-    float E = e.dx * (py - e.ay) - e.dy * (px - e.ax);
+    float E = MTS_EDGE_FUNCTION(e.ax, e.ay, e.dx, e.dy, px, py);
     if (e.negate) E = -E;
-    if (!(E > 0.0f || (E == 0.0f && e.owns))) return false;
+    if (!MTS_EDGE_PASSES(E, e.owns)) return false;
   }
   return true;
 }

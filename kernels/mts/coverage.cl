@@ -4,9 +4,9 @@
 // pixel, so span search below and the host reference agree on every pixel.
 static inline int edge_passes(__global const float* R, uint bits, int e, float px, float py) {
   const float ax = R[4 * e], ay = R[4 * e + 1], dx = R[4 * e + 2], dy = R[4 * e + 3];
-  float E = dx * (py - ay) - dy * (px - ax);
-  if ((bits >> e) & 1u) E = -E;
-  return E > 0.0f || (E == 0.0f && ((bits >> (3 + e)) & 1u));
+  float E = MTS_EDGE_FUNCTION(ax, ay, dx, dy, px, py);
+  if (bits & MTS_BIT_NEGATE(e)) E = -E;
+  return MTS_EDGE_PASSES(E, (bits & MTS_BIT_OWNS(e)) != 0u);
 }
 
 // Along a row, px - ax, dy * (.) and C - (.) are all monotone in px, so each edge's test is
@@ -16,7 +16,7 @@ static inline int edge_passes(__global const float* R, uint bits, int e, float p
 static inline void edge_range(__global const float* R, uint bits, int e, float py, float ox, int W,
                               int* lo, int* hi) {
   const float dy = R[4 * e + 3];
-  const float sdy = ((bits >> e) & 1u) ? -dy : dy;
+  const float sdy = (bits & MTS_BIT_NEGATE(e)) ? -dy : dy;
   if (sdy == 0.0f) { /* constant along the row */
     if (!edge_passes(R, bits, e, ox + 0.5f, py)) *hi = 0;
     return;
@@ -104,11 +104,11 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
     const int16 negate = convert_int16((eb & (uint16)1u) != (uint16)0u);
     const int16 owns = convert_int16((eb & (uint16)2u) != (uint16)0u);
     const float16 c = dx * (py - ay);
-#define EDGE_PASS16(PX)                    \
-  ({                                       \
-    float16 E_ = c - dy * ((PX)-ax);       \
-    E_ = negate ? -E_ : E_;                \
-    (E_ > 0.0f) || ((E_ == 0.0f) && owns); \
+#define EDGE_PASS16(PX)              \
+  ({                                 \
+    float16 E_ = c - dy * ((PX)-ax); \
+    E_ = negate ? -E_ : E_;          \
+    MTS_EDGE_PASSES(E_, owns);       \
   })
     const int16 p0 = EDGE_PASS16((float16)px_first);
     const int16 p1 = EDGE_PASS16((float16)px_last);
@@ -141,7 +141,7 @@ static inline int row_segments(__global const float* T, float py, float ox, int 
   for (int t = t_first; t < t_end; ++t) {
     __global const float* R = T + t * MTS_TRI_STRIDE;
     const uint bits = TB[t * MTS_TRI_STRIDE + MTS_T_BITS];
-    if (!(bits & 64u) || !(R[MTS_T_YMIN] <= py && py <= R[MTS_T_YMAX])) continue;
+    if (!(bits & MTS_BIT_VALID) || !(R[MTS_T_YMIN] <= py && py <= R[MTS_T_YMAX])) continue;
     int a = 0, b = W;
     for (int e = 0; e < 3 && a < b; ++e) {
       const int k = 3 * t + e;

@@ -51,7 +51,7 @@ static inline uint covers_kernel(const float* xw, const float* yw, float ox, flo
       const float margin = 0.5f * (fabs(dx) + fabs(dy)); /* half a pixel: |E| / length >= 0.5 */
       for (int q = 0; q < 4; ++q) {
         const float px = (q & 1) ? x1 : x0, py = (q & 2) ? y1 : y0;
-        float E = dx * (py - ay) - dy * (px - ax);
+        float E = MTS_EDGE_FUNCTION(ax, ay, dx, dy, px, py);
         if (inner < 0.0f) E = -E;
         if (!(E > margin)) return 0u;
       }

@@ -37,19 +37,19 @@ static inline void setup_triangles16(__global float* T, const int* slot, int lan
     rec[MTS_T_EDGES + 4 * e + 1] = as_uint16(ey[e]);
     rec[MTS_T_EDGES + 4 * e + 2] = as_uint16(edx[e]);
     rec[MTS_T_EDGES + 4 * e + 3] = as_uint16(edy[e]);
-    bits |= select((int16)0, (int16)(1 << e), id[a] > id[b]);
+    bits |= select((int16)0, (int16)MTS_BIT_NEGATE(e), id[a] > id[b]);
   }
   // orientation: edge 0 evaluated at vertex 2
   float16 orient = edx[0] * (y[2] - ey[0]) - edy[0] * (x[2] - ex[0]);
-  orient = select(orient, -orient, (bits & 1) != 0);
-  bits = select(bits, bits ^ 7, orient < 0.0f);
+  orient = select(orient, -orient, (bits & (int)MTS_BIT_NEGATE(0)) != 0);
+  bits = select(bits, bits ^ (int)MTS_BIT_NEGATE_ALL, orient < 0.0f);
   const int16 valid = (orient != 0.0f) & isfinite(orient);
   for (int e = 0; e < 3; ++e) {
-    const float16 s = select((float16)1.0f, (float16)-1.0f, ((bits >> e) & 1) != 0);
+    const float16 s = select((float16)1.0f, (float16)-1.0f, (bits & (int)MTS_BIT_NEGATE(e)) != 0);
     const float16 dx = s * edx[e], dy = s * edy[e];
-    bits |= select((int16)0, (int16)(8 << e), (dy < 0.0f) | ((dy == 0.0f) & (dx < 0.0f)));
+    bits |= select((int16)0, (int16)MTS_BIT_OWNS(e), (dy < 0.0f) | ((dy == 0.0f) & (dx < 0.0f)));
   }
-  bits |= select((int16)0, (int16)64, valid);
+  bits |= select((int16)0, (int16)MTS_BIT_VALID, valid);
   const float16 e1x = x[1] - x[0], e1y = y[1] - y[0];
   const float16 e2x = x[2] - x[0], e2y = y[2] - y[0];
   const float16 det = e1x * e2y - e2x * e1y;
@@ -150,7 +150,8 @@ static inline void setup_triangles16(__global float* T, const int* slot, int lan
     edges[MTS_E_DX][e] = as_uint16(edx[e]);
     edges[MTS_E_DY][e] = as_uint16(edy[e]);
     edges[MTS_E_DXDY][e] = as_uint16(dxdy);
-    edges[MTS_E_BITS][e] = ((ub >> e) & 1u) | (((ub >> (3 + e)) & 1u) << 1) |
+    edges[MTS_E_BITS][e] = ((ub & MTS_BIT_NEGATE(e)) >> e) |
+                           (((ub & MTS_BIT_OWNS(e)) >> (3 + e)) << 1) |
                            (as_uint16(id[e]) << MTS_E_ID_SHIFT) |
                            (as_uint16(id[(e + 1) % 3]) << (MTS_E_ID_SHIFT + 15));
   }
