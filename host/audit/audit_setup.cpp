@@ -229,10 +229,8 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
       v_error[i] = vertex_clip_error(s, a.pc, st, d.positions[i]);
       if (ti.from == DepthFrom::vertex_log)
         clip[2] = vertex_log_clip_z(a.pc, s.pipeline.log, gl, clip[3]);
-      bool nf = false;
-      v[i] = window_vertex(s, gl, clip, static_cast<int>(i), nf);
-      for (float c : clip) nf = nf || !std::isfinite(c);
-      bad[i] = nf;
+      v[i] = window_vertex(s, gl, clip, static_cast<int>(i));
+      bad[i] = vertex_non_finite(v[i], ti.from != DepthFrom::fragment);
     }
     const int nv = static_cast<int>(d.positions.size());
     for (size_t t = 0; t < d.triangles.size(); ++t) {
@@ -293,8 +291,7 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
         const SetupVertex* f[3] = {&poly[i - 1], &poly[i], &poly[0]};
         bool nf = false;
         for (const SetupVertex* p : f)
-          nf = nf || !std::isfinite(p->x) || !std::isfinite(p->y) || !std::isfinite(p->q) ||
-               (ti.from != DepthFrom::fragment && !std::isfinite(p->d));
+          nf = nf || vertex_non_finite(*p, ti.from != DepthFrom::fragment);
         if (nf) {
           ++a.non_finite;
           continue;

@@ -51,8 +51,8 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       if (ti.from == DepthFrom::vertex_log)
         clip[2] = vertex_log_clip_z(pc, s.pipeline.log, gl, clip[3]);
       Vertex& vx = v[j * (g + 1) + i];
-      vx = window_vertex(s, gl, clip, j * (g + 1) + i, plane.non_finite);
-      if (ti.from != DepthFrom::fragment && !std::isfinite(vx.d)) plane.non_finite = true;
+      vx = window_vertex(s, gl, clip, j * (g + 1) + i);
+      if (vertex_non_finite(vx, ti.from != DepthFrom::fragment)) plane.non_finite = true;
     }
   }
   // One triangle from its vertices (in the order the set-up takes them).

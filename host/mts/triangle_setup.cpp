@@ -74,7 +74,12 @@ std::vector<SetupVertex> clip_polygon(std::vector<SetupVertex> poly, unsigned ma
   return poly;
 }
 
-SetupVertex window_vertex(const Scene& s, bool gl, const float clip[4], int id, bool& non_finite) {
+bool vertex_non_finite(const SetupVertex& v, bool depth_interpolated) {
+  return !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.q) ||
+         (depth_interpolated && !std::isfinite(v.d));
+}
+
+SetupVertex window_vertex(const Scene& s, bool gl, const float clip[4], int id) {
   const float hw = 0.5f * static_cast<float>(s.viewport_w);
   const float hh = 0.5f * static_cast<float>(s.viewport_h);
   const float inv_w = 1.0f / clip[3];
@@ -96,7 +101,6 @@ SetupVertex window_vertex(const Scene& s, bool gl, const float clip[4], int id, 
   vx.q = inv_w;
   for (int r = 0; r < 4; ++r) vx.c[r] = clip[r];
   vx.id = id;
-  if (!std::isfinite(vx.x) || !std::isfinite(vx.y) || !std::isfinite(vx.q)) non_finite = true;
   return vx;
 }
 

@@ -55,10 +55,13 @@ std::vector<SetupVertex> clip_polygon(std::vector<SetupVertex> poly, unsigned ma
                                       float hh, bool depth_gl, int snap_bits, int next_id);
 
 // The vertex stage after the clip position: the divide, the window transform (depth by the depth
-// range) and snapping, as the scene's pipeline says. Sets non_finite when x, y, 1/w (or the depth,
-// where the set-up interpolates it) is not finite.
-SetupVertex window_vertex(const Scene& scene, bool depth_gl, const float clip[4], int id,
-                          bool& non_finite);
+// range) and snapping, as the scene's pipeline says.
+SetupVertex window_vertex(const Scene& scene, bool depth_gl, const float clip[4], int id);
+
+// The one rule for a vertex the set-up cannot use (kernels/mts/setup/vertex.cl's nonfinite): its
+// window x, y or 1/w is not finite, or its depth where the set-up interpolates depth (every depth
+// path but the fragment stage's, which interpolates 1/w alone).
+bool vertex_non_finite(const SetupVertex& v, bool depth_interpolated);
 
 // The set-up of the triangle tv[0..2] in the order the set-up takes them.
 SetupTriangle setup_triangle(const Pipeline& pipeline, const SetupVertex* const tv[3]);
