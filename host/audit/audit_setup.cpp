@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/glm.hpp>
+#include <initializer_list>
 
 #include "host/audit/depth_tolerance.h"
 #include "host/base/errors.h"
@@ -86,10 +88,33 @@ void vertex_clip(const Scene& s, const ProbeConstants& pc, const DrawMatrices& s
 
 }  // namespace
 
+// The product of binary64 matrices as the application forms it (docs/spec.md 2.1): under
+// matrix_precision float each factor rounded to binary32 and the product formed in binary32 (glm,
+// left to right, as the MTS's plane matrices are), under double formed in binary64 and rounded
+// once.
+Mat4f composed(const Scene& s, std::initializer_list<Mat4d> factors) {
+  if (s.pipeline.matrix_precision == MatrixPrecision::single) {
+    using M32 = glm::mat<4, 4, float, glm::defaultp>;  // column-major: m[c][r]
+    M32 product(1.0f);
+    for (const Mat4d& f : factors) {
+      M32 m(0.0f);
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m[c][r] = static_cast<float>(f[r * 4 + c]);
+      product = product * m;
+    }
+    Mat4f out{};
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) out[r * 4 + c] = product[c][r];
+    return out;
+  }
+  Mat4d product = mat_identity();
+  for (const Mat4d& f : factors) product = mat_mul(product, f);
+  return rounded(product);
+}
+
 DrawMatrices draw_matrices(const Scene& s, const ProbeConstants& pc, const Draw& d,
                            const AuditCamera& cam) {
   DrawMatrices st;
-  const Mat4d mv = mat_mul(cam.view, d.world);
   st.world = d.world;
   if (s.pipeline.transform == Transform::relative_to_eye) {
     st.relative_to_eye = true;
@@ -100,14 +125,14 @@ DrawMatrices draw_matrices(const Scene& s, const ProbeConstants& pc, const Draw&
   } else if (s.pipeline.compose == Compose::premultiplied) {
     Mat4d p{};
     for (int i = 0; i < 16; ++i) p[i] = pc.P_full[i];
-    st.first = rounded(mat_mul(p, mv));
+    st.first = composed(s, {p, cam.view, d.world});
     st.premultiplied = true;
   } else if (s.pipeline.transform == Transform::absolute) {
     st.first = rounded(d.world);
     st.second = rounded(cam.view);
     st.view_on_gpu = true;
   } else {
-    st.first = rounded(mv);
+    st.first = composed(s, {cam.view, d.world});
   }
   return st;
 }

@@ -34,8 +34,9 @@ AuditCamera gltf_view(const GltfCamera& camera, int width, int height);
 
 // What the GPU gets per draw (docs/audit.md "Vertex stage"): absolute: the model matrix and the
 // view matrix, each rounded to binary32 from binary64, applied in turn; camera_relative: the
-// model-view formed in binary64 and rounded once; compose premultiplied: P * V * M formed in
-// binary64 and rounded once; relative_to_eye: world positions in binary64, split
+// model-view V * M, compose premultiplied: P * V * M, each formed as matrix_precision says (in
+// binary32 from rounded factors, or in binary64 rounded once); relative_to_eye: world positions in
+// binary64, split
 // (interface/relative_to_eye.h), then the view's rotation. `render` uploads the same matrices.
 struct DrawMatrices {
   Mat4f first{}, second{};  // clip = P (second (first v)), P (first v), or first v (premultiplied)
