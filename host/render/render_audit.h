@@ -17,7 +17,8 @@ std::vector<uint32_t> render_winners(GlContext& gl, const Scene& scene, const Ev
 
 // The rendering of frame 0 against audit (the emulation's): renderer, pixels, winner_agree and
 // fight_agree, the pixels whose winners or fight verdicts differ by why (winners_differ,
-// fights_differ: seam, coplanar, tie, other), fighting_pixels (rendered; a neighbour of the front
+// fights_differ: seam, coplanar, at_risk, tie, edge, other; fights_missed: the rendered fights the
+// emulation did not call fights, sorted alike), fighting_pixels (rendered; a neighbour of the front
 // surface on its own surface is no fight) and fighting_pixels_emulated, and the first pixels whose
 // winners differ.
 nlohmann::json render_audit(GlContext& gl, const Scene& scene, const EvalPair& pair,
