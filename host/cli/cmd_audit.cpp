@@ -11,6 +11,7 @@
 #include "host/audit/audit_fixes.h"
 #include "host/base/read_file.h"
 #include "host/cli/commands.h"
+#include "host/cli/gltf_inputs.h"
 #include "host/model/scene_geometry.h"
 #include "host/output/audit_images.h"
 #include "host/output/audit_output.h"
@@ -117,6 +118,9 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
   check_output_spares_inputs("-o", o.out.output, {{"the --path file", o.path}});
   check_output_spares_inputs("-o", o.out.output,
                              {{"the glTF file", o.file}, {"the scene file", o.scene.scene_file}});
+  // and the buffers and images the glTF file names: a report written over its .bin is the
+  // user's geometry gone
+  check_output_spares_inputs("-o", o.out.output, gltf_inputs(o.file));
   int w = 0, h = 0;
   char tail = 0;
   if (std::sscanf(o.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 ||

@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -39,6 +40,26 @@ size_t red_pixels(const std::string& path) {
   for (size_t i = 0; i < rgb.size(); i += 3)
     n += rgb[i] == 255 && rgb[i + 1] == 0 && rgb[i + 2] == 0;
   return n;
+}
+
+// The decal scene with its buffer in a file of its own: decal_wall.glb's JSON chunk (its buffer
+// still without a uri) and the bytes of its BIN chunk.
+std::pair<nlohmann::json, std::string> split_decal() {
+  const std::string glb = test::bytes_of(kAuditDir + "decal_wall.glb");
+  uint32_t json_length = 0, bin_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  std::memcpy(&bin_length, glb.data() + 20 + json_length, 4);
+  return {nlohmann::json::parse(glb.substr(20, json_length)),
+          glb.substr(28 + json_length, bin_length)};
+}
+
+// A .glb of the JSON chunk alone: every buffer external.
+std::string glb_of(const nlohmann::json& j) {
+  std::string text = j.dump();
+  while (text.size() % 4) text += ' ';
+  const auto word = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  return "glTF" + word(2) + word(static_cast<uint32_t>(20 + text.size())) +
+         word(static_cast<uint32_t>(text.size())) + word(0x4E4F534Au) + text;
 }
 
 }  // namespace
@@ -252,4 +273,34 @@ TEST_CASE("audit says what the counts leave out: nothing drawn, seams, a transfo
     CHECK(o.exit_code == 3);
     CHECK(test::bytes_of(dir / "p.txt") == "0,0,0,0,0,-1\n");
   }
+}
+
+TEST_CASE("audit's -o never replaces a buffer or an image the glTF file reads", "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_inputs");
+  auto [j, bin] = split_decal();
+  j["buffers"][0]["uri"] = "decal%20wall.bin";  // percent-encoded, as a URI is
+  j["images"] = {{{"uri", "wall.png"}}};        // never decoded, still opened by the loader
+  test::write_bytes(dir / "scene.gltf", j.dump());
+  test::write_bytes(dir / "scene.glb", glb_of(j));
+  test::write_bytes(dir / "decal wall.bin", bin);
+  test::write_bytes(dir / "wall.png", "an image");
+  const std::string small = " -t standard -f unorm24 --size 32x18 --no-fixes --no-timing -q";
+  for (const char* scene : {"scene.gltf", "scene.glb"})
+    for (const auto& [target, what] :
+         {std::pair<std::string, std::string>{"decal wall.bin", "the glTF file's buffer 0"},
+          {"wall.png", "the glTF file's image 0"}}) {
+      CAPTURE(scene, target);
+      const auto r = run_cli("audit " + (dir / scene).string() + small + " -o '" +
+                             (dir / target).string() + "'");
+      CHECK(r.exit_code == 3);
+      CHECK_THAT(r.output, Contains(what) && Contains("choose another output file"));
+      CHECK(test::bytes_of(dir / "decal wall.bin") == bin);
+      CHECK(test::bytes_of(dir / "wall.png") == "an image");
+    }
+  // the files are the ones the loader reads: the same scene audits, to another file
+  const auto ok = run_cli("audit " + (dir / "scene.glb").string() + small + " -o " +
+                          (dir / "out.json").string());
+  INFO(ok.output);
+  CHECK(ok.exit_code == 0);
+  CHECK(nlohmann::json::parse(test::bytes_of(dir / "out.json")).at("triangles") == 4);
 }
