@@ -10,6 +10,7 @@
 
 #include "host/audit/audit_fixes.h"
 #include "host/base/read_file.h"
+#include "host/cli/audit_png_paths.h"
 #include "host/cli/commands.h"
 #include "host/cli/gltf_inputs.h"
 #include "host/model/scene_geometry.h"
@@ -109,18 +110,15 @@ std::vector<AuditCamera> path_frames(const AuditOptions& o, const AuditCamera& l
   return out;
 }
 
-std::string png_name(const std::string& prefix, const EvalPair& p, const char* kind) {
-  return fmt::format("{}-{}-{}-{}{}.png", prefix, info(p.technique).name, p.format,
-                     to_string(p.depth_range), kind);
-}
-
 void run_audit(AuditOptions o, const GlobalOptions& g) {
-  check_output_spares_inputs("-o", o.out.output, {{"the --path file", o.path}});
-  check_output_spares_inputs("-o", o.out.output,
-                             {{"the glTF file", o.file}, {"the scene file", o.scene.scene_file}});
-  // and the buffers and images the glTF file names: a report written over its .bin is the
-  // user's geometry gone
-  check_output_spares_inputs("-o", o.out.output, gltf_inputs(o.file));
+  // The glTF file, and the buffers and images it names: a report written over its .bin is the
+  // user's geometry gone.
+  std::vector<NamedInput> inputs = {{"the --path file", o.path},
+                                    {"the glTF file", o.file},
+                                    {"the scene file", o.scene.scene_file}};
+  for (NamedInput& in : gltf_inputs(o.file)) inputs.push_back(std::move(in));
+  check_output_spares_inputs("-o", o.out.output, inputs);
+  const std::string png = png_prefix(o.png, o.file);
   int w = 0, h = 0;
   char tail = 0;
   if (std::sscanf(o.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 ||
@@ -172,6 +170,7 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
                        [](const EvalPair& p) { return p.technique == Technique::layered; }),
         scene.evaluate.end());
   check_writable(o.out.output);
+  check_png_names(png, scene.evaluate, inputs);
   std::unique_ptr<OpenClRuntime> rt;
   if (!o.reference || !o.no_fixes) rt = std::make_unique<OpenClRuntime>(g.device);
   AuditRequest req;
@@ -214,9 +213,9 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
       add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames, audit,
                 fix);
     }
-    if (!o.png.empty()) {
-      report.pngs.push_back(png_name(o.png, pair, ""));
-      report.margin_pngs.push_back(png_name(o.png, pair, "-margin"));
+    if (!png.empty()) {
+      report.pngs.push_back(png_name(png, pair, ""));
+      report.margin_pngs.push_back(png_name(png, pair, "-margin"));
       write_png(report.pngs.back(), w, h, fight_image(audit));
       write_png(report.margin_pngs.back(), w, h, margin_image(audit));
     }
@@ -278,7 +277,10 @@ void add_audit_command(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--path", o->path,
                   "Views from a file, one per line: ex,ey,ez,tx,ty,tz (eye, target); the first is "
                   "the PNG's and the fixes'");
-  cmd->add_option("--png", o->png, "Write PREFIX-<set-up>.png and PREFIX-<set-up>-margin.png");
+  cmd->add_option("--png", o->png,
+                  "Write PREFIX-<technique>-<format>-<range>.png and ...-margin.png; a directory "
+                  "(ends with / or exists) gets <glTF name>-<technique>-<format>-<range>.png "
+                  "inside it. Its directory must exist");
   cmd->add_option("--source", o->source,
                   "emulated, or rendered: the winners drawn by the system's OpenGL");
   add_gl_device_option(cmd, o->gl_device);

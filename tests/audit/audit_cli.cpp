@@ -304,3 +304,40 @@ TEST_CASE("audit's -o never replaces a buffer or an image the glTF file reads", 
   CHECK(ok.exit_code == 0);
   CHECK(nlohmann::json::parse(test::bytes_of(dir / "out.json")).at("triangles") == 4);
 }
+
+TEST_CASE(
+    "audit's --png: a missing directory is refused before any work, a directory prefix "
+    "names the files after the glTF file",
+    "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_png_dir");
+  const std::string base = "audit " + kAuditDir +
+                           "decal_wall.gltf -t standard,reversed -f unorm24 --size 32x18 "
+                           "--no-fixes --no-timing -q --format-out json";
+  for (const std::string png : {"missing/decal", "missing/"}) {
+    CAPTURE(png);
+    const auto r =
+        run_cli(base + " --png " + (dir / png).string() + " -o " + (dir / "out.json").string());
+    CHECK(r.exit_code == 5);
+    CHECK_THAT(r.output, Contains("--png") &&
+                             Contains("'" + (dir / "missing").string() + "' does not exist"));
+    CHECK_FALSE(std::filesystem::exists(dir / "out.json"));
+  }
+  test::write_bytes(dir / "file", "");
+  const auto not_dir = run_cli(base + " --png " + (dir / "file" / "decal").string());
+  CHECK(not_dir.exit_code == 5);
+  CHECK_THAT(not_dir.output, Contains("is not a directory"));
+  // a directory, with or without the slash: <glTF name>-<set-up>.png inside it
+  for (const std::string slash : {"/", ""}) {
+    const auto out = dir / ("pngs" + std::to_string(slash.size()));
+    std::filesystem::create_directory(out);
+    const auto j = audit_json_of(kAuditDir +
+                                 "decal_wall.gltf -t standard -f unorm24 --size 32x18 "
+                                 "--no-fixes --png " +
+                                 out.string() + slash);
+    const auto view = out / "decal_wall-standard-unorm24-gl.png";
+    CHECK(std::filesystem::path(j.at("setups").at(0).at("png").get<std::string>()) == view);
+    CHECK(std::filesystem::exists(view));
+    CHECK(std::filesystem::exists(out / "decal_wall-standard-unorm24-gl-margin.png"));
+    CHECK_FALSE(std::filesystem::exists(out / "-standard-unorm24-gl.png"));
+  }
+}
