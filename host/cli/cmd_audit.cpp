@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "host/audit/audit_fixes.h"
+#include "host/base/interrupt.h"
 #include "host/base/read_file.h"
 #include "host/cli/audit_png_paths.h"
 #include "host/cli/commands.h"
@@ -19,6 +20,7 @@
 #include "host/output/json_header.h"
 #include "host/output/output_guard.h"
 #include "host/output/png_image.h"
+#include "host/output/progress.h"
 #include "host/output/report.h"
 #include "host/render/render_audit.h"
 
@@ -200,31 +202,71 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
        {"scene_name", scene.name},
        {"scene", scene.json}});
   if (o.source == "rendered") report.rendered = nlohmann::json::array();
+  // Ctrl-C or SIGTERM stops between a set-up's stages (a stage under way runs on); the set-ups
+  // finished by then are written, said to be a part, and the exit is 130.
+  install_interrupt_handlers();
+  const auto stop_if_asked = [] {
+    if (interrupt_requested()) throw Error(ExitCode::interrupted, "interrupted");
+  };
+  bool interrupted = false;
   std::unique_ptr<GlContext> gl;
-  for (const EvalPair& pair : scene.evaluate) {
-    SetupAudit audit = audit_setup_pair(rt.get(), scene, pair, geometry, req);
-    if (o.source == "rendered") {
-      if (!gl) gl = std::make_unique<GlContext>(GlDeviceChoice::parse(o.gl_device));
-      report.rendered.push_back(render_audit(*gl, scene, pair, geometry, req.frames[0], audit));
+  {
+    Progress bar("audit", scene.evaluate.size(), !g.quiet && stderr_is_terminal(), "set-ups");
+    try {
+      for (const EvalPair& pair : scene.evaluate) {
+        const std::string label = pair.label();
+        stop_if_asked();
+        bar.doing(label + ": pixels");
+        SetupAudit audit = audit_setup_pair(rt.get(), scene, pair, geometry, req);
+        nlohmann::json rendered;
+        if (o.source == "rendered") {
+          stop_if_asked();
+          bar.doing(label + ": rendering");
+          if (!gl) gl = std::make_unique<GlContext>(GlDeviceChoice::parse(o.gl_device));
+          rendered = render_audit(*gl, scene, pair, geometry, req.frames[0], audit);
+        }
+        if (!o.no_fixes) {
+          stop_if_asked();
+          bar.doing(label + ": fixes");
+          FixRequest fix;
+          fix.alternatives = default_alternatives(scene, pair);
+          add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames, audit,
+                    fix);
+        }
+        stop_if_asked();
+        if (!png.empty()) {
+          write_png(png_name(png, pair, ""), w, h, fight_image(audit));
+          write_png(png_name(png, pair, "-margin"), w, h, margin_image(audit));
+          report.pngs.push_back(png_name(png, pair, ""));
+          report.margin_pngs.push_back(png_name(png, pair, "-margin"));
+        }
+        // finished: what follows for this set-up cannot fail
+        if (o.source == "rendered") report.rendered.push_back(std::move(rendered));
+        report.setups.push_back(std::move(audit));
+        bar.advance();
+      }
+    } catch (...) {
+      // A signal can also break what a stage was doing (a kernel build inside PoCL's compiler
+      // fails when SIGINT lands in it): once a stop is asked, any failure is the interruption.
+      if (!interrupt_requested()) throw;
+      interrupted = true;
     }
-    if (!o.no_fixes) {
-      FixRequest fix;
-      fix.alternatives = default_alternatives(scene, pair);
-      add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames, audit,
-                fix);
-    }
-    if (!png.empty()) {
-      report.pngs.push_back(png_name(png, pair, ""));
-      report.margin_pngs.push_back(png_name(png, pair, "-margin"));
-      write_png(report.pngs.back(), w, h, fight_image(audit));
-      write_png(report.margin_pngs.back(), w, h, margin_image(audit));
-    }
-    report.setups.push_back(std::move(audit));
   }
+  const size_t finished = report.setups.size(), planned = scene.evaluate.size();
+  if (interrupted && finished == 0)
+    throw Error(ExitCode::interrupted,
+                "interrupted before the first set-up finished: nothing written");
+  if (interrupted)
+    report.header["interrupted"] = {{"finished_setups", finished}, {"setups", planned}};
   const bool timing = !o.out.no_timing;
   write_output(o.out.output, o.out.format_out == "json"
                                  ? audit_json(report, timing).dump(2) + "\n"
                                  : audit_text(report, o.out.format_out, timing));
+  if (interrupted)
+    throw Error(
+        ExitCode::interrupted,
+        fmt::format("interrupted after {} of {} set-ups: the finished ones are {}", finished,
+                    planned, o.out.output.empty() ? "above" : "in " + o.out.output));
 }
 
 }  // namespace

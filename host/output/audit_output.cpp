@@ -157,6 +157,11 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   std::string text = captioned(caption, cols, cells, format);
   // what the tables do not show, said in words (a blank line first, so Markdown ends the table)
   std::string notes;
+  if (h.contains("interrupted"))
+    notes += fmt::format(
+        "Interrupted after {} of {} set-ups: the tables hold the finished ones, the others were "
+        "not audited.\n",
+        h["interrupted"].value("finished_setups", 0), h["interrupted"].value("setups", 0));
   for (const SetupAudit& s : r.setups) {
     const std::string label = s.pair.label();
     if (s.covered_pixels == 0)

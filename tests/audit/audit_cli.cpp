@@ -1,14 +1,20 @@
 // `depthprec audit` as a user runs it: the decal scene's report names the pair and its fixes, the
 // PNG marks exactly the fighting pixels, the rendering on llvmpipe agrees pixel for pixel under
 // --profile llvmpipe, and bad input gets a specific error rather than a crash.
+#include <fmt/format.h>
 #include <png.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "tests/support/files.h"
 #include "tests/support/run_cli.h"
@@ -60,6 +66,31 @@ std::string glb_of(const nlohmann::json& j) {
   const auto word = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
   return "glTF" + word(2) + word(static_cast<uint32_t>(20 + text.size())) +
          word(static_cast<uint32_t>(text.size())) + word(0x4E4F534Au) + text;
+}
+
+// Runs depthprec with args (words split at spaces), its standard output and error to the files
+// named; once `ready` exists, sends `sig`. Returns the exit code.
+int run_and_interrupt(const std::string& args, const std::string& out, const std::string& err,
+                      const std::filesystem::path& ready, int sig) {
+  std::vector<std::string> words{DEPTHPREC_EXE};
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::freopen(out.c_str(), "w", stdout);
+    std::freopen(err.c_str(), "w", stderr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  for (int i = 0; i < 12000 && !std::filesystem::exists(ready); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, sig);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace
@@ -340,4 +371,58 @@ TEST_CASE(
     CHECK(std::filesystem::exists(out / "decal_wall-standard-unorm24-gl-margin.png"));
     CHECK_FALSE(std::filesystem::exists(out / "-standard-unorm24-gl.png"));
   }
+}
+
+TEST_CASE("an interrupted audit keeps the set-ups it finished and says it was interrupted",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_interrupt");
+  // six set-ups of a few seconds each (the fixes measure MTS); the first one's margin PNG, written
+  // as it finishes, is the cue to interrupt
+  const std::string args = "audit " + kAuditDir +
+                           "decal_wall.gltf -t standard,reversed,log_threejs -f unorm24,float32 "
+                           "--size 640x360 --no-timing -q --png " +
+                           (dir / "v").string();
+  const auto first = dir / "v-standard-unorm24-gl-margin.png";
+  SECTION("JSON to -o: the finished set-ups, and how many of how many") {
+    const auto out = (dir / "out.json").string(), err = (dir / "err.txt").string();
+    CHECK(run_and_interrupt(args + " --format-out json -o " + out, "/dev/null", err, first,
+                            SIGINT) == 130);
+    const auto j = nlohmann::json::parse(test::bytes_of(out));
+    const auto finished = j.at("interrupted").at("finished_setups").get<size_t>();
+    CHECK(j.at("interrupted").at("setups") == 6);
+    CHECK(finished >= 1);
+    CHECK(finished < 6);
+    CHECK(j.at("setups").size() == finished);
+    CHECK(j.at("setups").at(0).at("pairs").at(0).at("front").at("node") == "decal");
+    CHECK_THAT(test::bytes_of(err),
+               Contains(fmt::format("interrupted after {} of 6 set-ups", finished)) &&
+                   Contains("in " + out));
+  }
+  SECTION("text to standard output, on SIGTERM too") {
+    const auto out = (dir / "out.txt").string(), err = (dir / "err.txt").string();
+    CHECK(run_and_interrupt(args, out, err, first, SIGTERM) == 130);
+    CHECK_THAT(test::bytes_of(out),
+               Contains("Interrupted after") && Contains("of 6 set-ups") && Contains("wall"));
+    CHECK_THAT(test::bytes_of(err), Contains("the finished ones are above"));
+  }
+}
+
+TEST_CASE("audit draws a progress line on a terminal, never into its output, and not with -q",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_progress");
+  const auto terminal = [&](const std::string& quiet) {
+    // script(1) (bsdutils, part of every Debian) gives the command a terminal
+    const auto r =
+        test::run_shell(std::string("script -qfc \"'") + DEPTHPREC_EXE + "' audit " + kAuditDir +
+                        "decal_wall.gltf -t standard,reversed -f unorm24 --size "
+                        "32x18 --no-fixes --no-timing " +
+                        quiet + " -o " + (dir / "out.txt").string() + "\" /dev/null");
+    REQUIRE(r.exit_code == 0);
+    return r.output;
+  };
+  const std::string shown = terminal("");
+  CHECK_THAT(shown, Contains("audit: 0/2 set-ups") && Contains("standard/unorm24/gl: pixels") &&
+                        Contains("audit: 2/2 set-ups"));
+  CHECK_THAT(test::bytes_of(dir / "out.txt"), !Contains("set-ups,") && Contains("standard"));
+  CHECK_THAT(terminal("-q"), !Contains("set-ups"));
 }
