@@ -45,6 +45,10 @@ nlohmann::json pair_json(const SceneGeometry& g, const FightPair& p) {
   return j;
 }
 
+// Two names of this width beside technique, format and depth range leave room for two number
+// columns a block in text's 120 columns.
+constexpr size_t kNameWidth = 24;
+
 std::string short_name(const SceneGeometry& g, int draw) {
   const Draw& d = g.draws[draw];
   return d.node == d.mesh && d.primitive == 0
@@ -103,6 +107,12 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   // a value the set-up has not (no pair, no fix): "-" in text, an empty CSV field
   const std::string none = format == "csv" ? "" : "-";
   const auto opt = [&](double v) { return std::isnan(v) ? none : num(v); };
+  // A surface's name in a text table: cut to kNameWidth, or one long node name widens the
+  // leading columns past the terminal and the table splits into a block per column. CSV and
+  // Markdown (whose readers scroll) keep it whole, as JSON does.
+  const auto name = [&](int draw) {
+    return format == "text" ? shortened(short_name(g, draw), kNameWidth) : short_name(g, draw);
+  };
   // technique, format, depth_range, winner and front lead, so a table too wide for the terminal
   // repeats them in each block (host/output/text_table.h grid)
   const std::vector<Column> cols = {{"technique", true},   {"format", true},
@@ -132,7 +142,7 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       std::string resolving;
       // one word, so the text never folds a row inside it
       for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : ",") + l;
-      row.insert(row.end(), {short_name(g, p.winner_draw), short_name(g, p.front_draw)});
+      row.insert(row.end(), {name(p.winner_draw), name(p.front_draw)});
       row.insert(row.end(), counts.begin(), counts.end());
       row.insert(row.end(),
                  {std::to_string(p.pixels), num(p.depth_median), num(p.separation_min), opt(p.mts),
