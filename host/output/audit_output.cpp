@@ -113,32 +113,40 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   const auto name = [&](int draw) {
     return format == "text" ? shortened(short_name(g, draw), kNameWidth) : short_name(g, draw);
   };
+  const bool csv = format == "csv";
   // technique, format, depth_range, winner and front lead, so a table too wide for the terminal
-  // repeats them in each block (host/output/text_table.h grid)
-  const std::vector<Column> cols = {{"technique", true},   {"format", true},
-                                    {"depth_range", true}, {"winner", true},
-                                    {"front", true},       {"fighting_pixels"},
-                                    {"coplanar_pixels"},   {"covered_pixels"},
-                                    {"pair_pixels"},       {"eye_depth"},
-                                    {"min_separation"},    {"mts"},
-                                    {"offset_needed"},     {"near_that_resolves"},
-                                    {"bias_units"},        {"setups_that_resolve", true}};
-  Cells cells;
+  // repeats them in each block (host/output/text_table.h grid). CSV holds the coplanar pairs in
+  // the same table, told apart by `kind`; text shows them in a table of their own below.
+  std::vector<Column> cols = {{"technique", true},   {"format", true},
+                              {"depth_range", true}, {"winner", true},
+                              {"front", true},       {"fighting_pixels"},
+                              {"coplanar_pixels"},   {"covered_pixels"},
+                              {"pair_pixels"},       {"eye_depth"},
+                              {"min_separation"},    {"mts"},
+                              {"offset_needed"},     {"near_that_resolves"},
+                              {"bias_units"},        {"setups_that_resolve", true}};
+  if (csv) cols.insert(cols.begin() + 3, {"kind", true});
+  Cells cells, coplanar;
   for (const SetupAudit& s : r.setups) {
     const std::vector<std::string> head = {info(s.pair.technique).name, s.pair.format,
                                            to_string(s.pair.depth_range)};
+    const auto lead = [&](const char* kind) {
+      std::vector<std::string> row = head;
+      if (csv) row.push_back(kind);
+      return row;
+    };
     const std::vector<std::string> counts = {std::to_string(s.fighting_pixels),
                                              std::to_string(s.coplanar_pixels),
                                              std::to_string(s.covered_pixels)};
-    if (s.pairs.empty()) {
-      std::vector<std::string> row = head;
+    if (s.pairs.empty() && (!csv || s.coplanar_pairs.empty())) {
+      std::vector<std::string> row = lead("none");
       row.insert(row.end(), {none, none});
       row.insert(row.end(), counts.begin(), counts.end());
       row.insert(row.end(), {"0", none, none, none, none, none, none, none});
       cells.push_back(row);
     }
     for (const FightPair& p : s.pairs) {
-      std::vector<std::string> row = head;
+      std::vector<std::string> row = lead("fight");
       std::string resolving;
       // one word, so the text never folds a row inside it
       for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : ",") + l;
@@ -151,8 +159,24 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
                   resolving.empty() ? none : resolving});
       cells.push_back(row);
     }
+    for (const FightPair& p : s.coplanar_pairs) {
+      if (!csv) {
+        coplanar.push_back(head);
+        coplanar.back().insert(coplanar.back().end(),
+                               {name(p.winner_draw), name(p.front_draw), std::to_string(p.pixels),
+                                num(p.depth_median)});
+        continue;
+      }
+      // winner: the surface drawn first, kept; front: the one drawn later in its plane, lost
+      std::vector<std::string> row = lead("coplanar");
+      row.insert(row.end(), {name(p.winner_draw), name(p.front_draw)});
+      row.insert(row.end(), counts.begin(), counts.end());
+      row.insert(row.end(), {std::to_string(p.pixels), num(p.depth_median), none, none, none, none,
+                             none, none});
+      cells.push_back(row);
+    }
   }
-  if (format == "csv") return render_cells(cols, cells, format);
+  if (csv) return render_cells(cols, cells, format);
   const nlohmann::json& h = r.header;
   std::string caption = fmt::format(
       "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}, near {}, far {}: per set-up the "
@@ -165,6 +189,21 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       h.value("file", ""), g.triangles, g.draws.size(), h.value("camera", ""), h.value("width", 0),
       h.value("height", 0), human(h.value("near", 0.0)), human(h.value("far", 0.0)));
   std::string text = captioned(caption, cols, cells, format);
+  if (!coplanar.empty())
+    text += "\n" + captioned(
+                       "Coplanar pairs: surfaces in one plane, which no depth buffer orders: the "
+                       "one drawn first (kept) stays, the one drawn after it (lost) does not "
+                       "show; its pixels and median eye depth. The draw order and the compare "
+                       "decide them, not the depth: an offset or a depth bias on the one that "
+                       "should show orders them",
+                       {{"technique", true},
+                        {"format", true},
+                        {"depth_range", true},
+                        {"kept", true},
+                        {"lost", true},
+                        {"pixels"},
+                        {"eye_depth"}},
+                       coplanar, format);
   // what the tables do not show, said in words (a blank line first, so Markdown ends the table)
   std::string notes;
   if (h.contains("interrupted"))

@@ -463,3 +463,33 @@ TEST_CASE("audit's text cuts long surface names to 24 characters; CSV and JSON k
   const auto json = nlohmann::json::parse(run_cli(args + " --format-out json").output);
   CHECK(json.at("setups").at(0).at("pairs").at(0).at("winner").at("node") == wall);
 }
+
+TEST_CASE("audit's text and CSV show the coplanar pairs the JSON lists", "[audit][cli]") {
+  const std::string args = "audit " + kAuditDir +
+                           "slab_railing.gltf -t standard -f unorm24 --size 320x180 --no-fixes "
+                           "--no-timing -q";
+  const auto j = nlohmann::json::parse(run_cli(args + " --format-out json").output);
+  const auto& pairs = j.at("setups").at(0).at("coplanar_pairs");
+  REQUIRE(pairs.size() >= 1);
+  const auto& first = pairs.at(0);
+  CHECK(first.at("winner").at("node") == "slab");
+  CHECK(first.at("front").at("node") == "railing_base");
+  const auto lost = std::to_string(first.at("coplanar_pixels_lost").get<int>());
+  const auto text = run_cli(args);
+  REQUIRE(text.exit_code == 0);
+  CHECK_THAT(text.output, Contains("Coplanar pairs") && Contains("kept  lost"));
+  std::istringstream lines(text.output);
+  bool listed = false;
+  for (std::string line; std::getline(lines, line);)
+    listed = listed || (line.find("slab  railing_base") != std::string::npos &&
+                        line.find(" " + lost + " ") != std::string::npos);
+  CHECK(listed);
+  // CSV: a row of kind coplanar per pair, its pair_pixels the pixels it lost
+  const auto csv = run_cli(args + " --format-out csv");
+  REQUIRE(csv.exit_code == 0);
+  CHECK_THAT(csv.output, Contains("depth_range,kind,winner,front,"));
+  CHECK_THAT(csv.output,
+             Contains(",coplanar,slab,railing_base,0," +
+                      std::to_string(j.at("setups").at(0).at("coplanar_pixels").get<int>()) + ","));
+  CHECK_THAT(csv.output, Contains("," + lost + ","));
+}
