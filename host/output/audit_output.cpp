@@ -60,6 +60,11 @@ std::string short_name(const SceneGeometry& g, int draw) {
 
 nlohmann::json audit_json(const AuditReport& r, bool timing) {
   nlohmann::json j = r.header;
+  // Over several views a set-up's pixel counts (and a pair's) add up every view's pixels, while
+  // the images are drawn from the first view alone.
+  j["pixel_counts"] = "summed over frames";
+  for (const std::string& png : r.pngs)
+    if (!png.empty()) j["png_frame"] = 0;
   j["setups"] = nlohmann::json::array();
   for (size_t k = 0; k < r.setups.size(); ++k) {
     const SetupAudit& s = r.setups[k];
@@ -178,8 +183,20 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   }
   if (csv) return render_cells(cols, cells, format);
   const nlohmann::json& h = r.header;
+  const int views = h.value("frames", 1);
+  bool pngs = false;
+  for (const std::string& png : r.pngs) pngs = pngs || !png.empty();
+  const bool rendered = r.rendered.is_array();
+  const std::string images = pngs && rendered ? "; the PNGs and the rendering are view 1's"
+                             : pngs           ? "; the PNGs are view 1's"
+                             : rendered       ? "; the rendering is view 1's"
+                                              : "";
+  const std::string over =
+      views > 1
+          ? fmt::format(" over {} views (pixel counts are sums over the views{})", views, images)
+          : "";
   std::string caption = fmt::format(
-      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}, near {}, far {}: per set-up the "
+      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}{}, near {}, far {}: per set-up the "
       "pixels where the depth test kept a surface behind the exact front one (fighting_pixels), "
       "those where two surfaces share a plane (coplanar_pixels), and per fighting pair (winner "
       "drawn over front) its pixels, the front's median eye depth, the median separation along "
@@ -187,7 +204,7 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
       "units), other set-ups",
       h.value("file", ""), g.triangles, g.draws.size(), h.value("camera", ""), h.value("width", 0),
-      h.value("height", 0), human(h.value("near", 0.0)), human(h.value("far", 0.0)));
+      h.value("height", 0), over, human(h.value("near", 0.0)), human(h.value("far", 0.0)));
   std::string text = captioned(caption, cols, cells, format);
   if (!coplanar.empty())
     text += "\n" + captioned(

@@ -493,3 +493,23 @@ TEST_CASE("audit's text and CSV show the coplanar pairs the JSON lists", "[audit
                       std::to_string(j.at("setups").at(0).at("coplanar_pixels").get<int>()) + ","));
   CHECK_THAT(csv.output, Contains("," + lost + ","));
 }
+
+TEST_CASE("audit over several views says its pixel counts are sums and its PNG the first view",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_views_said");
+  const std::string args = kAuditDir +
+                           "decal_wall.gltf -t standard -f unorm24 --size 160x90 --no-fixes "
+                           "--frames 3 --jitter 0.5 --png " +
+                           (dir / "v").string();
+  const auto j = audit_json_of(args);
+  CHECK(j.at("pixel_counts") == "summed over frames");
+  CHECK(j.at("png_frame") == 0);
+  CHECK(j.at("setups").at(0).at("pixels") == 3 * 160 * 90);
+  const auto text = run_cli("audit " + args + " --no-timing -q");
+  REQUIRE(text.exit_code == 0);
+  // the caption, unfolded
+  std::string flat = text.output;
+  for (size_t at; (at = flat.find("\n  ")) != std::string::npos;) flat.replace(at, 3, " ");
+  CHECK_THAT(flat, Contains("over 3 views (pixel counts are sums over the views; the PNGs are "
+                            "view 1's)"));
+}
