@@ -158,11 +158,27 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
       if (s.rfind(key + "=", 0) == 0) return true;
     return false;
   };
-  if (file_camera && o.scene.near.empty() && file_camera->znear > 0 && !set_in_scene("near"))
-    o.scene.sets.push_back(fmt::format("near={}", file_camera->znear));
-  if (file_camera && o.scene.far.empty() && !set_in_scene("far"))
-    o.scene.sets.push_back(file_camera->zfar > 0 ? fmt::format("far={}", file_camera->zfar)
-                                                 : std::string("far=inf"));
+  // Each goes in named as the file camera's, so notes and errors about it say where it came
+  // from; the report says it too (near_source, far_source: command line, camera or scene).
+  std::string near_source = "scene", far_source = "scene";
+  if (!o.scene.near.empty() || set_in_scene("near")) {
+    near_source = "command line";
+  } else if (file_camera && file_camera->znear > 0) {
+    near_source = "camera";
+    o.scene.implied.push_back({fmt::format("near={}", file_camera->znear),
+                               fmt::format("the file camera's znear ({})", file_camera->znear)});
+  }
+  if (!o.scene.far.empty() || set_in_scene("far")) {
+    far_source = "command line";
+  } else if (file_camera) {
+    far_source = "camera";
+    o.scene.implied.push_back(
+        file_camera->zfar > 0
+            ? std::pair{fmt::format("far={}", file_camera->zfar),
+                        fmt::format("the file camera's zfar ({})", file_camera->zfar)}
+            : std::pair{std::string("far=inf"),
+                        std::string("the file camera's missing zfar (no far plane)")});
+  }
   Scene scene = o.scene.load();
   // The scene's own pairs less layered, whose depth range depends on the distance; named with
   // -t, audit_setup refuses it with the reason.
@@ -197,7 +213,9 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
        {"frames", req.frames.size()},
        {"jitter", o.path.empty() && o.frames > 1 ? o.jitter : 0.0},
        {"near", scene.near},
+       {"near_source", near_source},
        {"far", scene.far},
+       {"far_source", far_source},
        {"source", o.source},
        {"scene_name", scene.name},
        {"scene", scene.json}});

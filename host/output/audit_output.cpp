@@ -196,7 +196,8 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
           ? fmt::format(" over {} views (pixel counts are sums over the views{})", views, images)
           : "";
   std::string caption = fmt::format(
-      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}{}, near {}, far {}: per set-up the "
+      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}{}, near {}{}, far {}{}: per set-up "
+      "the "
       "pixels where the depth test kept a surface behind the exact front one (fighting_pixels), "
       "those where two surfaces share a plane (coplanar_pixels), and per fighting pair (winner "
       "drawn over front) its pixels, the front's median eye depth, the median separation along "
@@ -204,7 +205,10 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
       "units), other set-ups",
       h.value("file", ""), g.triangles, g.draws.size(), h.value("camera", ""), h.value("width", 0),
-      h.value("height", 0), over, human(h.value("near", 0.0)), human(h.value("far", 0.0)));
+      h.value("height", 0), over, human(h.value("near", 0.0)),
+      h.value("near_source", "") == "camera" ? " (the file camera's znear)" : "",
+      human(h.value("far", 0.0)),
+      h.value("far_source", "") == "camera" ? " (the file camera's zfar)" : "");
   std::string text = captioned(caption, cols, cells, format);
   if (!coplanar.empty())
     text += "\n" + captioned(

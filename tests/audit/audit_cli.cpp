@@ -513,3 +513,38 @@ TEST_CASE("audit over several views says its pixel counts are sums and its PNG t
   CHECK_THAT(flat, Contains("over 3 views (pixel counts are sums over the views; the PNGs are "
                             "view 1's)"));
 }
+
+TEST_CASE("audit names the file camera's znear and zfar as theirs, never as a --set",
+          "[audit][cli]") {
+  const std::string small = " --size 32x18 --no-fixes --no-timing";
+  // infinite has no far plane: the note says whose far plane it ignores
+  const auto note =
+      run_cli("audit " + kAuditDir + "decal_wall.gltf -t infinite,standard -f float32" + small +
+              " --format-out json");
+  REQUIRE(note.exit_code == 0);
+  CHECK_THAT(note.output, Contains("note: the file camera's zfar (100000): infinite has no far "
+                                   "plane") &&
+                              !Contains("--set"));
+  const auto j = nlohmann::json::parse(note.output.substr(note.output.find('{')));
+  CHECK(j.at("near_source") == "camera");
+  CHECK(j.at("far_source") == "camera");
+  // a camera whose zfar is nearer than its znear: the error blames the camera
+  const auto dir = test::empty_dir("audit_camera_planes");
+  auto g = nlohmann::json::parse(test::bytes_of(kAuditDir + "decal_wall.gltf"));
+  g["cameras"][0]["perspective"]["znear"] = 10;
+  g["cameras"][0]["perspective"]["zfar"] = 5;
+  test::write_bytes(dir / "planes.gltf", g.dump());
+  const auto bad =
+      run_cli("audit " + (dir / "planes.gltf").string() + " -t standard -f float32" + small);
+  CHECK(bad.exit_code == 3);
+  CHECK_THAT(bad.output, Contains("the file camera's zfar (5): 'far' must be > near (10)") &&
+                             !Contains("--set"));
+  // what the command line gives is the command line's
+  const auto typed = run_cli("audit " + (dir / "planes.gltf").string() +
+                             " -t standard -f float32 --far 1e4" + small + " --format-out json");
+  REQUIRE(typed.exit_code == 0);
+  const auto t = nlohmann::json::parse(typed.output);
+  CHECK(t.at("far_source") == "command line");
+  CHECK(t.at("near_source") == "camera");
+  CHECK(t.at("far") == 1e4);
+}
