@@ -251,7 +251,7 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
           add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames, audit,
                     fix);
         }
-        stop_if_asked();
+        // no stop before the PNGs: they take milliseconds, and the set-up's work is done
         if (!png.empty()) {
           write_png(png_name(png, pair, ""), w, h, fight_image(audit));
           write_png(png_name(png, pair, "-margin"), w, h, margin_image(audit));
