@@ -189,7 +189,13 @@ std::vector<nlohmann::json> bias_rows(const Scene& scene, const EvalPair& pair,
     j["units"] = signed_or_null(u.value);
     j["units_fails"] = signed_or_null(u.next_down);
     j["factor"] = signed_or_null(f.value);
-    j["factor_verdict"] = f.verdict;
+    // The constant term found an offset that separates the planes, and no slope factor up to
+    // 2^24 reached it: the slope is all but 0 (at tilt 0 the planes face the camera; far away
+    // their binary32 depths no longer differ across a triangle). Nothing for the factor to scale
+    // is no failure of the bias, and says so rather than "unresolvable".
+    j["factor_verdict"] = f.verdict == "unresolvable" && u.resolved() && !std::isnan(u.value)
+                              ? std::string(kNoSlope)
+                              : f.verdict;
     if (options.set_factor > 0) {
       const BiasAnswer& s = answers[k].with_factor;
       j["set_factor"] = sign * options.set_factor;

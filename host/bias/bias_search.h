@@ -16,6 +16,10 @@
 
 namespace depthprec {
 
+// factor_verdict of a row whose slope factor alone found nothing to scale: the units alone
+// resolve it, no factor up to the search's limit does (docs/bias.md, "Verdicts").
+constexpr const char* kNoSlope = "no_slope";
+
 // The answer of one search, as a magnitude (the row signs it).
 struct BiasAnswer {
   std::string verdict = "resolved";  // or unresolvable, clipped, uncovered, non_finite

@@ -9,14 +9,18 @@
 #include <sstream>
 
 #include "host/audit/audit_fixes.h"
+#include "host/base/interrupt.h"
 #include "host/base/read_file.h"
+#include "host/cli/audit_png_paths.h"
 #include "host/cli/commands.h"
+#include "host/cli/gltf_inputs.h"
 #include "host/model/scene_geometry.h"
 #include "host/output/audit_images.h"
 #include "host/output/audit_output.h"
 #include "host/output/json_header.h"
 #include "host/output/output_guard.h"
 #include "host/output/png_image.h"
+#include "host/output/progress.h"
 #include "host/output/report.h"
 #include "host/render/render_audit.h"
 
@@ -111,15 +115,15 @@ std::vector<AuditCamera> path_frames(const AuditOptions& o, const AuditCamera& l
   return out;
 }
 
-std::string png_name(const std::string& prefix, const EvalPair& p, const char* kind) {
-  return fmt::format("{}-{}-{}-{}{}.png", prefix, info(p.technique).name, p.format,
-                     to_string(p.depth_range), kind);
-}
-
 void run_audit(AuditOptions o, const GlobalOptions& g) {
-  check_output_spares_inputs("-o", o.out.output, {{"the --path file", o.path}});
-  check_output_spares_inputs("-o", o.out.output,
-                             {{"the glTF file", o.file}, {"the scene file", o.scene.scene_file}});
+  // The glTF file, and the buffers and images it names: a report written over its .bin is the
+  // user's geometry gone.
+  std::vector<NamedInput> inputs = {{"the --path file", o.path},
+                                    {"the glTF file", o.file},
+                                    {"the scene file", o.scene.scene_file}};
+  for (NamedInput& in : gltf_inputs(o.file)) inputs.push_back(std::move(in));
+  check_output_spares_inputs("-o", o.out.output, inputs);
+  const std::string png = png_prefix(o.png, o.file);
   int w = 0, h = 0;
   char tail = 0;
   if (std::sscanf(o.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 ||
@@ -157,11 +161,27 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
       if (s.rfind(key + "=", 0) == 0) return true;
     return false;
   };
-  if (file_camera && o.scene.near.empty() && file_camera->znear > 0 && !set_in_scene("near"))
-    o.scene.sets.push_back(fmt::format("near={}", file_camera->znear));
-  if (file_camera && o.scene.far.empty() && !set_in_scene("far"))
-    o.scene.sets.push_back(file_camera->zfar > 0 ? fmt::format("far={}", file_camera->zfar)
-                                                 : std::string("far=inf"));
+  // Each goes in named as the file camera's, so notes and errors about it say where it came
+  // from; the report says it too (near_source, far_source: command line, camera or scene).
+  std::string near_source = "scene", far_source = "scene";
+  if (!o.scene.near.empty() || set_in_scene("near")) {
+    near_source = "command line";
+  } else if (file_camera && file_camera->znear > 0) {
+    near_source = "camera";
+    o.scene.implied.push_back({fmt::format("near={}", file_camera->znear),
+                               fmt::format("the file camera's znear ({})", file_camera->znear)});
+  }
+  if (!o.scene.far.empty() || set_in_scene("far")) {
+    far_source = "command line";
+  } else if (file_camera) {
+    far_source = "camera";
+    o.scene.implied.push_back(
+        file_camera->zfar > 0
+            ? std::pair{fmt::format("far={}", file_camera->zfar),
+                        fmt::format("the file camera's zfar ({})", file_camera->zfar)}
+            : std::pair{std::string("far=inf"),
+                        std::string("the file camera's missing zfar (no far plane)")});
+  }
   Scene scene = o.scene.load();
   // The scene's own pairs less layered, whose depth range depends on the distance; named with
   // -t, audit_setup refuses it with the reason.
@@ -171,6 +191,7 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
                        [](const EvalPair& p) { return p.technique == Technique::layered; }),
         scene.evaluate.end());
   check_writable(o.out.output);
+  check_png_names(png, scene.evaluate, inputs);
   std::unique_ptr<OpenClRuntime> rt;
   if (!o.reference || !o.no_fixes) rt = std::make_unique<OpenClRuntime>(g.device);
   AuditRequest req;
@@ -195,36 +216,78 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
        {"frames", req.frames.size()},
        {"jitter", o.path.empty() && req.frames.size() > 1 ? o.jitter : 0.0},
        {"near", scene.near},
+       {"near_source", near_source},
        {"far", scene.far},
+       {"far_source", far_source},
        {"source", o.source},
        {"scene_name", scene.name},
        {"scene", scene.json}});
   if (o.source == "rendered") report.rendered = nlohmann::json::array();
+  // Ctrl-C or SIGTERM stops between a set-up's stages (a stage under way runs on); the set-ups
+  // finished by then are written, said to be a part, and the exit is 130.
+  install_interrupt_handlers();
+  const auto stop_if_asked = [] {
+    if (interrupt_requested()) throw Error(ExitCode::interrupted, "interrupted");
+  };
+  bool interrupted = false;
   std::unique_ptr<GlContext> gl;
-  for (const EvalPair& pair : scene.evaluate) {
-    SetupAudit audit = audit_setup_pair(rt.get(), scene, pair, geometry, req);
-    if (o.source == "rendered") {
-      if (!gl) gl = std::make_unique<GlContext>(GlDeviceChoice::parse(o.gl_device));
-      report.rendered.push_back(render_audit(*gl, scene, pair, geometry, req.frames[0], audit));
+  {
+    Progress bar("audit", scene.evaluate.size(), !g.quiet && stderr_is_terminal(), "set-ups");
+    try {
+      for (const EvalPair& pair : scene.evaluate) {
+        const std::string label = pair.label();
+        stop_if_asked();
+        bar.doing(label + ": pixels");
+        SetupAudit audit = audit_setup_pair(rt.get(), scene, pair, geometry, req);
+        nlohmann::json rendered;
+        if (o.source == "rendered") {
+          stop_if_asked();
+          bar.doing(label + ": rendering");
+          if (!gl) gl = std::make_unique<GlContext>(GlDeviceChoice::parse(o.gl_device));
+          rendered = render_audit(*gl, scene, pair, geometry, req.frames[0], audit);
+        }
+        if (!o.no_fixes) {
+          stop_if_asked();
+          bar.doing(label + ": fixes");
+          FixRequest fix;
+          fix.alternatives = default_alternatives(scene, pair);
+          add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames, audit,
+                    fix);
+        }
+        // no stop before the PNGs: they take milliseconds, and the set-up's work is done
+        if (!png.empty()) {
+          write_png(png_name(png, pair, ""), w, h, fight_image(audit));
+          write_png(png_name(png, pair, "-margin"), w, h, margin_image(audit));
+          report.pngs.push_back(png_name(png, pair, ""));
+          report.margin_pngs.push_back(png_name(png, pair, "-margin"));
+        }
+        // finished: what follows for this set-up cannot fail
+        if (o.source == "rendered") report.rendered.push_back(std::move(rendered));
+        report.setups.push_back(std::move(audit));
+        bar.advance();
+      }
+    } catch (...) {
+      // A signal can also break what a stage was doing (a kernel build inside PoCL's compiler
+      // fails when SIGINT lands in it): once a stop is asked, any failure is the interruption.
+      if (!interrupt_requested()) throw;
+      interrupted = true;
     }
-    if (!o.no_fixes) {
-      FixRequest fix;
-      fix.alternatives = default_alternatives(scene, pair);
-      add_fixes(rt.get(), audit_scene(scene, req.frames[0]), scene, geometry, req.frames, audit,
-                fix);
-    }
-    if (!o.png.empty()) {
-      report.pngs.push_back(png_name(o.png, pair, ""));
-      report.margin_pngs.push_back(png_name(o.png, pair, "-margin"));
-      write_png(report.pngs.back(), w, h, fight_image(audit));
-      write_png(report.margin_pngs.back(), w, h, margin_image(audit));
-    }
-    report.setups.push_back(std::move(audit));
   }
+  const size_t finished = report.setups.size(), planned = scene.evaluate.size();
+  if (interrupted && finished == 0)
+    throw Error(ExitCode::interrupted,
+                "interrupted before the first set-up finished: nothing written");
+  if (interrupted)
+    report.header["interrupted"] = {{"finished_setups", finished}, {"setups", planned}};
   const bool timing = !o.out.no_timing;
   write_output(o.out.output, o.out.format_out == "json"
                                  ? audit_json(report, timing).dump(2) + "\n"
                                  : audit_text(report, o.out.format_out, timing));
+  if (interrupted)
+    throw Error(
+        ExitCode::interrupted,
+        fmt::format("interrupted after {} of {} set-ups: the finished ones are {}", finished,
+                    planned, o.out.output.empty() ? "above" : "in " + o.out.output));
 }
 
 }  // namespace
@@ -278,7 +341,10 @@ void add_audit_command(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--path", o->path,
                   "Views from a file, one per line: ex,ey,ez,tx,ty,tz (eye, target); the first is "
                   "the PNG's and the fixes'");
-  cmd->add_option("--png", o->png, "Write PREFIX-<set-up>.png and PREFIX-<set-up>-margin.png");
+  cmd->add_option("--png", o->png,
+                  "Write PREFIX-<technique>-<format>-<range>.png and ...-margin.png; a directory "
+                  "(ends with / or exists) gets <glTF name>-<technique>-<format>-<range>.png "
+                  "inside it. Its directory must exist");
   cmd->add_option("--source", o->source,
                   "emulated, or rendered: the winners drawn by the system's OpenGL");
   add_gl_device_option(cmd, o->gl_device);

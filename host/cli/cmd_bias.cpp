@@ -219,12 +219,14 @@ std::string render_bias_output(const nlohmann::json& header,
   };
   Cells cells;
   std::vector<std::string> skipped;
+  bool no_slope = false;
   for (const auto& rec : records) {
     if (!rec.value("applicable", true)) {
       skipped.push_back(pair_label(rec));
       continue;
     }
     for (const auto& r : rec.at("rows")) {
+      no_slope = no_slope || r.value("factor_verdict", std::string()) == kNoSlope;
       std::vector<std::string> row = {r.at("technique").get<std::string>(),
                                       r.at("format").get<std::string>(),
                                       r.at("depth_range").get<std::string>(),
@@ -261,7 +263,7 @@ std::string render_bias_output(const nlohmann::json& header,
       "them (negative: toward the camera under LESS). offset: the constant bias in window depth "
       "(units x r{}; r = {}); eye separation: how "
       "far it moves a fragment toward the camera at z, beside the MTS (the separation two planes "
-      "need without bias).{}",
+      "need without bias).{}{}",
       header.value("scene_name", std::string("?")),
       header.value("source", std::string("emulated")) == "rendered"
           ? fmt::format("rendered on {}", header.value("renderer", std::string("?")))
@@ -278,6 +280,15 @@ std::string render_bias_output(const nlohmann::json& header,
           ? fmt::format(", clamped to {} as the API clamps it", human(header.value("clamp", 0.0)))
           : "",
       r_text,
+      no_slope ? fmt::format(" {}: the planes' slope is all but 0 in some frame{}, so no slope "
+                             "factor up to 2^24 moves the overlay as far as the units do: the "
+                             "factor has nothing to scale.",
+                             kNoSlope,
+                             header.value("tilt_deg", 0.0) > 0
+                                 ? ""
+                                 : " (at tilt 0 they face the camera, but for the scene's small "
+                                   "rotation; --tilt gives them a slope)")
+               : "",
       skipped.empty() ? ""
                       : fmt::format(" Not applicable (the fragment stage writes depth, which "
                                     "replaces the offset depth): {}.",

@@ -174,6 +174,17 @@ Scene SceneOptions::load() const {
     }
     set_if("--distances", "distances", typed, "[" + list + "]");
   }
+  const auto user_sets = [this](const std::string& key) {
+    for (const auto& set : sets)
+      if (set.substr(0, set.find('=')) == key) return true;
+    return false;
+  };
+  for (const auto& [set, origin] : implied) {
+    const std::string key = set.substr(0, set.find('='));
+    if (origins.count(key) || user_sets(key)) continue;  // what the user typed wins
+    all.push_back(set);
+    origins[key] = origin;
+  }
   for (const auto& set : sets) {
     const std::string key = set.substr(0, set.find('='));
     for (const auto& [k, option] : origins)
@@ -211,7 +222,7 @@ Scene SceneOptions::load() const {
   }
   check_pairs(scene);
   check_planes_cover_kernel(scene);
-  std::string far_given = far.empty() ? "" : "--far " + far;
+  std::string far_given = origins.count("far") ? origins.at("far") : "";
   for (const auto& set : sets)
     if (set.rfind("far=", 0) == 0) far_given = "--set " + set;
   if (!far_given.empty()) note_unused_far(scene, far_given);

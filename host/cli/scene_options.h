@@ -18,6 +18,10 @@ struct SceneOptions {
   std::string near, far, kernel, frames, rel_precision, matrix_precision, compose, divide, rounding,
       denormals, log_k, fov, profile;
   std::vector<std::string> distances;
+  // Settings the command takes from elsewhere where the command line gives none: key=value, and
+  // what messages call its origin ("near=0.1", "the file camera's znear (0.1)"), so a note or an
+  // error names where the value came from rather than a --set the user never typed.
+  std::vector<std::pair<std::string, std::string>> implied;
 
   void add_to(CLI::App& cmd, bool with_pairs);
   bool any() const;  // whether the command line names a scene or sets anything in one

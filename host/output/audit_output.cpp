@@ -45,6 +45,10 @@ nlohmann::json pair_json(const SceneGeometry& g, const FightPair& p) {
   return j;
 }
 
+// Two names of this width beside technique, format and depth range leave room for two number
+// columns a block in text's 120 columns.
+constexpr size_t kNameWidth = 24;
+
 std::string short_name(const SceneGeometry& g, int draw) {
   const Draw& d = g.draws[draw];
   return d.node == d.mesh && d.primitive == 0
@@ -56,6 +60,11 @@ std::string short_name(const SceneGeometry& g, int draw) {
 
 nlohmann::json audit_json(const AuditReport& r, bool timing) {
   nlohmann::json j = r.header;
+  // Over several views a set-up's pixel counts (and a pair's) add up every view's pixels, while
+  // the images are drawn from the first view alone.
+  j["pixel_counts"] = "summed over frames";
+  for (const std::string& png : r.pngs)
+    if (!png.empty()) j["png_frame"] = 0;
   j["setups"] = nlohmann::json::array();
   for (size_t k = 0; k < r.setups.size(); ++k) {
     const SetupAudit& s = r.setups[k];
@@ -104,45 +113,59 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   // a value the set-up has not (no pair, no fix): "-" in text, an empty CSV field
   const std::string none = format == "csv" ? "" : "-";
   const auto opt = [&](double v) { return std::isnan(v) ? none : num(v); };
+  // A surface's name in a text table: cut to kNameWidth, or one long node name widens the
+  // leading columns past the terminal and the table splits into a block per column. CSV and
+  // Markdown (whose readers scroll) keep it whole, as JSON does.
+  const auto name = [&](int draw) {
+    return format == "text" ? shortened(short_name(g, draw), kNameWidth) : short_name(g, draw);
+  };
+  const bool csv = format == "csv";
   // technique, format, depth_range, winner and front lead, so a table too wide for the terminal
-  // repeats them in each block (host/output/text_table.h grid)
-  const std::vector<Column> cols = {{"technique", true},
-                                    {"format", true},
-                                    {"depth_range", true},
-                                    {"winner", true},
-                                    {"front", true},
-                                    {"fighting_pixels"},
-                                    {"at_risk_pixels"},
-                                    {"coplanar_pixels"},
-                                    {"covered_pixels"},
-                                    {"pair_pixels"},
-                                    {"eye_depth"},
-                                    {"min_separation"},
-                                    {"mts"},
-                                    {"offset_needed"},
-                                    {"near_that_resolves"},
-                                    {"bias_units"},
-                                    {"setups_that_resolve", true}};
-  Cells cells;
+  // repeats them in each block (host/output/text_table.h grid). CSV holds the coplanar pairs in
+  // the same table, told apart by `kind`; text shows them in a table of their own below.
+  std::vector<Column> cols = {{"technique", true},
+                              {"format", true},
+                              {"depth_range", true},
+                              {"winner", true},
+                              {"front", true},
+                              {"fighting_pixels"},
+                              {"at_risk_pixels"},
+                              {"coplanar_pixels"},
+                              {"covered_pixels"},
+                              {"pair_pixels"},
+                              {"eye_depth"},
+                              {"min_separation"},
+                              {"mts"},
+                              {"offset_needed"},
+                              {"near_that_resolves"},
+                              {"bias_units"},
+                              {"setups_that_resolve", true}};
+  if (csv) cols.insert(cols.begin() + 3, {"kind", true});
+  Cells cells, coplanar;
   for (const SetupAudit& s : r.setups) {
     const std::vector<std::string> head = {info(s.pair.technique).name, s.pair.format,
                                            to_string(s.pair.depth_range)};
+    const auto lead = [&](const char* kind) {
+      std::vector<std::string> row = head;
+      if (csv) row.push_back(kind);
+      return row;
+    };
     const std::vector<std::string> counts = {
         std::to_string(s.fighting_pixels), std::to_string(s.at_risk_pixels),
         std::to_string(s.coplanar_pixels), std::to_string(s.covered_pixels)};
-    if (s.pairs.empty()) {
-      std::vector<std::string> row = head;
+    if (s.pairs.empty() && (!csv || s.coplanar_pairs.empty())) {
+      std::vector<std::string> row = lead("none");
       row.insert(row.end(), {none, none});
       row.insert(row.end(), counts.begin(), counts.end());
       row.insert(row.end(), {"0", none, none, none, none, none, none, none});
       cells.push_back(row);
     }
     for (const FightPair& p : s.pairs) {
-      std::vector<std::string> row = head;
+      std::vector<std::string> row = lead("fight");
       std::string resolving;
       // one word, so the text never folds a row inside it
       for (const auto& l : p.resolving) resolving += (resolving.empty() ? "" : ",") + l;
-      row.insert(row.end(), {short_name(g, p.winner_draw), short_name(g, p.front_draw)});
+      row.insert(row.end(), {name(p.winner_draw), name(p.front_draw)});
       row.insert(row.end(), counts.begin(), counts.end());
       row.insert(row.end(),
                  {std::to_string(p.pixels), num(p.depth_median), num(p.separation_min), opt(p.mts),
@@ -151,11 +174,40 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
                   resolving.empty() ? none : resolving});
       cells.push_back(row);
     }
+    for (const FightPair& p : s.coplanar_pairs) {
+      if (!csv) {
+        coplanar.push_back(head);
+        coplanar.back().insert(coplanar.back().end(),
+                               {name(p.winner_draw), name(p.front_draw), std::to_string(p.pixels),
+                                num(p.depth_median)});
+        continue;
+      }
+      // winner: the surface drawn first, kept; front: the one drawn later in its plane, lost
+      std::vector<std::string> row = lead("coplanar");
+      row.insert(row.end(), {name(p.winner_draw), name(p.front_draw)});
+      row.insert(row.end(), counts.begin(), counts.end());
+      row.insert(row.end(), {std::to_string(p.pixels), num(p.depth_median), none, none, none, none,
+                             none, none});
+      cells.push_back(row);
+    }
   }
-  if (format == "csv") return render_cells(cols, cells, format);
+  if (csv) return render_cells(cols, cells, format);
   const nlohmann::json& h = r.header;
+  const int views = h.value("frames", 1);
+  bool pngs = false;
+  for (const std::string& png : r.pngs) pngs = pngs || !png.empty();
+  const bool rendered = r.rendered.is_array();
+  const std::string images = pngs && rendered ? "; the PNGs and the rendering are view 1's"
+                             : pngs           ? "; the PNGs are view 1's"
+                             : rendered       ? "; the rendering is view 1's"
+                                              : "";
+  const std::string over =
+      views > 1
+          ? fmt::format(" over {} views (pixel counts are sums over the views{})", views, images)
+          : "";
   std::string caption = fmt::format(
-      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}, near {}, far {}: per set-up the "
+      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}{}, near {}{}, far {}{}: per set-up "
+      "the "
       "pixels where the depth test kept a surface behind the exact front one (fighting_pixels), "
       "those the front surface wins by less than another conformant implementation may store "
       "(at_risk_pixels), those where two surfaces share a plane (coplanar_pixels), and per "
@@ -165,11 +217,34 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
       "units), other set-ups",
       h.value("file", ""), g.triangles, g.draws.size(), h.value("camera", ""), h.value("width", 0),
-      h.value("height", 0), human(h.value("near", 0.0)), human(h.value("far", 0.0)));
+      h.value("height", 0), over, human(h.value("near", 0.0)),
+      h.value("near_source", "") == "camera" ? " (the file camera's znear)" : "",
+      human(h.value("far", 0.0)),
+      h.value("far_source", "") == "camera" ? " (the file camera's zfar)" : "");
   std::string text = captioned(caption, cols, cells, format);
+  if (!coplanar.empty())
+    text += "\n" + captioned(
+                       "Coplanar pairs: surfaces in one plane, which no depth buffer orders: the "
+                       "one drawn first (kept) stays, the one drawn after it (lost) does not "
+                       "show; its pixels and median eye depth. The draw order and the compare "
+                       "decide them, not the depth: an offset or a depth bias on the one that "
+                       "should show orders them",
+                       {{"technique", true},
+                        {"format", true},
+                        {"depth_range", true},
+                        {"kept", true},
+                        {"lost", true},
+                        {"pixels"},
+                        {"eye_depth"}},
+                       coplanar, format);
   // what the tables do not show, said in words (a blank line first, so Markdown ends the table)
   std::string notes;
   for (const std::string& n : g.notes) notes += n + "\n";  // how the file was read
+  if (h.contains("interrupted"))
+    notes += fmt::format(
+        "Interrupted after {} of {} set-ups: the tables hold the finished ones, the others were "
+        "not audited.\n",
+        h["interrupted"].value("finished_setups", 0), h["interrupted"].value("setups", 0));
   for (const SetupAudit& s : r.setups) {
     const std::string label = s.pair.label();
     if (s.covered_pixels == 0)

@@ -25,11 +25,17 @@ size_t key_columns(const std::vector<Column>& cols) {
 
 std::string one_grid(const std::vector<Column>& cols, const Cells& cells, bool markdown);
 
+// A cell padded with spaces to `width` columns, on the right of a left-aligned cell.
+std::string padded(const std::string& cell, size_t width, bool left) {
+  const std::string pad(width - std::min(width, display_width(cell)), ' ');
+  return left ? cell + pad : pad + cell;
+}
+
 std::string text_blocks(const std::vector<Column>& cols, const Cells& cells) {
   std::vector<size_t> w(cols.size());
   for (size_t c = 0; c < cols.size(); ++c) {
-    w[c] = cols[c].name.size();
-    for (const auto& row : cells) w[c] = std::max(w[c], row[c].size());
+    w[c] = display_width(cols[c].name);
+    for (const auto& row : cells) w[c] = std::max(w[c], display_width(row[c]));
   }
   size_t total = 0;
   for (size_t c = 0; c < cols.size(); ++c) total += w[c] + (c ? 2 : 0);
@@ -57,6 +63,33 @@ std::string text_blocks(const std::vector<Column>& cols, const Cells& cells) {
 
 }  // namespace
 
+size_t display_width(const std::string& s) {
+  // UTF-8: every byte but the continuation bytes (10xxxxxx) starts a character
+  return static_cast<size_t>(std::count_if(
+      s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
+std::string shortened(const std::string& s, size_t width) {
+  if (width < 3 || display_width(s) <= width) return s;
+  // byte offsets of the characters' starts
+  std::vector<size_t> starts;
+  for (size_t i = 0; i < s.size(); ++i)
+    if ((static_cast<unsigned char>(s[i]) & 0xC0) != 0x80) starts.push_back(i);
+  const size_t head = (width - 1) * 3 / 5, tail = width - 1 - head;
+  return s.substr(0, starts[head]) + "\u2026" + s.substr(starts[starts.size() - tail]);
+}
+
+namespace {
+
+// The byte offset of character `column` (0-based) of s, or s.size() past its end.
+size_t byte_of_column(const std::string& s, size_t column) {
+  for (size_t i = 0; i < s.size(); ++i)
+    if ((static_cast<unsigned char>(s[i]) & 0xC0) != 0x80 && column-- == 0) return i;
+  return s.size();
+}
+
+}  // namespace
+
 std::string wrap_text(const std::string& text) {
   std::string out;
   size_t start = 0;
@@ -64,11 +97,11 @@ std::string wrap_text(const std::string& text) {
     size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     std::string line = text.substr(start, end - start);
-    while (line.size() > kTextWidth) {
+    while (display_width(line) > kTextWidth) {
       // Fold at the last space that follows text; a line whose only spaces are its indent (a
       // word longer than the width) stays as it is. Each fold leaves less text after the indent.
       const size_t lead = line.find_first_not_of(' ');
-      const size_t cut = line.rfind(' ', kTextWidth);
+      const size_t cut = line.rfind(' ', byte_of_column(line, kTextWidth));
       if (cut == std::string::npos || lead == std::string::npos || cut <= lead) break;
       out += line.substr(0, cut) + "\n";
       line = "  " + line.substr(line.find_first_not_of(' ', cut));
@@ -89,14 +122,13 @@ namespace {
 std::string one_grid(const std::vector<Column>& cols, const Cells& cells, bool markdown) {
   std::vector<size_t> w(cols.size());
   for (size_t c = 0; c < cols.size(); ++c) {
-    w[c] = cols[c].name.size();
-    for (const auto& row : cells) w[c] = std::max(w[c], row[c].size());
+    w[c] = display_width(cols[c].name);
+    for (const auto& row : cells) w[c] = std::max(w[c], display_width(row[c]));
   }
   auto line = [&](const std::vector<std::string>& v) {
     std::string s = markdown ? "|" : "";
     for (size_t c = 0; c < cols.size(); ++c) {
-      const std::string cell =
-          cols[c].left ? fmt::format("{:<{}}", v[c], w[c]) : fmt::format("{:>{}}", v[c], w[c]);
+      const std::string cell = padded(v[c], w[c], cols[c].left);
       s += markdown ? " " + cell + " |" : (c ? "  " : "") + cell;
     }
     while (!markdown && !s.empty() && s.back() == ' ') s.pop_back();

@@ -14,6 +14,12 @@ struct Column {
 
 using Cells = std::vector<std::vector<std::string>>;
 
+// Columns a cell takes on a terminal: its UTF-8 characters (a name's "é" or "…" is one).
+size_t display_width(const std::string& s);
+// s cut to `width` characters, its middle replaced by "…": the start and the end stay, where
+// names usually differ (a path, a level of detail, an index).
+std::string shortened(const std::string& s, size_t width);
+
 // Aligned text or Markdown. Text wider than 120 columns is split into blocks of columns, each
 // repeating the columns that name a row (the leading names and a following `z`).
 std::string grid(const std::vector<Column>& cols, const Cells& cells, bool markdown);

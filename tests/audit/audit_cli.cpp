@@ -1,13 +1,20 @@
 // `depthprec audit` as a user runs it: the decal scene's report names the pair and its fixes, the
 // PNG marks exactly the fighting pixels, the rendering on llvmpipe agrees pixel for pixel under
 // --profile llvmpipe, and bad input gets a specific error rather than a crash.
+#include <fmt/format.h>
 #include <png.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "tests/support/files.h"
 #include "tests/support/run_cli.h"
@@ -39,6 +46,51 @@ size_t red_pixels(const std::string& path) {
   for (size_t i = 0; i < rgb.size(); i += 3)
     n += rgb[i] == 255 && rgb[i + 1] == 0 && rgb[i + 2] == 0;
   return n;
+}
+
+// The decal scene with its buffer in a file of its own: decal_wall.glb's JSON chunk (its buffer
+// still without a uri) and the bytes of its BIN chunk.
+std::pair<nlohmann::json, std::string> split_decal() {
+  const std::string glb = test::bytes_of(kAuditDir + "decal_wall.glb");
+  uint32_t json_length = 0, bin_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  std::memcpy(&bin_length, glb.data() + 20 + json_length, 4);
+  return {nlohmann::json::parse(glb.substr(20, json_length)),
+          glb.substr(28 + json_length, bin_length)};
+}
+
+// A .glb of the JSON chunk alone: every buffer external.
+std::string glb_of(const nlohmann::json& j) {
+  std::string text = j.dump();
+  while (text.size() % 4) text += ' ';
+  const auto word = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  return "glTF" + word(2) + word(static_cast<uint32_t>(20 + text.size())) +
+         word(static_cast<uint32_t>(text.size())) + word(0x4E4F534Au) + text;
+}
+
+// Runs depthprec with args (words split at spaces), its standard output and error to the files
+// named; once `ready` exists, sends `sig`. Returns the exit code.
+int run_and_interrupt(const std::string& args, const std::string& out, const std::string& err,
+                      const std::filesystem::path& ready, int sig) {
+  std::vector<std::string> words{DEPTHPREC_EXE};
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::freopen(out.c_str(), "w", stdout);
+    std::freopen(err.c_str(), "w", stderr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  for (int i = 0; i < 12000 && !std::filesystem::exists(ready); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, sig);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace
@@ -279,4 +331,248 @@ TEST_CASE("audit says what the counts leave out: nothing drawn, seams, a transfo
     CHECK(o.exit_code == 3);
     CHECK(test::bytes_of(dir / "p.txt") == "0,0,0,0,0,-1\n");
   }
+}
+
+TEST_CASE("audit's -o never replaces a buffer or an image the glTF file reads", "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_inputs");
+  auto [j, bin] = split_decal();
+  j["buffers"][0]["uri"] = "decal%20wall.bin";  // percent-encoded, as a URI is
+  j["images"] = {{{"uri", "wall.png"}}};        // never decoded, still opened by the loader
+  test::write_bytes(dir / "scene.gltf", j.dump());
+  test::write_bytes(dir / "scene.glb", glb_of(j));
+  test::write_bytes(dir / "decal wall.bin", bin);
+  test::write_bytes(dir / "wall.png", "an image");
+  const std::string small = " -t standard -f unorm24 --size 32x18 --no-fixes --no-timing -q";
+  for (const char* scene : {"scene.gltf", "scene.glb"})
+    for (const auto& [target, what] :
+         {std::pair<std::string, std::string>{"decal wall.bin", "the glTF file's buffer 0"},
+          {"wall.png", "the glTF file's image 0"}}) {
+      CAPTURE(scene, target);
+      const auto r = run_cli("audit " + (dir / scene).string() + small + " -o '" +
+                             (dir / target).string() + "'");
+      CHECK(r.exit_code == 3);
+      CHECK_THAT(r.output, Contains(what) && Contains("choose another output file"));
+      CHECK(test::bytes_of(dir / "decal wall.bin") == bin);
+      CHECK(test::bytes_of(dir / "wall.png") == "an image");
+    }
+  // the files are the ones the loader reads: the same scene audits, to another file
+  const auto ok = run_cli("audit " + (dir / "scene.glb").string() + small + " -o " +
+                          (dir / "out.json").string());
+  INFO(ok.output);
+  CHECK(ok.exit_code == 0);
+  CHECK(nlohmann::json::parse(test::bytes_of(dir / "out.json")).at("triangles") == 4);
+}
+
+TEST_CASE(
+    "audit's --png: a missing directory is refused before any work, a directory prefix "
+    "names the files after the glTF file",
+    "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_png_dir");
+  const std::string base = "audit " + kAuditDir +
+                           "decal_wall.gltf -t standard,reversed -f unorm24 --size 32x18 "
+                           "--no-fixes --no-timing -q --format-out json";
+  for (const std::string png : {"missing/decal", "missing/"}) {
+    CAPTURE(png);
+    const auto r =
+        run_cli(base + " --png " + (dir / png).string() + " -o " + (dir / "out.json").string());
+    CHECK(r.exit_code == 5);
+    CHECK_THAT(r.output, Contains("--png") &&
+                             Contains("'" + (dir / "missing").string() + "' does not exist"));
+    CHECK_FALSE(std::filesystem::exists(dir / "out.json"));
+  }
+  test::write_bytes(dir / "file", "");
+  const auto not_dir = run_cli(base + " --png " + (dir / "file" / "decal").string());
+  CHECK(not_dir.exit_code == 5);
+  CHECK_THAT(not_dir.output, Contains("is not a directory"));
+  // a directory, with or without the slash: <glTF name>-<set-up>.png inside it
+  for (const std::string slash : {"/", ""}) {
+    const auto out = dir / ("pngs" + std::to_string(slash.size()));
+    std::filesystem::create_directory(out);
+    const auto j = audit_json_of(kAuditDir +
+                                 "decal_wall.gltf -t standard -f unorm24 --size 32x18 "
+                                 "--no-fixes --png " +
+                                 out.string() + slash);
+    const auto view = out / "decal_wall-standard-unorm24-gl.png";
+    CHECK(std::filesystem::path(j.at("setups").at(0).at("png").get<std::string>()) == view);
+    CHECK(std::filesystem::exists(view));
+    CHECK(std::filesystem::exists(out / "decal_wall-standard-unorm24-gl-margin.png"));
+    CHECK_FALSE(std::filesystem::exists(out / "-standard-unorm24-gl.png"));
+  }
+}
+
+TEST_CASE("an interrupted audit keeps the set-ups it finished and says it was interrupted",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_interrupt");
+  // six set-ups of a few seconds each (the fixes measure MTS); the first one's margin PNG, written
+  // as it finishes, is the cue to interrupt
+  const std::string args = "audit " + kAuditDir +
+                           "decal_wall.gltf -t standard,reversed,log_threejs -f unorm24,float32 "
+                           "--size 640x360 --no-timing -q --png " +
+                           (dir / "v").string();
+  const auto first = dir / "v-standard-unorm24-gl-margin.png";
+  SECTION("JSON to -o: the finished set-ups, and how many of how many") {
+    const auto out = (dir / "out.json").string(), err = (dir / "err.txt").string();
+    CHECK(run_and_interrupt(args + " --format-out json -o " + out, "/dev/null", err, first,
+                            SIGINT) == 130);
+    const auto j = nlohmann::json::parse(test::bytes_of(out));
+    const auto finished = j.at("interrupted").at("finished_setups").get<size_t>();
+    CHECK(j.at("interrupted").at("setups") == 6);
+    CHECK(finished >= 1);
+    CHECK(finished < 6);
+    CHECK(j.at("setups").size() == finished);
+    CHECK(j.at("setups").at(0).at("pairs").at(0).at("front").at("node") == "decal");
+    CHECK_THAT(test::bytes_of(err),
+               Contains(fmt::format("interrupted after {} of 6 set-ups", finished)) &&
+                   Contains("in " + out));
+  }
+  SECTION("text to standard output, on SIGTERM too") {
+    const auto out = (dir / "out.txt").string(), err = (dir / "err.txt").string();
+    CHECK(run_and_interrupt(args, out, err, first, SIGTERM) == 130);
+    CHECK_THAT(test::bytes_of(out),
+               Contains("Interrupted after") && Contains("of 6 set-ups") && Contains("wall"));
+    CHECK_THAT(test::bytes_of(err), Contains("the finished ones are above"));
+  }
+}
+
+TEST_CASE("audit draws a progress line on a terminal, never into its output, and not with -q",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_progress");
+  const auto terminal = [&](const std::string& quiet) {
+    // script(1) (bsdutils, part of every Debian) gives the command a terminal
+    const auto r =
+        test::run_shell(std::string("script -qfc \"'") + DEPTHPREC_EXE + "' audit " + kAuditDir +
+                        "decal_wall.gltf -t standard,reversed -f unorm24 --size "
+                        "32x18 --no-fixes --no-timing " +
+                        quiet + " -o " + (dir / "out.txt").string() + "\" /dev/null");
+    REQUIRE(r.exit_code == 0);
+    return r.output;
+  };
+  const std::string shown = terminal("");
+  CHECK_THAT(shown, Contains("audit: 0/2 set-ups") && Contains("standard/unorm24/gl: pixels") &&
+                        Contains("audit: 2/2 set-ups"));
+  CHECK_THAT(test::bytes_of(dir / "out.txt"), !Contains("set-ups,") && Contains("standard"));
+  CHECK_THAT(terminal("-q"), !Contains("set-ups"));
+}
+
+TEST_CASE("audit's text cuts long surface names to 24 characters; CSV and JSON keep them whole",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_names");
+  auto j = nlohmann::json::parse(test::bytes_of(kAuditDir + "decal_wall.gltf"));
+  const std::string wall = "Building_A/Facade_North/Level_03/" + std::string(150, 'w') + "_LOD0",
+                    decal = "Decals/Graffiti/" + std::string(150, 'd') + "_0042";
+  j["nodes"][0]["name"] = wall;
+  j["meshes"][0]["name"] = wall;  // a node named as its mesh is named by the node alone
+  j["nodes"][1]["name"] = decal;
+  j["meshes"][1]["name"] = decal;
+  test::write_bytes(dir / "long.gltf", j.dump());
+  const std::string args = "audit " + (dir / "long.gltf").string() +
+                           " -t standard -f unorm24 --size 160x90 --no-fixes --no-timing -q";
+  const auto text = run_cli(args);
+  REQUIRE(text.exit_code == 0);
+  // the start and the end of each name, "…" between: 24 characters
+  const auto cut = [](const std::string& s) {
+    return s.substr(0, 13) + "\u2026" + s.substr(s.size() - 10);
+  };
+  CHECK_THAT(text.output, Contains(cut(wall)) && Contains(cut(decal)) && !Contains(wall));
+  // every line within the 120 columns (characters: "…" is three bytes), and a handful of blocks
+  // of columns rather than one per column
+  std::istringstream lines(text.output);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    rows += line.rfind("standard ", 0) == 0;
+    size_t chars = 0;
+    for (const char c : line) chars += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    CHECK(chars <= 120);
+  }
+  CHECK(rows <= 6);
+  const auto csv = run_cli(args + " --format-out csv");
+  CHECK_THAT(csv.output, Contains("," + wall + ",") && Contains("," + decal + ","));
+  const auto json = nlohmann::json::parse(run_cli(args + " --format-out json").output);
+  CHECK(json.at("setups").at(0).at("pairs").at(0).at("winner").at("node") == wall);
+}
+
+TEST_CASE("audit's text and CSV show the coplanar pairs the JSON lists", "[audit][cli]") {
+  const std::string args = "audit " + kAuditDir +
+                           "slab_railing.gltf -t standard -f unorm24 --size 320x180 --no-fixes "
+                           "--no-timing -q";
+  const auto j = nlohmann::json::parse(run_cli(args + " --format-out json").output);
+  const auto& pairs = j.at("setups").at(0).at("coplanar_pairs");
+  REQUIRE(pairs.size() >= 1);
+  const auto& first = pairs.at(0);
+  CHECK(first.at("winner").at("node") == "slab");
+  CHECK(first.at("front").at("node") == "railing_base");
+  const auto lost = std::to_string(first.at("coplanar_pixels_lost").get<int>());
+  const auto text = run_cli(args);
+  REQUIRE(text.exit_code == 0);
+  CHECK_THAT(text.output, Contains("Coplanar pairs") && Contains("kept  lost"));
+  std::istringstream lines(text.output);
+  bool listed = false;
+  for (std::string line; std::getline(lines, line);)
+    listed = listed || (line.find("slab  railing_base") != std::string::npos &&
+                        line.find(" " + lost + " ") != std::string::npos);
+  CHECK(listed);
+  // CSV: a row of kind coplanar per pair, its pair_pixels the pixels it lost
+  const auto csv = run_cli(args + " --format-out csv");
+  REQUIRE(csv.exit_code == 0);
+  CHECK_THAT(csv.output, Contains("depth_range,kind,winner,front,"));
+  CHECK_THAT(csv.output,
+             Contains(",coplanar,slab,railing_base,0," +
+                      std::to_string(j.at("setups").at(0).at("at_risk_pixels").get<int>()) + "," +
+                      std::to_string(j.at("setups").at(0).at("coplanar_pixels").get<int>()) + ","));
+  CHECK_THAT(csv.output, Contains("," + lost + ","));
+}
+
+TEST_CASE("audit over several views says its pixel counts are sums and its PNG the first view",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_views_said");
+  const std::string args = kAuditDir +
+                           "decal_wall.gltf -t standard -f unorm24 --size 160x90 --no-fixes "
+                           "--frames 3 --jitter 0.5 --png " +
+                           (dir / "v").string();
+  const auto j = audit_json_of(args);
+  CHECK(j.at("pixel_counts") == "summed over frames");
+  CHECK(j.at("png_frame") == 0);
+  CHECK(j.at("setups").at(0).at("pixels") == 3 * 160 * 90);
+  const auto text = run_cli("audit " + args + " --no-timing -q");
+  REQUIRE(text.exit_code == 0);
+  // the caption, unfolded
+  std::string flat = text.output;
+  for (size_t at; (at = flat.find("\n  ")) != std::string::npos;) flat.replace(at, 3, " ");
+  CHECK_THAT(flat, Contains("over 3 views (pixel counts are sums over the views; the PNGs are "
+                            "view 1's)"));
+}
+
+TEST_CASE("audit names the file camera's znear and zfar as theirs, never as a --set",
+          "[audit][cli]") {
+  const std::string small = " --size 32x18 --no-fixes --no-timing";
+  // infinite has no far plane: the note says whose far plane it ignores
+  const auto note =
+      run_cli("audit " + kAuditDir + "decal_wall.gltf -t infinite,standard -f float32" + small +
+              " --format-out json");
+  REQUIRE(note.exit_code == 0);
+  CHECK_THAT(note.output, Contains("note: the file camera's zfar (100000): infinite has no far "
+                                   "plane") &&
+                              !Contains("--set"));
+  const auto j = nlohmann::json::parse(note.output.substr(note.output.find('{')));
+  CHECK(j.at("near_source") == "camera");
+  CHECK(j.at("far_source") == "camera");
+  // a camera whose zfar is nearer than its znear: the error blames the camera
+  const auto dir = test::empty_dir("audit_camera_planes");
+  auto g = nlohmann::json::parse(test::bytes_of(kAuditDir + "decal_wall.gltf"));
+  g["cameras"][0]["perspective"]["znear"] = 10;
+  g["cameras"][0]["perspective"]["zfar"] = 5;
+  test::write_bytes(dir / "planes.gltf", g.dump());
+  const auto bad =
+      run_cli("audit " + (dir / "planes.gltf").string() + " -t standard -f float32" + small);
+  CHECK(bad.exit_code == 3);
+  CHECK_THAT(bad.output, Contains("the file camera's zfar (5): 'far' must be > near (10)") &&
+                             !Contains("--set"));
+  // what the command line gives is the command line's
+  const auto typed = run_cli("audit " + (dir / "planes.gltf").string() +
+                             " -t standard -f float32 --far 1e4" + small + " --format-out json");
+  REQUIRE(typed.exit_code == 0);
+  const auto t = nlohmann::json::parse(typed.output);
+  CHECK(t.at("far_source") == "command line");
+  CHECK(t.at("near_source") == "camera");
+  CHECK(t.at("far") == 1e4);
 }

@@ -142,3 +142,33 @@ TEST_CASE("formats says a value below binary32's range is lost whole, not stored
   CHECK(nlohmann::json::parse(run_cli("formats float32 --value 0 --format-out json")
                                   .output)["round_trips"][0]["rel_error"] == 0.0);
 }
+
+TEST_CASE("bias says a slope factor has no slope to scale, not that it is unresolvable",
+          "[cli][bias]") {
+  // At tilt 0 the planes face the camera: 2 units separate them at 10^5, and no slope factor up
+  // to 2^24 does, since their slope is all but 0 there. The same in every format.
+  const std::string args =
+      "bias --tilt 0 -t standard -f unorm24 --distances 1e5 --kernel 24x24 "
+      "--frames 4 --no-timing -q";
+  const auto json = run_cli(args + " --format-out json");
+  REQUIRE(json.exit_code == 0);
+  const auto row = nlohmann::json::parse(json.output).at("records").at(0).at("rows").at(0);
+  CHECK(row.at("verdict") == "resolved");
+  CHECK(row.at("factor").is_null());
+  CHECK(row.at("factor_verdict") == "no_slope");
+  const auto csv = run_cli(args + " --format-out csv");
+  REQUIRE(csv.exit_code == 0);
+  CHECK_THAT(csv.output, Contains(",resolved,no_slope,resolved") && !Contains("unresolvable"));
+  const auto text = run_cli(args);
+  REQUIRE(text.exit_code == 0);
+  CHECK_THAT(text.output, Contains("  no_slope  ") && !Contains("unresolvable"));
+  CHECK_THAT(text.output, Contains("the factor has nothing to scale"));
+  // tilted, the slope is there to scale: a factor, and no such verdict
+  const auto tilted = run_cli(
+      "bias --tilt 45 -t standard -f unorm24 --distances 1e5 --kernel "
+      "24x24 --frames 4 --no-timing -q --format-out json");
+  REQUIRE(tilted.exit_code == 0);
+  const auto t = nlohmann::json::parse(tilted.output).at("records").at(0).at("rows").at(0);
+  CHECK(t.at("factor_verdict") == "resolved");
+  CHECK(t.at("factor").get<double>() < 0);
+}

@@ -318,3 +318,21 @@ TEST_CASE("folding text leaves a word longer than a line whole and terminates", 
               "/tests/fuzz/regressions/shard-with-a-format-name-longer-than-a-line.json'");
   CHECK(r.exit_code == 3);  // the format does not exist; no endless folding on the way
 }
+
+TEST_CASE("text measures UTF-8 in characters: a cut name's '…' is one column", "[text]") {
+  CHECK(depthprec::display_width("caf\u00e9 \u2026") == 6);
+  CHECK(depthprec::shortened("short", 24) == "short");
+  const std::string cut = depthprec::shortened(std::string(20, 'a') + std::string(20, 'b'), 10);
+  CHECK(cut == "aaaaa\u2026bbbb");
+  CHECK(depthprec::display_width(cut) == 10);
+  // characters, not bytes, are kept whole
+  CHECK(depthprec::shortened(std::string(12, 'a') + "\u00e9\u00e9\u00e9", 10) ==
+        "aaaaa\u2026a\u00e9\u00e9\u00e9");
+  // 119 characters fit a line of 120, though "…" takes three bytes
+  const std::string line = std::string(60, 'a') + " \u2026" + std::string(57, 'b');
+  CHECK(depthprec::wrap_text(line) == line);
+  // a table's columns align by characters
+  const std::string t =
+      depthprec::grid({{"name", true}, {"n"}}, {{"a\u2026b", "1"}, {"abcd", "22"}}, false);
+  CHECK(t == "name   n\na\u2026b    1\nabcd  22\n");
+}

@@ -147,6 +147,20 @@ for args, kind, scened, numeric, agree in COMMANDS:
         if not same:
             fail(f"{where}: CSV {col} {csv_values} differs from JSON {field} {json_values}")
 
+# audit's CSV holds the fighting and the coplanar pairs, told apart by `kind`; the coplanar rows'
+# pair_pixels are the JSON's coplanar_pixels_lost, in order.
+COPLANAR = AUDIT_SCENE.replace("decal_wall.gltf", "slab_railing.gltf")
+audit_args = f"audit {COPLANAR} -t standard -f unorm24 --size 160x90 --no-fixes --no-timing -q"
+audit_doc = json.loads(run(audit_args + " --format-out json"))
+audit_csv = list(csv.DictReader(io.StringIO(run(audit_args + " --format-out csv"), newline="")))
+kinds = {r.get("kind") for r in audit_csv}
+if not kinds <= {"fight", "coplanar", "none"}:
+    fail(f"audit --format-out csv: kind holds {kinds}, not fight, coplanar or none")
+lost = [p["coplanar_pixels_lost"] for s in audit_doc["setups"] for p in s["coplanar_pairs"]]
+rows = [int(r["pair_pixels"]) for r in audit_csv if r.get("kind") == "coplanar"]
+if not lost or rows != lost:
+    fail(f"audit CSV coplanar rows' pair_pixels {rows} differ from JSON coplanar_pixels_lost {lost}")
+
 # What text shows with marks is in CSV as columns: the flags and, with --attribute, the factor.
 table = list(csv.reader(io.StringIO(run(f"table --attribute {SCENE} --format-out csv"))))
 for col in ("standard/unorm24/gl flags", "standard/unorm24/gl dominant"):
