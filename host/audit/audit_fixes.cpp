@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "host/bias/bias_rule.h"
+#include "host/bias/bias_search.h"
 #include "host/mts/mts_run.h"
 #include "interface/audit_layout.h"
 #include "interface/bias_formula.h"
@@ -138,31 +139,83 @@ std::vector<EvalPair> default_alternatives(const Scene& scene, const EvalPair& a
   return out;
 }
 
-void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
-               const SceneGeometry& g, const std::vector<AuditCamera>& frames, SetupAudit& audit,
-               const FixRequest& req) {
-  const auto start = std::chrono::steady_clock::now();
-  const EvalPair& pair = audit.pair;
-  // The MTS of a set-up at eye depth z with near plane n, in the measurement scene placed where the
-  // pair is (world_position: the eye of the view it fights in, so the vertex transform's rounding
-  // far from the origin is the pair's) under the transform tried; NaN without a device. One search
-  // per (set-up, transform, near, z, place), kept.
-  std::map<std::tuple<std::string, Transform, double, double, std::array<double, 3>>, double> known;
-  const auto mts_of = [&](const EvalPair& p, const Scene& tried, double z,
-                          const std::array<double, 3>& at) {
-    if (!req.mts || !rt) return static_cast<double>(NAN);
+namespace {
+
+// The MTS of a set-up at eye depth z, in the measurement scene placed where the pair is
+// (world_position: the eye of the view it fights in, so the vertex transform's rounding far from
+// the origin is the pair's) under the near plane and transform tried; NaN without a device. One
+// search per (set-up, transform, near, z, place), kept.
+class MtsAtPair {
+ public:
+  MtsAtPair(OpenClRuntime* rt, const Scene& measurement, const FixRequest& req)
+      : rt_(rt), measurement_(measurement), req_(req) {}
+  double operator()(const EvalPair& p, const Scene& tried, double z,
+                    const std::array<double, 3>& at) {
+    if (!req_.mts || !rt_) return NAN;
     const auto key = std::make_tuple(p.label(), tried.pipeline.transform, tried.near, z, at);
-    if (!known.count(key)) {
-      Scene m = measurement;
+    if (!known_.count(key)) {
+      Scene m = measurement_;
       m.near = tried.near;
       m.pipeline.transform = tried.pipeline.transform;
       m.evaluate = {p};
       m.distances = {z};
       m.world_position = at;
-      known[key] = z > tried.near && z < m.far ? run_scene(*rt, m, req.log).rows.at(0).mts : NAN;
+      known_[key] = z > tried.near && z < m.far ? run_scene(*rt_, m, req_.log).rows.at(0).mts : NAN;
     }
-    return known[key];
+    return known_[key];
+  }
+
+ private:
+  OpenClRuntime* rt_;
+  const Scene& measurement_;
+  const FixRequest& req_;
+  std::map<std::tuple<std::string, Transform, double, double, std::array<double, 3>>, double>
+      known_;
+};
+
+// The constant bias: the smallest whole number of units (IntegerBiasSearch, as `bias` searches
+// it, up to kMaxBiasUnits) that resolves the pixels in every view the pair fought in, each moved
+// along its view by up to twice the MTS (so the surfaces' depths cross a few codes, and the
+// answer is not one rounding's luck), and that moves the front surface by at least what the MTS
+// asks beyond the separation (offset).
+void add_bias_fix(const Scene& scene, const EvalPair& pair, const PairCheck& check, FightPair& fp) {
+  const std::string not_applicable = bias_not_applicable(scene, pair);
+  if (!not_applicable.empty()) {
+    fp.bias_note = not_applicable;
+    return;
+  }
+  const BiasRule rule = bias_rule(BiasOptions{}, scene.storage_format(pair));
+  const int sign = bias_sign(scene, pair);
+  const double span = std::isnan(fp.mts) ? 0.0 : 2 * fp.mts;
+  const auto fights = [&](double units) {
+    if (!std::isnan(fp.offset) &&
+        bias_eye_shift(scene, pair, rule, units, fp.depth_min, fp.depth_max) < fp.offset)
+      return true;
+    for (int k = 0; k < 8; ++k)
+      if (check.fights_biased(scene, pair, rule, sign, units, span * k / 8)) return true;
+    return false;
   };
+  IntegerBiasSearch search(kMaxBiasUnits);
+  while (!search.done()) {
+    ProbeResult probe;
+    probe.outcome = fights(search.next()) ? Outcome::fight : Outcome::clean;
+    search.record(probe);
+  }
+  const BiasAnswer answer = search.answer();
+  if (answer.resolved())
+    fp.bias_units = sign * answer.value;
+  else
+    fp.bias_note = fmt::format("no constant bias up to {} units resolves it", kMaxBiasUnits);
+}
+
+}  // namespace
+
+void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
+               const SceneGeometry& g, const std::vector<AuditCamera>& frames, SetupAudit& audit,
+               const FixRequest& req) {
+  const auto start = std::chrono::steady_clock::now();
+  const EvalPair& pair = audit.pair;
+  MtsAtPair mts_of(rt, measurement, req);
   for (FightPair& fp : audit.pairs) {
     const double z = std::stod(fmt::format("{:.3g}", fp.depth_median));
     const std::array<double, 3> at =
@@ -202,40 +255,7 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
       relative.pipeline.transform = Transform::camera_relative;
       if (holds(relative, pair)) fp.resolving.push_back(pair.label() + "/camera_relative");
     }
-    const std::string not_applicable = bias_not_applicable(scene, pair);
-    if (!not_applicable.empty()) {
-      fp.bias_note = not_applicable;
-      continue;
-    }
-    // The constant bias: the smallest whole number of units that resolves the pixels in every view
-    // the pair fought in, each moved along its view by up to twice the MTS (so the surfaces'
-    // depths cross a few codes, and the answer is not one rounding's luck), and that moves the
-    // front surface by at least what the MTS asks beyond the separation (offset).
-    const BiasRule rule = bias_rule(BiasOptions{}, scene.storage_format(pair));
-    const int sign = bias_sign(scene, pair);
-    const double span = std::isnan(fp.mts) ? 0.0 : 2 * fp.mts;
-    const auto fights = [&](double units) {
-      if (!std::isnan(fp.offset) &&
-          bias_eye_shift(scene, pair, rule, units, fp.depth_min, fp.depth_max) < fp.offset)
-        return true;
-      for (int k = 0; k < 8; ++k)
-        if (check.fights_biased(scene, pair, rule, sign, units, span * k / 8)) return true;
-      return false;
-    };
-    double lo = 0, hi = 1;
-    while (hi <= kMaxBiasUnits && fights(hi)) {
-      lo = hi;
-      hi *= 2;
-    }
-    if (hi > kMaxBiasUnits) {
-      fp.bias_note = fmt::format("no constant bias up to {} units resolves it", kMaxBiasUnits);
-      continue;
-    }
-    while (hi - lo > 1) {
-      const double mid = std::floor((lo + hi) / 2);
-      (fights(mid) ? lo : hi) = mid;
-    }
-    fp.bias_units = sign * hi;
+    add_bias_fix(scene, pair, check, fp);
   }
   audit.fix_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -212,121 +212,124 @@ double ray_depth(const std::array<double, 4>& ray, const std::array<double, 4>& 
   return plane[3] / ((plane[0] * rx + plane[1] * ry) - plane[2]);
 }
 
-AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry& g,
-                       const AuditCamera& cam) {
-  if (pair.technique == Technique::layered)
-    throw InputError(
-        "audit: the layered technique splits the depth range per distance; audit its "
-        "layers' mapping instead (-t " +
-        std::string(info(s.params.layer_mapping).name) + ")");
-  AuditSetup a;
-  a.pair = pair;
-  a.pc = probe_constants(s, pair, s.near);
-  a.width = cam.width;
-  a.height = cam.height;
-  a.tiles_x = (a.width + AUDIT_TILE - 1) / AUDIT_TILE;
-  a.tiles_y = (a.height + AUDIT_TILE - 1) / AUDIT_TILE;
-  const TechniqueInfo& ti = info(depth_path(s, pair.technique));
-  const bool gl = pair.depth_range == DepthRange::gl;
+namespace {
+
+using Boxes = std::vector<std::array<float, 4>>;  // per record: x min, x max, y min, y max
+
+// A draw's vertices through the vertex stage: window positions, clip errors (the tolerance's),
+// and which the set-up cannot use.
+struct DrawVertices {
+  std::vector<SetupVertex> v;
+  std::vector<ClipError> error;
+  std::vector<char> bad;
+};
+
+DrawVertices draw_vertices(const Scene& s, const AuditSetup& a, const Draw& d,
+                           const AuditCamera& cam) {
+  const TechniqueInfo& ti = info(depth_path(s, a.pair.technique));
+  const bool gl = a.pair.depth_range == DepthRange::gl;
+  const DrawMatrices st = draw_matrices(s, a.pc, d, cam);
+  DrawVertices dv;
+  dv.v.resize(d.positions.size());
+  dv.error.resize(d.positions.size());
+  dv.bad.assign(d.positions.size(), 0);
+  for (size_t i = 0; i < d.positions.size(); ++i) {
+    float clip[4];
+    vertex_clip(s, a.pc, st, d.positions[i], clip);
+    dv.error[i] = vertex_clip_error(s, a.pc, st, d.positions[i]);
+    if (ti.from == DepthFrom::vertex_log)
+      clip[2] = vertex_log_clip_z(a.pc, s.pipeline.log, gl, clip[3]);
+    dv.v[i] = window_vertex(s, gl, clip, static_cast<int>(i));
+    dv.bad[i] = vertex_non_finite(dv.v[i], ti.from != DepthFrom::fragment);
+  }
+  return dv;
+}
+
+// One set-up record of scene-wide triangle src from window vertices f (clip errors fe), with its
+// tolerance, window depths and pixel box; none for a triangle that does not rasterise.
+void append_record(const Scene& s, AuditSetup& a, Boxes& boxes, uint32_t src,
+                   const SetupVertex* const f[3], const ClipError* const fe[3]) {
+  const SetupTriangle st3 = setup_triangle(s.pipeline, f);
+  if (!st3.valid) return;
+  const RecordTolerance tol = record_tolerance(s, a.pair, a.pc, f, fe, st3.x0, st3.y0);
+  for (const double x : {tol.constant, tol.e0, tol.ex, tol.ey, tol.shader})
+    a.tolerance.push_back(rounded_up(x));
+  a.records.push_back(st3);
+  a.source.push_back(src);
+  a.window_depths.push_back({f[0]->d, f[1]->d, f[2]->d});
+  boxes.push_back({std::min({f[0]->x, f[1]->x, f[2]->x}), std::max({f[0]->x, f[1]->x, f[2]->x}),
+                   std::min({f[0]->y, f[1]->y, f[2]->y}), std::max({f[0]->y, f[1]->y, f[2]->y})});
+}
+
+// Triangle t of draw d: culled, rasterised whole, or clipped into a fan. A triangle that crosses
+// the near or far plane is clipped against all six planes, whatever pipeline.clip says: clipped
+// at the near plane alone, its new vertices would land at the near plane's projection, up to
+// millions of pixels off screen, where a binary32 set-up loses the depth plane (one anchored
+// there, or at the origin, cancels away every bit that matters on screen). Real rasterizers never
+// set up such a triangle: llvmpipe clips it to the viewport, hardware to a guard band a few
+// viewports wide, homogeneous rasterizers never form the vertex. A triangle within the z planes
+// is rasterised whole unless pipeline.clip is llvmpipe.
+void set_up_triangle(const Scene& s, const Draw& d, size_t t, const DrawVertices& dv, AuditSetup& a,
+                     Boxes& boxes) {
+  const bool gl = a.pair.depth_range == DepthRange::gl;
+  const bool depth_interpolated = info(depth_path(s, a.pair.technique)).from != DepthFrom::fragment;
+  const uint32_t src = d.first_triangle + static_cast<uint32_t>(t);
+  const auto& tri = d.triangles[t];
+  const SetupVertex* tv[3] = {&dv.v[tri[0]], &dv.v[tri[1]], &dv.v[tri[2]]};
+  const ClipError* te[3] = {&dv.error[tri[0]], &dv.error[tri[1]], &dv.error[tri[2]]};
+  const unsigned planes = kClipPlanesXY | kClipPlanesZ;
+  const unsigned m0 = clip_mask(tv[0]->c, gl, planes), m1 = clip_mask(tv[1]->c, gl, planes),
+                 m2 = clip_mask(tv[2]->c, gl, planes);
+  if (m0 & m1 & m2) {
+    ++a.culled;
+    return;
+  }
+  const unsigned crossed = m0 | m1 | m2;
+  if (!(crossed & kClipPlanesZ) && !(s.pipeline.clip == ClipForm::llvmpipe && crossed)) {
+    if (dv.bad[tri[0]] || dv.bad[tri[1]] || dv.bad[tri[2]])
+      ++a.non_finite;
+    else
+      append_record(s, a, boxes, src, tv, te);
+    return;
+  }
+  ++a.clipped;
+  // A vertex the clip stage made (ids from the draw's vertex count on) gets clipped_vertex_error's
+  // bound, from the triangle's largest clip coordinates and vertex errors and the planes crossed.
+  ClipError carried{};
+  std::array<float, 4> largest{};
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 4; ++c) {
+      carried[c] = std::max(carried[c], (*te[k])[c]);
+      largest[c] = std::max(largest[c], std::fabs(tv[k]->c[c]));
+    }
+  int planes_crossed = 0;
+  for (int plane = 0; plane < 6; ++plane) planes_crossed += (crossed >> plane) & 1u;
+  const int nv = static_cast<int>(d.positions.size());
   const float hw = 0.5f * static_cast<float>(s.viewport_w);
   const float hh = 0.5f * static_cast<float>(s.viewport_h);
-  a.ray = pixel_ray(s, a.pc);
-  a.clear_code = s.storage_format(pair).encode(ti.greater ? 0.0f : 1.0f);
-  // A triangle that crosses the near or far plane is clipped against all six planes, whatever
-  // pipeline.clip says: clipped at the near plane alone, its new vertices would land at the near
-  // plane's projection, up to millions of pixels off screen, where a binary32 set-up loses the
-  // depth plane (one anchored there, or at the origin, cancels away every bit that matters on
-  // screen). Real rasterizers never set up such a triangle: llvmpipe clips it to the viewport,
-  // hardware to a guard band a few viewports wide, homogeneous rasterizers never form the
-  // vertex. A triangle within the z planes is rasterised whole unless pipeline.clip is llvmpipe.
-  const unsigned planes = kClipPlanesXY | kClipPlanesZ;
-  const bool clip_xy_alone = s.pipeline.clip == ClipForm::llvmpipe;
-  a.planes = exact_planes(g, cam);
-  std::vector<std::array<float, 4>> boxes;  // per record: x min, x max, y min, y max
-  for (const Draw& d : g.draws) {
-    const DrawMatrices st = draw_matrices(s, a.pc, d, cam);
-    std::vector<SetupVertex> v(d.positions.size());
-    std::vector<ClipError> v_error(d.positions.size());
-    std::vector<char> bad(d.positions.size(), 0);
-    for (size_t i = 0; i < d.positions.size(); ++i) {
-      float clip[4];
-      vertex_clip(s, a.pc, st, d.positions[i], clip);
-      v_error[i] = vertex_clip_error(s, a.pc, st, d.positions[i]);
-      if (ti.from == DepthFrom::vertex_log)
-        clip[2] = vertex_log_clip_z(a.pc, s.pipeline.log, gl, clip[3]);
-      v[i] = window_vertex(s, gl, clip, static_cast<int>(i));
-      bad[i] = vertex_non_finite(v[i], ti.from != DepthFrom::fragment);
+  const std::vector<SetupVertex> poly =
+      clip_polygon({*tv[0], *tv[1], *tv[2]}, crossed, hw, hh, gl, s.pipeline.snap_bits,
+                   nv + 8 * static_cast<int>(t));
+  for (size_t i = 2; i < poly.size(); ++i) {
+    const SetupVertex* f[3] = {&poly[i - 1], &poly[i], &poly[0]};
+    bool nf = false;
+    ClipError made[3];
+    const ClipError* fe[3];
+    for (int k = 0; k < 3; ++k) {
+      nf = nf || vertex_non_finite(*f[k], depth_interpolated);
+      made[k] = clipped_vertex_error(largest, carried, planes_crossed, f[k]->c);
+      fe[k] = f[k]->id < nv ? &dv.error[f[k]->id] : &made[k];
     }
-    const int nv = static_cast<int>(d.positions.size());
-    for (size_t t = 0; t < d.triangles.size(); ++t) {
-      const uint32_t src = d.first_triangle + static_cast<uint32_t>(t);
-      const auto& tri = d.triangles[t];
-      const SetupVertex* tv[3] = {&v[tri[0]], &v[tri[1]], &v[tri[2]]};
-      const unsigned m0 = clip_mask(tv[0]->c, gl, planes), m1 = clip_mask(tv[1]->c, gl, planes),
-                     m2 = clip_mask(tv[2]->c, gl, planes);
-      // The clip errors of a polygon's vertices: the triangle's own, and for a vertex the clip
-      // stage made (ids from nv on) clipped_vertex_error's, from the triangle's largest clip
-      // coordinates and vertex errors and the planes it crosses.
-      ClipError made{};
-      std::array<float, 4> largest{};
-      for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 4; ++c) {
-          made[c] = std::max(made[c], v_error[tri[k]][c]);
-          largest[c] = std::max(largest[c], std::fabs(tv[k]->c[c]));
-        }
-      int planes_crossed = 0;
-      const auto emit = [&](const SetupVertex* const f[3]) {
-        const SetupTriangle st3 = setup_triangle(s.pipeline, f);
-        if (!st3.valid) return;
-        ClipError made_error[3];
-        const ClipError* fe[3];
-        for (int k = 0; k < 3; ++k) {
-          made_error[k] = clipped_vertex_error(largest, made, planes_crossed, f[k]->c);
-          fe[k] = f[k]->id < nv ? &v_error[f[k]->id] : &made_error[k];
-        }
-        const RecordTolerance tol = record_tolerance(s, pair, a.pc, f, fe, st3.x0, st3.y0);
-        for (const double x : {tol.constant, tol.e0, tol.ex, tol.ey, tol.shader})
-          a.tolerance.push_back(rounded_up(x));
-        a.records.push_back(st3);
-        a.source.push_back(src);
-        a.window_depths.push_back({f[0]->d, f[1]->d, f[2]->d});
-        boxes.push_back(
-            {std::min({f[0]->x, f[1]->x, f[2]->x}), std::max({f[0]->x, f[1]->x, f[2]->x}),
-             std::min({f[0]->y, f[1]->y, f[2]->y}), std::max({f[0]->y, f[1]->y, f[2]->y})});
-      };
-      if (m0 & m1 & m2) {
-        ++a.culled;
-        continue;
-      }
-      const unsigned crossed = m0 | m1 | m2;
-      if (!(crossed & kClipPlanesZ) && !(clip_xy_alone && crossed)) {
-        if (bad[tri[0]] || bad[tri[1]] || bad[tri[2]]) {
-          ++a.non_finite;
-          continue;
-        }
-        emit(tv);
-        continue;
-      }
-      ++a.clipped;
-      for (int plane = 0; plane < 6; ++plane) planes_crossed += (crossed >> plane) & 1u;
-      const std::vector<SetupVertex> poly =
-          clip_polygon({*tv[0], *tv[1], *tv[2]}, m0 | m1 | m2, hw, hh, gl, s.pipeline.snap_bits,
-                       nv + 8 * static_cast<int>(t));
-      for (size_t i = 2; i < poly.size(); ++i) {
-        const SetupVertex* f[3] = {&poly[i - 1], &poly[i], &poly[0]};
-        bool nf = false;
-        for (const SetupVertex* p : f)
-          nf = nf || vertex_non_finite(*p, ti.from != DepthFrom::fragment);
-        if (nf) {
-          ++a.non_finite;
-          continue;
-        }
-        emit(f);
-      }
-    }
+    if (nf)
+      ++a.non_finite;
+    else
+      append_record(s, a, boxes, src, f, fe);
   }
-  // Bins: each record in the tiles its pixel box meets (pixel i's centre i + 1/2 within the box),
-  // by counting, so every bin keeps draw order.
+}
+
+// Each record in the tiles its pixel box meets (pixel i's centre i + 1/2 within the box), by
+// counting, so every bin keeps draw order.
+void bin_records(AuditSetup& a, const Boxes& boxes) {
   const int tiles = a.tiles_x * a.tiles_y;
   std::vector<std::array<int, 4>> tile_box(a.records.size());
   a.bins.assign(tiles + 1, 0);
@@ -352,6 +355,34 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
     for (int ty = tile_box[r][2]; ty <= tile_box[r][3]; ++ty)
       for (int tx = tile_box[r][0]; tx <= tile_box[r][1]; ++tx)
         a.bin_records[fill[ty * a.tiles_x + tx]++] = static_cast<uint32_t>(r);
+}
+
+}  // namespace
+
+AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry& g,
+                       const AuditCamera& cam) {
+  if (pair.technique == Technique::layered)
+    throw InputError(
+        "audit: the layered technique splits the depth range per distance; audit its "
+        "layers' mapping instead (-t " +
+        std::string(info(s.params.layer_mapping).name) + ")");
+  AuditSetup a;
+  a.pair = pair;
+  a.pc = probe_constants(s, pair, s.near);
+  a.width = cam.width;
+  a.height = cam.height;
+  a.tiles_x = (a.width + AUDIT_TILE - 1) / AUDIT_TILE;
+  a.tiles_y = (a.height + AUDIT_TILE - 1) / AUDIT_TILE;
+  a.ray = pixel_ray(s, a.pc);
+  a.clear_code =
+      s.storage_format(pair).encode(info(depth_path(s, pair.technique)).greater ? 0.0f : 1.0f);
+  a.planes = exact_planes(g, cam);
+  Boxes boxes;
+  for (const Draw& d : g.draws) {
+    const DrawVertices dv = draw_vertices(s, a, d, cam);
+    for (size_t t = 0; t < d.triangles.size(); ++t) set_up_triangle(s, d, t, dv, a, boxes);
+  }
+  bin_records(a, boxes);
   return a;
 }
 

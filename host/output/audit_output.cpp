@@ -107,7 +107,16 @@ nlohmann::json audit_json(const AuditReport& r, bool timing) {
   return j;
 }
 
-std::string audit_text(const AuditReport& r, const std::string& format, bool timing) {
+namespace {
+
+// The tables' rows: the fighting pairs (and in CSV the coplanar ones, by kind), and for text the
+// coplanar pairs apart.
+struct AuditTables {
+  std::vector<Column> cols;
+  Cells cells, coplanar;
+};
+
+AuditTables audit_tables(const AuditReport& r, const std::string& format) {
   const SceneGeometry& g = *r.geometry;
   const auto num = [&format](double v) { return number_cell(v, format); };
   // a value the set-up has not (no pair, no fix): "-" in text, an empty CSV field
@@ -123,25 +132,27 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
   // technique, format, depth_range, winner and front lead, so a table too wide for the terminal
   // repeats them in each block (host/output/text_table.h grid). CSV holds the coplanar pairs in
   // the same table, told apart by `kind`; text shows them in a table of their own below.
-  std::vector<Column> cols = {{"technique", true},
-                              {"format", true},
-                              {"depth_range", true},
-                              {"winner", true},
-                              {"front", true},
-                              {"fighting_pixels"},
-                              {"at_risk_pixels"},
-                              {"coplanar_pixels"},
-                              {"covered_pixels"},
-                              {"pair_pixels"},
-                              {"eye_depth"},
-                              {"min_separation"},
-                              {"mts"},
-                              {"offset_needed"},
-                              {"near_that_resolves"},
-                              {"bias_units"},
-                              {"setups_that_resolve", true}};
+  AuditTables t;
+  std::vector<Column>& cols = t.cols;
+  cols = {{"technique", true},
+          {"format", true},
+          {"depth_range", true},
+          {"winner", true},
+          {"front", true},
+          {"fighting_pixels"},
+          {"at_risk_pixels"},
+          {"coplanar_pixels"},
+          {"covered_pixels"},
+          {"pair_pixels"},
+          {"eye_depth"},
+          {"min_separation"},
+          {"mts"},
+          {"offset_needed"},
+          {"near_that_resolves"},
+          {"bias_units"},
+          {"setups_that_resolve", true}};
   if (csv) cols.insert(cols.begin() + 3, {"kind", true});
-  Cells cells, coplanar;
+  Cells &cells = t.cells, &coplanar = t.coplanar;
   for (const SetupAudit& s : r.setups) {
     const std::vector<std::string> head = {info(s.pair.technique).name, s.pair.format,
                                            to_string(s.pair.depth_range)};
@@ -191,7 +202,13 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       cells.push_back(row);
     }
   }
-  if (csv) return render_cells(cols, cells, format);
+  return t;
+}
+
+// The main table's caption: the scene, the views, the planes and where they came from, and what
+// every column means.
+std::string audit_caption(const AuditReport& r) {
+  const SceneGeometry& g = *r.geometry;
   const nlohmann::json& h = r.header;
   const int views = h.value("frames", 1);
   bool pngs = false;
@@ -221,23 +238,13 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
       h.value("near_source", "") == "camera" ? " (the file camera's znear)" : "",
       human(h.value("far", 0.0)),
       h.value("far_source", "") == "camera" ? " (the file camera's zfar)" : "");
-  std::string text = captioned(caption, cols, cells, format);
-  if (!coplanar.empty())
-    text += "\n" + captioned(
-                       "Coplanar pairs: surfaces in one plane, which no depth buffer orders: the "
-                       "one drawn first (kept) stays, the one drawn after it (lost) does not "
-                       "show; its pixels and median eye depth. The draw order and the compare "
-                       "decide them, not the depth: an offset or a depth bias on the one that "
-                       "should show orders them",
-                       {{"technique", true},
-                        {"format", true},
-                        {"depth_range", true},
-                        {"kept", true},
-                        {"lost", true},
-                        {"pixels"},
-                        {"eye_depth"}},
-                       coplanar, format);
-  // what the tables do not show, said in words (a blank line first, so Markdown ends the table)
+  return caption;
+}
+
+// What the tables do not show, said in words.
+std::string audit_notes(const AuditReport& r, bool timing) {
+  const SceneGeometry& g = *r.geometry;
+  const nlohmann::json& h = r.header;
   std::string notes;
   for (const std::string& n : g.notes) notes += n + "\n";  // how the file was read
   if (h.contains("interrupted"))
@@ -280,6 +287,32 @@ std::string audit_text(const AuditReport& r, const std::string& format, bool tim
     for (const SetupAudit& s : r.setups)
       notes += fmt::format("{}: set-up {:.3f} s, pixels {:.3f} s, fixes {:.3f} s\n", s.pair.label(),
                            s.setup_seconds, s.pixel_seconds, s.fix_seconds);
+  return notes;
+}
+
+}  // namespace
+
+std::string audit_text(const AuditReport& r, const std::string& format, bool timing) {
+  const AuditTables t = audit_tables(r, format);
+  if (format == "csv") return render_cells(t.cols, t.cells, format);
+  std::string text = captioned(audit_caption(r), t.cols, t.cells, format);
+  if (!t.coplanar.empty())
+    text += "\n" + captioned(
+                       "Coplanar pairs: surfaces in one plane, which no depth buffer orders: the "
+                       "one drawn first (kept) stays, the one drawn after it (lost) does not "
+                       "show; its pixels and median eye depth. The draw order and the compare "
+                       "decide them, not the depth: an offset or a depth bias on the one that "
+                       "should show orders them",
+                       {{"technique", true},
+                        {"format", true},
+                        {"depth_range", true},
+                        {"kept", true},
+                        {"lost", true},
+                        {"pixels"},
+                        {"eye_depth"}},
+                       t.coplanar, format);
+  // a blank line first, so Markdown ends the table
+  const std::string notes = audit_notes(r, timing);
   if (!notes.empty()) text += "\n" + notes;
   return for_terminal(text, format);
 }
