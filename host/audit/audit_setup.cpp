@@ -20,22 +20,6 @@ namespace depthprec {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 normalized(const Vec3& a) {
-  const double n = std::sqrt(dot(a, a));
-  return {a[0] / n, a[1] / n, a[2] / n};
-}
-
 // The view of an eye at `eye` with orthonormal axes right, up and back (the eye looks down -back).
 Mat4d view_of(const Vec3& eye, const Vec3& right, const Vec3& up, const Vec3& back) {
   Mat4d v = mat_identity();
@@ -51,12 +35,6 @@ Mat4d view_of(const Vec3& eye, const Vec3& right, const Vec3& up, const Vec3& ba
 float rounded_up(double x) {
   const float f = static_cast<float>(x);
   return static_cast<double>(f) >= x ? f : std::nextafter(f, INFINITY);
-}
-
-Mat4f rounded(const Mat4d& m) {
-  Mat4f f{};
-  for (int i = 0; i < 16; ++i) f[i] = static_cast<float>(m[i]);
-  return f;
 }
 
 // The vertex stage of object position p up to its clip position.

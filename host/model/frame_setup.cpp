@@ -262,8 +262,8 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
   return to_row_major(premultiplied(s, P, M));
 }
 
-std::array<double, 16> plane_world_matrix(const Scene& s, const ProbeConstants& pc, double D,
-                                          int frame, double tilt) {
+Mat4d plane_world_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame,
+                         double tilt) {
   return row_major_f64(
       model<double>(s, D, frame_orientation(s, pc.z, frame), plane_translation(s, D), tilt));
 }
@@ -316,7 +316,7 @@ double plane_matrix_distance(const Scene& s, double D) {
                                                                 : model_distance<double>(D);
 }
 
-std::array<double, 16> model_matrix_f64(const Scene& s, double z, double D, int frame) {
+Mat4d model_matrix_f64(const Scene& s, double z, double D, int frame) {
   // The geometry as the eye sees it, wherever the world is: the plane D in front of the camera.
   return row_major_f64(model<double>(s, D, frame_orientation(s, z, frame), {0, 0, -D}));
 }

@@ -7,12 +7,11 @@
 #include <cmath>
 #include <vector>
 
+#include "host/model/matrix.h"
 #include "host/model/scene.h"
 #include "interface/mts_layout.h"
 
 namespace depthprec {
-
-using Mat4f = std::array<float, 16>;  // row-major: m[r * 4 + c]
 
 // The object coordinate of grid line i of a plane of g x g quads over [-0.5, 0.5]^2, in binary32
 // as the kernels' vertex stage computes it (kernels/mts/setup/vertex.cl).
@@ -47,7 +46,7 @@ inline float object_row_dot(const Mat4f& m, int r, const float obj[4], VertexFor
 // floats, P then the C_* offsets).
 struct ProbeConstants {
   Mat4f P{};
-  std::array<double, 16> P_full{};  // P in the matrix precision before rounding to binary32
+  Mat4d P_full{};  // P in the matrix precision before rounding to binary32
   float near = 0, far = 0, range = 0, log_k = 0, log_L = 0;
   // The engines' log depth constants (MTS_C_THREEJS_FC, MTS_C_CESIUM_FAR1, MTS_C_CESIUM_INV_LOG2)
   // and the vertex stage's log form (MTS_C_VERTEX_LOG: MTS_VERTEX_LOG_*).
@@ -86,8 +85,8 @@ Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int f
 
 // Under the relative_to_eye transform, what the GPU gets instead of plane_matrix: the plane's world
 // matrix in binary64 (the application's), from which it forms each vertex's world position.
-std::array<double, 16> plane_world_matrix(const Scene& scene, const ProbeConstants& pc, double D,
-                                          int frame, double tilt = 0);
+Mat4d plane_world_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame,
+                         double tilt = 0);
 // Appends what the set-up kernels read of one plane (plane_words(scene) floats): plane_matrix, or
 // under relative_to_eye plane_world_matrix's 16 doubles in 32 floats' place.
 void append_plane_words(std::vector<float>& words, const Scene& scene, const ProbeConstants& pc,
@@ -110,7 +109,7 @@ double plane_matrix_distance(const Scene& scene, double D);
 // The model-view of a plane at distance D in frame k of plane A's distance z in binary64, never
 // rounded, in eye space whatever world_position says (the plane D in front of the camera): the
 // exact geometry of the storage-limited pipeline. Row-major.
-std::array<double, 16> model_matrix_f64(const Scene& scene, double z, double D, int frame);
+Mat4d model_matrix_f64(const Scene& scene, double z, double D, int frame);
 
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);

@@ -13,12 +13,6 @@ namespace depthprec {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 // The columns of R = Rx(x) Ry(y) Rz(z) (the rotation frame_setup.cpp's model() builds, in
 // binary64): where the plane's x axis, y axis and normal point.
 std::array<Vec3, 3> rotated_axes(const std::array<double, 3>& a) {
