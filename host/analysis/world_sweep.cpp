@@ -67,6 +67,8 @@ struct WorldProbe {
   int searches = 0;
   nlohmann::json probes = nlohmann::json::array();
 
+  bool holds(double mts) const { return mts <= r.separation; }
+
   double mts_at(double R) {
     for (const auto& p : probes)
       if (p[0].get<double>() == R) return p[1].get<double>();
@@ -81,113 +83,142 @@ struct WorldProbe {
   }
 };
 
-nlohmann::json sweep(WorldProbe& probe) {
+struct WorldLimit {
+  double distance = 0;
+  int axis = -1;
+  double coordinate = 0, spacing = 0;
+  std::string from;                       // "spacing", "bound" or "measured"
+  double fails_at = -1, mts_at_fail = 0;  // fails_at < 0: no search failed
+};
+
+WorldLimit first_limit(const WorldProbe& probe, const SpacingLimit& by_spacing, double bound,
+                       double reach) {
+  WorldLimit l;
+  l.distance = std::min(by_spacing.distance, bound);
+  l.axis = by_spacing.axis;
+  l.coordinate = by_spacing.coordinate;
+  l.spacing = by_spacing.spacing;
+  l.from = "spacing";
+  if (!std::isfinite(by_spacing.distance)) {
+    l.coordinate = largest_coordinate(probe.r, reach, bound, &l.axis);
+    l.spacing = coordinate_spacing(probe.t, probe.scene, l.coordinate);
+    l.from = "bound";
+  }
+  return l;
+}
+
+// A binade decided without a search: each plane's vertex coordinates are off by at most a
+// spacing u (the translation rounds, then its sum with the vertex's offset), so the planes'
+// separation along any view moves by at most two spacings per axis, lateral ones through the
+// planes' slope; the eye-space coordinates round too where the view's subtraction is inexact.
+bool holds_without_search(const WorldProbe& probe, double origin, double reach, double u) {
+  const double eye = grid_spacing(probe.r.z + reach, 24);
+  const double slope = steepest_slope(probe.scene);
+  return origin + 2 * (u + eye) * (std::sqrt(3.0) + 2 * slope) <= probe.r.separation;
+}
+
+// The last exponent from e on whose binade, below the coordinate, has e's spacing u: binades of
+// one spacing are searched as one (relative to eye's low part has the same grid from 32768 on).
+int same_spacing_top(const WorldProbe& probe, int e, double u, double coordinate) {
+  int top_e = e;
+  while (top_e + 1 < kLastExponent && std::ldexp(1.0, top_e + 1) < coordinate &&
+         coordinate_spacing(probe.t, probe.scene, std::ldexp(1.0, top_e + 1)) == u)
+    ++top_e;
+  return top_e;
+}
+
+// The binades below the limit, lowest first; each that holds_without_search leaves open is
+// searched at its sawtooth's peak and just below its end, where its coordinates are largest, and
+// the first to fail lowers the limit to its start. The binade just below the limit is searched
+// whatever holds_without_search says, as evidence.
+void search_binades(WorldProbe& probe, double origin, double reach, WorldLimit& l) {
   const WorldRequest& r = probe.r;
   const Scene& scene = probe.scene;
-  const Transform t = probe.t;
-  nlohmann::json j;
-  const double origin = probe.mts_at(0);
-  j["mts_at_origin"] = origin;
-  const auto holds = [&](double mts) { return mts <= r.separation; };
-  const auto finish = [&]() {
-    j["probes"] = probe.probes;
-    j["searches"] = probe.searches;
-    return j;
-  };
-  if (!holds(origin)) {
-    j["holds_to_bound"] = false;
-    return finish();
-  }
-  const double bound = world_distance_limit(r);
-  const double reach = plane_reach(scene, r);
-  const SpacingLimit by_spacing = spacing_limit(r, scene, t);
-  double limit = std::min(by_spacing.distance, bound);
-  int axis = by_spacing.axis;
-  double coordinate = by_spacing.coordinate, spacing = by_spacing.spacing;
-  std::string from = "spacing";
-  if (!std::isfinite(by_spacing.distance)) {
-    coordinate = largest_coordinate(r, reach, bound, &axis);
-    spacing = coordinate_spacing(t, scene, coordinate);
-    from = "bound";
-  }
-  // A binade decided without a search: each plane's vertex coordinates are off by at most a
-  // spacing (the translation rounds, then its sum with the vertex's offset), so the planes'
-  // separation along any view moves by at most two spacings per axis, lateral ones through the
-  // planes' slope; the eye-space coordinates round too where the view's subtraction is inexact.
-  const double eye = grid_spacing(r.z + reach, 24);
-  const double slope = steepest_slope(scene);
-  const auto decided = [&](double u) {
-    return origin + 2 * (u + eye) * (std::sqrt(3.0) + 2 * slope) <= r.separation;
-  };
-  // The binades below the limit (those of one spacing merged: relative to eye's low part has the
-  // same grid from 32768 on), lowest first; each that `decided` leaves open is searched at its
-  // sawtooth's peak and just below its end, where its coordinates are largest, and the first to
-  // fail lowers the limit to its start. The binade just below the limit is searched whatever
-  // `decided` says, as evidence.
-  double fails_at = -1, mts_at_fail = 0;
-  for (int e = kFirstExponent; e < kLastExponent && fails_at < 0; ++e) {
+  for (int e = kFirstExponent; e < kLastExponent && l.fails_at < 0; ++e) {
     const double M = std::ldexp(1.0, e);
-    if (M >= coordinate) break;
-    const double u = coordinate_spacing(t, scene, M);
-    int top_e = e;
-    while (top_e + 1 < kLastExponent && std::ldexp(1.0, top_e + 1) < coordinate &&
-           coordinate_spacing(t, scene, std::ldexp(1.0, top_e + 1)) == u)
-      ++top_e;
+    if (M >= l.coordinate) break;
+    const double u = coordinate_spacing(probe.t, scene, M);
+    const int top_e = same_spacing_top(probe, e, u, l.coordinate);
     int start_axis = -1, unused = -1;
     const double a = first_reach(r, scene, M, &start_axis);
-    const double b = std::min(first_reach(r, scene, std::ldexp(1.0, top_e + 1), &unused), limit);
+    const double b =
+        std::min(first_reach(r, scene, std::ldexp(1.0, top_e + 1), &unused), l.distance);
     e = top_e;
-    if (!(a < b) || (decided(u) && b < limit)) continue;
+    if (!(a < b) || (holds_without_search(probe, origin, reach, u) && b < l.distance)) continue;
     const double top = std::max(a, b * (1 - std::ldexp(1.0, -12)));
-    for (const double R : {sawtooth_peak(r, scene, t, top), top}) {
+    for (const double R : {sawtooth_peak(r, scene, probe.t, top), top}) {
       if (R < a) continue;
       const double m = probe.mts_at(R);
-      if (holds(m)) continue;
-      fails_at = R;
-      mts_at_fail = m;
-      limit = a;
-      coordinate = M;
-      spacing = u;
-      axis = start_axis;
-      from = "measured";
+      if (probe.holds(m)) continue;
+      l.fails_at = R;
+      l.mts_at_fail = m;
+      l.distance = a;
+      l.coordinate = M;
+      l.spacing = u;
+      l.axis = start_axis;
+      l.from = "measured";
       break;
     }
   }
-  // The evidence past a spacing limit: the depth axis's own sawtooth peak just inside the binade
-  // where its spacing reaches the separation (a lateral axis has none: this view sees it only
-  // through the planes' slope).
-  const auto d = unit(r.direction);
-  if (fails_at < 0 && from == "spacing" && limit > 0 && d[2] != 0) {
-    const double past = by_spacing.coordinate * (1 + std::ldexp(1.0, -8));
-    const double R0 = ((d[2] > 0 ? past : -past) + r.z) / d[2];
-    if (R0 > 0 && R0 <= bound) {
-      const double R = sawtooth_peak(r, scene, t, R0);
-      const double m = probe.mts_at(R);
-      if (!holds(m)) {
-        fails_at = R;
-        mts_at_fail = m;
-      }
-    }
+}
+
+// The evidence past a spacing limit: the depth axis's own sawtooth peak just inside the binade
+// where its spacing reaches the separation (a lateral axis has none: this view sees it only
+// through the planes' slope).
+void search_past_spacing_limit(WorldProbe& probe, const SpacingLimit& by_spacing, double bound,
+                               WorldLimit& l) {
+  const auto d = unit(probe.r.direction);
+  if (!(l.fails_at < 0 && l.from == "spacing" && l.distance > 0 && d[2] != 0)) return;
+  const double past = by_spacing.coordinate * (1 + std::ldexp(1.0, -8));
+  const double R0 = ((d[2] > 0 ? past : -past) + probe.r.z) / d[2];
+  if (!(R0 > 0 && R0 <= bound)) return;
+  const double R = sawtooth_peak(probe.r, probe.scene, probe.t, R0);
+  const double m = probe.mts_at(R);
+  if (!probe.holds(m)) {
+    l.fails_at = R;
+    l.mts_at_fail = m;
   }
+}
+
+void write_limit(const WorldProbe& probe, double origin, const WorldLimit& l, nlohmann::json& j) {
   double below = origin, below_at = 0;
   for (const auto& p : probe.probes)
-    if (p[0].get<double>() < limit && p[1].get<double>() > below) {
+    if (p[0].get<double>() < l.distance && p[1].get<double>() > below) {
       below = p[1].get<double>();
       below_at = p[0].get<double>();
     }
-  j["limit"] = limit;
-  j["holds_to_bound"] = from == "bound";
-  j["limit_from"] = from;
-  j["spacing"] = spacing;
-  j["coordinate"] = coordinate;
-  j["axis"] = kAxisNames[axis];
+  j["limit"] = l.distance;
+  j["holds_to_bound"] = l.from == "bound";
+  j["limit_from"] = l.from;
+  j["spacing"] = l.spacing;
+  j["coordinate"] = l.coordinate;
+  j["axis"] = kAxisNames[l.axis];
   j["mts_below"] = below;
   j["mts_below_at"] = below_at;
-  if (fails_at >= 0) {
-    j["fails_at"] = fails_at;
-    j["mts_at_fail"] = mts_at_fail;
+  if (l.fails_at >= 0) {
+    j["fails_at"] = l.fails_at;
+    j["mts_at_fail"] = l.mts_at_fail;
   }
-  return finish();
+}
+
+nlohmann::json sweep(WorldProbe& probe) {
+  nlohmann::json j;
+  const double origin = probe.mts_at(0);
+  j["mts_at_origin"] = origin;
+  if (probe.holds(origin)) {
+    const double bound = world_distance_limit(probe.r);
+    const double reach = plane_reach(probe.scene, probe.r);
+    const SpacingLimit by_spacing = spacing_limit(probe.r, probe.scene, probe.t);
+    WorldLimit l = first_limit(probe, by_spacing, bound, reach);
+    search_binades(probe, origin, reach, l);
+    search_past_spacing_limit(probe, by_spacing, bound, l);
+    write_limit(probe, origin, l, j);
+  } else {
+    j["holds_to_bound"] = false;
+  }
+  j["probes"] = probe.probes;
+  j["searches"] = probe.searches;
+  return j;
 }
 
 }  // namespace

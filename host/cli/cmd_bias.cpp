@@ -196,65 +196,94 @@ void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
 
 }  // namespace
 
-std::string render_bias_output(const nlohmann::json& header,
-                               const std::vector<nlohmann::json>& records,
-                               const OutputOptions& out) {
-  if (out.format_out == "json") return records_json(header, records, !out.no_timing);
-  const bool csv = out.format_out == "csv";
-  const std::string none = csv ? "" : "-";
-  const auto num = [&](const nlohmann::json& r, const char* k) {
-    return r.contains(k) && !r.at(k).is_null()
-               ? number_cell(number_from_json(r.at(k), k), out.format_out)
-               : none;
-  };
-  const auto text = [&](const nlohmann::json& r, const char* k) {
-    return r.contains(k) ? r.at(k).get<std::string>() : none;
-  };
-  // Text and Markdown put a search's verdict where its number would be; CSV keeps numbers in
-  // the number columns and the verdicts in columns of their own.
-  const auto value_or_verdict = [&](const nlohmann::json& r, const char* value,
-                                    const char* verdict) {
-    const std::string v = r.value(verdict, std::string("resolved"));
-    return csv || v == "resolved" ? num(r, value) : v;
-  };
+namespace {
+
+struct BiasTable {
   Cells cells;
-  std::vector<std::string> skipped;
-  bool no_slope = false;
+  std::vector<std::string> skipped;  // the pairs the bias does not apply to
+  bool no_slope = false;             // the caption then says why a factor had nothing to scale
+};
+
+std::string bias_number(const nlohmann::json& r, const char* k, const std::string& format) {
+  return r.contains(k) && !r.at(k).is_null() ? number_cell(number_from_json(r.at(k), k), format)
+         : format == "csv"                   ? ""
+                                             : "-";
+}
+
+// Text and Markdown put a search's verdict where its number would be; CSV keeps numbers in the
+// number columns and the verdicts in columns of their own.
+std::string bias_value_or_verdict(const nlohmann::json& r, const char* value, const char* verdict,
+                                  const std::string& format) {
+  const std::string v = r.value(verdict, std::string("resolved"));
+  return format == "csv" || v == "resolved" ? bias_number(r, value, format) : v;
+}
+
+std::vector<std::string> bias_row(const nlohmann::json& r, const std::string& format) {
+  std::vector<std::string> row = {r.at("technique").get<std::string>(),
+                                  r.at("format").get<std::string>(),
+                                  r.at("depth_range").get<std::string>(),
+                                  bias_number(r, "z", format),
+                                  bias_value_or_verdict(r, "units", "verdict", format),
+                                  bias_value_or_verdict(r, "factor", "factor_verdict", format),
+                                  bias_number(r, "set_factor", format),
+                                  bias_value_or_verdict(r, "set_units", "set_verdict", format),
+                                  bias_number(r, "offset", format),
+                                  bias_number(r, "eye_separation", format),
+                                  bias_number(r, "mts", format)};
+  if (format == "csv")
+    for (const char* k : {"verdict", "factor_verdict", "set_verdict"})
+      row.push_back(r.contains(k) ? r.at(k).get<std::string>() : "");
+  return row;
+}
+
+BiasTable bias_table(const std::vector<nlohmann::json>& records, const std::string& format) {
+  BiasTable t;
   for (const auto& rec : records) {
     if (!rec.value("applicable", true)) {
-      skipped.push_back(pair_label(rec));
+      t.skipped.push_back(pair_label(rec));
       continue;
     }
     for (const auto& r : rec.at("rows")) {
-      no_slope = no_slope || r.value("factor_verdict", std::string()) == kNoSlope;
-      std::vector<std::string> row = {r.at("technique").get<std::string>(),
-                                      r.at("format").get<std::string>(),
-                                      r.at("depth_range").get<std::string>(),
-                                      num(r, "z"),
-                                      value_or_verdict(r, "units", "verdict"),
-                                      value_or_verdict(r, "factor", "factor_verdict"),
-                                      num(r, "set_factor"),
-                                      value_or_verdict(r, "set_units", "set_verdict"),
-                                      num(r, "offset"),
-                                      num(r, "eye_separation"),
-                                      num(r, "mts")};
-      if (csv)
-        for (const char* k : {"verdict", "factor_verdict", "set_verdict"})
-          row.push_back(text(r, k));
-      cells.push_back(row);
+      t.no_slope = t.no_slope || r.value("factor_verdict", std::string()) == kNoSlope;
+      t.cells.push_back(bias_row(r, format));
     }
   }
+  return t;
+}
+
+// r per format as the header records it; rendered runs have none: the driver's.
+std::string bias_r_text(const nlohmann::json& header) {
+  if (!header.contains("r")) return "the driver's";
+  std::vector<std::string> parts;
+  for (const auto& [format, rule] : header.at("r").items())
+    parts.push_back(fmt::format("{} for {}", rule.get<std::string>(), format));
+  std::string r_text = fmt::format("{}", fmt::join(parts, ", "));
+  if (r_text.find("(e") != std::string::npos)
+    r_text += ", e the exponent of the primitive's largest depth";
+  return r_text;
+}
+
+const char* bias_setting_names(const std::string& api) {
+  return api == "d3d"      ? "DepthBias / SlopeScaledDepthBias"
+         : api == "vulkan" ? "depthBiasConstantFactor / depthBiasSlopeFactor"
+                           : "glPolygonOffset(factor, units)";
+}
+
+std::string no_slope_note(const nlohmann::json& header) {
+  return fmt::format(
+      " {}: the planes' slope is all but 0 in some frame{}, so no slope "
+      "factor up to 2^24 moves the overlay as far as the units do: the "
+      "factor has nothing to scale.",
+      kNoSlope,
+      header.value("tilt_deg", 0.0) > 0 ? ""
+                                        : " (at tilt 0 they face the camera, but for the scene's "
+                                          "small rotation; --tilt gives them a slope)");
+}
+
+std::string bias_caption(const nlohmann::json& header, const BiasTable& t) {
   const std::string api = header.value("api", std::string("gl"));
-  std::string r_text = "the driver's";
-  if (header.contains("r")) {
-    std::vector<std::string> parts;
-    for (const auto& [format, rule] : header.at("r").items())
-      parts.push_back(fmt::format("{} for {}", rule.get<std::string>(), format));
-    r_text = fmt::format("{}", fmt::join(parts, ", "));
-    if (r_text.find("(e") != std::string::npos)
-      r_text += ", e the exponent of the primitive's largest depth";
-  }
-  const std::string caption = fmt::format(
+  const std::string r_text = bias_r_text(header);
+  return fmt::format(
       "Smallest depth bias for a coplanar overlay (scene {}, {}, {} slope, compare {}{}): "
       "plane B lies in plane A, tessellated along the other diagonal, and is drawn after it with "
       "the bias; it must pass the depth test at every kernel pixel of every frame. units: the "
@@ -273,26 +302,18 @@ std::string render_bias_output(const nlohmann::json& header,
       header.value("tilt_deg", 0.0) > 0
           ? fmt::format(", planes tilted {} degrees", human(header.value("tilt_deg", 0.0)))
           : "",
-      api == "d3d"      ? "DepthBias / SlopeScaledDepthBias"
-      : api == "vulkan" ? "depthBiasConstantFactor / depthBiasSlopeFactor"
-                        : "glPolygonOffset(factor, units)",
+      bias_setting_names(api),
       header.value("clamp", 0.0) != 0
           ? fmt::format(", clamped to {} as the API clamps it", human(header.value("clamp", 0.0)))
           : "",
-      r_text,
-      no_slope ? fmt::format(" {}: the planes' slope is all but 0 in some frame{}, so no slope "
-                             "factor up to 2^24 moves the overlay as far as the units do: the "
-                             "factor has nothing to scale.",
-                             kNoSlope,
-                             header.value("tilt_deg", 0.0) > 0
-                                 ? ""
-                                 : " (at tilt 0 they face the camera, but for the scene's small "
-                                   "rotation; --tilt gives them a slope)")
-               : "",
-      skipped.empty() ? ""
-                      : fmt::format(" Not applicable (the fragment stage writes depth, which "
-                                    "replaces the offset depth): {}.",
-                                    fmt::join(skipped, ", ")));
+      r_text, t.no_slope ? no_slope_note(header) : "",
+      t.skipped.empty() ? ""
+                        : fmt::format(" Not applicable (the fragment stage writes depth, which "
+                                      "replaces the offset depth): {}.",
+                                      fmt::join(t.skipped, ", ")));
+}
+
+std::vector<Column> bias_columns(bool csv) {
   std::vector<Column> cols = {{"technique", true},
                               {"format", true},
                               {"depth_range", true},
@@ -307,7 +328,18 @@ std::string render_bias_output(const nlohmann::json& header,
   if (csv)
     for (const char* c : {"units verdict", "factor verdict", "set verdict"})
       cols.push_back({c, true});
-  return captioned(caption, cols, cells, out.format_out);
+  return cols;
+}
+
+}  // namespace
+
+std::string render_bias_output(const nlohmann::json& header,
+                               const std::vector<nlohmann::json>& records,
+                               const OutputOptions& out) {
+  if (out.format_out == "json") return records_json(header, records, !out.no_timing);
+  const BiasTable t = bias_table(records, out.format_out);
+  const std::string caption = bias_caption(header, t);
+  return captioned(caption, bias_columns(out.format_out == "csv"), t.cells, out.format_out);
 }
 
 void add_bias_command(CLI::App& app, GlobalOptions& global) {

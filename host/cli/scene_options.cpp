@@ -115,76 +115,101 @@ bool SceneOptions::any() const {
          !distances.empty();
 }
 
-Scene SceneOptions::load() const {
-  // Every named option is a --set in disguise; `origins` lets the scene's errors name the option
-  // the user typed, and a key set twice (--near 0.1 --set near=5) is refused rather than one
-  // silently winning.
+namespace {
+
+struct NamedSets {
   std::vector<std::string> all;
   std::map<std::string, std::string> origins;
-  auto set_if = [&all, &origins](const std::string& option, const std::string& key,
-                                 const std::string& user, const std::string& json) {
+
+  void add(const std::string& option, const std::string& key, const std::string& user,
+           const std::string& json) {
     if (user.empty()) return;
     all.push_back(key + "=" + json);
     origins[key] = option + " " + user;
-  };
-  set_if("--near", "near", near, near.empty() ? "" : number_text("--near", near));
-  set_if("--far", "far", far, far.empty() ? "" : number_text("--far", far, true));
-  if (!kernel.empty()) {
-    int w = 0, h = 0;
-    char tail = 0;
-    if (std::sscanf(kernel.c_str(), "%dx%d%c", &w, &h, &tail) != 2)
-      throw Error(ExitCode::usage,
-                  fmt::format("--kernel '{}': expected WxH in pixels, e.g. 200x200", kernel));
-    set_if("--kernel", "kernel", kernel, fmt::format("[{},{}]", w, h));
-    set_if("--kernel", "viewport", kernel, fmt::format("[{},{}]", w, h));
   }
-  set_if("--frames", "frames", frames, frames.empty() ? "" : whole_number_text("--frames", frames));
-  set_if("--fov", "fov_y_deg", fov, fov.empty() ? "" : number_text("--fov", fov));
-  set_if("--rel-precision", "rel_precision", rel_precision,
-         rel_precision.empty() ? "" : number_text("--rel-precision", rel_precision));
-  set_if("--matrix-precision", "pipeline.matrix_precision", matrix_precision, matrix_precision);
-  set_if("--compose", "pipeline.compose", compose, compose);
-  set_if("--divide", "pipeline.divide", divide, divide);
-  set_if("--rounding", "pipeline.rounding", rounding, rounding);
-  set_if("--denormals", "pipeline.denormals", denormals, denormals);
-  set_if("--log-k", "log_k", log_k, log_k.empty() ? "" : number_text("--log-k", log_k));
+};
+
+std::string kernel_size_json(const std::string& kernel) {
+  int w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(kernel.c_str(), "%dx%d%c", &w, &h, &tail) != 2)
+    throw Error(ExitCode::usage,
+                fmt::format("--kernel '{}': expected WxH in pixels, e.g. 200x200", kernel));
+  return fmt::format("[{},{}]", w, h);
+}
+
+// *typed: the entries as the user typed them, for messages.
+std::string distances_json(const std::vector<std::string>& distances, std::string* typed) {
+  std::string list;
+  std::vector<std::string> entries;
+  for (const auto& token : distances) {
+    std::stringstream ss(token);
+    std::string d;
+    while (std::getline(ss, d, ',')) entries.push_back(d);
+    if (token.empty() || token.back() == ',') entries.push_back("");
+  }
+  for (const auto& d : entries) {
+    if (d.empty())
+      throw Error(ExitCode::usage,
+                  fmt::format("--distances: an empty entry in '{}'; separate distances "
+                              "by single commas, e.g. 2,1024,1e6",
+                              fmt::join(distances, ",")));
+    list += (list.empty() ? "" : ",") + number_text("--distances", d);
+    *typed += (typed->empty() ? "" : ",") + d;
+  }
+  return "[" + list + "]";
+}
+
+void add_named_options(const SceneOptions& o, NamedSets& named) {
+  named.add("--near", "near", o.near, o.near.empty() ? "" : number_text("--near", o.near));
+  named.add("--far", "far", o.far, o.far.empty() ? "" : number_text("--far", o.far, true));
+  if (!o.kernel.empty()) {
+    const std::string size = kernel_size_json(o.kernel);
+    named.add("--kernel", "kernel", o.kernel, size);
+    named.add("--kernel", "viewport", o.kernel, size);
+  }
+  named.add("--frames", "frames", o.frames,
+            o.frames.empty() ? "" : whole_number_text("--frames", o.frames));
+  named.add("--fov", "fov_y_deg", o.fov, o.fov.empty() ? "" : number_text("--fov", o.fov));
+  named.add("--rel-precision", "rel_precision", o.rel_precision,
+            o.rel_precision.empty() ? "" : number_text("--rel-precision", o.rel_precision));
+  named.add("--matrix-precision", "pipeline.matrix_precision", o.matrix_precision,
+            o.matrix_precision);
+  named.add("--compose", "pipeline.compose", o.compose, o.compose);
+  named.add("--divide", "pipeline.divide", o.divide, o.divide);
+  named.add("--rounding", "pipeline.rounding", o.rounding, o.rounding);
+  named.add("--denormals", "pipeline.denormals", o.denormals, o.denormals);
+  named.add("--log-k", "log_k", o.log_k, o.log_k.empty() ? "" : number_text("--log-k", o.log_k));
   // --profile is pipeline.profile (the scene applies its settings); the keys it settles are
   // named here too, so a --set of one of them is refused as a key given twice.
-  set_if("--profile", "pipeline.profile", profile, profile);
-  if (!profile.empty())
-    for (const std::string& set : depthprec::profile(profile).sets)
-      origins[set.substr(0, set.find('='))] = "--profile " + profile;
-  if (!distances.empty()) {
-    std::string list, typed;
-    std::vector<std::string> entries;
-    for (const auto& token : distances) {
-      std::stringstream ss(token);
-      std::string d;
-      while (std::getline(ss, d, ',')) entries.push_back(d);
-      if (token.empty() || token.back() == ',') entries.push_back("");
-    }
-    for (const auto& d : entries) {
-      if (d.empty())
-        throw Error(ExitCode::usage,
-                    fmt::format("--distances: an empty entry in '{}'; separate distances "
-                                "by single commas, e.g. 2,1024,1e6",
-                                fmt::join(distances, ",")));
-      list += (list.empty() ? "" : ",") + number_text("--distances", d);
-      typed += (typed.empty() ? "" : ",") + d;
-    }
-    set_if("--distances", "distances", typed, "[" + list + "]");
+  named.add("--profile", "pipeline.profile", o.profile, o.profile);
+  if (!o.profile.empty())
+    for (const std::string& set : depthprec::profile(o.profile).sets)
+      named.origins[set.substr(0, set.find('='))] = "--profile " + o.profile;
+  if (!o.distances.empty()) {
+    std::string typed;
+    const std::string list = distances_json(o.distances, &typed);
+    named.add("--distances", "distances", typed, list);
   }
-  const auto user_sets = [this](const std::string& key) {
-    for (const auto& set : sets)
+}
+
+// What the user typed wins over what the command implies.
+void add_implied(const SceneOptions& o, NamedSets& named) {
+  const auto user_sets = [&o](const std::string& key) {
+    for (const auto& set : o.sets)
       if (set.substr(0, set.find('=')) == key) return true;
     return false;
   };
-  for (const auto& [set, origin] : implied) {
+  for (const auto& [set, origin] : o.implied) {
     const std::string key = set.substr(0, set.find('='));
-    if (origins.count(key) || user_sets(key)) continue;  // what the user typed wins
-    all.push_back(set);
-    origins[key] = origin;
+    if (named.origins.count(key) || user_sets(key)) continue;
+    named.all.push_back(set);
+    named.origins[key] = origin;
   }
+}
+
+void check_set_once(const std::vector<std::string>& sets,
+                    const std::map<std::string, std::string>& origins) {
   for (const auto& set : sets) {
     const std::string key = set.substr(0, set.find('='));
     for (const auto& [k, option] : origins)
@@ -192,39 +217,61 @@ Scene SceneOptions::load() const {
         throw Error(ExitCode::usage,
                     fmt::format("{} and --set {} both set '{}': give it once", option, set, k));
   }
-  all.insert(all.end(), sets.begin(), sets.end());
-  Scene scene = load_scene(scene_file, all, false, origins);
-  if (!techniques.empty() || !formats.empty() || !depth_ranges.empty()) {
-    std::vector<std::string> ts = techniques, fs = formats;
-    std::set<std::string> seen_t, seen_f;
-    for (const auto& p : scene.evaluate) {
-      if (techniques.empty() && seen_t.insert(info(p.technique).name).second)
-        ts.push_back(info(p.technique).name);
-      if (formats.empty() && seen_f.insert(p.format).second) fs.push_back(p.format);
-    }
-    std::vector<DepthRange> rs;
-    for (const auto& r : depth_ranges) rs.push_back(parse_depth_range(r));
-    scene.evaluate.clear();
-    scene.json["evaluate"] = nlohmann::json::array();
-    for (const auto& t : ts)
-      for (const auto& f : fs) {
-        StorageFormat::parse(f);
-        const Technique tech = parse_technique(t);
-        // No --depth-range: each technique in the scene's range, or its own when the scene names
-        // none.
-        for (const auto r : rs.empty() ? std::vector<DepthRange>{scene.range_for(tech)} : rs) {
-          scene.evaluate.push_back({tech, f, r});
-          // the scene a header records is the one that ran
-          scene.json["evaluate"].push_back(
-              {{"technique", t}, {"format", f}, {"depth_range", to_string(r)}});
-        }
-      }
+}
+
+// --technique/--format/--depth-range: the scene's pairs replaced by their cross product, the
+// scene's own techniques or formats standing in for the option not given.
+void replace_pairs(const SceneOptions& o, Scene& scene) {
+  std::vector<std::string> ts = o.techniques, fs = o.formats;
+  std::set<std::string> seen_t, seen_f;
+  for (const auto& p : scene.evaluate) {
+    if (o.techniques.empty() && seen_t.insert(info(p.technique).name).second)
+      ts.push_back(info(p.technique).name);
+    if (o.formats.empty() && seen_f.insert(p.format).second) fs.push_back(p.format);
   }
-  check_pairs(scene);
-  check_planes_cover_kernel(scene);
+  std::vector<DepthRange> rs;
+  for (const auto& r : o.depth_ranges) rs.push_back(parse_depth_range(r));
+  scene.evaluate.clear();
+  scene.json["evaluate"] = nlohmann::json::array();
+  for (const auto& t : ts)
+    for (const auto& f : fs) {
+      StorageFormat::parse(f);
+      const Technique tech = parse_technique(t);
+      // No --depth-range: each technique in the scene's range, or its own when the scene names
+      // none.
+      for (const auto r : rs.empty() ? std::vector<DepthRange>{scene.range_for(tech)} : rs) {
+        scene.evaluate.push_back({tech, f, r});
+        // the scene a header records is the one that ran
+        scene.json["evaluate"].push_back(
+            {{"technique", t}, {"format", f}, {"depth_range", to_string(r)}});
+      }
+    }
+}
+
+std::string far_option(const std::vector<std::string>& sets,
+                       const std::map<std::string, std::string>& origins) {
   std::string far_given = origins.count("far") ? origins.at("far") : "";
   for (const auto& set : sets)
     if (set.rfind("far=", 0) == 0) far_given = "--set " + set;
+  return far_given;
+}
+
+}  // namespace
+
+Scene SceneOptions::load() const {
+  // Every named option is a --set in disguise; `origins` lets the scene's errors name the option
+  // the user typed, and a key set twice (--near 0.1 --set near=5) is refused rather than one
+  // silently winning.
+  NamedSets named;
+  add_named_options(*this, named);
+  add_implied(*this, named);
+  check_set_once(sets, named.origins);
+  named.all.insert(named.all.end(), sets.begin(), sets.end());
+  Scene scene = load_scene(scene_file, named.all, false, named.origins);
+  if (!techniques.empty() || !formats.empty() || !depth_ranges.empty()) replace_pairs(*this, scene);
+  check_pairs(scene);
+  check_planes_cover_kernel(scene);
+  const std::string far_given = far_option(sets, named.origins);
   if (!far_given.empty()) note_unused_far(scene, far_given);
   return scene;
 }

@@ -8,9 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
-#include <optional>
 #include <set>
 #include <sstream>
 
@@ -20,7 +18,7 @@
 #include "host/base/read_file.h"
 #include "host/model/profile.h"
 #include "host/model/scene_json.h"
-#include "host/model/scene_reader.h"
+#include "host/model/scene_parse.h"
 #include "interface/mts_layout.h"
 
 namespace depthprec {
@@ -53,7 +51,6 @@ using nlohmann::json;
 namespace {
 
 constexpr const char* kDefaultPath = "data/gilg2021.json";
-constexpr int kMaxKernelSide = 16384;
 
 const std::set<std::string> kTopKeys = {"name",
                                         "description",
@@ -114,46 +111,6 @@ void check_user_keys(const json& j, const std::string& source, const std::string
   if (j.contains("evaluate") && j["evaluate"].is_array())
     for (const auto& p : j["evaluate"])
       check_known_keys(p, kPairKeys, "an evaluate entry", source, text);
-}
-
-MatrixPrecision parse_matrix_precision(const std::string& s) {
-  return named_choice<MatrixPrecision>(
-      "matrix precision", s,
-      {{"float", MatrixPrecision::single}, {"double", MatrixPrecision::binary64}});
-}
-Compose parse_compose(const std::string& s) {
-  return named_choice<Compose>(
-      "compose", s, {{"separate", Compose::separate}, {"premultiplied", Compose::premultiplied}});
-}
-Divide parse_divide(const std::string& s) {
-  return named_choice<Divide>("divide", s,
-                              {{"reciprocal", Divide::reciprocal}, {"exact", Divide::exact}});
-}
-PlaneForm parse_plane_form(const std::string& s) {
-  return named_choice<PlaneForm>("plane", s,
-                                 {{"vertex", PlaneForm::vertex},
-                                  {"origin_fma", PlaneForm::origin_fma},
-                                  {"origin_quads", PlaneForm::origin_quads}});
-}
-ViewportForm parse_viewport_form(const std::string& s) {
-  return named_choice<ViewportForm>(
-      "viewport", s, {{"separate", ViewportForm::separate}, {"fma", ViewportForm::fma}});
-}
-ClipForm parse_clip_form(const std::string& s) {
-  return named_choice<ClipForm>("clip", s,
-                                {{"none", ClipForm::none}, {"llvmpipe", ClipForm::llvmpipe}});
-}
-LogForm parse_log_form(const std::string& s) {
-  return named_choice<LogForm>("log", s,
-                               {{"library", LogForm::library}, {"llvmpipe", LogForm::llvmpipe}});
-}
-Sampling parse_sampling(const std::string& s) {
-  return named_choice<Sampling>("sampling", s,
-                                {{"worst_case", Sampling::worst_case}, {"paper", Sampling::paper}});
-}
-VertexForm parse_vertex_form(const std::string& s) {
-  return named_choice<VertexForm>("vertex", s,
-                                  {{"separate", VertexForm::separate}, {"fma", VertexForm::fma}});
 }
 
 // "a.b=value": value parsed as JSON, or taken as a string when it is not JSON.
@@ -225,11 +182,6 @@ const std::string& default_scene_text() {
   return text;
 }
 
-namespace {
-Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
-                  const std::string& text, const std::map<std::string, std::string>& origins);
-}  // namespace
-
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides, bool check,
                  const std::map<std::string, std::string>& origins) {
   if (path.empty()) return load_scene_text("", "", overrides, check, origins);
@@ -268,19 +220,6 @@ void apply_profile(json& merged, const std::vector<const json*>& layers,
                                      (*layer)["pipeline"][key].dump()));
     merged["pipeline"][key] = value;
   }
-}
-
-// The profile whose every setting the pipeline has, else "custom".
-std::string matching_profile(const json& pipeline) {
-  for (const Profile& p : profiles()) {
-    bool all = true;
-    for (const std::string& set : p.sets) {
-      const auto [key, value] = pipeline_setting(set);
-      all = all && pipeline.contains(key) && pipeline[key] == value;
-    }
-    if (all) return p.name;
-  }
-  return "custom";
 }
 
 }  // namespace
@@ -340,153 +279,5 @@ Scene scene_from_json(const json& j, const std::string& source) {
 const char* to_string(Sampling s) {
   return s == Sampling::paper ? "paper" : "worst_case";
 }
-
-namespace {
-
-Scene parse_scene(const json& merged, const std::string& source, const std::string& where_name,
-                  const std::string& text, const std::map<std::string, std::string>& origins) {
-  const Reader r(merged, where_name, text, origins);
-  Scene s;
-  s.source = source;
-  s.name = r.string("name");
-  s.description = r.string("description");
-  s.near = r.positive("near");
-  s.far = r.positive("far", true);
-  if (!(s.far > s.near)) r.fail("far", fmt::format("must be > near ({}), not {}", s.near, s.far));
-  const auto k = r.size2("kernel", kMaxKernelSide);
-  const auto vp = r.size2("viewport", kMaxKernelSide);
-  s.kernel_w = k[0];
-  s.kernel_h = k[1];
-  s.viewport_w = vp[0];
-  s.viewport_h = vp[1];
-  if (s.kernel_w > s.viewport_w || s.kernel_h > s.viewport_h)
-    r.fail("kernel", fmt::format("must fit in the viewport {}x{}", s.viewport_w, s.viewport_h));
-  s.fov_y_deg = r.positive("fov_y_deg");
-  if (s.fov_y_deg >= 180) r.fail("fov_y_deg", "must be below 180 degrees");
-  s.plane_margin = r.positive("plane_margin");
-  s.plane_subdivisions = r.integer("plane_subdivisions", 1, 11);
-  s.frames = r.integer("frames", 1, 1000000);
-  s.delta_a = r.number("delta_a");
-  s.rotation_range_deg = r.number("rotation_range_deg");
-  if (std::abs(s.rotation_range_deg) >= 45)
-    r.fail("rotation_range_deg", "must be below 45 degrees");
-  s.rotation_step = r.vec3("rotation_step");
-  s.rotation_offset = r.vec3("rotation_offset");
-  const json& dist = r.at("distances");
-  if (!dist.is_array() || dist.empty())
-    r.fail("distances", "must be a non-empty list of eye distances > 0");
-  for (const auto& d : dist) {
-    if (!d.is_number() || !(d.get<double>() > 0) || !std::isfinite(d.get<double>()))
-      r.fail("distances", fmt::format("must hold finite eye distances > 0, not {}", d.dump()));
-    const double z = d.get<double>();
-    // The planes are placed in binary32: at its largest value fl32(z) has no binary32 above it
-    // (the vertex bound is infinite), past it fl32(z) is infinite.
-    if (!(static_cast<float>(z) < std::numeric_limits<float>::max()))
-      r.fail(
-          "distances",
-          fmt::format("{:g} is not below binary32's largest value {:g}: the pipeline cannot place "
-                      "a plane there",
-                      z, static_cast<double>(std::numeric_limits<float>::max())));
-    // A row is keyed by its distance (journals, shards, shared computations): each distance once.
-    const auto same = std::find(s.distances.begin(), s.distances.end(), z);
-    if (same != s.distances.end())
-      r.fail("distances",
-             fmt::format("lists {:g} twice (entries {} and {}); list each distance once", z,
-                         same - s.distances.begin() + 1, s.distances.size() + 1));
-    s.distances.push_back(z);
-  }
-  s.world_position = r.vec3("world_position");
-  for (const double c : s.world_position)
-    if (!(std::abs(c) <= kMaxWorldCoordinate))
-      r.fail("world_position", fmt::format("coordinates must be within +-{:g} (2^40), not {:g}",
-                                           kMaxWorldCoordinate, c));
-  s.rel_precision = r.positive("rel_precision");
-  if (s.rel_precision >= 1) r.fail("rel_precision", "must be below 1 (e.g. 0.0009765625 = 2^-10)");
-  s.max_separation_factor = r.positive("max_separation_factor");
-  if (s.max_separation_factor < 1) r.fail("max_separation_factor", "must be >= 1");
-  s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
-  s.sampling = r.choice("sampling", parse_sampling);
-  s.worst_case.max_rounds = r.integer("worst_case.max_rounds", 1, 16);
-  s.worst_case.min_rounds = r.integer("worst_case.min_rounds", 1, s.worst_case.max_rounds);
-  s.worst_case.round_size = r.integer("worst_case.round_size", 1, 1000000);
-  // Rounds double: the last one renders round_size * 2^(max_rounds - 1) frames per probe.
-  if ((static_cast<long long>(s.worst_case.round_size) << (s.worst_case.max_rounds - 1)) > 1000000)
-    r.fail("worst_case.max_rounds",
-           fmt::format("with round_size {} the last round would sample {} orientations; at most "
-                       "1000000 (rounds double)",
-                       s.worst_case.round_size,
-                       static_cast<long long>(s.worst_case.round_size)
-                           << (s.worst_case.max_rounds - 1)));
-  s.worst_case.tolerance = r.number("worst_case.tolerance");
-  if (!(s.worst_case.tolerance >= 0 && s.worst_case.tolerance < 1))
-    r.fail("worst_case.tolerance", "must be 0..1 (a relative rise of the MTS, e.g. 0.01)");
-
-  s.pipeline.depth_range =
-      r.choice("pipeline.depth_range", [](const std::string& v) -> std::optional<DepthRange> {
-        if (v == "technique") return std::nullopt;
-        try {
-          return parse_depth_range(v);
-        } catch (const InputError&) {
-          throw InputError(
-              fmt::format("unknown depth range '{}': expected gl, zero_to_one or technique "
-                          "(each technique's own: zero_to_one for reversed, reversed_infinite and "
-                          "inverse_w, gl otherwise)",
-                          v));
-        }
-      });
-  s.pipeline.matrix_precision = r.choice("pipeline.matrix_precision", parse_matrix_precision);
-  s.pipeline.compose = r.choice("pipeline.compose", parse_compose);
-  s.pipeline.divide = r.choice("pipeline.divide", parse_divide);
-  s.pipeline.rounding = r.choice("pipeline.rounding", parse_rounding);
-  s.pipeline.denormals = r.choice("pipeline.denormals", parse_denormals);
-  s.pipeline.contraction = r.boolean("pipeline.contraction");
-  s.pipeline.plane = r.choice("pipeline.plane", parse_plane_form);
-  s.pipeline.viewport = r.choice("pipeline.viewport", parse_viewport_form);
-  s.pipeline.vertex = r.choice("pipeline.vertex", parse_vertex_form);
-  s.pipeline.log = r.choice("pipeline.log", parse_log_form);
-  s.pipeline.clip = r.choice("pipeline.clip", parse_clip_form);
-  s.pipeline.snap_bits = r.none_or_integer("pipeline.snap", 1, 16);
-  s.pipeline.conversion = r.choice("pipeline.conversion", parse_conversion);
-  s.pipeline.transform = r.choice("pipeline.transform", parse_transform);
-
-  s.params.log_k = r.positive("log_k");
-  s.params.layers = r.integer("layers", 1, 64);
-  s.params.layer_mapping = r.choice("layer_mapping", parse_technique);
-  if (s.params.layer_mapping != Technique::standard &&
-      s.params.layer_mapping != Technique::reversed && s.params.layer_mapping != Technique::linear)
-    r.fail("layer_mapping", "must be standard, reversed or linear");
-  s.params.layer_overlap = r.number("layer_overlap");
-  if (s.params.layer_overlap < 0 || s.params.layer_overlap > 1)
-    r.fail("layer_overlap", "must be 0..1 (a fraction of the layer's far bound)");
-
-  const json& ev = r.at("evaluate");
-  if (!ev.is_array() || ev.empty())
-    r.fail("evaluate",
-           "must be a non-empty list of {\"technique\", \"format\"[, \"depth_range\"]}");
-  for (size_t i = 0; i < ev.size(); ++i) {
-    const std::string base = fmt::format("evaluate.{}", i);
-    if (!ev[i].is_object() || !ev[i].contains("technique") || !ev[i].contains("format"))
-      r.fail("evaluate", fmt::format("entry {} must be an object with technique and format", i));
-    EvalPair p;
-    try {
-      p.technique = parse_technique(ev[i]["technique"].get<std::string>());
-      p.format = ev[i]["format"].get<std::string>();
-      StorageFormat::parse(p.format);
-      p.depth_range = ev[i].contains("depth_range")
-                          ? parse_depth_range(ev[i]["depth_range"].get<std::string>())
-                          : s.range_for(p.technique);
-    } catch (const InputError& e) {
-      r.fail(base, e.what());
-    } catch (const json::exception&) {
-      r.fail(base, "must hold strings for technique, format and depth_range");
-    }
-    s.evaluate.push_back(p);
-  }
-  s.json = merged;
-  s.json["pipeline"]["profile"] = matching_profile(merged["pipeline"]);
-  return s;
-}
-
-}  // namespace
 
 }  // namespace depthprec

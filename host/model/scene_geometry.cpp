@@ -149,7 +149,9 @@ const Draw& SceneGeometry::draw_of(uint32_t t) const {
   return *(it - 1);
 }
 
-SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
+namespace {
+
+tinygltf::Model read_model(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{} is a directory, not a glTF file", path));
@@ -166,13 +168,17 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
     throw InputError(fmt::format("{}: not a readable glTF 2.0 {} file: {}", path,
                                  binary ? "binary (.glb)" : "JSON (.gltf)",
                                  err.empty() ? "tinygltf gave no reason" : err));
-  SceneGeometry g;
-  g.source = path;
-  const NodeOrder order = node_order(model, path);
-  if (!order.note.empty()) g.notes.push_back(order.note);
-  // First the counts, from the accessors alone, so a huge file is refused before anything is read.
-  uint64_t total = 0, vertices = 0;
+  return model;
+}
+
+struct PrimitiveCounts {
+  uint64_t triangles = 0, vertices = 0;
   std::map<std::string, uint64_t> skipped;  // by why
+};
+
+PrimitiveCounts count_primitives(const tinygltf::Model& model, const NodeOrder& order,
+                                 const std::string& path) {
+  PrimitiveCounts c;
   std::string why;
   for (const auto& [n, world] : order.nodes) {
     const int mi = model.nodes[n].mesh;
@@ -182,75 +188,93 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
       const uint64_t t = drawn_triangles(model, prim, path, primitive_name(mesh, mi, p), &why);
       if (t == 0) {
-        ++skipped[why];
+        ++c.skipped[why];
         continue;
       }
-      total = add_counts(total, t);
-      vertices = add_counts(vertices, model.accessors[prim.attributes.at("POSITION")].count);
+      c.triangles = add_counts(c.triangles, t);
+      c.vertices = add_counts(c.vertices, model.accessors[prim.attributes.at("POSITION")].count);
     }
   }
-  if (total > max_triangles)
+  return c;
+}
+
+void check_size(const PrimitiveCounts& c, const std::string& path, uint64_t max_triangles) {
+  if (c.triangles > max_triangles)
     throw InputError(fmt::format(
         "{}: {} triangles, more than the audit takes ({}; --max-triangles raises it, at about 560 "
         "bytes of memory per triangle)",
-        path, total, max_triangles));
+        path, c.triangles, max_triangles));
   // A sparse accessor without a buffer view claims elements the file does not hold: the vertices
   // are bounded too, at three a triangle, as many as an unindexed mesh has.
-  if (vertices / 3 > max_triangles)
+  if (c.vertices / 3 > max_triangles)
     throw InputError(fmt::format(
         "{}: {} vertices, more than the audit takes (3 a triangle of its limit of {} triangles; "
         "--max-triangles raises it)",
-        path, vertices, max_triangles));
-  for (const auto& [n, world] : order.nodes) {
-    const tinygltf::Node& node = model.nodes[n];
-    if (node.camera >= 0) {
-      const tinygltf::Camera& c = model.cameras[node.camera];
-      if (c.type == "perspective") {
-        GltfCamera cam;
-        cam.name = !c.name.empty()      ? c.name
-                   : !node.name.empty() ? node.name
-                                        : fmt::format("camera {}", node.camera);
-        cam.world = world;
-        cam.yfov = c.perspective.yfov;
-        cam.aspect = c.perspective.aspectRatio;
-        cam.znear = c.perspective.znear;
-        cam.zfar = c.perspective.zfar;
-        g.cameras.push_back(cam);
-      }
-    }
-    if (node.mesh < 0) continue;
-    const tinygltf::Mesh& mesh = model.meshes[node.mesh];
-    // glTF 2.0 3.7.4: the node's morph weights, else the mesh's, else none
-    const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
-    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-      const tinygltf::Primitive& prim = mesh.primitives[p];
-      const std::string where = primitive_name(mesh, node.mesh, p);
-      if (drawn_triangles(model, prim, path, where, &why) == 0) continue;
-      Draw d;
-      d.node_index = n;
-      d.mesh_index = node.mesh;
-      d.primitive = static_cast<int>(p);
-      d.node = !node.name.empty() ? node.name : fmt::format("node {}", n);
-      d.mesh = !mesh.name.empty() ? mesh.name : fmt::format("mesh {}", node.mesh);
-      d.world = world;
-      d.positions = primitive_positions(model, prim, weights, path, where);
-      std::vector<uint32_t> list;
-      if (prim.indices >= 0) {
-        list = read_indices(model, prim.indices, path, where);
-        for (uint32_t i : list)
-          if (i >= d.positions.size())
-            throw InputError(fmt::format("{}: {}: index {} past its {} positions", path, where, i,
-                                         d.positions.size()));
-      } else {
-        list.resize(d.positions.size());
-        std::iota(list.begin(), list.end(), 0u);
-      }
-      d.triangles = triangulate(prim.mode, list);
-      d.first_triangle = static_cast<uint32_t>(g.triangles);
-      g.triangles += d.triangles.size();
-      g.draws.push_back(std::move(d));
-    }
+        path, c.vertices, max_triangles));
+}
+
+// The file's perspective cameras are the ones `--camera` can name (docs/audit.md, "Input").
+void add_camera(const tinygltf::Model& model, const tinygltf::Node& node, const Mat4d& world,
+                SceneGeometry& g) {
+  const tinygltf::Camera& c = model.cameras[node.camera];
+  if (c.type != "perspective") return;
+  GltfCamera cam;
+  cam.name = !c.name.empty()      ? c.name
+             : !node.name.empty() ? node.name
+                                  : fmt::format("camera {}", node.camera);
+  cam.world = world;
+  cam.yfov = c.perspective.yfov;
+  cam.aspect = c.perspective.aspectRatio;
+  cam.znear = c.perspective.znear;
+  cam.zfar = c.perspective.zfar;
+  g.cameras.push_back(cam);
+}
+
+std::vector<uint32_t> vertex_list(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                  size_t positions, const std::string& path,
+                                  const std::string& where) {
+  std::vector<uint32_t> list;
+  if (prim.indices >= 0) {
+    list = read_indices(model, prim.indices, path, where);
+    for (uint32_t i : list)
+      if (i >= positions)
+        throw InputError(
+            fmt::format("{}: {}: index {} past its {} positions", path, where, i, positions));
+  } else {
+    list.resize(positions);
+    std::iota(list.begin(), list.end(), 0u);
   }
+  return list;
+}
+
+void add_draws(const tinygltf::Model& model, int n, const Mat4d& world, const std::string& path,
+               SceneGeometry& g) {
+  const tinygltf::Node& node = model.nodes[n];
+  const tinygltf::Mesh& mesh = model.meshes[node.mesh];
+  // glTF 2.0 3.7.4: the node's morph weights, else the mesh's, else none
+  const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
+  std::string why;
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& prim = mesh.primitives[p];
+    const std::string where = primitive_name(mesh, node.mesh, p);
+    if (drawn_triangles(model, prim, path, where, &why) == 0) continue;
+    Draw d;
+    d.node_index = n;
+    d.mesh_index = node.mesh;
+    d.primitive = static_cast<int>(p);
+    d.node = !node.name.empty() ? node.name : fmt::format("node {}", n);
+    d.mesh = !mesh.name.empty() ? mesh.name : fmt::format("mesh {}", node.mesh);
+    d.world = world;
+    d.positions = primitive_positions(model, prim, weights, path, where);
+    d.triangles = triangulate(prim.mode, vertex_list(model, prim, d.positions.size(), path, where));
+    d.first_triangle = static_cast<uint32_t>(g.triangles);
+    g.triangles += d.triangles.size();
+    g.draws.push_back(std::move(d));
+  }
+}
+
+void note_undrawn(const std::map<std::string, uint64_t>& skipped, const std::string& path,
+                  SceneGeometry& g) {
   std::string undrawn;
   for (const auto& [reason, count] : skipped) {
     g.skipped += count;
@@ -266,6 +290,25 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
   if (g.skipped)
     g.notes.push_back(
         fmt::format("{} primitive(s) not drawn: {} ({})", g.skipped, undrawn, drawn_modes));
+}
+
+}  // namespace
+
+SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
+  const tinygltf::Model model = read_model(path);
+  SceneGeometry g;
+  g.source = path;
+  const NodeOrder order = node_order(model, path);
+  if (!order.note.empty()) g.notes.push_back(order.note);
+  // First the counts, from the accessors alone, so a huge file is refused before anything is read.
+  const PrimitiveCounts counts = count_primitives(model, order, path);
+  check_size(counts, path, max_triangles);
+  for (const auto& [n, world] : order.nodes) {
+    const tinygltf::Node& node = model.nodes[n];
+    if (node.camera >= 0) add_camera(model, node, world, g);
+    if (node.mesh >= 0) add_draws(model, n, world, path, g);
+  }
+  note_undrawn(counts.skipped, path, g);
   return g;
 }
 

@@ -1,5 +1,5 @@
 // Reads a scene's typed values from its merged JSON, with errors that name the key, blame the
-// option or file that set it, and say what is allowed (host/model/scene.cpp's parse_scene).
+// option or file that set it, and say what is allowed (host/model/scene_parse.cpp's parse_scene).
 #pragma once
 
 #include <fmt/format.h>

@@ -231,95 +231,116 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   return format == "markdown" ? out : wrap_text(out);
 }
 
-std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
-                         const std::string& format) {
-  if (format == "json") return render_rows(scene, rows, run, "json");
-  // Columns in the scene's pair order, rows in distance order.
+namespace {
+
+// Columns in the scene's pair order, rows in distance order. CSV (full) keeps what text marks with
+// ~, * and S/A/V as columns of their own beside each pair's.
+struct WideTable {
   std::vector<std::string> labels;
+  std::map<std::pair<double, std::string>, const MtsRow*> at;
+  bool full = false, attributed = false, worst_case = false;
+};
+
+// The cells the text table marks, for the legends under it.
+struct TableMarks {
+  std::vector<const MtsRow*> marked;  // cells marked *, in table order
+  bool below_code = false, paper_below = false;
+};
+
+WideTable wide_table(const Scene& scene, const std::vector<MtsRow>& rows, bool full) {
+  WideTable t;
   std::map<std::string, size_t> col_of;
   for (const auto& p : scene.evaluate) {
     const std::string l = p.label();
-    if (col_of.emplace(l, labels.size()).second) labels.push_back(l);
+    if (col_of.emplace(l, t.labels.size()).second) t.labels.push_back(l);
   }
-  std::vector<double> zs = scene.distances;
-  std::map<std::pair<double, std::string>, const MtsRow*> at;
-  for (const auto& r : rows) at[{r.z, r.pair.label()}] = &r;
-  const bool full = format == "csv";
-  bool attributed = false;
-  for (const auto& r : rows) attributed |= r.attributed();
-  const bool worst_case = scene.sampling == Sampling::worst_case;
-  // CSV keeps what text marks with ~, * and S/A/V as columns of their own beside each pair's.
+  for (const auto& r : rows) t.at[{r.z, r.pair.label()}] = &r;
+  t.full = full;
+  for (const auto& r : rows) t.attributed |= r.attributed();
+  t.worst_case = scene.sampling == Sampling::worst_case;
+  return t;
+}
+
+std::vector<Column> wide_columns(const WideTable& t) {
   std::vector<Column> cols = {{"z"}, {"vertex_bound"}};
-  for (const auto& l : labels) {
+  for (const auto& l : t.labels) {
     cols.push_back({l});
-    if (full) cols.push_back({l + " flags"});
-    if (full && attributed) cols.push_back({l + " dominant"});
-    if (full && worst_case) {
+    if (t.full) cols.push_back({l + " flags"});
+    if (t.full && t.attributed) cols.push_back({l + " dominant"});
+    if (t.full && t.worst_case) {
       cols.push_back({l + " mts_paper"});
       cols.push_back({l + " convergence"});
     }
   }
-  std::vector<std::vector<std::string>> cells;
-  std::vector<const MtsRow*> marked;  // cells marked *, in table order
-  bool any_below_code = false, any_paper_below = false;
-  for (double z : zs) {
-    std::vector<std::string> c = {full ? exact(z) : human(z),
-                                  full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
-    for (const auto& l : labels) {
-      const auto it = at.find({z, l});
-      if (it == at.end()) {
-        c.push_back("");
-        if (full) c.push_back("");
-        if (full && attributed) c.push_back("");
-        if (full && worst_case) c.insert(c.end(), {"", ""});
-        continue;
-      }
-      const MtsRow& r = *it->second;
-      std::string v = table_cell(r, full);
-      if (full) {
-        c.push_back(v);
-        c.push_back(r.flags());
-        if (attributed) c.push_back(r.dominant);
-        if (worst_case) c.insert(c.end(), {exact(r.mts_paper), convergence_cell(r, true)});
-        continue;
-      }
-      v += dominant_mark(r);
-      if (worst_case && paper_far_below(r)) {
-        v += "^";
-        any_paper_below = true;
-      }
-      if (r.below_one_code) {
-        v += "~";
-        any_below_code = true;
-      }
-      if (r.non_monotone || r.non_finite || r.clipped || r.uncovered) {
-        v += "*";
-        marked.push_back(&r);
-      }
-      c.push_back(v);
-    }
-    cells.push_back(c);
+  return cols;
+}
+
+void add_csv_cells(const WideTable& t, const MtsRow* r, std::vector<std::string>& c) {
+  if (!r) {
+    c.push_back("");
+    c.push_back("");
+    if (t.attributed) c.push_back("");
+    if (t.worst_case) c.insert(c.end(), {"", ""});
+    return;
   }
-  if (format == "csv") return csv(cols, cells);
-  const bool md = format == "markdown";
+  c.push_back(table_cell(*r, true));
+  c.push_back(r->flags());
+  if (t.attributed) c.push_back(r->dominant);
+  if (t.worst_case) c.insert(c.end(), {exact(r->mts_paper), convergence_cell(*r, true)});
+}
+
+std::string marked_cell(const MtsRow& r, bool worst_case, TableMarks& marks) {
+  std::string v = table_cell(r, false) + dominant_mark(r);
+  if (worst_case && paper_far_below(r)) {
+    v += "^";
+    marks.paper_below = true;
+  }
+  if (r.below_one_code) {
+    v += "~";
+    marks.below_code = true;
+  }
+  if (r.non_monotone || r.non_finite || r.clipped || r.uncovered) {
+    v += "*";
+    marks.marked.push_back(&r);
+  }
+  return v;
+}
+
+std::vector<std::string> wide_row(const WideTable& t, double z, TableMarks& marks) {
+  std::vector<std::string> c = {t.full ? exact(z) : human(z),
+                                t.full ? exact(vertex_bound(z)) : human(vertex_bound(z))};
+  for (const auto& l : t.labels) {
+    const auto it = t.at.find({z, l});
+    const MtsRow* r = it == t.at.end() ? nullptr : it->second;
+    if (t.full)
+      add_csv_cells(t, r, c);
+    else
+      c.push_back(r ? marked_cell(*r, t.worst_case, marks) : "");
+  }
+  return c;
+}
+
+std::string wide_caption(const Scene& scene) {
+  return fmt::format(
+      "MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {}, "
+      "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
+      "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
+      scene.name, human(scene.near), human(scene.far), scene.kernel_w, scene.kernel_h,
+      sampling_caption(scene), human(scene.rel_precision));
+}
+
+std::string flagged_cells(const std::vector<const MtsRow*>& marked, bool md) {
+  if (marked.empty()) return "";
+  std::string out = "\n";
+  out += "* flagged: the cells and their flags (docs/mts.md says what each means)\n\n";
+  Cells fcells;
+  for (const MtsRow* r : marked) fcells.push_back({r->pair.label(), human(r->z), r->flags()});
+  return out + grid({{"pair", true}, {"z"}, {"flags", true}}, fcells, md);
+}
+
+std::string mark_legends(const TableMarks& marks, const Scene& scene, bool md) {
   std::string out;
-  {
-    out += fmt::format(
-        "MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {}, "
-        "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
-        "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
-        scene.name, human(scene.near), human(scene.far), scene.kernel_w, scene.kernel_h,
-        sampling_caption(scene), human(scene.rel_precision));
-  }
-  out += grid(cols, cells, md);
-  if (!marked.empty()) {
-    out += "\n";
-    out += "* flagged: the cells and their flags (docs/mts.md says what each means)\n\n";
-    Cells fcells;
-    for (const MtsRow* r : marked) fcells.push_back({r->pair.label(), human(r->z), r->flags()});
-    out += grid({{"pair", true}, {"z"}, {"flags", true}}, fcells, md);
-  }
-  if (any_below_code) {
+  if (marks.below_code) {
     out += md ? "\n" : "";
     out +=
         "~ below one storage code at its z (flag below_one_code): the planes' depths in the kernel "
@@ -328,7 +349,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         "code "
         "(code_width in --format-out json)\n";
   }
-  if (any_paper_below) {
+  if (marks.paper_below) {
     out += md ? "\n" : "";
     out += fmt::format(
         "^ the paper's {} frames alone give an MTS more than 5 % below the worst case (mts_paper "
@@ -336,26 +357,46 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
         "paper's path does not reach\n",
         scene.frames);
   }
-  if (attributed) {
-    out += "\n";
-    out +=
-        "S / A / V: the dominant factor -- storage (the MTS of the binary64 pipeline stored in the "
-        "format), "
-        "arithmetic (the binary32 pipeline without storage quantisation) or vertex (the vertex "
-        "bound). "
-        "The factors:\n\n";
-    std::vector<Column> acols = {{"pair", true},     {"z"},          {"mts"},
-                                 {"storage"},        {"arithmetic"}, {"vertex_bound"},
-                                 {"dominant", true}, {"note", true}};
-    std::vector<std::vector<std::string>> acells;
-    for (const auto& r : rows) {
-      if (!r.attributed()) continue;
-      acells.push_back({r.pair.label(), human(r.z), table_cell(r, false), human(r.storage_mts),
-                        human(r.arithmetic_mts), human(r.vertex_bound), r.dominant,
-                        r.factor_above_mts(scene.rel_precision) ? "a factor exceeds the MTS" : ""});
-    }
-    out += grid(acols, acells, md);
+  return out;
+}
+
+std::string attribution_section(const Scene& scene, const std::vector<MtsRow>& rows, bool md) {
+  std::string out = "\n";
+  out +=
+      "S / A / V: the dominant factor -- storage (the MTS of the binary64 pipeline stored in the "
+      "format), "
+      "arithmetic (the binary32 pipeline without storage quantisation) or vertex (the vertex "
+      "bound). "
+      "The factors:\n\n";
+  std::vector<Column> acols = {{"pair", true},     {"z"},          {"mts"},
+                               {"storage"},        {"arithmetic"}, {"vertex_bound"},
+                               {"dominant", true}, {"note", true}};
+  std::vector<std::vector<std::string>> acells;
+  for (const auto& r : rows) {
+    if (!r.attributed()) continue;
+    acells.push_back({r.pair.label(), human(r.z), table_cell(r, false), human(r.storage_mts),
+                      human(r.arithmetic_mts), human(r.vertex_bound), r.dominant,
+                      r.factor_above_mts(scene.rel_precision) ? "a factor exceeds the MTS" : ""});
   }
+  return out + grid(acols, acells, md);
+}
+
+}  // namespace
+
+std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, const RunInfo& run,
+                         const std::string& format) {
+  if (format == "json") return render_rows(scene, rows, run, "json");
+  const WideTable t = wide_table(scene, rows, format == "csv");
+  std::vector<std::vector<std::string>> cells;
+  TableMarks marks;
+  for (double z : scene.distances) cells.push_back(wide_row(t, z, marks));
+  if (format == "csv") return csv(wide_columns(t), cells);
+  const bool md = format == "markdown";
+  std::string out = wide_caption(scene);
+  out += grid(wide_columns(t), cells, md);
+  out += flagged_cells(marks.marked, md);
+  out += mark_legends(marks, scene, md);
+  if (t.attributed) out += attribution_section(scene, rows, md);
   out += (md ? "\n" : "") + footer(run) + "\n";
   return md ? out : wrap_text(out);
 }
