@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -50,6 +51,10 @@ std::string url_decoded(const std::string& uri) {
 }  // namespace
 
 std::vector<NamedInput> gltf_inputs(const std::string& gltf_path) {
+  // Only a regular file has buffers to protect; anything else (a directory, a missing file) the
+  // loader refuses with its own message.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(gltf_path, ec)) return {};
   std::ifstream in(gltf_path, std::ios::binary);
   if (!in) return {};
   const std::string bytes{std::istreambuf_iterator<char>(in), {}};

@@ -214,6 +214,11 @@ TEST_CASE("audit refuses bad input with a specific error", "[audit][cli]") {
     CHECK(j.at("setups").at(0).at("covered_pixels") == 0);
     CHECK(j.at("setups").at(0).at("fighting_pixels") == 0);
   }
+  SECTION("a directory for the file: the loader's message, not a read error") {
+    const auto r = run_cli("audit " + dir.string());
+    CHECK(r.exit_code == 3);
+    CHECK_THAT(r.output, Contains("is a directory, not a glTF file"));
+  }
   SECTION("--eye at --target") {
     const auto r = run_cli("audit " + kAuditDir + "decal_wall.gltf --eye 1,2,3 --target 1,2,3");
     CHECK(r.exit_code == 3);
