@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "host/runtime/kernel_args.h"
+#include "host/runtime/opencl_runtime.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {

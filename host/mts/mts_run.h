@@ -7,9 +7,10 @@
 
 #include "host/model/scene.h"
 #include "host/mts/run_rows.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 // log: where verbose lines go (variants built, pairs evaluated); null for silence. The rows
 // returned are the ones this run computed, in scene order.
