@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-namespace depthprec {
+#include "host/model/mat4d.h"
 
-using Mat4d = std::array<double, 16>;  // row-major: m[r * 4 + c]
+namespace depthprec {
 
 // One primitive of one mesh under one node: what a report names a surface by.
 struct Draw {
@@ -63,11 +63,5 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles);
 
 // The centre of the world-space bounding box of every draw's positions.
 std::array<double, 3> bounding_box_centre(const SceneGeometry& geometry);
-
-// a * b, row-major, binary64.
-Mat4d mat_mul(const Mat4d& a, const Mat4d& b);
-Mat4d mat_identity();
-// The point m * (x, y, z, 1) in binary64.
-std::array<double, 3> transform_point(const Mat4d& m, double x, double y, double z);
 
 }  // namespace depthprec
