@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "host/runtime/kernel_args.h"
-#include "host/runtime/opencl_runtime.h"
 #include "host/runtime/kernel_variant.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
 
