@@ -14,7 +14,7 @@ namespace depthprec {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kRadPerDeg = M_PI / 180.0;
 // The tilt refused short of the geometric limit, so the far side of the plane stays a bounded
 // size (about 57 times the plane's distance at one degree from the limit).
 constexpr double kTiltSpareDeg = 1.0;
@@ -26,11 +26,11 @@ bool covers_every_frame(const Scene& s, double tilt_deg) {
   // Worst-case sampling takes orientations anywhere in the rotation cube: its corners are the
   // steepest (docs/mts.md, "The worst case").
   if (s.sampling == Sampling::worst_case) {
-    const double r = std::abs(s.rotation_range_deg) * kDeg;
+    const double r = std::abs(s.rotation_range_deg) * kRadPerDeg;
     for (int c = 0; c < 8; ++c) angles.push_back({c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r});
   }
   for (std::array<double, 3> a : angles) {
-    a[0] += tilt_deg * kDeg;
+    a[0] += tilt_deg * kRadPerDeg;
     // The footprint's existence does not depend on D (it scales with it): any distance decides.
     if (!view_footprint(s, 1.0, a)) return false;
   }
