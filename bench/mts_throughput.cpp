@@ -11,6 +11,7 @@
 
 #include "host/model/scene.h"
 #include "host/mts/mts_timing.h"
+#include "host/runtime/opencl_runtime.h"
 
 using namespace depthprec;
 

@@ -8,7 +8,7 @@
 
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
-#include "host/mts/mts_evaluator.h"
+#include "host/mts/emulator.h"
 #include "host/mts/worst_case.h"
 
 namespace depthprec {
@@ -85,10 +85,10 @@ LogBracket bisect_log(double good, double bad, double where, double precision,
 bool near_holds(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, const AdviseRequest& r,
                 double n, double* worst, double f) {
   const Scene s = with_near(scene, n, f);
-  MtsEvaluator ev(rt, s, pair);
+  const std::unique_ptr<ProbeEvaluator> ev = emulator(rt, s, pair);
   std::vector<Probe> probes;
   for (double z : advise_distances(r)) probes.push_back({z, r.separation_at(z)});
-  const auto results = ev.run(probes);
+  const auto results = ev->run(probes);
   for (size_t k = 0; k < results.size(); ++k) {
     const ProbeResult& p = results[k];
     if (p.outcome != Outcome::clean || p.any_uncovered || p.any_clipped || p.any_non_finite) {

@@ -11,9 +11,10 @@
 #include <vector>
 
 #include "host/model/scene.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 struct AdviseRequest {
   double z_min = 0, z_max = 0;  // the content's distances (eye space, scene units)

@@ -7,9 +7,10 @@
 #include <string>
 
 #include "host/model/scene.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 // What a real GPU pays for the technique beyond its arithmetic (the technique table's words; a
 // layered scene's layer count and mapping added).

@@ -8,9 +8,10 @@
 #include <vector>
 
 #include "host/lj/lj_metric.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 // The formats of a `bits`-bit buffer: E = 0 (integer) .. min(8, bits - 1).
 std::vector<std::string> split_formats(int bits);

@@ -5,9 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "host/model/scene.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 struct PipelineVariant {
   const char* name;

@@ -8,9 +8,10 @@
 #include <vector>
 
 #include "host/model/scene.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 struct ProfiledScene {
   std::string profile;

@@ -16,9 +16,10 @@
 #include <vector>
 
 #include "host/model/scene.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 struct WorldRequest {
   double z = 100;                            // the content's eye distance

@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "host/audit/audit_reference.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 // Pixels of one view (an index into AuditRequest::frames).
 struct PixelSample {

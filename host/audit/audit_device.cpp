@@ -4,6 +4,7 @@
 
 #include "host/runtime/kernel_args.h"
 #include "host/runtime/kernel_variant.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
 

@@ -3,9 +3,10 @@
 #pragma once
 
 #include "host/audit/audit_reference.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 AuditPixels audit_device(OpenClRuntime& runtime, const Scene& scene, const AuditSetup& setup);
 

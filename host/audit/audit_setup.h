@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "host/audit/draw_matrices.h"
 #include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/model/scene_geometry.h"
@@ -32,18 +33,7 @@ AuditCamera look_at_camera(const std::array<double, 3>& eye, const std::array<do
 // The glTF camera's node transform (scale removed) as the view; its yfov.
 AuditCamera gltf_view(const GltfCamera& camera, int width, int height);
 
-// What the GPU gets per draw (docs/audit.md "Vertex stage"): absolute: the model matrix and the
-// view matrix, each rounded to binary32 from binary64, applied in turn; camera_relative: the
-// model-view V * M, compose premultiplied: P * V * M, each formed as matrix_precision says (in
-// binary32 from rounded factors, or in binary64 rounded once); relative_to_eye: world positions in
-// binary64, split
-// (interface/relative_to_eye.h), then the view's rotation. `render` uploads the same matrices.
-struct DrawMatrices {
-  Mat4f first{}, second{};  // clip = P (second (first v)), P (first v), or first v (premultiplied)
-  bool premultiplied = false, view_on_gpu = false, relative_to_eye = false;
-  Mat4d world{};
-  std::array<float, 3> eye_high{}, eye_low{};
-};
+// What the GPU gets per draw (DrawMatrices, host/audit/draw_matrices.h).
 DrawMatrices draw_matrices(const Scene& scene, const ProbeConstants& pc, const Draw& draw,
                            const AuditCamera& camera);
 

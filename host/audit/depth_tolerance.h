@@ -12,7 +12,11 @@
 
 #include <array>
 
-#include "host/audit/audit_setup.h"
+#include "host/audit/draw_matrices.h"
+#include "host/model/frame_setup.h"
+#include "host/model/scene.h"
+#include "host/model/storage_format.h"
+#include "host/mts/triangle_setup.h"
 
 namespace depthprec {
 

@@ -8,7 +8,7 @@
 
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
-#include "host/mts/mts_evaluator.h"
+#include "host/mts/probe.h"
 #include "host/runtime/kernel_args.h"
 #include "interface/bias_formula.h"
 #include "interface/mts_layout.h"

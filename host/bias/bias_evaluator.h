@@ -1,35 +1,17 @@
-// Decides depth-bias probes: does a coplanar overlay (plane B in plane A, tessellated along the
-// other diagonal, drawn after A with the bias) pass the depth test at every kernel pixel of every
-// frame? Emulated by kernels/bias.cl (BiasEmulator) or rendered through OpenGL with
-// glPolygonOffset (BiasRenderer, host/render/), so one search drives both.
+// The emulated depth-bias evaluator (BiasEmulator): kernels/bias.cl decides the bias probes of
+// host/bias/bias_probe.h on the device.
 #pragma once
 
 #include <map>
 #include <vector>
 
+#include "host/bias/bias_probe.h"
 #include "host/bias/bias_rule.h"
 #include "host/model/scene.h"
-#include "host/mts/probe.h"
 #include "host/runtime/kernel_variant.h"
 #include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
-
-// units and factor as the application sets them (signed: negative toward the camera under
-// LESS); clamp from the options.
-struct BiasProbe {
-  double z = 0;
-  double units = 0, factor = 0;
-};
-
-// Outcome::fight: plane A showed through the overlay at some kernel pixel of some frame (the
-// bias was too small); clean: the overlay won everywhere.
-class BiasEvaluator {
- public:
-  virtual ~BiasEvaluator() = default;
-  virtual std::vector<ProbeResult> run(const std::vector<BiasProbe>& probes) = 0;
-  virtual RowSource source() const = 0;
-};
 
 class BiasEmulator : public BiasEvaluator {
  public:

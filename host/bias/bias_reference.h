@@ -3,7 +3,8 @@
 // kernels/bias.cl probe by probe.
 #pragma once
 
-#include "host/bias/bias_evaluator.h"
+#include "host/bias/bias_probe.h"
+#include "host/bias/bias_rule.h"
 #include "host/mts/reference_pipeline.h"
 
 namespace depthprec {

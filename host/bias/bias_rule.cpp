@@ -108,7 +108,7 @@ void validate(const BiasOptions& o) {
         fmt::format("--clamp {}: the clamp must be finite (> 0 limits the offset from above, < 0 "
                     "from below, 0: none)",
                     o.clamp));
-  // The scene sets the steepest tilt it can measure (check_tilt, host/model/tilted_plane.h);
+  // The scene sets the steepest tilt it can measure (check_tilt, host/model/tilt_limit.h);
   // whatever the scene, a plane at 90 degrees or more is seen edge-on or from behind.
   if (!(o.tilt_deg >= 0 && o.tilt_deg < 90))
     throw InputError(

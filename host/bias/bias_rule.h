@@ -60,7 +60,7 @@ bool clamp_binds(double clamp, int sign);
 
 // Throws InputError for options that contradict each other or the API (a clamp that is not
 // finite, a tilt outside [0, 90) degrees, sqrt slopes under D3D, a representation outside
-// Vulkan). The scene's own limit on the tilt is check_tilt's (host/model/tilted_plane.h).
+// Vulkan). The scene's own limit on the tilt is check_tilt's (host/model/tilt_limit.h).
 void validate(const BiasOptions& o);
 
 // The r of one storage format under the options.

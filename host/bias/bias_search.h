@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "host/bias/bias_evaluator.h"
+#include "host/bias/bias_probe.h"
+#include "host/bias/bias_rule.h"
+#include "host/model/scene.h"
 #include "host/mts/probe.h"
 
 namespace depthprec {

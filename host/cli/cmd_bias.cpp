@@ -17,7 +17,7 @@
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/model/profile.h"
-#include "host/model/tilted_plane.h"
+#include "host/model/tilt_limit.h"
 #include "host/mts/worst_case.h"
 #include "host/output/output_guard.h"
 #include "host/output/report.h"

@@ -28,6 +28,7 @@
 #include "host/output/report.h"
 #include "host/output/text_table.h"
 #include "host/render/render_run.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec::cli {
 

@@ -21,6 +21,7 @@
 #include "host/output/output_guard.h"
 #include "host/output/plots.h"
 #include "host/output/read_output.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec::cli {
 

@@ -7,6 +7,7 @@
 
 #include "host/base/did_you_mean.h"
 #include "host/base/errors.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
 

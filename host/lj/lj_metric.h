@@ -8,10 +8,11 @@
 
 #include "host/model/storage_format.h"
 #include "host/model/technique.h"
-#include "host/runtime/opencl_runtime.h"
 #include "interface/lj_formulas.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 enum class LjBuffer {
   z = LJ_Z,

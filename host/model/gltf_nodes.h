@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "host/model/scene_geometry.h"
+#include "host/model/matrix.h"
 
 namespace tinygltf {
 class Model;

@@ -18,7 +18,6 @@
 #include "host/base/read_file.h"
 #include "host/model/profile.h"
 #include "host/model/scene_json.h"
-#include "host/model/scene_parse.h"
 #include "interface/mts_layout.h"
 
 namespace depthprec {

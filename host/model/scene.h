@@ -182,4 +182,12 @@ Scene scene_from_json(const nlohmann::json& j, const std::string& source);
 // The JSON text of the embedded default scene.
 const std::string& default_scene_text();
 
+// The merged JSON of a scene (the embedded defaults, the file, --set and the profile, merged by
+// load_scene_text) read into a Scene, every field typed and checked (host/model/scene_parse.cpp).
+// where_name and text: the file an error points into (at the key's line where text is given);
+// origins: the command-line option that set a key, blamed instead of the file.
+Scene parse_scene(const nlohmann::json& merged, const std::string& source,
+                  const std::string& where_name, const std::string& text,
+                  const std::map<std::string, std::string>& origins);
+
 }  // namespace depthprec

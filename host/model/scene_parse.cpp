@@ -1,5 +1,3 @@
-#include "host/model/scene_parse.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,6 +8,7 @@
 #include "host/base/errors.h"
 #include "host/base/named_choice.h"
 #include "host/model/profile.h"
+#include "host/model/scene.h"
 #include "host/model/scene_reader.h"
 
 namespace depthprec {

@@ -1,5 +1,5 @@
-// The rectangle a tilted plane (`bias --tilt`) needs so that it covers the view in a frame, and the
-// steepest tilt a scene can measure (docs/spec.md 5.6).
+// The rectangle a tilted plane (`bias --tilt`) needs so that it covers the view in a frame
+// (docs/spec.md 5.6); the steepest tilt a scene can measure is host/model/tilt_limit.h's.
 //
 // An untilted plane spans plane_margin times the view at its own distance (docs/spec.md 5.1). A
 // tilted one, seen obliquely, reaches deeper on its far side than on its near side, and its far
@@ -28,14 +28,5 @@ struct PlaneRect {
 // meet the plane in front of the camera (the plane is seen too nearly edge-on).
 std::optional<PlaneRect> view_footprint(const Scene& scene, double D,
                                         const std::array<double, 3>& angles);
-
-// The steepest tilt (degrees) whose footprint exists in every frame of the scene, less one degree
-// so that the far side stays a bounded size (at the geometric limit it runs to infinity): 82.4
-// for the default scene (fov 10 degrees, plane_margin 1.1, rotations of 1 degree).
-double max_tilt_deg(const Scene& scene);
-
-// Throws InputError naming the limit when the scene's planes tilted tilt_deg cannot cover the
-// view in every frame.
-void check_tilt(const Scene& scene, double tilt_deg);
 
 }  // namespace depthprec

@@ -21,25 +21,6 @@
 
 namespace depthprec {
 
-// Frames per launch: most fighting probes fight in their first frames, so start small; a clean
-// probe needs every frame, so grow.
-int batch_frames(int done, int total);
-
-// Indices of the probes not decided yet: the ones the next launch renders.
-std::vector<size_t> undecided(const std::vector<bool>& decided);
-
-// One launch's row words (flags | fragment pairs << 8 per (active probe, frame, kernel row), the
-// layout of interface/mts_layout.h, which kernels/mts.cl and kernels/mts_exact.cl write), folded
-// frame by frame into the active probes' results: a probe is decided at its first frame with a
-// fight or a non-finite value. Returns each active probe's fragment pairs (all frames); those of
-// frames after a probe's deciding one are also added to after_decision.
-std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows,
-                                  const std::vector<size_t>& active, int first_frame, int frames,
-                                  size_t kernel_h, std::vector<ProbeResult>& results,
-                                  std::vector<bool>& decided, uint64_t& after_decision);
-// After the last frame: an undecided probe that saw clipping is clipped, not clean.
-void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>& decided);
-
 // What mts_coverage_audit found over the cached kernel rows of a set of probes (every frame).
 struct CoverageAudit {
   uint64_t rows = 0;                   // cached rows audited

@@ -40,8 +40,6 @@ inline cl::NDRange padded(size_t n) {
   return cl::NDRange(padded_size(n));
 }
 
-constexpr int kMaxBatchFrames = 64;  // batch_frames' largest batch
-
 inline cl_uint band_count(const Scene& scene) {
   return (static_cast<cl_uint>(scene.kernel_h) + kBandRows - 1) / kBandRows;
 }

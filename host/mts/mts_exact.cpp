@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "host/model/frame_setup.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {

@@ -3,7 +3,9 @@
 // z + s itself, not fl32(z + s) -- so a search over it measures what storage alone allows.
 #pragma once
 
-#include "host/mts/mts_evaluator.h"
+#include "host/model/scene.h"
+#include "host/mts/probe.h"
+#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
 

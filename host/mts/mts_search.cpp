@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "host/base/errors.h"
+#include "host/model/frame_setup.h"
 #include "host/model/resolve.h"
 #include "host/model/technique.h"
 

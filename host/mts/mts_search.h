@@ -22,8 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "host/mts/mts_evaluator.h"
+#include "host/model/scene.h"
 #include "host/mts/mts_row.h"
+#include "host/mts/probe.h"
 
 namespace depthprec {
 

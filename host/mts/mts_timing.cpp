@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "host/model/frame_setup.h"
+#include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 #include "host/mts/reference_pipeline.h"
 

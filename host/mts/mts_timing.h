@@ -9,9 +9,11 @@
 
 #include <cstdint>
 
-#include "host/mts/mts_evaluator.h"
+#include "host/model/scene.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 enum class TimingRegime { far, near, at_mts };
 const char* to_string(TimingRegime r);

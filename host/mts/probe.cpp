@@ -1,5 +1,7 @@
-// The probe loop's pieces every evaluator shares (host/mts/probe.h, mts_evaluator.h): frame
-// batches, the fold of a launch's row words into probe results, outcomes by name.
+// The probe loop's pieces every evaluator shares (host/mts/probe.h): frame batches, the fold of a
+// launch's row words into probe results, outcomes by name.
+#include "host/mts/probe.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,13 +9,9 @@
 #include <limits>
 
 #include "host/base/errors.h"
-#include "host/mts/mts_evaluator.h"
-#include "host/mts/mts_evaluator_parts.h"
 #include "interface/mts_layout.h"
 
 namespace depthprec {
-
-using namespace mts_parts;
 
 int batch_frames(int done, int total) {
   const int want = done == 0 ? 4 : done < 20 ? 16 : kMaxBatchFrames;
@@ -40,7 +38,7 @@ std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows,
       for (size_t y = 0; y < kernel_h; ++y) {
         const uint32_t v = rows[(i * frames + f) * kernel_h + y];
         flags |= v;
-        frame_pairs += v >> kCountShift;
+        frame_pairs += v >> MTS_R_COUNT_SHIFT;
       }
       probe_pairs[i] += frame_pairs;
       if (decided[active[i]]) {  // frames after the deciding one: work, not outcome
@@ -48,13 +46,13 @@ std::vector<uint64_t> fold_launch(const std::vector<uint32_t>& rows,
         continue;
       }
       r.frames = first_frame + f + 1;
-      r.any_clipped |= (flags & kClipped) != 0;
-      r.any_uncovered |= (flags & kUncovered) != 0;
-      if (flags & kNonFinite) {
+      r.any_clipped |= (flags & MTS_R_CLIPPED) != 0;
+      r.any_uncovered |= (flags & MTS_R_UNCOVERED) != 0;
+      if (flags & MTS_R_NONFINITE) {
         r.any_non_finite = true;
         r.outcome = Outcome::non_finite;
         decided[active[i]] = true;
-      } else if (flags & kFight) {
+      } else if (flags & MTS_R_FIGHT) {
         r.outcome = Outcome::fight;
         decided[active[i]] = true;
       }

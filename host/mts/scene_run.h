@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "host/mts/mts_evaluator.h"
-#include "host/mts/mts_run.h"
+#include "host/mts/run_rows.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {

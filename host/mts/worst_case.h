@@ -14,9 +14,10 @@
 
 #include "host/mts/mts_row.h"
 #include "host/mts/probe.h"
-#include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
+
+class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 // How many orientations round k (1-based) samples: round_size * 2^(k - 1).
 size_t round_size(const Scene& scene, int round);

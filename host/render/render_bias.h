@@ -1,5 +1,5 @@
 // Depth bias on a real rasterizer (`bias --source rendered`): the bias searches' evaluator
-// (host/bias/bias_evaluator.h) deciding probes (z, units, factor) by drawing them with
+// (host/bias/bias_probe.h) deciding probes (z, units, factor) by drawing them with
 // glPolygonOffset, so the bias arithmetic, r and slope are the driver's. It draws with a
 // RenderEvaluator's program, plane buffers and targets and decides its probes in that evaluator's
 // rounds, so frames are visited, batched and folded into outcomes as for the MTS probes.
@@ -7,7 +7,8 @@
 
 #include <vector>
 
-#include "host/bias/bias_evaluator.h"
+#include "host/bias/bias_probe.h"
+#include "host/bias/bias_rule.h"
 #include "host/mts/probe.h"
 #include "host/render/render_evaluator.h"
 

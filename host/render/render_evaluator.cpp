@@ -12,7 +12,7 @@
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
 #include "host/model/shader_log.h"
-#include "host/mts/mts_evaluator.h"
+#include "host/mts/probe.h"
 #include "host/render/driver_settings.h"
 #include "host/render/gl_program.h"
 #include "host/runtime/kernel_variant.h"

@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "host/mts/mts_run.h"
+#include "host/mts/run_rows.h"
 #include "host/render/gl_context.h"
 
 namespace depthprec {

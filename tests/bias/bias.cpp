@@ -16,7 +16,7 @@
 #include "host/bias/bias_search.h"
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"
-#include "host/model/tilted_plane.h"
+#include "host/model/tilt_limit.h"
 #include "interface/bias_formula.h"
 #include "tests/support/mts_fixture.h"
 #include "tests/support/run_cli.h"

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 
+#include "host/bias/bias_evaluator.h"
 #include "host/model/frame_setup.h"
 #include "tests/support/mts_fixture.h"
 

@@ -1,11 +1,11 @@
-// The probe loop's shared pieces (host/mts/probe.cpp, declared in host/mts/mts_evaluator.h), on
-// made-up row words without a device: how a launch's rows fold into each probe's outcome, and
-// which probes the next launch still renders.
+// The probe loop's shared pieces (host/mts/probe.h), on made-up row words without a device: how a
+// launch's rows fold into each probe's outcome, and which probes the next launch still renders.
+#include "host/mts/probe.h"
+
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <vector>
 
-#include "host/mts/mts_evaluator.h"
 #include "interface/mts_layout.h"
 
 using namespace depthprec;

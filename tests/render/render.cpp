@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/base/errors.h"
+#include "host/bias/bias_evaluator.h"
 #include "host/bias/bias_search.h"
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"

@@ -6,6 +6,7 @@
 
 #include "host/model/profile.h"
 #include "host/model/scene.h"
+#include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 #include "host/runtime/opencl_runtime.h"
 
