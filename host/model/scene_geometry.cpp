@@ -144,9 +144,12 @@ bool SceneGeometry::neighbours(uint32_t a, uint32_t b) const {
   if (&d != &draw_of(b)) return false;
   const auto& ta = d.triangles[a - d.first_triangle];
   const auto& tb = d.triangles[b - d.first_triangle];
+  // A corner in common by index, or by position: exporters give a vertex one index per face
+  // where its normals or texture coordinates differ (Blender's flat-shaded box: 24 positions for
+  // 8 corners), so the faces of one surface meet at corners with different indices.
   for (uint32_t i : ta)
     for (uint32_t j : tb)
-      if (i == j) return true;
+      if (i == j || d.positions[i] == d.positions[j]) return true;
   return false;
 }
 

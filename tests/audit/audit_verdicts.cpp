@@ -167,3 +167,45 @@ TEST_CASE("a printed bias removes the pair's fight from every view", "[audit]") 
   }
   CHECK(fights == 0);
 }
+
+TEST_CASE("a flat-shaded box's faces meet at split vertices: its edges are seams, not fights",
+          "[audit]") {
+  // A unit box as Blender exports it flat-shaded: four vertices a face, 24 in all, so faces that
+  // meet at an edge share positions but no index.
+  SceneGeometry g;
+  Draw box;
+  box.node = box.mesh = "box";
+  box.world = mat_identity();
+  const int faces[6][4][3] = {{{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+                              {{1, -1, -1}, {-1, -1, -1}, {-1, 1, -1}, {1, 1, -1}},
+                              {{1, -1, 1}, {1, -1, -1}, {1, 1, -1}, {1, 1, 1}},
+                              {{-1, -1, -1}, {-1, -1, 1}, {-1, 1, 1}, {-1, 1, -1}},
+                              {{-1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {-1, 1, -1}},
+                              {{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}};
+  for (const auto& face : faces) {
+    const auto base = static_cast<uint32_t>(box.positions.size());
+    for (const auto& c : face)
+      box.positions.push_back({0.5f * c[0] + 10.0f, 0.5f * c[1] + 0.5f, 0.5f * c[2] - 20.0f});
+    box.triangles.push_back({base, base + 1, base + 2});
+    box.triangles.push_back({base, base + 2, base + 3});
+  }
+  g.draws = {box};
+  g.triangles = box.triangles.size();
+  // the top face's triangles meet the front face's at split corners; the front and back faces
+  // have no corner in common
+  CHECK(g.neighbours(0, 8));
+  CHECK(g.neighbours(1, 9));
+  CHECK_FALSE(g.neighbours(0, 2));
+  const Scene scene = verdict_scene(
+      {"near=0.05", "far=500", R"(evaluate=[{"technique":"standard","format":"unorm24"}])"});
+  AuditRequest req;
+  req.reference = true;
+  // the box 30 m away, seen from 6 m up (a yard Blender exported, a linked duplicate of a crate)
+  req.frames =
+      jittered_frames(look_at_camera({0, 6, 10}, {2, 0, -10}, {0, 1, 0}, 22.9, 1280, 720), 8, 3e-3);
+  const SetupAudit a = audit_setup_pair(nullptr, scene, scene.evaluate[0], g, req);
+  REQUIRE(a.covered_pixels > 0);
+  CHECK(a.seam_pixels > 0);
+  CHECK(a.fighting_pixels == 0);
+  CHECK(a.pairs.empty());
+}
