@@ -209,3 +209,43 @@ TEST_CASE("a flat-shaded box's faces meet at split vertices: its edges are seams
   CHECK(a.fighting_pixels == 0);
   CHECK(a.pairs.empty());
 }
+
+TEST_CASE("a coplanar pair counts every pixel the surface drawn later in the plane lost",
+          "[audit]") {
+  // A 10 m decal exactly in a 100 m wall's plane, drawn after it (as far from the origin, where
+  // binary32 node translations put a 1 cm decal into its wall): under LESS the wall keeps every
+  // pixel whose codes tie, and the pair says so, whichever surface binary64 puts a hair nearer.
+  SceneGeometry g;
+  const auto quad = [](const std::string& name, float half) {
+    Draw d;
+    d.node = d.mesh = name;
+    d.world = mat_identity();
+    d.positions = {
+        {-half, -half, -100}, {half, -half, -100}, {half, half, -100}, {-half, half, -100}};
+    d.triangles = {{0, 1, 2}, {0, 2, 3}};
+    return d;
+  };
+  g.draws = {quad("wall", 50), quad("decal", 5)};
+  g.draws[1].first_triangle = 2;
+  g.triangles = 4;
+  const Scene scene = verdict_scene(
+      {"near=0.5", "far=2000", R"(evaluate=[{"technique":"standard","format":"unorm24"}])"});
+  for (const bool reference : {true, false}) {
+    CAPTURE(reference);
+    AuditRequest req;
+    req.reference = reference;
+    req.frames = {look_at_camera({0.3, 0.2, 0}, {0, 0, -100}, {0, 1, 0}, 22.9, 320, 180)};
+    const SetupAudit a = audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);
+    uint64_t decal_lost = 0;
+    for (size_t i = 0; i < a.image.flags.size(); ++i)
+      decal_lost += (a.image.flags[i] & AUDIT_COPLANAR) && a.image.winner[i] != AUDIT_NONE &&
+                    &g.draw_of(a.image.winner[i]) == &g.draws[0];
+    REQUIRE(decal_lost > 1000);  // the decal's pixels
+    CHECK(a.fighting_pixels == 0);
+    REQUIRE(a.coplanar_pairs.size() == 1);
+    const FightPair& p = a.coplanar_pairs[0];
+    CHECK(p.winner_draw == 0);  // kept: the wall, drawn first
+    CHECK(p.front_draw == 1);   // lost: the decal
+    CHECK(p.pixels == decal_lost);
+  }
+}
