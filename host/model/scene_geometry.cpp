@@ -35,8 +35,9 @@ bool geometry_neutral(const std::string& e) {
 }
 
 constexpr const char* kUncompress =
-    "write it without mesh compression first (e.g. with glTF-Transform, or from Blender's glTF "
-    "exporter with compression off)";
+    "write it without mesh compression first (e.g. with glTF-Transform, with gltfpack without "
+    "-c/-cc, which keeps KHR_mesh_quantization the audit reads, or from Blender's glTF exporter "
+    "with compression off)";
 
 std::string primitive_name(const tinygltf::Mesh& mesh, int index, size_t p) {
   return fmt::format("mesh {}, primitive {}", mesh.name.empty() ? std::to_string(index) : mesh.name,
@@ -180,6 +181,8 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{} is a directory, not a glTF file", path));
+  if (!std::filesystem::exists(path, ec) && !ec)
+    throw InputError(fmt::format("{}: no such file", path));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
   tinygltf::Model model;

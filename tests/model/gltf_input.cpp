@@ -113,6 +113,16 @@ using GltfTri = std::array<uint32_t, 3>;
 
 }  // namespace
 
+TEST_CASE("glTF: a file that does not exist is refused as one, not as unreadable glTF", "[gltf]") {
+  const auto dir = std::filesystem::temp_directory_path() / "depthprec_test_gltf_input";
+  std::filesystem::create_directories(dir);
+  for (const char* name : {"missing.glb", "missing.gltf"}) {
+    const std::string path = (dir / name).string();
+    std::filesystem::remove(path);
+    CHECK(gltf_refusal(path) == path + ": no such file");
+  }
+}
+
 TEST_CASE("glTF: a default scene the file lacks is refused with the index and the scene count",
           "[gltf]") {
   for (int scene : {1, 5, 1000, -3}) {
@@ -241,6 +251,7 @@ TEST_CASE("glTF: a required extension the audit does not read is refused by name
     const std::string msg = gltf_refusal(f.write("compressed.gltf"));
     CHECK_THAT(msg, Contains(fmt::format("compressed with {}", e)));
     CHECK_THAT(msg, Contains("without mesh compression"));
+    CHECK_THAT(msg, Contains("gltfpack without -c/-cc"));  // gltfpack -cc writes meshopt
   }
   GltfFile instanced = gltf_one_triangle();
   instanced.j["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
