@@ -34,6 +34,16 @@ bool geometry_neutral(const std::string& e) {
   return false;
 }
 
+// glTF 2.0 resolves a relative URI against the file's own location; tinygltf looks in the working
+// directory too, where a buffer of the same name (Blender names the .bin after the .gltf) would be
+// read in place of a missing one. user: the prefix tinygltf puts before a URI beside the file
+// (its directory and a slash; empty for a file in the working directory, where both are one).
+std::string expand_beside(const std::string& path, void* user) {
+  const std::string& beside = *static_cast<const std::string*>(user);
+  if (path.compare(0, beside.size(), beside) != 0) return "";  // not found, said as such
+  return tinygltf::ExpandFilePath(path, nullptr);
+}
+
 constexpr const char* kUncompress =
     "write it without mesh compression first (e.g. with glTF-Transform, with gltfpack without "
     "-c/-cc, which keeps KHR_mesh_quantization the audit reads, or from Blender's glTF exporter "
@@ -185,6 +195,12 @@ SceneGeometry load_gltf(const std::string& path, uint64_t max_triangles) {
     throw InputError(fmt::format("{}: no such file", path));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
+  // tinygltf's base directory: the path up to its last slash, joined to a URI with a slash
+  const size_t slash = path.find_last_of("/\\");
+  std::string beside = slash == std::string::npos ? "" : path.substr(0, slash);
+  if (!beside.empty() && beside.back() != '/') beside += '/';
+  loader.SetFsCallbacks({&tinygltf::FileExists, &expand_beside, &tinygltf::ReadWholeFile,
+                         &tinygltf::WriteWholeFile, &beside});
   tinygltf::Model model;
   std::string err, warn;
   const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
