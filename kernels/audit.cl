@@ -127,7 +127,9 @@ __kernel void audit_pixels(AUDIT_PIXELS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) AuditPi
         select(select(second_lo, front_lo, convert_int16(nearer)), lo, convert_int16(behind));
     second_hi =
         select(select(second_hi, front_hi, convert_int16(nearer)), hi, convert_int16(behind));
-    const long16 take = nearer | (same & (s < front_s));
+    /* in one plane the front is the surface drawn last: where the depth test kept an earlier
+     * one, that one is the coplanar pair's kept surface, the last-drawn the lost one */
+    const long16 take = nearer | same;
     front_s = select(front_s, s, take);
     frnt = select(frnt, (int16)src, convert_int16(take));
     front_code = select(front_code, f.code, convert_int16(take));

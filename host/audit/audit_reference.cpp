@@ -72,7 +72,8 @@ void take(const Scene& s, const AuditSetup& a, const StorageFormat& fmt, bool gr
     p.second_lo = lo;
     p.second_hi = hi;
   }
-  if (nearer || (same && sd < p.front_s)) {
+  // in one plane the front is the surface drawn last (kernels/audit.cl)
+  if (nearer || same) {
     p.front_s = sd;
     p.front = src;
     p.front_code = code;

@@ -61,7 +61,7 @@ std::vector<NamedInput> gltf_inputs(const std::string& gltf_path) {
   const nlohmann::json j = nlohmann::json::parse(json_text(bytes), nullptr, false);
   if (!j.is_object()) return {};
   // tinygltf joins strings: the glTF file's directory (up to its last slash), a slash and the
-  // URI, and then "./" and the URI.
+  // URI; the loader reads nothing from the working directory (scene_geometry.cpp expand_beside).
   const size_t slash = gltf_path.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "" : gltf_path.substr(0, slash + 1);
   std::vector<NamedInput> out;
@@ -76,7 +76,6 @@ std::vector<NamedInput> gltf_inputs(const std::string& gltf_path) {
       const std::string name = fmt::format("the glTF file's {} {}", what, k);
       const std::string file = url_decoded(uri);
       out.push_back({name, dir + file});
-      out.push_back({name, "./" + file});
       // An absolute URI names that file to anyone reading the glTF, whatever tinygltf makes of it.
       if (!file.empty() && file[0] == '/') out.push_back({name, file});
     }

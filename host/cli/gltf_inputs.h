@@ -11,10 +11,10 @@
 namespace depthprec::cli {
 
 // Every buffer and image of the .gltf or .glb at gltf_path that is a file (not a data: URI), as
-// the loader finds it: the URI percent-decoded, beside the glTF file, and also as a path from the
-// working directory, where tinygltf looks next. Images count although the audit does not decode
-// them: the loader still opens them. A file that cannot be read or parsed gives none: the loader
-// refuses it with the reason.
+// the loader finds it: the URI percent-decoded, beside the glTF file (never in the working
+// directory, where tinygltf alone would look next). Images count although the audit does not
+// decode them: the loader still opens them. A file that cannot be read or parsed gives none: the
+// loader refuses it with the reason.
 std::vector<NamedInput> gltf_inputs(const std::string& gltf_path);
 
 }  // namespace depthprec::cli

@@ -34,9 +34,20 @@ bool geometry_neutral(const std::string& e) {
   return false;
 }
 
+// glTF 2.0 resolves a relative URI against the file's own location; tinygltf looks in the working
+// directory too, where a buffer of the same name (Blender names the .bin after the .gltf) would be
+// read in place of a missing one. user: the prefix tinygltf puts before a URI beside the file
+// (its directory and a slash; empty for a file in the working directory, where both are one).
+std::string expand_beside(const std::string& path, void* user) {
+  const std::string& beside = *static_cast<const std::string*>(user);
+  if (path.compare(0, beside.size(), beside) != 0) return "";  // not found, said as such
+  return tinygltf::ExpandFilePath(path, nullptr);
+}
+
 constexpr const char* kUncompress =
-    "write it without mesh compression first (e.g. with glTF-Transform, or from Blender's glTF "
-    "exporter with compression off)";
+    "write it without mesh compression first (e.g. with glTF-Transform, with gltfpack without "
+    "-c/-cc, which keeps KHR_mesh_quantization the audit reads, or from Blender's glTF exporter "
+    "with compression off)";
 
 std::string primitive_name(const tinygltf::Mesh& mesh, int index, size_t p) {
   return fmt::format("mesh {}, primitive {}", mesh.name.empty() ? std::to_string(index) : mesh.name,
@@ -120,9 +131,12 @@ bool SceneGeometry::neighbours(uint32_t a, uint32_t b) const {
   if (&d != &draw_of(b)) return false;
   const auto& ta = d.triangles[a - d.first_triangle];
   const auto& tb = d.triangles[b - d.first_triangle];
+  // A corner in common by index, or by position: exporters give a vertex one index per face
+  // where its normals or texture coordinates differ (Blender's flat-shaded box: 24 positions for
+  // 8 corners), so the faces of one surface meet at corners with different indices.
   for (uint32_t i : ta)
     for (uint32_t j : tb)
-      if (i == j) return true;
+      if (i == j || d.positions[i] == d.positions[j]) return true;
   return false;
 }
 
@@ -155,8 +169,16 @@ tinygltf::Model read_model(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{} is a directory, not a glTF file", path));
+  if (!std::filesystem::exists(path, ec) && !ec)
+    throw InputError(fmt::format("{}: no such file", path));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
+  // tinygltf's base directory: the path up to its last slash, joined to a URI with a slash
+  const size_t slash = path.find_last_of("/\\");
+  std::string beside = slash == std::string::npos ? "" : path.substr(0, slash);
+  if (!beside.empty() && beside.back() != '/') beside += '/';
+  loader.SetFsCallbacks({&tinygltf::FileExists, &expand_beside, &tinygltf::ReadWholeFile,
+                         &tinygltf::WriteWholeFile, &beside});
   tinygltf::Model model;
   std::string err, warn;
   const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;

@@ -47,7 +47,8 @@ struct SceneGeometry {
   std::vector<std::string> notes;
   // The draw of scene-wide triangle t (binary search over first_triangle).
   const Draw& draw_of(uint32_t t) const;
-  // Whether triangles a and b are neighbours on one surface: the same draw, a corner in common.
+  // Whether triangles a and b are neighbours on one surface: the same draw, a corner in common
+  // (the same index, or the same object position: a vertex split where normals or UVs differ).
   // At a pixel on their seam the coverage rule gives it to one; whichever, no surface shows
   // through.
   bool neighbours(uint32_t a, uint32_t b) const;

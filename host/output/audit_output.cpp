@@ -222,8 +222,15 @@ std::string audit_caption(const AuditReport& r) {
       views > 1
           ? fmt::format(" over {} views (pixel counts are sums over the views{})", views, images)
           : "";
+  // Where near and far come from when the command line does not give them: a file camera's, or
+  // the scene's default (with --eye, a file camera's znear is not used: near 1 then surprises).
+  const auto source = [](const std::string& from, const char* field) -> std::string {
+    if (from == "camera") return fmt::format(" (the file camera's {})", field);
+    if (from == "scene") return " (the scene's default)";
+    return "";
+  };
   std::string caption = fmt::format(
-      "Z-fighting in {} ({} triangles in {} draws), {} at {}x{}{}, near {}{}, far {}{}: per set-up "
+      "Z-fighting in {} ({} triangles in {} {}), {} at {}x{}{}, near {}{}, far {}{}: per set-up "
       "the "
       "pixels where the depth test kept a surface behind the exact front one (fighting_pixels), "
       "those the front surface wins by less than another conformant implementation may store "
@@ -233,11 +240,10 @@ std::string audit_caption(const AuditReport& r) {
       "the ray, the set-up's MTS there, the offset that MTS asks for, and the fixes checked on "
       "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
       "units), other set-ups",
-      h.value("file", ""), g.triangles, g.draws.size(), h.value("camera", ""), h.value("width", 0),
-      h.value("height", 0), over, human(h.value("near", 0.0)),
-      h.value("near_source", "") == "camera" ? " (the file camera's znear)" : "",
-      human(h.value("far", 0.0)),
-      h.value("far_source", "") == "camera" ? " (the file camera's zfar)" : "");
+      h.value("file", ""), g.triangles, g.draws.size(), g.draws.size() == 1 ? "draw" : "draws",
+      h.value("camera", ""), h.value("width", 0), h.value("height", 0), over,
+      human(h.value("near", 0.0)), source(h.value("near_source", ""), "znear"),
+      human(h.value("far", 0.0)), source(h.value("far_source", ""), "zfar"));
   return caption;
 }
 
@@ -267,6 +273,14 @@ std::string audit_notes(const AuditReport& r, bool timing) {
       notes +=
           fmt::format("{}: {} triangles dropped: a vertex is not finite\n", label, s.non_finite);
   }
+  for (const SetupAudit& s : r.setups)
+    for (const FightPair& p : s.pairs)
+      if (p.winner_draw == p.front_draw)
+        notes += fmt::format(
+            "{}: {} fights itself ({} pixels): two parts of one draw that share no corner, as in "
+            "a mesh merged from several objects (gltfpack merges meshes unless -kn keeps named "
+            "nodes apart) or one passing through itself; the JSON names a triangle of each\n",
+            s.pair.label(), short_name(g, p.winner_draw), p.pixels);
   for (size_t k = 0; k < r.pngs.size(); ++k)
     if (!r.pngs[k].empty())
       notes += fmt::format("{}: {} (fights red, at risk orange, coplanar blue), margin {}\n",

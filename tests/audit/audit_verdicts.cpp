@@ -167,3 +167,85 @@ TEST_CASE("a printed bias removes the pair's fight from every view", "[audit]") 
   }
   CHECK(fights == 0);
 }
+
+TEST_CASE("a flat-shaded box's faces meet at split vertices: its edges are seams, not fights",
+          "[audit]") {
+  // A unit box as Blender exports it flat-shaded: four vertices a face, 24 in all, so faces that
+  // meet at an edge share positions but no index.
+  SceneGeometry g;
+  Draw box;
+  box.node = box.mesh = "box";
+  box.world = mat_identity();
+  const int faces[6][4][3] = {{{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+                              {{1, -1, -1}, {-1, -1, -1}, {-1, 1, -1}, {1, 1, -1}},
+                              {{1, -1, 1}, {1, -1, -1}, {1, 1, -1}, {1, 1, 1}},
+                              {{-1, -1, -1}, {-1, -1, 1}, {-1, 1, 1}, {-1, 1, -1}},
+                              {{-1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {-1, 1, -1}},
+                              {{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}};
+  for (const auto& face : faces) {
+    const auto base = static_cast<uint32_t>(box.positions.size());
+    for (const auto& c : face)
+      box.positions.push_back({0.5f * c[0] + 10.0f, 0.5f * c[1] + 0.5f, 0.5f * c[2] - 20.0f});
+    box.triangles.push_back({base, base + 1, base + 2});
+    box.triangles.push_back({base, base + 2, base + 3});
+  }
+  g.draws = {box};
+  g.triangles = box.triangles.size();
+  // the top face's triangles meet the front face's at split corners; the front and back faces
+  // have no corner in common
+  CHECK(g.neighbours(0, 8));
+  CHECK(g.neighbours(1, 9));
+  CHECK_FALSE(g.neighbours(0, 2));
+  const Scene scene = verdict_scene(
+      {"near=0.05", "far=500", R"(evaluate=[{"technique":"standard","format":"unorm24"}])"});
+  AuditRequest req;
+  req.reference = true;
+  // the box 30 m away, seen from 6 m up (a yard Blender exported, a linked duplicate of a crate)
+  req.frames =
+      jittered_frames(look_at_camera({0, 6, 10}, {2, 0, -10}, {0, 1, 0}, 22.9, 1280, 720), 8, 3e-3);
+  const SetupAudit a = audit_setup_pair(nullptr, scene, scene.evaluate[0], g, req);
+  REQUIRE(a.covered_pixels > 0);
+  CHECK(a.seam_pixels > 0);
+  CHECK(a.fighting_pixels == 0);
+  CHECK(a.pairs.empty());
+}
+
+TEST_CASE("a coplanar pair counts every pixel the surface drawn later in the plane lost",
+          "[audit]") {
+  // A 10 m decal exactly in a 100 m wall's plane, drawn after it (as far from the origin, where
+  // binary32 node translations put a 1 cm decal into its wall): under LESS the wall keeps every
+  // pixel whose codes tie, and the pair says so, whichever surface binary64 puts a hair nearer.
+  SceneGeometry g;
+  const auto quad = [](const std::string& name, float half) {
+    Draw d;
+    d.node = d.mesh = name;
+    d.world = mat_identity();
+    d.positions = {
+        {-half, -half, -100}, {half, -half, -100}, {half, half, -100}, {-half, half, -100}};
+    d.triangles = {{0, 1, 2}, {0, 2, 3}};
+    return d;
+  };
+  g.draws = {quad("wall", 50), quad("decal", 5)};
+  g.draws[1].first_triangle = 2;
+  g.triangles = 4;
+  const Scene scene = verdict_scene(
+      {"near=0.5", "far=2000", R"(evaluate=[{"technique":"standard","format":"unorm24"}])"});
+  for (const bool reference : {true, false}) {
+    CAPTURE(reference);
+    AuditRequest req;
+    req.reference = reference;
+    req.frames = {look_at_camera({0.3, 0.2, 0}, {0, 0, -100}, {0, 1, 0}, 22.9, 320, 180)};
+    const SetupAudit a = audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);
+    uint64_t decal_lost = 0;
+    for (size_t i = 0; i < a.image.flags.size(); ++i)
+      decal_lost += (a.image.flags[i] & AUDIT_COPLANAR) && a.image.winner[i] != AUDIT_NONE &&
+                    &g.draw_of(a.image.winner[i]) == &g.draws[0];
+    REQUIRE(decal_lost > 1000);  // the decal's pixels
+    CHECK(a.fighting_pixels == 0);
+    REQUIRE(a.coplanar_pairs.size() == 1);
+    const FightPair& p = a.coplanar_pairs[0];
+    CHECK(p.winner_draw == 0);  // kept: the wall, drawn first
+    CHECK(p.front_draw == 1);   // lost: the decal
+    CHECK(p.pixels == decal_lost);
+  }
+}

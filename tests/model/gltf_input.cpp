@@ -113,6 +113,40 @@ using GltfTri = std::array<uint32_t, 3>;
 
 }  // namespace
 
+TEST_CASE("glTF: a file that does not exist is refused as one, not as unreadable glTF", "[gltf]") {
+  const auto dir = std::filesystem::temp_directory_path() / "depthprec_test_gltf_input";
+  std::filesystem::create_directories(dir);
+  for (const char* name : {"missing.glb", "missing.gltf"}) {
+    const std::string path = (dir / name).string();
+    std::filesystem::remove(path);
+    CHECK(gltf_refusal(path) == path + ": no such file");
+  }
+}
+
+TEST_CASE("glTF: buffers are read beside the file, never from the working directory", "[gltf]") {
+  // A .gltf whose room.bin was not copied with it, run where another room.bin lies: glTF 2.0
+  // resolves the URI against the file's location, so the other one must not be read.
+  const auto dir = test::empty_dir("gltf_beside");
+  std::filesystem::create_directories(dir / "scene");
+  GltfFile f = gltf_one_triangle();
+  f.j["buffers"] = {{{"byteLength", f.bin.size()}, {"uri", "room.bin"}}};
+  test::write_bytes(dir / "scene" / "room.gltf", f.j.dump());
+  test::write_bytes(dir / "room.bin", f.bin);
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  const std::string missing = gltf_refusal("scene/room.gltf");
+  test::write_bytes(dir / "scene" / "room.bin", f.bin);
+  const uint64_t beside = load_gltf("scene/room.gltf", 100).triangles;
+  // a URI up a directory is still the file's own
+  f.j["buffers"][0]["uri"] = "../room.bin";
+  test::write_bytes(dir / "scene" / "up.gltf", f.j.dump());
+  const uint64_t up = load_gltf("scene/up.gltf", 100).triangles;
+  std::filesystem::current_path(cwd);
+  CHECK_THAT(missing, Contains("scene/room.gltf") && Contains("room.bin"));
+  CHECK(beside == 1);
+  CHECK(up == 1);
+}
+
 TEST_CASE("glTF: a default scene the file lacks is refused with the index and the scene count",
           "[gltf]") {
   for (int scene : {1, 5, 1000, -3}) {
@@ -241,6 +275,7 @@ TEST_CASE("glTF: a required extension the audit does not read is refused by name
     const std::string msg = gltf_refusal(f.write("compressed.gltf"));
     CHECK_THAT(msg, Contains(fmt::format("compressed with {}", e)));
     CHECK_THAT(msg, Contains("without mesh compression"));
+    CHECK_THAT(msg, Contains("gltfpack without -c/-cc"));  // gltfpack -cc writes meshopt
   }
   GltfFile instanced = gltf_one_triangle();
   instanced.j["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
