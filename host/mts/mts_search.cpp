@@ -176,6 +176,43 @@ std::vector<double> stiffness_separations(double lo, double hi, double r, int n)
   return out;
 }
 
+// A row's fields from its finished search and its stiffness probes' outcomes (extra); a row not
+// searched (plane A beyond the far plane or before the near plane) unresolvable.
+void finish_row(const Scene& scene, const EvalPair& pair, const Bisection& b,
+                const std::vector<std::pair<double, Outcome>>& extra, MtsRow& row) {
+  if (!row.beyond_far && !row.before_near) {
+    row.probes = b.probes() + static_cast<int>(extra.size());
+    row.lo = b.lo();
+    row.hi = b.hi();
+    row.unresolvable = !b.resolved();
+    row.mts = b.hi();
+    row.mts_seen = b.resolved() ? seen_separation(row.z, b.hi()) : b.hi();
+    row.non_finite = b.saw_non_finite();
+    row.clipped = !b.resolved() && b.saw_clipped();
+    if (b.resolved()) {
+      const double width = code_interval_width(
+          mapping_at(pair.technique, scene.near, scene.far, scene.params, row.z),
+          scene.storage_format(pair), row.z);
+      row.below_one_code = row.mts_seen < width * (1 - 2 * scene.rel_precision);
+      if (row.below_one_code) row.code_width = width;
+    }
+    auto note = [&row](double s, Outcome o) {
+      if (o == Outcome::fight || o == Outcome::non_finite)
+        row.fight_max = std::max(row.fight_max, s);
+      if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
+      if (o == Outcome::non_finite) row.non_finite = true;
+    };
+    for (const auto& [s, o] : b.history()) note(s, o);
+    for (const auto& [s, o] : extra) note(s, o);
+    row.non_monotone = b.non_monotone() || row.fight_max > row.clean_min;
+    row.orientations = static_cast<uint64_t>(scene.frames);
+  } else {
+    row.unresolvable = true;
+    row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
+  }
+  row.mts_paper = row.mts;
+}
+
 }  // namespace
 
 std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, const EvalPair& pair,
@@ -212,40 +249,8 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
     }
   }
   auto finish = [&](size_t i) {
-    const Bisection& b = searches[i];
-    MtsRow& row = rows[i];
-    if (!row.beyond_far && !row.before_near) {
-      row.probes = b.probes() + static_cast<int>(extra[i].size());
-      row.lo = b.lo();
-      row.hi = b.hi();
-      row.unresolvable = !b.resolved();
-      row.mts = b.hi();
-      row.mts_seen = b.resolved() ? seen_separation(row.z, b.hi()) : b.hi();
-      row.non_finite = b.saw_non_finite();
-      row.clipped = !b.resolved() && b.saw_clipped();
-      if (b.resolved()) {
-        const double width = code_interval_width(
-            mapping_at(pair.technique, scene.near, scene.far, scene.params, row.z),
-            scene.storage_format(pair), row.z);
-        row.below_one_code = row.mts_seen < width * (1 - 2 * scene.rel_precision);
-        if (row.below_one_code) row.code_width = width;
-      }
-      auto note = [&row](double s, Outcome o) {
-        if (o == Outcome::fight || o == Outcome::non_finite)
-          row.fight_max = std::max(row.fight_max, s);
-        if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
-        if (o == Outcome::non_finite) row.non_finite = true;
-      };
-      for (const auto& [s, o] : b.history()) note(s, o);
-      for (const auto& [s, o] : extra[i]) note(s, o);
-      row.non_monotone = b.non_monotone() || row.fight_max > row.clean_min;
-      row.orientations = static_cast<uint64_t>(scene.frames);
-    } else {
-      row.unresolvable = true;
-      row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
-    }
-    row.mts_paper = row.mts;
-    if (on_row) on_row(row);
+    finish_row(scene, pair, searches[i], extra[i], rows[i]);
+    if (on_row) on_row(rows[i]);
   };
   for (size_t i = 0; i < distances.size(); ++i)
     if (phase[i] == 2) finish(i);
