@@ -25,7 +25,9 @@ std::array<double, 3> parse_vec3(const std::string& option, const std::string& t
 
 void parse_size(const std::string& size, int& w, int& h) {
   char tail = 0;
-  if (std::sscanf(size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 ||
+  std::string lower = size;  // 1280X720 as well
+  for (char& c : lower) c = c == 'X' ? 'x' : c;
+  if (std::sscanf(lower.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 ||
       h > 16384)
     throw Error(ExitCode::usage,
                 fmt::format("--size '{}': expected WxH in pixels, each 1 to 16384", size));
@@ -46,24 +48,43 @@ AuditCamera camera_of(const ViewOptions& o, const std::string& file, const Scene
     return look_at_camera(parse_vec3("--eye", o.eye), parse_vec3("--target", o.target),
                           parse_vec3("--up", o.up), fov, w, h);
   }
+  // A camera is named by its own name or its node's (Blender exports "Camera" on a node and
+  // "Camera_data" on the camera; users know the node).
   std::string names;
-  for (const GltfCamera& c : g.cameras) names += (names.empty() ? "" : ", ") + c.name;
-  if (o.camera.empty() && g.cameras.size() != 1)
-    throw InputError(fmt::format("{}: {}; give --camera NAME or --eye and --target", file,
-                                 g.cameras.empty() ? "no perspective camera in the file"
-                                                   : "several cameras (" + names + ")"));
-  for (const GltfCamera& c : g.cameras)
-    if (o.camera.empty() || c.name == o.camera) {
-      *from_file = &c;
-      AuditCamera cam = gltf_view(c, w, h);
-      if (o.fov_given) cam.fov_y_deg = o.fov_y;
-      if (!(cam.fov_y_deg > 0 && cam.fov_y_deg < 180))
-        throw InputError(
-            fmt::format("{}: camera '{}' has yfov {} radians; a perspective camera's "
-                        "is above 0 and below pi",
-                        file, c.name, c.yfov));
-      return cam;
+  std::vector<const GltfCamera*> perspective;
+  for (const GltfCamera& c : g.cameras) {
+    names += (names.empty() ? "" : ", ") + c.name +
+             (!c.node.empty() && c.node != c.name ? " (node " + c.node + ")" : "") +
+             (c.orthographic ? " (orthographic)" : "");
+    if (!c.orthographic) perspective.push_back(&c);
+  }
+  if (o.camera.empty() && perspective.size() != 1)
+    throw InputError(fmt::format(
+        "{}: {}; give --camera NAME or --eye and --target", file,
+        perspective.empty()
+            ? (g.cameras.empty() ? std::string("no camera in the file")
+                                 : "no perspective camera (the file has: " + names + ")")
+            : "several cameras (" + names + ")"));
+  for (const GltfCamera& c : g.cameras) {
+    if (!o.camera.empty() && c.name != o.camera && c.node != o.camera) continue;
+    if (c.orthographic) {
+      if (!o.camera.empty())
+        throw InputError(fmt::format(
+            "{}: camera '{}' is orthographic; the audit takes a perspective camera (give "
+            "--eye and --target, or another camera: {})",
+            file, o.camera, names));
+      continue;
     }
+    *from_file = &c;
+    AuditCamera cam = gltf_view(c, w, h);
+    if (o.fov_given) cam.fov_y_deg = o.fov_y;
+    if (!(cam.fov_y_deg > 0 && cam.fov_y_deg < 180))
+      throw InputError(
+          fmt::format("{}: camera '{}' has yfov {} radians; a perspective camera's "
+                      "is above 0 and below pi",
+                      file, c.name, c.yfov));
+    return cam;
+  }
   throw InputError(fmt::format("{}: no camera named '{}' (the file has: {})", file, o.camera,
                                names.empty() ? "none" : names));
 }

@@ -239,8 +239,9 @@ void check_size(const PrimitiveCounts& c, const std::string& path, uint64_t max_
 void add_camera(const tinygltf::Model& model, const tinygltf::Node& node, const Mat4d& world,
                 SceneGeometry& g) {
   const tinygltf::Camera& c = model.cameras[node.camera];
-  if (c.type != "perspective") return;
   GltfCamera cam;
+  cam.node = node.name;
+  cam.orthographic = c.type != "perspective";
   cam.name = !c.name.empty()      ? c.name
              : !node.name.empty() ? node.name
                                   : fmt::format("camera {}", node.camera);

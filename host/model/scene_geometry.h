@@ -30,6 +30,8 @@ struct Draw {
 
 struct GltfCamera {
   std::string name;            // the camera's name, else its node's
+  std::string node;            // its node's name ("" where the node has none)
+  bool orthographic = false;   // kept to be refused by name: the audit takes perspective ones
   Mat4d world{};               // camera to world (it looks down its -z, +y up)
   double yfov = 0;             // radians
   double aspect = 0;           // 0: not given

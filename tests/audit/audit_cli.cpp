@@ -242,31 +242,6 @@ TEST_CASE("scripts/make_audit_scenes.py writes data/audit/ byte for byte", "[aud
   CHECK(files == 10);
 }
 
-TEST_CASE("audit's views: --frames adds jittered views, --path reads them from a file",
-          "[audit][cli]") {
-  const std::string base = kAuditDir +
-                           "decal_wall.gltf -t standard -f unorm24 --size 160x90 "
-                           "--no-fixes";
-  const auto one = audit_json_of(base + " --frames 1");
-  const auto four = audit_json_of(base + " --frames 4 --jitter 0.5");
-  CHECK(audit_json_of(base).at("setups").at(0).at("frames") == 8);  // the default
-  const auto& s1 = one.at("setups").at(0);
-  const auto& s4 = four.at("setups").at(0);
-  CHECK(s4.at("frames") == 4);
-  CHECK(s4.at("pixels").get<int>() == 4 * s1.at("pixels").get<int>());
-  CHECK(s4.at("fighting_pixels").get<int>() > 3 * s1.at("fighting_pixels").get<int>());
-  // the same first view from a path file gives frame 0's counts
-  const auto dir = test::empty_dir("audit_path");
-  test::write_bytes(dir / "path.txt", "# eye, then target\n0,0,0, 0,0,-1\n0.5,0,0, 0.5,0,-1\n");
-  const auto path = audit_json_of(base + " --fov-y 10 --path " + (dir / "path.txt").string());
-  CHECK(path.at("setups").at(0).at("frames") == 2);
-  CHECK(path.at("setups").at(0).at("pixels") == 2 * s1.at("pixels").get<int>());
-  test::write_bytes(dir / "bad.txt", "0,0,0\n");
-  const auto bad = run_cli("audit " + base + " --path " + (dir / "bad.txt").string());
-  CHECK(bad.exit_code == 3);
-  CHECK_THAT(bad.output, Contains("bad.txt:1: expected ex,ey,ez,tx,ty,tz"));
-}
-
 TEST_CASE("audit's CSV has a row per set-up and pair, with the JSON's counts", "[audit][cli]") {
   const std::string args = kAuditDir +
                            "decal_wall.glb -t standard,reversed -f unorm24 --size "
@@ -459,43 +434,6 @@ TEST_CASE("audit draws a progress line on a terminal, never into its output, and
   CHECK_THAT(terminal("-q"), !Contains("set-ups"));
 }
 
-TEST_CASE("audit's text cuts long surface names to 24 characters; CSV and JSON keep them whole",
-          "[audit][cli]") {
-  const auto dir = test::empty_dir("audit_names");
-  auto j = nlohmann::json::parse(test::bytes_of(kAuditDir + "decal_wall.gltf"));
-  const std::string wall = "Building_A/Facade_North/Level_03/" + std::string(150, 'w') + "_LOD0",
-                    decal = "Decals/Graffiti/" + std::string(150, 'd') + "_0042";
-  j["nodes"][0]["name"] = wall;
-  j["meshes"][0]["name"] = wall;  // a node named as its mesh is named by the node alone
-  j["nodes"][1]["name"] = decal;
-  j["meshes"][1]["name"] = decal;
-  test::write_bytes(dir / "long.gltf", j.dump());
-  const std::string args = "audit " + (dir / "long.gltf").string() +
-                           " -t standard -f unorm24 --size 160x90 --no-fixes --no-timing -q";
-  const auto text = run_cli(args);
-  REQUIRE(text.exit_code == 0);
-  // the start and the end of each name, "…" between: 24 characters
-  const auto cut = [](const std::string& s) {
-    return s.substr(0, 13) + "\u2026" + s.substr(s.size() - 10);
-  };
-  CHECK_THAT(text.output, Contains(cut(wall)) && Contains(cut(decal)) && !Contains(wall));
-  // every line within the 120 columns (characters: "…" is three bytes), and a handful of blocks
-  // of columns rather than one per column
-  std::istringstream lines(text.output);
-  int rows = 0;
-  for (std::string line; std::getline(lines, line);) {
-    rows += line.rfind("standard ", 0) == 0;
-    size_t chars = 0;
-    for (const char c : line) chars += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-    CHECK(chars <= 120);
-  }
-  CHECK(rows <= 6);
-  const auto csv = run_cli(args + " --format-out csv");
-  CHECK_THAT(csv.output, Contains("," + wall + ",") && Contains("," + decal + ","));
-  const auto json = nlohmann::json::parse(run_cli(args + " --format-out json").output);
-  CHECK(json.at("setups").at(0).at("pairs").at(0).at("winner").at("node") == wall);
-}
-
 TEST_CASE("audit's text and CSV show the coplanar pairs the JSON lists", "[audit][cli]") {
   const std::string args = "audit " + kAuditDir +
                            "slab_railing.gltf -t standard -f unorm24 --size 320x180 --no-fixes "
@@ -525,59 +463,4 @@ TEST_CASE("audit's text and CSV show the coplanar pairs the JSON lists", "[audit
                       std::to_string(j.at("setups").at(0).at("at_risk_pixels").get<int>()) + "," +
                       std::to_string(j.at("setups").at(0).at("coplanar_pixels").get<int>()) + ","));
   CHECK_THAT(csv.output, Contains("," + lost + ","));
-}
-
-TEST_CASE("audit over several views says its pixel counts are sums and its PNG the first view",
-          "[audit][cli]") {
-  const auto dir = test::empty_dir("audit_views_said");
-  const std::string args = kAuditDir +
-                           "decal_wall.gltf -t standard -f unorm24 --size 160x90 --no-fixes "
-                           "--frames 3 --jitter 0.5 --png " +
-                           (dir / "v").string();
-  const auto j = audit_json_of(args);
-  CHECK(j.at("pixel_counts") == "summed over frames");
-  CHECK(j.at("png_frame") == 0);
-  CHECK(j.at("setups").at(0).at("pixels") == 3 * 160 * 90);
-  const auto text = run_cli("audit " + args + " --no-timing -q");
-  REQUIRE(text.exit_code == 0);
-  // the caption, unfolded
-  std::string flat = text.output;
-  for (size_t at; (at = flat.find("\n  ")) != std::string::npos;) flat.replace(at, 3, " ");
-  CHECK_THAT(flat, Contains("over 3 views (pixel counts are sums over the views; the PNGs are "
-                            "view 1's)"));
-}
-
-TEST_CASE("audit names the file camera's znear and zfar as theirs, never as a --set",
-          "[audit][cli]") {
-  const std::string small = " --size 32x18 --no-fixes --no-timing";
-  // infinite has no far plane: the note says whose far plane it ignores
-  const auto note =
-      run_cli("audit " + kAuditDir + "decal_wall.gltf -t infinite,standard -f float32" + small +
-              " --format-out json");
-  REQUIRE(note.exit_code == 0);
-  CHECK_THAT(note.output, Contains("note: the file camera's zfar (100000): infinite has no far "
-                                   "plane") &&
-                              !Contains("--set"));
-  const auto j = nlohmann::json::parse(note.output.substr(note.output.find('{')));
-  CHECK(j.at("near_source") == "camera");
-  CHECK(j.at("far_source") == "camera");
-  // a camera whose zfar is nearer than its znear: the error blames the camera
-  const auto dir = test::empty_dir("audit_camera_planes");
-  auto g = nlohmann::json::parse(test::bytes_of(kAuditDir + "decal_wall.gltf"));
-  g["cameras"][0]["perspective"]["znear"] = 10;
-  g["cameras"][0]["perspective"]["zfar"] = 5;
-  test::write_bytes(dir / "planes.gltf", g.dump());
-  const auto bad =
-      run_cli("audit " + (dir / "planes.gltf").string() + " -t standard -f float32" + small);
-  CHECK(bad.exit_code == 3);
-  CHECK_THAT(bad.output, Contains("the file camera's zfar (5): 'far' must be > near (10)") &&
-                             !Contains("--set"));
-  // what the command line gives is the command line's
-  const auto typed = run_cli("audit " + (dir / "planes.gltf").string() +
-                             " -t standard -f float32 --far 1e4" + small + " --format-out json");
-  REQUIRE(typed.exit_code == 0);
-  const auto t = nlohmann::json::parse(typed.output);
-  CHECK(t.at("far_source") == "command line");
-  CHECK(t.at("near_source") == "camera");
-  CHECK(t.at("far") == 1e4);
 }

@@ -2,14 +2,20 @@
 // caption says where near and far come from, and a note says what a pair of one draw with itself
 // is, since the tables name both sides alike.
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <regex>
 
 #include "host/output/audit_output.h"
+#include "tests/support/files.h"
+#include "tests/support/run_cli.h"
 
 using namespace depthprec;
 using Catch::Matchers::Contains;
+using depthprec::test::run_cli;
 
 namespace {
+
+const std::string kTextAuditDir = std::string(DEPTHPREC_SOURCE_DIR) + "/data/audit/";
 
 SceneGeometry one_draw_geometry() {
   SceneGeometry g;
@@ -84,4 +90,41 @@ TEST_CASE("audit text: a pair of one draw with itself is said to be parts of one
   two.draws[1].first_triangle = 2;
   r.geometry = &two;
   CHECK_THAT(unfolded(r), !Contains("fights itself"));
+}
+
+TEST_CASE("audit's text cuts long surface names to 24 characters; CSV and JSON keep them whole",
+          "[audit][cli]") {
+  const auto dir = test::empty_dir("audit_names");
+  auto j = nlohmann::json::parse(test::bytes_of(kTextAuditDir + "decal_wall.gltf"));
+  const std::string wall = "Building_A/Facade_North/Level_03/" + std::string(150, 'w') + "_LOD0",
+                    decal = "Decals/Graffiti/" + std::string(150, 'd') + "_0042";
+  j["nodes"][0]["name"] = wall;
+  j["meshes"][0]["name"] = wall;  // a node named as its mesh is named by the node alone
+  j["nodes"][1]["name"] = decal;
+  j["meshes"][1]["name"] = decal;
+  test::write_bytes(dir / "long.gltf", j.dump());
+  const std::string args = "audit " + (dir / "long.gltf").string() +
+                           " -t standard -f unorm24 --size 160x90 --no-fixes --no-timing -q";
+  const auto text = run_cli(args);
+  REQUIRE(text.exit_code == 0);
+  // the start and the end of each name, "…" between: 24 characters
+  const auto cut = [](const std::string& s) {
+    return s.substr(0, 13) + "\u2026" + s.substr(s.size() - 10);
+  };
+  CHECK_THAT(text.output, Contains(cut(wall)) && Contains(cut(decal)) && !Contains(wall));
+  // every line within the 120 columns (characters: "…" is three bytes), and a handful of blocks
+  // of columns rather than one per column
+  std::istringstream lines(text.output);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    rows += line.rfind("standard ", 0) == 0;
+    size_t chars = 0;
+    for (const char c : line) chars += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    CHECK(chars <= 120);
+  }
+  CHECK(rows <= 6);
+  const auto csv = run_cli(args + " --format-out csv");
+  CHECK_THAT(csv.output, Contains("," + wall + ",") && Contains("," + decal + ","));
+  const auto json = nlohmann::json::parse(run_cli(args + " --format-out json").output);
+  CHECK(json.at("setups").at(0).at("pairs").at(0).at("winner").at("node") == wall);
 }
