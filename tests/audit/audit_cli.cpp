@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "tests/support/audit_files.h"
 #include "tests/support/files.h"
 #include "tests/support/run_cli.h"
 
@@ -25,14 +26,7 @@ using depthprec::test::run_cli;
 
 namespace {
 
-const std::string kAuditDir = std::string(DEPTHPREC_SOURCE_DIR) + "/data/audit/";
-
-nlohmann::json audit_json_of(const std::string& args) {
-  const auto r = run_cli("audit " + args + " --format-out json --no-timing -q");
-  INFO(r.output);
-  REQUIRE(r.exit_code == 0);
-  return nlohmann::json::parse(r.output);
-}
+const std::string kAuditDir = test::audit_dir();
 
 // The red pixels of an RGB PNG, counted with libpng's simplified API.
 size_t red_pixels(const std::string& path) {
@@ -98,10 +92,10 @@ int run_and_interrupt(const std::string& args, const std::string& out, const std
 TEST_CASE("audit reports the decal-wall pair with its fixes and marks it in the PNG",
           "[audit][cli]") {
   const auto dir = test::empty_dir("audit_png");
-  const auto j = audit_json_of(kAuditDir +
-                               "decal_wall.gltf -t standard -f unorm24 --near 0.1 "
-                               "--far 1e5 --size 320x180 --frames 1 --png " +
-                               (dir / "decal").string());
+  const auto j = test::audit_json(kAuditDir +
+                                  "decal_wall.gltf -t standard -f unorm24 --near 0.1 "
+                                  "--far 1e5 --size 320x180 --frames 1 --png " +
+                                  (dir / "decal").string());
   const auto& s = j.at("setups").at(0);
   REQUIRE(s.at("fighting_pixels").get<int>() > 100);
   const auto& p = s.at("pairs").at(0);
@@ -128,8 +122,9 @@ TEST_CASE("audit under --profile llvmpipe agrees with llvmpipe's rendering pixel
                                        {"terrain_road.gltf", "-t standard -f unorm24"},
                                        {"slab_railing.gltf", "-t reversed -f float32"}}));
   CAPTURE(file, pair);
-  const auto j = audit_json_of(kAuditDir + file + " " + pair +
-                               " --size 240x136 --profile llvmpipe --source rendered --no-fixes");
+  const auto j =
+      test::audit_json(kAuditDir + file + " " + pair +
+                       " --size 240x136 --profile llvmpipe --source rendered --no-fixes");
   const auto& s = j.at("setups").at(0);
   const auto& r = s.at("rendered");
   // winners and fight verdicts differ only on seams between neighbours of one surface (the
@@ -160,8 +155,8 @@ TEST_CASE("the default audit is never optimistic against llvmpipe's rendering",
                                                 {"shelf_wall.gltf", "-t standard -f unorm24"},
                                                 {"terrain_road.gltf", "-t standard -f unorm24"}}));
   CAPTURE(file, pair);
-  const auto j = audit_json_of(kAuditDir + file + " " + pair +
-                               " --size 240x136 --frames 1 --source rendered --no-fixes");
+  const auto j = test::audit_json(kAuditDir + file + " " + pair +
+                                  " --size 240x136 --frames 1 --source rendered --no-fixes");
   const auto& r = j.at("setups").at(0).at("rendered");
   CAPTURE(r.at("fights_missed").dump());
   CHECK(r.at("fights_missed").at("other") == 0);
@@ -208,9 +203,9 @@ TEST_CASE("audit refuses bad input with a specific error", "[audit][cli]") {
     CHECK_THAT(r.output, Contains("no camera named 'side' (the file has: main)"));
   }
   SECTION("a camera looking at nothing: a bounded run that finds nothing") {
-    const auto j = audit_json_of(kAuditDir +
-                                 "decal_wall.gltf --eye 0,0,0 --target 0,0,1 "
-                                 "--size 64x36 -t standard -f unorm24");
+    const auto j = test::audit_json(kAuditDir +
+                                    "decal_wall.gltf --eye 0,0,0 --target 0,0,1 "
+                                    "--size 64x36 -t standard -f unorm24");
     CHECK(j.at("setups").at(0).at("covered_pixels") == 0);
     CHECK(j.at("setups").at(0).at("fighting_pixels") == 0);
   }
@@ -248,9 +243,9 @@ TEST_CASE("audit's CSV has a row per set-up and pair, with the JSON's counts", "
                            "160x90 --no-fixes --no-timing -q";
   const auto csv = run_cli("audit " + args + " --format-out csv");
   REQUIRE(csv.exit_code == 0);
-  const auto j = audit_json_of(kAuditDir +
-                               "decal_wall.glb -t standard,reversed -f unorm24 "
-                               "--size 160x90 --no-fixes");
+  const auto j = test::audit_json(kAuditDir +
+                                  "decal_wall.glb -t standard,reversed -f unorm24 "
+                                  "--size 160x90 --no-fixes");
   std::istringstream lines(csv.output);
   std::string header, row;
   std::getline(lines, header);
@@ -267,26 +262,26 @@ TEST_CASE("audit's CSV has a row per set-up and pair, with the JSON's counts", "
 TEST_CASE("audit says what the counts leave out: nothing drawn, seams, a transform fix",
           "[audit][cli]") {
   SECTION("a format too coarse draws nothing: undrawn, not fighting") {
-    const auto j = audit_json_of(kAuditDir +
-                                 "decal_wall.gltf -t standard -f float16 --size "
-                                 "160x90 --no-fixes");
+    const auto j = test::audit_json(kAuditDir +
+                                    "decal_wall.gltf -t standard -f float16 --size "
+                                    "160x90 --no-fixes");
     const auto& s = j.at("setups").at(0);
     CHECK(s.at("fighting_pixels") == 0);
     CHECK(s.at("undrawn_pixels") == s.at("covered_pixels"));
   }
   SECTION("a box's own faces at its silhouette are seams, not fights") {
-    const auto j = audit_json_of(kAuditDir +
-                                 "intersecting_boxes.gltf -t standard -f unorm24 "
-                                 "--size 1280x720 --no-fixes");
+    const auto j = test::audit_json(kAuditDir +
+                                    "intersecting_boxes.gltf -t standard -f unorm24 "
+                                    "--size 1280x720 --no-fixes");
     const auto& s = j.at("setups").at(0);
     CHECK(s.at("seam_pixels").get<int>() > 0);
     for (const auto& p : s.at("pairs"))
       CHECK(p.at("winner").at("node") != p.at("front").at("node"));
   }
   SECTION("far from the origin, camera-relative is the fix") {
-    const auto j = audit_json_of(kAuditDir +
-                                 "far_from_origin.glb -t standard -f unorm24 --size "
-                                 "160x90");
+    const auto j = test::audit_json(kAuditDir +
+                                    "far_from_origin.glb -t standard -f unorm24 --size "
+                                    "160x90");
     const auto& p = j.at("setups").at(0).at("pairs").at(0);
     CHECK_THAT(p.at("setups_that_resolve").dump(), Contains("standard/unorm24/gl/camera_relative"));
     // The MTS is measured where the pair is, 10^6 m out under binary32 world matrices: more than
@@ -368,10 +363,10 @@ TEST_CASE(
   for (const std::string slash : {"/", ""}) {
     const auto out = dir / ("pngs" + std::to_string(slash.size()));
     std::filesystem::create_directory(out);
-    const auto j = audit_json_of(kAuditDir +
-                                 "decal_wall.gltf -t standard -f unorm24 --size 32x18 "
-                                 "--no-fixes --png " +
-                                 out.string() + slash);
+    const auto j = test::audit_json(kAuditDir +
+                                    "decal_wall.gltf -t standard -f unorm24 --size 32x18 "
+                                    "--no-fixes --png " +
+                                    out.string() + slash);
     const auto view = out / "decal_wall-standard-unorm24-gl.png";
     CHECK(std::filesystem::path(j.at("setups").at(0).at("png").get<std::string>()) == view);
     CHECK(std::filesystem::exists(view));

@@ -11,13 +11,14 @@
 #include "host/audit/audit.h"
 #include "host/audit/audit_device.h"
 #include "interface/audit_layout.h"
+#include "tests/support/audit_files.h"
 #include "tests/support/mts_fixture.h"
 
 using namespace depthprec;
 
 namespace {
 
-const std::string kAuditData = std::string(DEPTHPREC_SOURCE_DIR) + "/data/audit/";
+const std::string kAuditData = test::audit_dir();
 
 SceneGeometry audit_file(const std::string& name) {
   return load_gltf(kAuditData + name, 1u << 20);
@@ -29,19 +30,12 @@ Scene audit_scene_of(const std::vector<std::string>& sets) {
   return load_scene("", all);
 }
 
-AuditCamera main_camera(const SceneGeometry& g, int w, int h) {
-  for (const GltfCamera& c : g.cameras)
-    if (c.name == "main") return gltf_view(c, w, h);
-  FAIL("no camera main");
-  return {};
-}
-
 SetupAudit audit_of(const std::string& file, const std::vector<std::string>& sets,
                     bool reference = false, int w = 192, int h = 108) {
   const SceneGeometry g = audit_file(file);
   const Scene scene = audit_scene_of(sets);
   AuditRequest req;
-  req.frames = {main_camera(g, w, h)};
+  req.frames = {test::main_camera(g, w, h)};
   req.reference = reference;
   return audit_setup_pair(&test::runtime(), scene, scene.evaluate.at(0), g, req);
 }
@@ -70,7 +64,7 @@ TEST_CASE("the audit kernel equals the host reference pixel for pixel", "[audit]
   const SceneGeometry g = audit_file(file);
   const Scene scene = audit_scene_of(
       {"near=" + near, "far=" + far, "evaluate=" + pairs, "pipeline.profile=" + profile});
-  const AuditCamera cam = main_camera(g, 96, 54);
+  const AuditCamera cam = test::main_camera(g, 96, 54);
   const Scene s = audit_scene(scene, cam);
   const AuditSetup a = audit_setup(s, scene.evaluate.at(0), g, cam);
   const AuditPixels host = audit_reference(s, a);

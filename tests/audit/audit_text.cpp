@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "host/output/audit_output.h"
+#include "tests/support/audit_files.h"
 #include "tests/support/files.h"
 #include "tests/support/run_cli.h"
 
@@ -15,7 +16,7 @@ using depthprec::test::run_cli;
 
 namespace {
 
-const std::string kTextAuditDir = std::string(DEPTHPREC_SOURCE_DIR) + "/data/audit/";
+const std::string kTextAuditDir = test::audit_dir();
 
 SceneGeometry one_draw_geometry() {
   SceneGeometry g;

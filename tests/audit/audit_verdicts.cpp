@@ -9,25 +9,19 @@
 #include "host/bias/bias_rule.h"
 #include "interface/audit_layout.h"
 #include "interface/bias_formula.h"
+#include "tests/support/audit_files.h"
 #include "tests/support/mts_fixture.h"
 
 using namespace depthprec;
 
 namespace {
 
-const std::string kVerdictData = std::string(DEPTHPREC_SOURCE_DIR) + "/data/audit/";
+const std::string kVerdictData = test::audit_dir();
 
 Scene verdict_scene(const std::vector<std::string>& sets) {
   std::vector<std::string> all = {"sampling=paper", "frames=4", "kernel=[24,24]"};
   all.insert(all.end(), sets.begin(), sets.end());
   return load_scene("", all);
-}
-
-AuditCamera verdict_camera(const SceneGeometry& g, int w, int h) {
-  for (const GltfCamera& c : g.cameras)
-    if (c.name == "main") return gltf_view(c, w, h);
-  FAIL("no camera main");
-  return {};
 }
 
 // The draw of pixel i's front surface, or -1.
@@ -44,7 +38,7 @@ TEST_CASE("coplanar surfaces hidden behind a nearer one are not coplanar pixels"
     const SceneGeometry g = load_gltf(kVerdictData + "shelf_wall.gltf", 1000);
     const Scene scene = verdict_scene({"near=0.1", "far=100", pair});
     AuditRequest req;
-    req.frames = {verdict_camera(g, 320, 180)};
+    req.frames = {test::main_camera(g, 320, 180)};
     const SetupAudit a = audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);
     REQUIRE(a.covered_pixels > 0);
     CHECK(a.coplanar_pixels == 0);
@@ -55,7 +49,7 @@ TEST_CASE("coplanar surfaces hidden behind a nearer one are not coplanar pixels"
     const SceneGeometry g = load_gltf(kVerdictData + "rug_tiles.gltf", 1000);
     const Scene scene = verdict_scene({"near=0.03", "far=1000", pair});
     AuditRequest req;
-    req.frames = {verdict_camera(g, 320, 180)};
+    req.frames = {test::main_camera(g, 320, 180)};
     const SetupAudit a = audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);
     uint64_t rug = 0, rug_coplanar = 0;
     for (size_t i = 0; i < a.image.flags.size(); ++i)
@@ -86,7 +80,7 @@ TEST_CASE("where a pixel is not at risk, every profile keeps the front surface",
       std::string(R"([{"technique":"log_fragment","format":"unorm24","depth_range":"gl"}])"));
   CAPTURE(file, pairs);
   const SceneGeometry g = load_gltf(kVerdictData + file, 1u << 20);
-  const AuditCamera cam = verdict_camera(g, 160, 90);
+  const AuditCamera cam = test::main_camera(g, 160, 90);
   std::vector<AuditPixels> by_profile;
   for (const char* profile : {"ideal", "llvmpipe", "softpipe"}) {
     const Scene scene = verdict_scene({"near=" + near, "far=" + far, "evaluate=" + pairs,
@@ -123,7 +117,7 @@ TEST_CASE("a millimetre at 500 m in reversed float32 is not at risk", "[audit]")
       {"near=0.1", "far=1e5",
        R"(evaluate=[{"technique":"reversed","format":"float32","depth_range":"zero_to_one"}])"});
   AuditRequest req;
-  req.frames = {verdict_camera(g, 320, 180)};
+  req.frames = {test::main_camera(g, 320, 180)};
   const SetupAudit a = audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);
   CHECK(a.fighting_pixels == 0);
   CHECK(a.at_risk_pixels == 0);
@@ -137,7 +131,7 @@ TEST_CASE("a printed bias removes the pair's fight from every view", "[audit]") 
   const SceneGeometry g = load_gltf(kVerdictData + "rug_tiles.gltf", 1000);
   const Scene scene = verdict_scene(
       {"near=0.03", "far=1000", R"(evaluate=[{"technique":"standard","format":"unorm24"}])"});
-  const AuditCamera cam = verdict_camera(g, 480, 270);
+  const AuditCamera cam = test::main_camera(g, 480, 270);
   AuditRequest req;
   req.frames = jittered_frames(cam, 8, 0.0025);
   SetupAudit a = audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/audit_files.h"
 #include "tests/support/files.h"
 #include "tests/support/run_cli.h"
 
@@ -14,14 +15,7 @@ using depthprec::test::run_cli;
 
 namespace {
 
-const std::string kViewsDir = std::string(DEPTHPREC_SOURCE_DIR) + "/data/audit/";
-
-nlohmann::json views_json_of(const std::string& args) {
-  const auto r = run_cli("audit " + args + " --format-out json --no-timing -q");
-  INFO(r.output);
-  REQUIRE(r.exit_code == 0);
-  return nlohmann::json::parse(r.output);
-}
+const std::string kViewsDir = test::audit_dir();
 
 }  // namespace
 
@@ -30,9 +24,9 @@ TEST_CASE("audit's views: --frames adds jittered views, --path reads them from a
   const std::string base = kViewsDir +
                            "decal_wall.gltf -t standard -f unorm24 --size 160x90 "
                            "--no-fixes";
-  const auto one = views_json_of(base + " --frames 1");
-  const auto four = views_json_of(base + " --frames 4 --jitter 0.5");
-  CHECK(views_json_of(base).at("setups").at(0).at("frames") == 8);  // the default
+  const auto one = test::audit_json(base + " --frames 1");
+  const auto four = test::audit_json(base + " --frames 4 --jitter 0.5");
+  CHECK(test::audit_json(base).at("setups").at(0).at("frames") == 8);  // the default
   const auto& s1 = one.at("setups").at(0);
   const auto& s4 = four.at("setups").at(0);
   CHECK(s4.at("frames") == 4);
@@ -41,7 +35,7 @@ TEST_CASE("audit's views: --frames adds jittered views, --path reads them from a
   // the same first view from a path file gives frame 0's counts
   const auto dir = test::empty_dir("audit_path");
   test::write_bytes(dir / "path.txt", "# eye, then target\n0,0,0, 0,0,-1\n0.5,0,0, 0.5,0,-1\n");
-  const auto path = views_json_of(base + " --fov-y 10 --path " + (dir / "path.txt").string());
+  const auto path = test::audit_json(base + " --fov-y 10 --path " + (dir / "path.txt").string());
   CHECK(path.at("setups").at(0).at("frames") == 2);
   CHECK(path.at("setups").at(0).at("pixels") == 2 * s1.at("pixels").get<int>());
   test::write_bytes(dir / "bad.txt", "0,0,0\n");
@@ -57,7 +51,7 @@ TEST_CASE("audit over several views says its pixel counts are sums and its PNG t
                            "decal_wall.gltf -t standard -f unorm24 --size 160x90 --no-fixes "
                            "--frames 3 --jitter 0.5 --png " +
                            (dir / "v").string();
-  const auto j = views_json_of(args);
+  const auto j = test::audit_json(args);
   CHECK(j.at("pixel_counts") == "summed over frames");
   CHECK(j.at("png_frame") == 0);
   CHECK(j.at("setups").at(0).at("pixels") == 3 * 160 * 90);
@@ -124,9 +118,9 @@ TEST_CASE("audit finds a file camera by its node's name and refuses an orthograp
   test::write_bytes(file, j.dump());
   const std::string base = file + " -t standard -f unorm24 --size 160X90 --frames 1 --no-fixes";
   // the only perspective camera by default, by its node's name, and by its own
-  CHECK(views_json_of(base).at("camera") == "camera EyeCam_data");
-  CHECK(views_json_of(base + " --camera EyeCam").at("camera") == "camera EyeCam_data");
-  CHECK(views_json_of(base + " --camera EyeCam_data").at("width") == 160);
+  CHECK(test::audit_json(base).at("camera") == "camera EyeCam_data");
+  CHECK(test::audit_json(base + " --camera EyeCam").at("camera") == "camera EyeCam_data");
+  CHECK(test::audit_json(base + " --camera EyeCam_data").at("width") == 160);
   const auto ortho = run_cli("audit " + base + " --camera Top");
   CHECK(ortho.exit_code == 3);
   CHECK_THAT(ortho.output, Contains("camera 'Top' is orthographic"));
