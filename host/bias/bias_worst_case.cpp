@@ -25,9 +25,9 @@ void refine_chunk(const WithBiasEvaluator& with_evaluator, const Scene& scene, c
                   const std::vector<Slot>& slots) {
   Scene chunk = scene;
   chunk.frames = static_cast<int>(part.size());
-  chunk.orientations.clear();
-  for (const Slot& s : slots) chunk.orientations[distances[s.distance]] = part;
-  with_evaluator(chunk, [&](BiasEvaluator& ev) {
+  Orientations sampled;
+  for (const Slot& s : slots) sampled.at[distances[s.distance]] = part;
+  with_evaluator(chunk, sampled, [&](BiasEvaluator& ev) {
     std::vector<Slot> pending = slots;
     while (!pending.empty()) {
       std::vector<BiasProbe> probes;
@@ -40,7 +40,7 @@ void refine_chunk(const WithBiasEvaluator& with_evaluator, const Scene& scene, c
       for (const unsigned kind : kKinds) {
         Scene one = scene;
         one.frames = 1;
-        one.orientations.clear();
+        Orientations one_orientation;
         std::vector<Slot> failed;
         std::vector<double> zs;
         for (size_t k = 0; k < pending.size(); ++k) {
@@ -51,11 +51,11 @@ void refine_chunk(const WithBiasEvaluator& with_evaluator, const Scene& scene, c
           if (bias_passes(results[k]) || results[k].deciding_frame < 0) continue;
           failed.push_back(pending[k]);
           zs.push_back(distances[pending[k].distance]);
-          one.orientations[zs.back()] = {part[static_cast<size_t>(results[k].deciding_frame)]};
+          one_orientation.at[zs.back()] = {part[static_cast<size_t>(results[k].deciding_frame)]};
         }
         if (failed.empty()) continue;
         std::vector<BiasAnswers> alone;
-        with_evaluator(one, [&](BiasEvaluator& single) {
+        with_evaluator(one, one_orientation, [&](BiasEvaluator& single) {
           alone = search_bias(single, one, pair, options, zs, kind);
         });
         for (size_t k = 0; k < failed.size(); ++k) {

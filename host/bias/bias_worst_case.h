@@ -10,12 +10,14 @@
 #include <vector>
 
 #include "host/bias/bias_search.h"
+#include "host/model/frame_setup.h"
 
 namespace depthprec {
 
-// Runs `use` with a bias evaluator of the pair for `scene` (a chunk's or one orientation's).
-using WithBiasEvaluator =
-    std::function<void(const Scene& scene, const std::function<void(BiasEvaluator&)>& use)>;
+// Runs `use` with a bias evaluator of the pair for `scene` (its frames a chunk's or one
+// orientation's) and the orientations the rounds sampled.
+using WithBiasEvaluator = std::function<void(const Scene& scene, const Orientations& orientations,
+                                             const std::function<void(BiasEvaluator&)>& use)>;
 
 // Refines the answers of search_bias over the scene's frames (one per distance) to the worst
 // case; answers that did not resolve are left as they are.

@@ -116,15 +116,16 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
   // Under worst-case sampling the answers hold in every orientation sampled, as the MTS does.
   const auto answers = [&](const WithBiasEvaluator& with) {
     std::vector<BiasAnswers> a;
-    with(scene, [&](BiasEvaluator& ev) { a = search_bias(ev, scene, pair, b, scene.distances); });
+    with(scene, {},
+         [&](BiasEvaluator& ev) { a = search_bias(ev, scene, pair, b, scene.distances); });
     if (scene.sampling == Sampling::worst_case)
       refine_bias_worst_case(with, scene, pair, b, scene.distances, a);
     return a;
   };
   if (gl) {
     rec["rows"] = bias_rows(scene, pair, b, RowSource::rendered, scene.distances,
-                            answers([&](const Scene& s, const auto& use) {
-                              RenderEvaluator renderer(*gl, s, pair);
+                            answers([&](const Scene& s, const Orientations& o, const auto& use) {
+                              RenderEvaluator renderer(*gl, s, pair, o);
                               BiasRenderer ev(renderer, b);
                               use(ev);
                             }),
@@ -138,8 +139,8 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
       if (rows[k].verdict() == Verdict::resolved) mts[k] = rows[k].mts;
   }
   rec["rows"] = bias_rows(scene, pair, b, RowSource::emulated, scene.distances,
-                          answers([&](const Scene& s, const auto& use) {
-                            BiasEmulator ev(rt, s, pair, b);
+                          answers([&](const Scene& s, const Orientations& o, const auto& use) {
+                            BiasEmulator ev(rt, s, pair, b, o);
                             use(ev);
                           }),
                           mts);

@@ -34,8 +34,9 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   // Under worst-case sampling each factor is its own worst case, as the MTS is.
   if (scene.sampling == Sampling::worst_case)
     refine_worst_case(
-        [&rt, &pair](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-          ExactEvaluator round_ev(rt, s, pair);
+        [&rt, &pair](const Scene& s, const Orientations& o,
+                     const std::function<void(ProbeEvaluator&)>& use) {
+          ExactEvaluator round_ev(rt, s, pair, o);
           use(round_ev);
         },
         plain, pair, storage, stop);
@@ -214,8 +215,9 @@ void SceneRun::compute(size_t p, const std::vector<double>& zs) {
   const EvalPair& pair = scene_.evaluate[p];
   const std::function<bool()> stop = [this] { return stop_requested(); };
   const std::function<void(const MtsRow&)> on_row = [this](const MtsRow& r) { pass_on(r); };
-  const auto with_evaluator = [&](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-    MtsEvaluator ev(rt_, s, pair);
+  const auto with_evaluator = [&](const Scene& s, const Orientations& o,
+                                  const std::function<void(ProbeEvaluator&)>& use) {
+    MtsEvaluator ev(rt_, s, pair, o);
     ev.share_plane_a_budget(jobs_);
     if (jobs_ > 1) ev.prime_launches(prime_widths_, primer_);
     use(ev);
@@ -224,7 +226,7 @@ void SceneRun::compute(size_t p, const std::vector<double>& zs) {
   const bool worst_case = scene_.sampling == Sampling::worst_case;
   const bool rows_later = control_.attribute || worst_case;
   std::vector<MtsRow> rows;
-  with_evaluator(scene_, [&](ProbeEvaluator& ev) {
+  with_evaluator(scene_, {}, [&](ProbeEvaluator& ev) {
     rows = search_pair(ev, scene_, pair, zs,
                        rows_later ? std::function<void(const MtsRow&)>() : on_row, stop);
   });

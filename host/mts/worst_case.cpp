@@ -134,7 +134,7 @@ void refine_window(ProbeEvaluator& ev, const Scene& scene, const EvalPair& pair,
     const std::vector<ProbeResult> results = ev.run(probes);
     Scene one = scene;  // each fighting orientation alone, at its row's distance
     one.frames = 1;
-    one.orientations.clear();
+    Orientations alone;
     std::vector<size_t> fought;
     std::vector<double> zs;
     std::vector<SearchStart> starts;
@@ -145,11 +145,11 @@ void refine_window(ProbeEvaluator& ev, const Scene& scene, const EvalPair& pair,
       fought.push_back(pending[k]);
       zs.push_back(row.z);
       starts.push_back({row.hi, row.hi * kFirstStep});
-      one.orientations[row.z] = {part[static_cast<size_t>(results[k].deciding_frame)]};
+      alone.at[row.z] = {part[static_cast<size_t>(results[k].deciding_frame)]};
     }
     if (fought.empty()) break;
     std::vector<MtsRow> found;
-    with_evaluator(one, [&](ProbeEvaluator& single) {
+    with_evaluator(one, alone, [&](ProbeEvaluator& single) {
       found = search_pair(single, one, pair, zs, {}, stop, starts);
     });
     pending.clear();
@@ -174,9 +174,9 @@ void refine_chunk(const WithEvaluator& with_evaluator, const Scene& scene, const
                   const std::vector<size_t>& open, const std::function<bool()>& stop) {
   Scene chunk_scene = scene;
   chunk_scene.frames = static_cast<int>(part.size());
-  chunk_scene.orientations.clear();
-  for (const size_t i : open) chunk_scene.orientations[rows[i].z] = part;
-  with_evaluator(chunk_scene, [&](ProbeEvaluator& ev) {
+  Orientations sampled;
+  for (const size_t i : open) sampled.at[rows[i].z] = part;
+  with_evaluator(chunk_scene, sampled, [&](ProbeEvaluator& ev) {
     // Rows in windows the evaluator's plane-A cache holds at once, as search_pair takes them: a
     // row's plane A is filled once, whatever the window, and its launches do not depend on how
     // many rows share the device.
@@ -231,13 +231,13 @@ void refine_worst_case(const WithEvaluator& with_evaluator, const Scene& scene,
 std::vector<MtsRow> search_sampled(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                                    const std::vector<double>& distances,
                                    const std::function<bool()>& stop) {
-  const WithEvaluator with = [&rt, &pair](const Scene& s,
+  const WithEvaluator with = [&rt, &pair](const Scene& s, const Orientations& o,
                                           const std::function<void(ProbeEvaluator&)>& use) {
-    MtsEvaluator ev(rt, s, pair);
+    MtsEvaluator ev(rt, s, pair, o);
     use(ev);
   };
   std::vector<MtsRow> rows;
-  with(scene,
+  with(scene, {},
        [&](ProbeEvaluator& ev) { rows = search_pair(ev, scene, pair, distances, {}, stop); });
   if (scene.sampling == Sampling::worst_case) refine_worst_case(with, scene, pair, rows, stop);
   return rows;

@@ -12,6 +12,7 @@
 #include <functional>
 #include <vector>
 
+#include "host/model/frame_setup.h"
 #include "host/mts/mts_row.h"
 #include "host/mts/probe.h"
 
@@ -27,10 +28,10 @@ std::vector<Angles> round_orientations(const Scene& scene, int round);
 // plane A of one chunk, so memory does not grow with the rounds.
 std::vector<std::vector<Angles>> round_chunks(const Scene& scene, int round);
 
-// Runs `use` with an evaluator of the pair for `scene` (a scene whose orientations the rounds
-// set): the caller owns its construction and its statistics.
-using WithEvaluator =
-    std::function<void(const Scene& scene, const std::function<void(ProbeEvaluator&)>& use)>;
+// Runs `use` with an evaluator of the pair for `scene` (its frames a chunk's or one orientation's)
+// and the orientations the rounds sampled: the caller owns its construction and its statistics.
+using WithEvaluator = std::function<void(const Scene& scene, const Orientations& orientations,
+                                         const std::function<void(ProbeEvaluator&)>& use)>;
 
 // Refines rows (search_pair's over the scene's own frames, in any order) to the worst case:
 // mts and its bracket become the worst case's, mts_paper keeps the paper's, orientations and

@@ -65,8 +65,9 @@ MtsRun render_scene(GlContext& gl, const Scene& scene,
     // The driver draws the worst case's rounds of orientations as the emulator samples them.
     if (worst_case) {
       refine_worst_case(
-          [&](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-            RenderEvaluator round_ev(gl, s, pair);
+          [&](const Scene& s, const Orientations& o,
+              const std::function<void(ProbeEvaluator&)>& use) {
+            RenderEvaluator round_ev(gl, s, pair, o);
             use(round_ev);
             frames += round_ev.frames_rendered();
             seconds += round_ev.seconds();

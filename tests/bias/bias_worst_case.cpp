@@ -29,16 +29,17 @@ TEST_CASE("bias answers under worst-case sampling hold in every orientation samp
   std::map<double, std::vector<Angles>> used;
   for (double z : scene.distances)
     for (int f = 0; f < scene.frames; ++f) used[z].push_back(frame_angles(scene, f));
-  const WithBiasEvaluator with = [&](const Scene& s,
+  const WithBiasEvaluator with = [&](const Scene& s, const Orientations& sampled,
                                      const std::function<void(BiasEvaluator&)>& use) {
     if (s.frames == scene.worst_case.round_size)
-      for (const auto& [z, list] : s.orientations)
+      for (const auto& [z, list] : sampled.at)
         used[z].insert(used[z].end(), list.begin(), list.end());
-    BiasEmulator ev(test::runtime(), s, pair, o);
+    BiasEmulator ev(test::runtime(), s, pair, o, sampled);
     use(ev);
   };
   std::vector<BiasAnswers> paper, worst;
-  with(scene, [&](BiasEvaluator& ev) { paper = search_bias(ev, scene, pair, o, scene.distances); });
+  with(scene, {},
+       [&](BiasEvaluator& ev) { paper = search_bias(ev, scene, pair, o, scene.distances); });
   worst = paper;
   refine_bias_worst_case(with, scene, pair, o, scene.distances, worst);
   int rose = 0;
@@ -52,8 +53,7 @@ TEST_CASE("bias answers under worst-case sampling hold in every orientation samp
     // One evaluator over every orientation used at z: the answer passes, one unit less fails.
     Scene all = scene;
     all.frames = static_cast<int>(used[z].size());
-    all.orientations = {{z, used[z]}};
-    BiasEmulator ev(test::runtime(), all, pair, o);
+    BiasEmulator ev(test::runtime(), all, pair, o, Orientations{{{z, used[z]}}});
     const double u = worst[k].units.value;
     const auto r = ev.run({bias_probe(all, pair, o, kBiasUnits, z, u),
                            bias_probe(all, pair, o, kBiasUnits, z, u - 1)});
