@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 
 #include "host/model/frame_setup.h"
@@ -43,16 +44,22 @@ RefinedRows refine_rows(const Scene& scene, const EvalPair& pair) {
   out.rows = search_pair(paper, scene, pair, scene.distances);
   for (double z : scene.distances)
     for (int f = 0; f < scene.frames; ++f) out.used[z].push_back(frame_angles(scene, f));
-  const WithEvaluator with = [&](const Scene& s, const Orientations& sampled,
-                                 const std::function<void(ProbeEvaluator&)>& use) {
-    // the chunks' orientations (an orientation searched alone is one of its chunk's)
-    if (s.frames == scene.worst_case.round_size)
-      for (const auto& [z, list] : sampled.at)
-        out.used[z].insert(out.used[z].end(), list.begin(), list.end());
-    MtsEvaluator ev(runtime(), s, pair, sampled);
-    use(ev);
-  };
-  refine_worst_case(with, scene, pair, out.rows);
+  // The emulator's evaluators, noting the chunks' orientations (an orientation searched alone is
+  // one of its chunk's).
+  struct Source : EvaluatorSource<ProbeEvaluator> {
+    Source(const Scene& scene, const EvalPair& pair, RefinedRows& out)
+        : scene_(scene), pair_(pair), out_(out) {}
+    std::unique_ptr<ProbeEvaluator> make(const Scene& s, const Orientations& sampled) override {
+      if (s.frames == scene_.worst_case.round_size)
+        for (const auto& [z, list] : sampled.at)
+          out_.used[z].insert(out_.used[z].end(), list.begin(), list.end());
+      return std::make_unique<MtsEvaluator>(runtime(), s, pair_, sampled);
+    }
+    const Scene& scene_;
+    const EvalPair& pair_;
+    RefinedRows& out_;
+  } source(scene, pair, out);
+  refine_worst_case(source, scene, pair, out.rows);
   return out;
 }
 
