@@ -31,8 +31,7 @@ double mts_over(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, dou
                 const std::vector<Angles>& list) {
   Scene s = scene;
   s.frames = static_cast<int>(list.size());
-  s.orientations = {{z, list}};
-  MtsEvaluator ev(rt, s, pair);
+  MtsEvaluator ev(rt, s, pair, Orientations{{{z, list}}});
   return search_pair(ev, s, pair, {z})[0].mts;
 }
 

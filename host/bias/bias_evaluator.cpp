@@ -32,10 +32,11 @@ KernelVariant bias_variant(const Scene& scene, const EvalPair& pair) {
 }
 
 BiasEmulator::BiasEmulator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                           const BiasOptions& options)
+                           const BiasOptions& options, const Orientations& orientations)
     : rt_(rt),
       scene_(scene),
       pair_(pair),
+      orientations_(orientations),
       options_(options),
       rule_(bias_rule(options, scene.storage_format(pair))),
       variant_(bias_variant(scene, pair)) {
@@ -82,7 +83,7 @@ std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes)
       std::vector<float> consts, mats;
       for (const size_t i : active) {
         const BiasProbe& p = probes[i];
-        const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
+        const ProbeConstants pc = probe_constants(scene_, pair_, p.z, orientations_);
         auto packed = pc.packed();
         packed[MTS_C_BIAS_UNITS] = rule_.units_term(p.units);
         packed[MTS_C_BIAS_FACTOR] = static_cast<float>(p.factor);

@@ -7,6 +7,7 @@
 
 #include "host/bias/bias_probe.h"
 #include "host/bias/bias_rule.h"
+#include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/runtime/kernel_variant.h"
 #include "host/runtime/opencl_runtime.h"
@@ -16,8 +17,9 @@ namespace depthprec {
 class BiasEmulator : public BiasEvaluator {
  public:
   // Throws InputError when the pair has no bias (bias_not_applicable) or the format no rule.
+  // orientations: the frames' sampled ones where a distance has them (worst-case sampling).
   BiasEmulator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-               const BiasOptions& options);
+               const BiasOptions& options, const Orientations& orientations = {});
   std::vector<ProbeResult> run(const std::vector<BiasProbe>& probes) override;
   RowSource source() const override { return RowSource::emulated; }
   const KernelVariant& variant() const { return variant_; }
@@ -26,6 +28,7 @@ class BiasEmulator : public BiasEvaluator {
   OpenClRuntime& rt_;
   const Scene& scene_;
   EvalPair pair_;
+  Orientations orientations_;
   BiasOptions options_;
   BiasRule rule_;
   KernelVariant variant_;

@@ -6,22 +6,27 @@
 // two, until the chunk passes.
 #pragma once
 
-#include <functional>
 #include <vector>
 
 #include "host/bias/bias_search.h"
+#include "host/model/frame_setup.h"
+#include "host/mts/refinement.h"
 
 namespace depthprec {
 
-// Runs `use` with a bias evaluator of the pair for `scene` (a chunk's or one orientation's).
-using WithBiasEvaluator =
-    std::function<void(const Scene& scene, const std::function<void(BiasEvaluator&)>& use)>;
-
 // Refines the answers of search_bias over the scene's frames (one per distance) to the worst
-// case; answers that did not resolve are left as they are.
-void refine_bias_worst_case(const WithBiasEvaluator& with_evaluator, const Scene& scene,
+// case with the one refinement (host/mts/refinement.h) over the source's evaluators; answers that
+// did not resolve are left as they are.
+void refine_bias_worst_case(EvaluatorSource<BiasEvaluator>& source, const Scene& scene,
                             const EvalPair& pair, const BiasOptions& options,
                             const std::vector<double>& distances,
                             std::vector<BiasAnswers>& answers);
+
+// The answers of these distances as the scene samples them: search_bias over its frames, refined
+// to the worst case under worst-case sampling.
+std::vector<BiasAnswers> search_bias_sampled(EvaluatorSource<BiasEvaluator>& source,
+                                             const Scene& scene, const EvalPair& pair,
+                                             const BiasOptions& options,
+                                             const std::vector<double>& distances);
 
 }  // namespace depthprec

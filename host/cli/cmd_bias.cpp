@@ -99,6 +99,52 @@ BiasOptions bias_options_of(const BiasCliOptions& o) {
   return b;
 }
 
+// The emulated bias evaluators of a pair.
+class EmulatedBias : public EvaluatorSource<BiasEvaluator> {
+ public:
+  EmulatedBias(OpenClRuntime& rt, const EvalPair& pair, const BiasOptions& b)
+      : rt_(rt), pair_(pair), b_(b) {}
+  std::unique_ptr<BiasEvaluator> make(const Scene& s, const Orientations& o) override {
+    return std::make_unique<BiasEmulator>(rt_, s, pair_, b_, o);
+  }
+
+ private:
+  OpenClRuntime& rt_;
+  const EvalPair& pair_;
+  const BiasOptions& b_;
+};
+
+// A rendered bias evaluator with the renderer it draws on.
+class OwnedBiasRenderer : public BiasEvaluator {
+ public:
+  OwnedBiasRenderer(GlContext& gl, const Scene& s, const EvalPair& pair, const Orientations& o,
+                    const BiasOptions& b)
+      : renderer_(gl, s, pair, o), bias_(renderer_, b) {}
+  std::vector<ProbeResult> run(const std::vector<BiasProbe>& probes) override {
+    return bias_.run(probes);
+  }
+  RowSource source() const override { return bias_.source(); }
+
+ private:
+  RenderEvaluator renderer_;
+  BiasRenderer bias_;
+};
+
+// The rendered bias evaluators of a pair.
+class RenderedBias : public EvaluatorSource<BiasEvaluator> {
+ public:
+  RenderedBias(GlContext& gl, const EvalPair& pair, const BiasOptions& b)
+      : gl_(gl), pair_(pair), b_(b) {}
+  std::unique_ptr<BiasEvaluator> make(const Scene& s, const Orientations& o) override {
+    return std::make_unique<OwnedBiasRenderer>(gl_, s, pair_, o, b_);
+  }
+
+ private:
+  GlContext& gl_;
+  const EvalPair& pair_;
+  const BiasOptions& b_;
+};
+
 // One pair's record: its rows, or why the bias does not apply. gl: the probes are rendered
 // through it (no MTS column: rendering its search too would take minutes, `depthprec render`
 // measures it); null: emulated, with the pair's MTS beside each answer.
@@ -114,21 +160,10 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
   }
   std::vector<double> mts(scene.distances.size(), std::numeric_limits<double>::quiet_NaN());
   // Under worst-case sampling the answers hold in every orientation sampled, as the MTS does.
-  const auto answers = [&](const WithBiasEvaluator& with) {
-    std::vector<BiasAnswers> a;
-    with(scene, [&](BiasEvaluator& ev) { a = search_bias(ev, scene, pair, b, scene.distances); });
-    if (scene.sampling == Sampling::worst_case)
-      refine_bias_worst_case(with, scene, pair, b, scene.distances, a);
-    return a;
-  };
   if (gl) {
+    RenderedBias source(*gl, pair, b);
     rec["rows"] = bias_rows(scene, pair, b, RowSource::rendered, scene.distances,
-                            answers([&](const Scene& s, const auto& use) {
-                              RenderEvaluator renderer(*gl, s, pair);
-                              BiasRenderer ev(renderer, b);
-                              use(ev);
-                            }),
-                            mts);
+                            search_bias_sampled(source, scene, pair, b, scene.distances), mts);
     return rec;
   }
   // The MTS beside each answer: what separation the pair resolves there without any bias.
@@ -137,12 +172,9 @@ nlohmann::json bias_record(OpenClRuntime& rt, GlContext* gl, const Scene& scene,
     for (size_t k = 0; k < rows.size(); ++k)
       if (rows[k].verdict() == Verdict::resolved) mts[k] = rows[k].mts;
   }
+  EmulatedBias source(rt, pair, b);
   rec["rows"] = bias_rows(scene, pair, b, RowSource::emulated, scene.distances,
-                          answers([&](const Scene& s, const auto& use) {
-                            BiasEmulator ev(rt, s, pair, b);
-                            use(ev);
-                          }),
-                          mts);
+                          search_bias_sampled(source, scene, pair, b, scene.distances), mts);
   return rec;
 }
 

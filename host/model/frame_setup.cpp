@@ -188,10 +188,9 @@ std::array<float, MTS_PROBE_STRIDE> ProbeConstants::packed() const {
   return out;
 }
 
-Angles frame_orientation(const Scene& s, double z, int frame) {
-  const auto it = s.orientations.find(z);
-  return it == s.orientations.end() ? frame_angles(s, frame)
-                                    : it->second.at(static_cast<size_t>(frame));
+Angles frame_orientation(const Scene& s, const ProbeConstants& pc, int frame) {
+  return pc.orientations.empty() ? frame_angles(s, frame)
+                                 : pc.orientations.at(static_cast<size_t>(frame));
 }
 
 Angles frame_angles(const Scene& s, int frame) {
@@ -208,7 +207,8 @@ bool view_translated_on_gpu(const Scene& s) {
          !s.at_world_origin();
 }
 
-ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z) {
+ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z,
+                               const Orientations& orientations) {
   double n = s.near, f = s.far;
   EvalPair geometry = pair;
   if (pair.technique == Technique::layered) {
@@ -221,6 +221,8 @@ ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z) {
                           ? constants<float>(s, geometry, n, f)
                           : constants<double>(s, geometry, n, f);
   pc.z = z;
+  const auto it = orientations.at.find(z);
+  if (it != orientations.at.end()) pc.orientations = it->second;
   return pc;
 }
 
@@ -246,7 +248,7 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
   const bool premult = s.pipeline.compose == Compose::premultiplied;
   if (s.pipeline.matrix_precision == MatrixPrecision::single) {
     const Mat<float> M =
-        model<float>(s, D, frame_orientation(s, pc.z, frame), plane_translation(s, D), tilt);
+        model<float>(s, D, frame_orientation(s, pc, frame), plane_translation(s, D), tilt);
     if (!premult) return to_row_major(M);
     Mat<float> P;
     for (int r = 0; r < 4; ++r)
@@ -254,7 +256,7 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
     return to_row_major(premultiplied(s, P, M));
   }
   const Mat<double> M =
-      model<double>(s, D, frame_orientation(s, pc.z, frame), plane_translation(s, D), tilt);
+      model<double>(s, D, frame_orientation(s, pc, frame), plane_translation(s, D), tilt);
   if (!premult) return to_row_major(M);
   Mat<double> P;  // the binary64 P, so P * MV is rounded once, at the end
   for (int r = 0; r < 4; ++r)
@@ -265,7 +267,7 @@ Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame
 Mat4d plane_world_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame,
                          double tilt) {
   return row_major_f64(
-      model<double>(s, D, frame_orientation(s, pc.z, frame), plane_translation(s, D), tilt));
+      model<double>(s, D, frame_orientation(s, pc, frame), plane_translation(s, D), tilt));
 }
 
 void append_plane_words(std::vector<float>& words, const Scene& s, const ProbeConstants& pc,
@@ -316,9 +318,9 @@ double plane_matrix_distance(const Scene& s, double D) {
                                                                 : model_distance<double>(D);
 }
 
-Mat4d model_matrix_f64(const Scene& s, double z, double D, int frame) {
+Mat4d model_matrix_f64(const Scene& s, const ProbeConstants& pc, double D, int frame) {
   // The geometry as the eye sees it, wherever the world is: the plane D in front of the camera.
-  return row_major_f64(model<double>(s, D, frame_orientation(s, z, frame), {0, 0, -D}));
+  return row_major_f64(model<double>(s, D, frame_orientation(s, pc, frame), {0, 0, -D}));
 }
 
 double seen_separation(double z, double s) {

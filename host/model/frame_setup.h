@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "host/model/matrix.h"
@@ -42,6 +43,13 @@ inline float object_row_dot(const Mat4f& m, int r, const float obj[4], VertexFor
   return mat_row_dot(m, r, obj);
 }
 
+// Orientations sampled at run time (worst-case sampling's rounds, host/mts/worst_case.h; no scene
+// file says them): per distance of plane A, the frames' angle triples. A distance not listed
+// takes the paper's path (frame_angles).
+struct Orientations {
+  std::map<double, std::vector<Angles>> at;
+};
+
 // Per-probe constants, packed as the kernels read them (interface/mts_layout.h: MTS_PROBE_STRIDE
 // floats, P then the C_* offsets).
 struct ProbeConstants {
@@ -59,11 +67,15 @@ struct ProbeConstants {
   // The eye's relative-to-eye parts (interface/relative_to_eye.h; MTS_C_EYE_HIGH_X, _LOW_X)
   std::array<float, 3> eye_high{}, eye_low{};
   double layer_near = 0, layer_far = 0;  // the sub-frustum used (layered), else near/far
-  double z = 0;  // plane A's distance: the frames' orientations are per distance (Scene)
+  double z = 0;  // plane A's distance: the frames' orientations are per distance (Orientations)
+  // The frames' angle triples at z where they are sampled (Orientations), else empty: the path
+  std::vector<Angles> orientations;
   std::array<float, MTS_PROBE_STRIDE> packed() const;
 };
 
-ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z);
+// orientations: the frames' sampled ones, where z has them; the paper's path elsewhere.
+ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z,
+                               const Orientations& orientations = {});
 
 // Whether the GPU applies the view matrix after the model matrix (the absolute transform away from
 // the world origin, compose separate): MTS_F_VIEW_TRANSLATE in the probe constants.
@@ -72,9 +84,9 @@ bool view_translated_on_gpu(const Scene& scene);
 // The rotation angles of frame k of the paper's path in radians (binary64; the animation input,
 // not GPU arithmetic).
 Angles frame_angles(const Scene& scene, int frame);
-// The rotation angles of frame k at plane A's distance z: the scene's orientations there, where
-// it lists them (worst-case sampling), else the path's.
-Angles frame_orientation(const Scene& scene, double z, int frame);
+// The rotation angles of frame k at plane A's distance pc.z: the sampled orientations the probe
+// constants carry (worst-case sampling), else the path's.
+Angles frame_orientation(const Scene& scene, const ProbeConstants& pc, int frame);
 
 // Model-view of a plane at requested distance D (binary64: z for plane A, z + s for plane B) in
 // frame k; with compose = premultiplied, P * MV instead. tilt (radians, `bias --tilt`) turns the
@@ -106,10 +118,10 @@ void plane_vertex_clip(const Scene& scene, const ProbeConstants& pc,
 // matrix in every frame.
 double plane_matrix_distance(const Scene& scene, double D);
 
-// The model-view of a plane at distance D in frame k of plane A's distance z in binary64, never
+// The model-view of a plane at distance D in frame k of plane A's distance pc.z in binary64, never
 // rounded, in eye space whatever world_position says (the plane D in front of the camera): the
 // exact geometry of the storage-limited pipeline. Row-major.
-Mat4d model_matrix_f64(const Scene& scene, double z, double D, int frame);
+Mat4d model_matrix_f64(const Scene& scene, const ProbeConstants& pc, double D, int frame);
 
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);

@@ -133,10 +133,6 @@ struct Scene {
   int stiffness_probes = 0;  // per side of each resolved MTS (docs/stability.md)
   Sampling sampling = Sampling::worst_case;
   WorstCaseSettings worst_case;
-  // Frames whose orientations are not the paper's path: per distance of plane A, `frames`
-  // angle triples (worst_case's rounds set them; no scene file does). A distance not listed
-  // takes the path (frame_angles).
-  std::map<double, std::vector<Angles>> orientations;
   Pipeline pipeline;
   TechniqueParams params;
   std::vector<EvalPair> evaluate;

@@ -16,10 +16,11 @@ namespace depthprec {
 using namespace mts_parts;
 
 MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                           bool shortcuts, Kernels kernels)
+                           const Orientations& orientations, bool shortcuts, Kernels kernels)
     : rt_(rt),
       scene_(scene),
       pair_(pair),
+      orientations_(orientations),
       variant_(mts_variant(scene, pair)),
       shortcuts_(shortcuts) {
   program_ = rt_.program(variant_.program, variant_.options);
@@ -155,7 +156,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     in_use[slot] = true;
     slots[i] = static_cast<cl_uint>(slot);
 
-    const ProbeConstants pc = probe_constants(scene_, pair_, z);
+    const ProbeConstants pc = probe_constants(scene_, pair_, z, orientations_);
     const auto packed = pc.packed();
     rt_.queue().enqueueWriteBuffer(a_.consts, CL_TRUE, sizeof(float) * kProbeStride * slot,
                                    sizeof(float) * kProbeStride, packed.data());  // packed is local
@@ -221,7 +222,7 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes,
   std::vector<cl_uint> slot_and_start(2 * active.size());
   for (size_t i = 0; i < active.size(); ++i) {
     const Probe& p = probes[active[i]];
-    const ProbeConstants pc = probe_constants(scene_, pair_, p.z);
+    const ProbeConstants pc = probe_constants(scene_, pair_, p.z, orientations_);
     const auto packed = pc.packed();
     std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
     const int start = first_visited[active[i]];

@@ -65,6 +65,11 @@ class MtsEvaluator : public ProbeEvaluator {
   // codes() and audit_coverage() need. Everything else runs from the production program.
   enum class Kernels { production, with_tests };
   MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair, bool shortcuts = true,
+               Kernels kernels = Kernels::production)
+      : MtsEvaluator(rt, scene, pair, Orientations{}, shortcuts, kernels) {}
+  // orientations: the frames' sampled ones where a distance has them (worst-case sampling).
+  MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+               const Orientations& orientations, bool shortcuts = true,
                Kernels kernels = Kernels::production);
 
   // A probe that repeats an earlier one's computation takes its result (probes_repeated).
@@ -178,6 +183,7 @@ class MtsEvaluator : public ProbeEvaluator {
   OpenClRuntime& rt_;
   const Scene& scene_;
   EvalPair pair_;
+  Orientations orientations_;
   KernelVariant variant_;
   // The kernel's bottom-left corner in window coordinates (the kernel is centred in the viewport).
   float origin_x() const { return static_cast<float>((scene_.viewport_w - scene_.kernel_w) / 2); }

@@ -13,8 +13,9 @@ namespace depthprec {
 
 namespace {}  // namespace
 
-ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair)
-    : rt_(rt), scene_(scene), pair_(pair) {
+ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                               const Orientations& orientations)
+    : rt_(rt), scene_(scene), pair_(pair), orientations_(orientations) {
   const Technique t = depth_path(scene, pair.technique);
   const TechniqueInfo& ti = info(t);
   const std::string options = fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}",
@@ -41,10 +42,10 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
       const Probe& pr = probes[active[i]];
       // the mapping's near and far ride in the spare centre.w slots: plane A's layer for
       // layered, so every probe of a launch keeps its own
-      const ProbeConstants pc = probe_constants(scene_, pair_, pr.z);
+      const ProbeConstants pc = probe_constants(scene_, pair_, pr.z, orientations_);
       for (int f = 0; f < frames; ++f)
         for (int p = 0; p < 2; ++p) {
-          const auto M = model_matrix_f64(scene_, pr.z, p == 0 ? pr.z : pr.z + pr.s, done + f);
+          const auto M = model_matrix_f64(scene_, pc, p == 0 ? pr.z : pr.z + pr.s, done + f);
           double* dst = planes.data() + ((i * frames + f) * 2 + p) * 16;
           for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 3; ++r)

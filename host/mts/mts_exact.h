@@ -3,6 +3,7 @@
 // z + s itself, not fl32(z + s) -- so a search over it measures what storage alone allows.
 #pragma once
 
+#include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/mts/probe.h"
 #include "host/runtime/opencl_runtime.h"
@@ -11,13 +12,16 @@ namespace depthprec {
 
 class ExactEvaluator : public ProbeEvaluator {
  public:
-  ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair);
+  // orientations: the frames' sampled ones where a distance has them (worst-case sampling).
+  ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                 const Orientations& orientations = {});
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
 
  private:
   OpenClRuntime& rt_;
   const Scene& scene_;
   EvalPair pair_;
+  Orientations orientations_;
   cl::Kernel kernel_;
 };
 

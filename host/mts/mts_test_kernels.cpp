@@ -66,7 +66,7 @@ CoverageAudit MtsEvaluator::audit_cached(const std::vector<Probe>& probes) {
 }
 
 FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
-  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z, orientations_);
   const auto packed = pc.packed();
   const cl::Buffer probe_buf =
       buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));

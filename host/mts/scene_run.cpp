@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <thread>
 
 #include "host/base/errors.h"
@@ -18,6 +19,19 @@ namespace depthprec {
 
 namespace {
 
+// The binary64 pipeline's evaluators (kernels/mts_exact.cl).
+class ExactSource : public EvaluatorSource<ProbeEvaluator> {
+ public:
+  ExactSource(OpenClRuntime& rt, const EvalPair& pair) : rt_(rt), pair_(pair) {}
+  std::unique_ptr<ProbeEvaluator> make(const Scene& scene, const Orientations& o) override {
+    return std::make_unique<ExactEvaluator>(rt_, scene, pair_, o);
+  }
+
+ private:
+  OpenClRuntime& rt_;
+  const EvalPair& pair_;
+};
+
 // The attribution factors of a pair's rows: the storage-limited MTS from the binary64 pipeline
 // (kernels/mts_exact.cl) and the arithmetic-limited MTS from the same binary32 pipeline storing
 // in float32, which holds every binary32 depth exactly (a float32 pair is its own). The factor
@@ -29,16 +43,9 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   plain.stiffness_probes = 0;
   std::vector<double> zs;
   for (const auto& r : rows) zs.push_back(r.z);
-  ExactEvaluator exact(rt, plain, pair);
-  auto storage = search_pair(exact, plain, pair, zs, {}, stop);
   // Under worst-case sampling each factor is its own worst case, as the MTS is.
-  if (scene.sampling == Sampling::worst_case)
-    refine_worst_case(
-        [&rt, &pair](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-          ExactEvaluator round_ev(rt, s, pair);
-          use(round_ev);
-        },
-        plain, pair, storage, stop);
+  ExactSource exact(rt, pair);
+  const auto storage = search_sampled(exact, plain, pair, zs, {}, stop);
   EvalPair raw = pair;
   raw.format = "float32";
   const bool is_raw = pair.format == "float32";
@@ -213,24 +220,29 @@ void SceneRun::job() {
 void SceneRun::compute(size_t p, const std::vector<double>& zs) {
   const EvalPair& pair = scene_.evaluate[p];
   const std::function<bool()> stop = [this] { return stop_requested(); };
-  const std::function<void(const MtsRow&)> on_row = [this](const MtsRow& r) { pass_on(r); };
-  const auto with_evaluator = [&](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-    MtsEvaluator ev(rt_, s, pair);
-    ev.share_plane_a_budget(jobs_);
-    if (jobs_ > 1) ev.prime_launches(prime_widths_, primer_);
-    use(ev);
-    add_stats(p, ev);
-  };
-  const bool worst_case = scene_.sampling == Sampling::worst_case;
-  const bool rows_later = control_.attribute || worst_case;
-  std::vector<MtsRow> rows;
-  with_evaluator(scene_, [&](ProbeEvaluator& ev) {
-    rows = search_pair(ev, scene_, pair, zs,
-                       rows_later ? std::function<void(const MtsRow&)>() : on_row, stop);
-  });
-  if (worst_case) refine_worst_case(with_evaluator, scene_, pair, rows, stop);
-  if (worst_case && !control_.attribute)
-    for (const auto& r : rows) pass_on(r);
+  // Attributed rows go to the journal once attributed.
+  std::function<void(const MtsRow&)> on_row;
+  if (!control_.attribute) on_row = [this](const MtsRow& r) { pass_on(r); };
+  // The run's evaluators: the plane-A budget shared between the jobs, launches primed, and
+  // their statistics the pair's.
+  class Source : public EvaluatorSource<ProbeEvaluator> {
+   public:
+    Source(SceneRun& run, size_t p) : run_(run), p_(p) {}
+    std::unique_ptr<ProbeEvaluator> make(const Scene& s, const Orientations& o) override {
+      auto ev = std::make_unique<MtsEvaluator>(run_.rt_, s, run_.scene_.evaluate[p_], o);
+      ev->share_plane_a_budget(run_.jobs_);
+      if (run_.jobs_ > 1) ev->prime_launches(run_.prime_widths_, run_.primer_);
+      return ev;
+    }
+    void retire(ProbeEvaluator& ev) override {
+      run_.add_stats(p_, static_cast<const MtsEvaluator&>(ev));  // as make built it
+    }
+
+   private:
+    SceneRun& run_;
+    size_t p_;
+  } source(*this, p);
+  std::vector<MtsRow> rows = search_sampled(source, scene_, pair, zs, on_row, stop);
   if (control_.attribute) {
     // The arithmetic cache makes a row's attribution depend on which pairs ran before it:
     // attribution runs one job (RunControl::jobs), so that order is the scene's.

@@ -32,7 +32,7 @@ std::vector<ProbeResult> BiasRenderer::run(const std::vector<BiasProbe>& probes)
 void BiasRenderer::draw(const BiasProbe& probe, int frame, const RenderEvaluator::Target& t) {
   RenderEvaluator& r = renderer_;
   const BiasOptions& o = options_;
-  const ProbeConstants pc = probe_constants(r.scene_, r.pair_, probe.z);
+  const ProbeConstants pc = probe_constants(r.scene_, r.pair_, probe.z, r.orientations_);
   const bool greater = info(depth_path(r.scene_, r.pair_.technique)).greater;
   const GLenum func =
       greater ? (o.or_equal ? GL_GEQUAL : GL_GREATER) : (o.or_equal ? GL_LEQUAL : GL_LESS);

@@ -35,8 +35,13 @@ void check_gl(const char* what) {
 
 }  // namespace
 
-RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair)
-    : gl_(gl), scene_(scene), pair_(pair), depth_(gl_depth_format(pair.format)) {
+RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair,
+                                 const Orientations& orientations)
+    : gl_(gl),
+      scene_(scene),
+      pair_(pair),
+      orientations_(orientations),
+      depth_(gl_depth_format(pair.format)) {
   check_renderable(scene);
   const std::string defines = shader_defines(scene, pair);
   program_ =
@@ -207,7 +212,7 @@ void RenderEvaluator::set_plane(const ProbeConstants& pc, double D, int frame, d
 }
 
 void RenderEvaluator::draw(const Probe& probe, int frame, const Target& t) {
-  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z);
+  const ProbeConstants pc = probe_constants(scene_, pair_, probe.z, orientations_);
   const bool greater = info(depth_path(scene_, pair_.technique)).greater;
   begin_frame(pc, t);
 
@@ -247,7 +252,7 @@ std::vector<uint8_t> RenderEvaluator::read(const Target& t) {
 }
 
 bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double tilt) const {
-  const ProbeConstants pc = probe_constants(scene_, pair_, z);
+  const ProbeConstants pc = probe_constants(scene_, pair_, z, orientations_);
   std::vector<float> words;
   append_plane_words(words, scene_, pc, D, frame, tilt);
   const bool gl = pair_.depth_range == DepthRange::gl;

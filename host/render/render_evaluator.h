@@ -29,7 +29,9 @@ namespace depthprec {
 class RenderEvaluator : public ProbeEvaluator {
  public:
   // Throws InputError when the driver cannot store the pair's format (listing what it can).
-  RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair);
+  // orientations: the frames' sampled ones where a distance has them (worst-case sampling).
+  RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair,
+                  const Orientations& orientations = {});
   ~RenderEvaluator() override;
   RenderEvaluator(const RenderEvaluator&) = delete;
   RenderEvaluator& operator=(const RenderEvaluator&) = delete;
@@ -83,6 +85,7 @@ class RenderEvaluator : public ProbeEvaluator {
   GlContext& gl_;
   const Scene& scene_;
   EvalPair pair_;
+  Orientations orientations_;
   GlDepthFormat depth_;
   unsigned program_ = 0, vao_ = 0, vbo_ = 0, ibo_ = 0, ibo_flipped_ = 0;
   unsigned world_vbo_ = 0;  // relative to eye: the vertices' high and low parts (set_plane)

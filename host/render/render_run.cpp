@@ -3,8 +3,9 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdint>
+#include <memory>
 
-#include "host/mts/mts_search.h"
 #include "host/mts/row_json.h"
 #include "host/mts/worst_case.h"
 #include "host/render/driver_settings.h"
@@ -12,6 +13,30 @@
 #include "host/render/render_evaluator.h"
 
 namespace depthprec {
+
+namespace {
+
+// The driver's evaluators on the one context; the frames they drew and their seconds, the pair's.
+class RenderSource : public EvaluatorSource<ProbeEvaluator> {
+ public:
+  RenderSource(GlContext& gl, const EvalPair& pair) : gl_(gl), pair_(pair) {}
+  std::unique_ptr<ProbeEvaluator> make(const Scene& scene, const Orientations& o) override {
+    return std::make_unique<RenderEvaluator>(gl_, scene, pair_, o);
+  }
+  void retire(ProbeEvaluator& ev) override {
+    const auto& r = static_cast<const RenderEvaluator&>(ev);  // as make built it
+    frames += r.frames_rendered();
+    seconds += r.seconds();
+  }
+  uint64_t frames = 0;  // over every evaluator
+  double seconds = 0;
+
+ private:
+  GlContext& gl_;
+  const EvalPair& pair_;
+};
+
+}  // namespace
 
 std::map<std::string, std::string> check_scene_renders(const Scene& scene) {
   check_renderable(scene);
@@ -46,35 +71,18 @@ MtsRun render_scene(GlContext& gl, const Scene& scene,
       if (!control.done.count(row_key(pair, scene.distances[d]))) zs.push_back(scene.distances[d]);
     }
     if (zs.empty()) continue;
-    RenderEvaluator ev(gl, scene, pair);
     const auto mark = [](MtsRow r) {
       r.frames_per_second = r.seconds > 0 ? static_cast<double>(r.frames) / r.seconds : 0;
       return r;
     };
-    const bool worst_case = scene.sampling == Sampling::worst_case;
-    uint64_t frames = 0;  // the pair's frames drawn (and their seconds), over every evaluator
-    double seconds = 0;
-    auto rows = search_pair(
-        ev, scene, pair, zs,
+    // The driver draws the worst case's rounds of orientations as the emulator samples them.
+    RenderSource source(gl, pair);
+    auto rows = search_sampled(
+        source, scene, pair, zs,
         [&](const MtsRow& r) {
-          if (control.on_row && !worst_case) control.on_row(mark(r));
+          if (control.on_row) control.on_row(mark(r));
         },
         control.stop);
-    frames += ev.frames_rendered();
-    seconds += ev.seconds();
-    // The driver draws the worst case's rounds of orientations as the emulator samples them.
-    if (worst_case) {
-      refine_worst_case(
-          [&](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-            RenderEvaluator round_ev(gl, s, pair);
-            use(round_ev);
-            frames += round_ev.frames_rendered();
-            seconds += round_ev.seconds();
-          },
-          scene, pair, rows, control.stop);
-      if (control.on_row)
-        for (const auto& r : rows) control.on_row(mark(r));
-    }
     for (auto& r : rows) {
       r = mark(r);
       run.info.fragment_pairs += r.fragment_pairs;
@@ -84,8 +92,9 @@ MtsRun render_scene(GlContext& gl, const Scene& scene,
       log(fmt::format(
           "{}: {} distances, {} frames rendered in {:.2f} s ({:.0f} frames/s), depth "
           "buffer {}",
-          pair.label(), rows.size(), frames, seconds,
-          seconds > 0 ? static_cast<double>(frames) / seconds : 0.0, ev.depth_format().given()));
+          pair.label(), rows.size(), source.frames, source.seconds,
+          source.seconds > 0 ? static_cast<double>(source.frames) / source.seconds : 0.0,
+          gl_depth_format(pair.format).given()));
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
   }
   sort_rows(scene, run.rows);

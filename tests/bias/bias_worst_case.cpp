@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <memory>
 
 #include "host/bias/bias_evaluator.h"
 #include "host/model/frame_setup.h"
@@ -29,18 +30,29 @@ TEST_CASE("bias answers under worst-case sampling hold in every orientation samp
   std::map<double, std::vector<Angles>> used;
   for (double z : scene.distances)
     for (int f = 0; f < scene.frames; ++f) used[z].push_back(frame_angles(scene, f));
-  const WithBiasEvaluator with = [&](const Scene& s,
-                                     const std::function<void(BiasEvaluator&)>& use) {
-    if (s.frames == scene.worst_case.round_size)
-      for (const auto& [z, list] : s.orientations)
-        used[z].insert(used[z].end(), list.begin(), list.end());
-    BiasEmulator ev(test::runtime(), s, pair, o);
-    use(ev);
-  };
+  // The emulated evaluators, noting the chunks' orientations.
+  struct Source : EvaluatorSource<BiasEvaluator> {
+    Source(const Scene& scene, const EvalPair& pair, const BiasOptions& o,
+           std::map<double, std::vector<Angles>>& used)
+        : scene_(scene), pair_(pair), o_(o), used_(used) {}
+    std::unique_ptr<BiasEvaluator> make(const Scene& s, const Orientations& sampled) override {
+      if (s.frames == scene_.worst_case.round_size)
+        for (const auto& [z, list] : sampled.at)
+          used_[z].insert(used_[z].end(), list.begin(), list.end());
+      return std::make_unique<BiasEmulator>(test::runtime(), s, pair_, o_, sampled);
+    }
+    const Scene& scene_;
+    const EvalPair& pair_;
+    const BiasOptions& o_;
+    std::map<double, std::vector<Angles>>& used_;
+  } source(scene, pair, o, used);
   std::vector<BiasAnswers> paper, worst;
-  with(scene, [&](BiasEvaluator& ev) { paper = search_bias(ev, scene, pair, o, scene.distances); });
+  {
+    const std::unique_ptr<BiasEvaluator> ev = source.make(scene, {});
+    paper = search_bias(*ev, scene, pair, o, scene.distances);
+  }
   worst = paper;
-  refine_bias_worst_case(with, scene, pair, o, scene.distances, worst);
+  refine_bias_worst_case(source, scene, pair, o, scene.distances, worst);
   int rose = 0;
   for (size_t k = 0; k < scene.distances.size(); ++k) {
     const double z = scene.distances[k];
@@ -52,8 +64,7 @@ TEST_CASE("bias answers under worst-case sampling hold in every orientation samp
     // One evaluator over every orientation used at z: the answer passes, one unit less fails.
     Scene all = scene;
     all.frames = static_cast<int>(used[z].size());
-    all.orientations = {{z, used[z]}};
-    BiasEmulator ev(test::runtime(), all, pair, o);
+    BiasEmulator ev(test::runtime(), all, pair, o, Orientations{{{z, used[z]}}});
     const double u = worst[k].units.value;
     const auto r = ev.run({bias_probe(all, pair, o, kBiasUnits, z, u),
                            bias_probe(all, pair, o, kBiasUnits, z, u - 1)});

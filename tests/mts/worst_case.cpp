@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 
 #include "host/model/frame_setup.h"
@@ -43,15 +44,22 @@ RefinedRows refine_rows(const Scene& scene, const EvalPair& pair) {
   out.rows = search_pair(paper, scene, pair, scene.distances);
   for (double z : scene.distances)
     for (int f = 0; f < scene.frames; ++f) out.used[z].push_back(frame_angles(scene, f));
-  const WithEvaluator with = [&](const Scene& s, const std::function<void(ProbeEvaluator&)>& use) {
-    // the chunks' orientations (an orientation searched alone is one of its chunk's)
-    if (s.frames == scene.worst_case.round_size)
-      for (const auto& [z, list] : s.orientations)
-        out.used[z].insert(out.used[z].end(), list.begin(), list.end());
-    MtsEvaluator ev(runtime(), s, pair);
-    use(ev);
-  };
-  refine_worst_case(with, scene, pair, out.rows);
+  // The emulator's evaluators, noting the chunks' orientations (an orientation searched alone is
+  // one of its chunk's).
+  struct Source : EvaluatorSource<ProbeEvaluator> {
+    Source(const Scene& scene, const EvalPair& pair, RefinedRows& out)
+        : scene_(scene), pair_(pair), out_(out) {}
+    std::unique_ptr<ProbeEvaluator> make(const Scene& s, const Orientations& sampled) override {
+      if (s.frames == scene_.worst_case.round_size)
+        for (const auto& [z, list] : sampled.at)
+          out_.used[z].insert(out_.used[z].end(), list.begin(), list.end());
+      return std::make_unique<MtsEvaluator>(runtime(), s, pair_, sampled);
+    }
+    const Scene& scene_;
+    const EvalPair& pair_;
+    RefinedRows& out_;
+  } source(scene, pair, out);
+  refine_worst_case(source, scene, pair, out.rows);
   return out;
 }
 
@@ -111,8 +119,7 @@ TEST_CASE("the refined worst case agrees with one search over every orientation 
       CHECK(r.orientations == used.size());
       Scene brute = scene;
       brute.frames = static_cast<int>(used.size());
-      brute.orientations = {{r.z, used}};
-      MtsEvaluator ev(runtime(), brute, pair);
+      MtsEvaluator ev(runtime(), brute, pair, Orientations{{{r.z, used}}});
       const MtsRow b = search_pair(ev, brute, pair, {r.z})[0];
       REQUIRE(b.verdict() == Verdict::resolved);
       // Both brackets hold the separation where the union of orientations stops fighting.
@@ -173,14 +180,16 @@ TEST_CASE("the evaluator's shortcuts change no probe result over a round's orien
   const std::vector<Angles> chunk = round_orientations(scene, 1);
   scene.frames = static_cast<int>(chunk.size());
   std::vector<Probe> probes;
+  Orientations sampled;
   for (double z : {1.005, 30.0, 3000.0, 2e6}) {
-    scene.orientations[z] = chunk;
+    sampled.at[z] = chunk;
     for (double f = 1.0; f > 1e-9; f /= 8) probes.push_back({z, z * f});
   }
   for (const EvalPair& pair : {EvalPair{Technique::standard, "unorm24", DepthRange::gl},
                                EvalPair{Technique::reversed, "float32", DepthRange::zero_to_one},
                                EvalPair{Technique::log_fragment, "unorm24", DepthRange::gl}}) {
-    MtsEvaluator with(runtime(), scene, pair), without(runtime(), scene, pair, false);
+    MtsEvaluator with(runtime(), scene, pair, sampled),
+        without(runtime(), scene, pair, sampled, false);
     const auto a = with.run(probes), b = without.run(probes);
     int fights = 0;
     for (size_t k = 0; k < probes.size(); ++k) {
