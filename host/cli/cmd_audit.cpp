@@ -36,9 +36,9 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
                                     {"the scene file", o.scene.scene_file}};
   for (NamedInput& in : gltf_inputs(o.file)) inputs.push_back(std::move(in));
   check_output_spares_inputs("-o", o.out.output, inputs);
-  SessionOptions session{o.file,      o.source,
-                         o.gl_device, png_prefix(o.png, o.file),
-                         !o.no_fixes, !g.quiet && stderr_is_terminal()};
+  SessionOptions run_options{o.file,      o.source,
+                             o.gl_device, png_prefix(o.png, o.file),
+                             !o.no_fixes, !g.quiet && stderr_is_terminal()};
   check_view_options(o.views);
   if (o.source != "emulated" && o.source != "rendered")
     throw Error(ExitCode::usage, "--source: emulated or rendered");
@@ -53,7 +53,7 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
                        [](const EvalPair& p) { return p.technique == Technique::layered; }),
         scene.evaluate.end());
   check_writable(o.out.output);
-  check_png_names(session.png, scene.evaluate, inputs);
+  check_png_names(run_options.png, scene.evaluate, inputs);
   std::unique_ptr<OpenClRuntime> rt;
   if (!o.reference || !o.no_fixes) rt = std::make_unique<OpenClRuntime>(g.device);
   AuditRequest req;
@@ -61,8 +61,8 @@ void run_audit(AuditOptions o, const GlobalOptions& g) {
   req.reference = o.reference;
   AuditReport report;
   report.geometry = &geometry;
-  report.header = audit_header(session, geometry, views, scene, rt ? rt->description() : "");
-  const bool complete = run_setups(rt.get(), scene, geometry, req, session, report);
+  report.header = audit_header(run_options, geometry, views, scene, rt ? rt->description() : "");
+  const bool complete = run_setups(rt.get(), scene, geometry, req, run_options, report);
   const size_t finished = report.setups.size(), planned = scene.evaluate.size();
   if (!complete && finished == 0)
     throw Error(ExitCode::interrupted,
