@@ -85,7 +85,7 @@ WindowError window_error(const Scene& s, const ProbeConstants& pc, bool depth_fr
   // and q's errors and rounds once, the viewport transform rounds twice.
   const double hw = 0.5 * s.viewport_w, hh = 0.5 * s.viewport_h;
   const auto ndc = [&](double v, double ev) {
-    return std::fabs(q) * ev + std::fabs(v) * eq + gamma(1) * std::fabs(v * q) * 1.01;
+    return aq * ev + std::fabs(v) * eq + gamma(1) * std::fabs(v * q) * 1.01;
   };
   const double xn = c[0] * q, yn = c[1] * q, zn = c[2] * q;
   out.x = hw * xn + hw;
@@ -112,7 +112,7 @@ WindowError window_error(const Scene& s, const ProbeConstants& pc, bool depth_fr
 // measured, 3.84 ulp), plus 12 u |D'(w)| max(w, 1) for the roundings of its argument (k w + 1,
 // w + 1, (w - n) + 1: each within a few u of max(w, 1)); the input's error through the slope.
 struct ShaderDepth {
-  double d, slope, err;
+  double d, err;
 };
 ShaderDepth shader_depth(const Scene& s, const EvalPair& pair, double w, double ew) {
   const auto D = [&](double x) {
@@ -126,7 +126,7 @@ ShaderDepth shader_depth(const Scene& s, const EvalPair& pair, double w, double 
   // bends (a log's curvature over 10^-7 of w changes the slope by far less).
   const double err = 1.5 * slope * ew + 9 * kU * std::fabs(d) +
                      12 * kU * 1.5 * slope * std::max(std::fabs(w), 1.0);
-  return {d, slope, err};
+  return {d, err};
 }
 
 // The plane through three window vertices (x_i, y_i, v_i) with errors, over the pixels the

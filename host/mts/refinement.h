@@ -21,6 +21,8 @@
 
 namespace depthprec {
 
+class OpenClRuntime;
+
 // Where the refinement's evaluators come from: the caller's kind of evaluator (emulated, exact,
 // rendered), built and accounted as the caller's own. The scene outlives the evaluator.
 template <class Evaluator>
@@ -32,6 +34,22 @@ class EvaluatorSource {
   virtual std::unique_ptr<Evaluator> make(const Scene& scene, const Orientations& orientations) = 0;
   // Takes the evaluator's statistics once it has run.
   virtual void retire(Evaluator& evaluator) { (void)evaluator; }
+};
+
+// The evaluators a constructor Concrete(runtime, scene, pair, orientations) makes for one pair,
+// nobody's accounts kept: the emulator's (search_sampled) and the binary64 pipeline's
+// (attribution).
+template <class Evaluator, class Concrete>
+class PairSource : public EvaluatorSource<Evaluator> {
+ public:
+  PairSource(OpenClRuntime& rt, const EvalPair& pair) : rt_(rt), pair_(pair) {}
+  std::unique_ptr<Evaluator> make(const Scene& scene, const Orientations& o) override {
+    return std::make_unique<Concrete>(rt_, scene, pair_, o);
+  }
+
+ private:
+  OpenClRuntime& rt_;
+  const EvalPair& pair_;
 };
 
 // A measurement under refinement. Items are what converges (a row, a distance), slots the answers

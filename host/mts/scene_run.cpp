@@ -19,19 +19,6 @@ namespace depthprec {
 
 namespace {
 
-// The binary64 pipeline's evaluators (kernels/mts_exact.cl).
-class ExactSource : public EvaluatorSource<ProbeEvaluator> {
- public:
-  ExactSource(OpenClRuntime& rt, const EvalPair& pair) : rt_(rt), pair_(pair) {}
-  std::unique_ptr<ProbeEvaluator> make(const Scene& scene, const Orientations& o) override {
-    return std::make_unique<ExactEvaluator>(rt_, scene, pair_, o);
-  }
-
- private:
-  OpenClRuntime& rt_;
-  const EvalPair& pair_;
-};
-
 // The attribution factors of a pair's rows: the storage-limited MTS from the binary64 pipeline
 // (kernels/mts_exact.cl) and the arithmetic-limited MTS from the same binary32 pipeline storing
 // in float32, which holds every binary32 depth exactly (a float32 pair is its own). The factor
@@ -44,7 +31,7 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   std::vector<double> zs;
   for (const auto& r : rows) zs.push_back(r.z);
   // Under worst-case sampling each factor is its own worst case, as the MTS is.
-  ExactSource exact(rt, pair);
+  PairSource<ProbeEvaluator, ExactEvaluator> exact(rt, pair);
   const auto storage = search_sampled(exact, plain, pair, zs, {}, stop);
   EvalPair raw = pair;
   raw.format = "float32";

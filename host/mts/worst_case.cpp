@@ -140,19 +140,6 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
   std::vector<double> before_;
 };
 
-// The emulator's evaluators, as search_sampled builds them.
-class EmulatorSource : public EvaluatorSource<ProbeEvaluator> {
- public:
-  EmulatorSource(OpenClRuntime& rt, const EvalPair& pair) : rt_(rt), pair_(pair) {}
-  std::unique_ptr<ProbeEvaluator> make(const Scene& scene, const Orientations& o) override {
-    return std::make_unique<MtsEvaluator>(rt_, scene, pair_, o);
-  }
-
- private:
-  OpenClRuntime& rt_;
-  const EvalPair& pair_;
-};
-
 }  // namespace
 
 void refine_worst_case(EvaluatorSource<ProbeEvaluator>& source, const Scene& scene,
@@ -190,7 +177,7 @@ std::vector<MtsRow> search_sampled(EvaluatorSource<ProbeEvaluator>& source, cons
 std::vector<MtsRow> search_sampled(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                                    const std::vector<double>& distances,
                                    const std::function<bool()>& stop) {
-  EmulatorSource source(rt, pair);
+  PairSource<ProbeEvaluator, MtsEvaluator> source(rt, pair);
   return search_sampled(source, scene, pair, distances, {}, stop);
 }
 
