@@ -9,6 +9,7 @@
 
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
+#include "host/mts/mts_bound.h"
 
 namespace depthprec {
 
@@ -55,6 +56,9 @@ json row_to_json(const MtsRow& r, bool timing) {
   j.update({{"source", to_string(r.source)},
             {"z", r.z},
             {"mts", number(r.mts)},
+            {"mts_bound", number(r.mts_bound)},
+            {"bound_model", kBoundModel},
+            {"bound_by", r.bound_note},
             {"mts_paper", number(r.mts_paper)},
             {"orientations", r.orientations},
             {"convergence", r.convergence},
@@ -127,6 +131,9 @@ MtsRow row_from_json(const json& j) {
   }
   r.z = read_number(j, "z");
   r.mts = read_number(j, "mts");
+  if (j.contains("mts_bound") && !j.at("mts_bound").is_null())
+    r.mts_bound = read_number(j, "mts_bound");
+  r.bound_note = j.value("bound_by", "");
   r.mts_paper = j.contains("mts_paper") ? read_number(j, "mts_paper") : r.mts;
   r.orientations = j.contains("orientations") ? read_count<uint64_t>(j, "orientations") : 0;
   r.convergence = j.contains("convergence") ? read_number(j, "convergence") : 0;

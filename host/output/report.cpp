@@ -16,29 +16,15 @@
 #include "host/base/errors.h"
 #include "host/base/version.h"
 #include "host/model/frame_setup.h"
+#include "host/mts/mts_bound.h"
 #include "host/mts/row_json.h"
+#include "host/output/bound_table.h"
 #include "host/output/json_header.h"
 #include "host/output/text_table.h"
 
 namespace depthprec {
 
 using nlohmann::json;
-
-std::string human(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  if (std::isnan(v)) return "nan";
-  if (v == 0) return "0";
-  return fmt::format("{:.4g}", v);
-}
-
-std::string exact(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return fmt::format("{:.17g}", v);
-}
-
-std::string number_cell(double v, const std::string& format, const char* text) {
-  return format == "csv" ? exact(v) : fmt::format(fmt::runtime(text), v);
-}
 
 namespace {
 
@@ -154,6 +140,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
                               {"depth_range", true},
                               {"z"},
                               {"mts"},
+                              {"mts_bound"},
                               {"lo"},
                               {"hi"},
                               {"mts_seen"},
@@ -175,7 +162,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
   // Worst-case sampling: the paper's frames' answer and how far the worst case converged, after
   // the MTS (docs/cli.md, "Reading a worst-case row").
   const bool worst_case = scene.sampling == Sampling::worst_case;
-  const size_t sampling_at = rendered ? 6 : 5;  // after mts
+  const size_t sampling_at = rendered ? 7 : 6;  // after mts and mts_bound
   if (worst_case)
     cols.insert(cols.begin() + static_cast<long>(sampling_at),
                 {{"mts_paper"}, {"orientations"}, {"convergence"}});
@@ -187,6 +174,8 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
     cols.push_back({"kernel_s"});
     if (rendered) cols.push_back({"frames/s"});
   }
+  if (full) cols.push_back({"bound_model", true});
+  cols.push_back({"bound_by", true});
   cols.push_back({"flags", true});
   std::vector<std::vector<std::string>> cells;
   for (const auto& r : rows) {
@@ -195,6 +184,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
                                   to_string(r.pair.depth_range),
                                   num(r.z),
                                   num(r.mts),
+                                  bound_cell(r, full),
                                   num(r.lo),
                                   num(r.hi),
                                   num(r.mts_seen),
@@ -222,6 +212,8 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
       c.push_back(number_cell(r.kernel_seconds, format, "{:.3f}"));
       if (rendered) c.push_back(full ? exact(r.frames_per_second) : human(r.frames_per_second));
     }
+    if (full) c.push_back(kBoundModel);
+    c.push_back(r.bound_note);
     c.push_back(r.flags());
     cells.push_back(c);
   }
@@ -265,6 +257,7 @@ std::vector<Column> wide_columns(const WideTable& t) {
   std::vector<Column> cols = {{"z"}, {"vertex_bound"}};
   for (const auto& l : t.labels) {
     cols.push_back({l});
+    if (t.full) cols.push_back({l + " mts_bound"});
     if (t.full) cols.push_back({l + " flags"});
     if (t.full && t.attributed) cols.push_back({l + " dominant"});
     if (t.full && t.worst_case) {
@@ -277,13 +270,13 @@ std::vector<Column> wide_columns(const WideTable& t) {
 
 void add_csv_cells(const WideTable& t, const MtsRow* r, std::vector<std::string>& c) {
   if (!r) {
-    c.push_back("");
-    c.push_back("");
+    c.insert(c.end(), {"", "", ""});
     if (t.attributed) c.push_back("");
     if (t.worst_case) c.insert(c.end(), {"", ""});
     return;
   }
   c.push_back(table_cell(*r, true));
+  c.push_back(bound_cell(*r, true));
   c.push_back(r->flags());
   if (t.attributed) c.push_back(r->dominant);
   if (t.worst_case) c.insert(c.end(), {exact(r->mts_paper), convergence_cell(*r, true)});
@@ -396,6 +389,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   out += grid(wide_columns(t), cells, md);
   out += flagged_cells(marks.marked, md);
   out += mark_legends(marks, scene, md);
+  out += bound_grid(scene, rows, md);
   if (t.attributed) out += attribution_section(scene, rows, md);
   out += (md ? "\n" : "") + footer(run) + "\n";
   return md ? out : wrap_text(out);

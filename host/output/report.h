@@ -10,17 +10,9 @@
 #include "host/model/scene.h"
 #include "host/mts/mts_row.h"
 #include "host/mts/run_info.h"
+#include "host/output/text_table.h"  // human, exact, number_cell
 
 namespace depthprec {
-
-std::string human(double v);  // 4 significant digits, "inf", "0"
-std::string exact(double v);  // round-trippable binary64
-// A number as `format` prints it: exact in CSV (a data format), in text and Markdown as human()
-// does or as the fmt spec `text` says ("{:.3f}").
-inline std::string number_cell(double v, const std::string& format) {
-  return format == "csv" ? exact(v) : human(v);
-}
-std::string number_cell(double v, const std::string& format, const char* text);
 
 // A table cell: the MTS, or the verdict that replaces it (unresolvable stays "inf", Gilg's ∞);
 // exact digits when full, else 4 significant ones.

@@ -3,8 +3,25 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace depthprec {
+
+std::string human(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (std::isnan(v)) return "nan";
+  if (v == 0) return "0";
+  return fmt::format("{:.4g}", v);
+}
+
+std::string exact(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return fmt::format("{:.17g}", v);
+}
+
+std::string number_cell(double v, const std::string& format, const char* text) {
+  return format == "csv" ? exact(v) : fmt::format(fmt::runtime(text), v);
+}
 
 // Aligned text or Markdown from a header and string cells.
 namespace {

@@ -7,6 +7,15 @@
 
 namespace depthprec {
 
+std::string human(double v);  // 4 significant digits, "inf", "0"
+std::string exact(double v);  // round-trippable binary64
+// A number as `format` prints it: exact in CSV (a data format), in text and Markdown as human()
+// does or as the fmt spec `text` says ("{:.3f}").
+inline std::string number_cell(double v, const std::string& format) {
+  return format == "csv" ? exact(v) : human(v);
+}
+std::string number_cell(double v, const std::string& format, const char* text);
+
 struct Column {
   std::string name;
   bool left = false;  // left-aligned (names), else right-aligned (numbers)

@@ -27,14 +27,14 @@ TEST_CASE("mts prints one row per pair and distance with the fields of docs/spec
   std::string header, line;
   std::getline(lines, header);
   CHECK(header ==
-        "technique,format,depth_range,z,mts,mts_paper,orientations,convergence,lo,hi,mts_seen,"
-        "vertex_bound,mts/vb,mts_upper,verdict,probes,frames,"
-        "fragment_pairs,launches,seconds,kernel_s,flags");
+        "technique,format,depth_range,z,mts,mts_bound,mts_paper,orientations,convergence,lo,hi,"
+        "mts_seen,vertex_bound,mts/vb,mts_upper,verdict,probes,frames,"
+        "fragment_pairs,launches,seconds,kernel_s,bound_model,bound_by,flags");
   // Under the paper's sampling the worst-case columns are left out, as before it existed.
   const auto paper =
       run_cli("mts -t standard -f unorm24 --format-out csv --set sampling=paper " + kSmallOptions);
   REQUIRE(paper.exit_code == 0);
-  CHECK(paper.output.rfind("technique,format,depth_range,z,mts,lo,hi,", 0) == 0);
+  CHECK(paper.output.rfind("technique,format,depth_range,z,mts,mts_bound,lo,hi,", 0) == 0);
   std::vector<std::string> rows;
   while (std::getline(lines, line)) {
     if (line.empty()) continue;
@@ -65,9 +65,11 @@ TEST_CASE("table in every output format", "[cli][table]") {
   const auto csv = run_cli(args + "--format-out csv");
   REQUIRE(csv.exit_code == 0);
   // The header is the first line; each pair's flags are a column beside its MTS.
-  CHECK(csv.output.rfind("z,vertex_bound,linear/unorm16/gl,linear/unorm16/gl flags,"
+  CHECK(csv.output.rfind("z,vertex_bound,linear/unorm16/gl,linear/unorm16/gl mts_bound,"
+                         "linear/unorm16/gl flags,"
                          "linear/unorm16/gl mts_paper,linear/unorm16/gl convergence,"
-                         "w_buffer/unorm16/gl,w_buffer/unorm16/gl flags,"
+                         "w_buffer/unorm16/gl,w_buffer/unorm16/gl mts_bound,"
+                         "w_buffer/unorm16/gl flags,"
                          "w_buffer/unorm16/gl mts_paper,w_buffer/unorm16/gl convergence\n",
                          0) == 0);
   CHECK_THAT(csv.output, Contains(",below_one_code,"));

@@ -1,0 +1,47 @@
+// The guaranteed MTS's error terms for one row at one separation (docs/mts.md "The guaranteed
+// bound"): each term summed over both planes, and its share of the exact gap, to see which term a
+// bound is loose in.
+//   build/bench/bound_terms [--set key=value ...] PAIR_INDEX Z S
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "host/mts/bound_plane.h"
+#include "host/mts/mts_bound.h"
+
+using namespace depthprec;
+
+int main(int argc, char** argv) {
+  std::vector<std::string> sets, args;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--set" && i + 1 < argc)
+      sets.push_back(argv[++i]);
+    else
+      args.push_back(argv[i]);
+  }
+  if (args.size() != 3) {
+    fmt::print(stderr, "usage: bound_terms [--set key=value ...] PAIR_INDEX Z S\n");
+    return 2;
+  }
+  const Scene s = load_scene("", sets);
+  const EvalPair p = s.evaluate.at(std::stoul(args[0]));
+  const double z = std::stod(args[1]), sep = std::stod(args[2]);
+  const bound::RowModel m = bound::row_model(s, p, z);
+  const bound::PlaneGeometry gA = bound::plane_geometry(m, bound::geometry_distance(m, z));
+  const bound::PlaneGeometry gB = bound::plane_geometry(m, bound::geometry_distance(m, z + sep));
+  const bound::DepthError eA = bound::depth_error(m, gA), eB = bound::depth_error(m, gB);
+  const double lm1 = (gB.D - gA.D) / gA.D;
+  const double gap =
+      std::min(bound::exact_gap(m, lm1, gA.wp_lo), bound::exact_gap(m, lm1, gA.wp_hi));
+  fmt::print("{} z={} s={}: exact gap {:.4g}, pixel w [{:.9g}, {:.9g}]\n", p.label(), z, sep, gap,
+             gA.wp_lo, gA.wp_hi);
+  for (int t = 0; t < bound::kTermCount; ++t)
+    fmt::print("  {:<14} {:.4g} ({:.3f} of the gap)\n", bound::term_name(t),
+               eA.term[t] + eB.term[t], (eA.term[t] + eB.term[t]) / gap);
+  const MtsBound b = mts_bound(s, p, z);
+  fmt::print("bound holds at s: {}; mts_bound {} ({})\n", bound_holds(s, p, z, sep), b.s,
+             b.s == b.s ? b.dominant : b.why);
+}

@@ -1,0 +1,57 @@
+// What the guaranteed MTS (host/mts/mts_bound.h) knows of a plane of the measurement over the whole
+// rotation cube: ranges of eye distance at its vertices and at the kernel's pixel centres, and the
+// exact depth maps and gaps the error bounds are held against (docs/mts.md "The guaranteed bound").
+#pragma once
+
+#include "host/base/binary32_error.h"
+#include "host/model/frame_setup.h"
+#include "host/model/scene.h"
+#include "host/model/storage_format.h"
+#include "host/model/technique.h"
+
+namespace depthprec::bound {
+
+// Everything about a row that does not depend on the separation.
+struct RowModel {
+  const Scene* scene = nullptr;
+  EvalPair pair;
+  ProbeConstants pc;  // plane A's constants: P in the matrix precision, the shaders' constants
+  TechniqueInfo ti;   // the depth path's (layered: its layer mapping's)
+  StorageFormat format;
+  binary32_error::Rounding rounding;
+  double a = 0, b = 0;  // the third row of the P the depths follow: z_clip = a e_z + b
+  double scale = 1;     // window depth = scale z_ndc + (1 - scale): 0.5 under gl, else 1
+  double P00 = 0, P11 = 0;
+  double sin_tilt = 0, tan_tilt = 0;  // bounds over the cube (widened, docs/mts.md)
+  double xn_max = 0, yn_max = 0;      // |x_ndc|, |y_ndc| of the kernel's pixel centres
+  double sign = 1;                    // +1 where plane B must store the larger depth
+  bool premultiplied = false, fragment = false, vertex_log = false;
+};
+
+// The row's model; throws InputError where the bound model has none (its message says why).
+RowModel row_model(const Scene& scene, const EvalPair& pair, double z);
+
+// A plane at eye distance D over the cube.
+struct PlaneGeometry {
+  double D = 0, side = 0;
+  double wv_lo = 0, wv_hi = 0;  // w at any vertex (and any point of the plane's square)
+  double wp_lo = 0, wp_hi = 0;  // w at any pixel centre of the kernel
+  double lateral = 0;           // |e_x|, |e_y| at any vertex
+};
+PlaneGeometry plane_geometry(const RowModel& m, double D);
+
+// The distance a plane requested at D is built at: plane_matrix_distance at the world origin
+// (the binary32 D under float matrices), D itself away from it (its translation's rounding is a
+// vertex error there).
+double geometry_distance(const RowModel& m, double D);
+
+// The exact window depth of eye distance w as the row's pipeline means it (with its binary32
+// constants: P's entries, the shaders' L, FC, ...), and its largest slope |dF/dw| over [lo, hi].
+double exact_depth(const RowModel& m, double w);
+double depth_slope(const RowModel& m, double lo, double hi);
+
+// The exact gap sign (F(lambda w) - F(w)) between plane B (lambda = D_B / D_A) and plane A at a
+// pixel where A's distance is w, in forms that keep its digits when lambda is close to 1.
+double exact_gap(const RowModel& m, double lambda_minus_one, double w);
+
+}  // namespace depthprec::bound

@@ -1,0 +1,332 @@
+#include "host/mts/bound_plane.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace depthprec::bound {
+
+namespace {
+
+namespace b32 = binary32_error;
+constexpr double kU = 0x1.0p-24;
+
+struct Clip4 {
+  double x = 0, y = 0, z = 0, w = 0;
+};
+
+double hu(const RowModel& m, double magnitude) {
+  return m.rounding.half_ulp(magnitude);
+}
+
+// (1) The vertex stage. A vertex is M v, v = (x, y, 0, 1) with |x|, |y| <= 0.5, M = T R~ S the
+// application's model-view: columns R~ side (|M_r0|, |M_r1| <= side for rows 0, 1 and
+// side sqrt(2) sin r for row 2), translation (0, 0, -D) at the world origin. The exact geometry is
+// the planes built from the same R~ at D_A and D_B (parallel, B = A scaled about the eye), so what
+// this bounds is how far each computed eye coordinate lies from that geometry's:
+// - the columns' entries, R~ side rounded once each (a binary32 product, or binary64 rounded):
+//   half_ulp(column) each, times |x|, |y| <= 0.5;
+// - the translation: exact at the origin (D is the binary32 distance, geometry_distance); away
+//   from it rounded once (absolute: world + centre; camera_relative: a binary64 difference first,
+//   within 2^-52 of its operands);
+// - the row itself, ((m0 x + m1 y) + m2 0) + m3, in any association, fused or not (row_rounding);
+// - under the absolute transform away from the origin, the view's translation, rounded once, and
+//   its sum with the model's product.
+// relative_to_eye forms the eye offset in emulated double-single arithmetic from binary64 world
+// positions: within 4 u of the offset and 2^-46 of the world coordinate (interface/relative_to_eye.h),
+// doubled here. Premultiplied matrices have no eye stage: only binary32 M~'s entries carry over.
+std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
+  const Scene& s = *m.scene;
+  const Pipeline& p = s.pipeline;
+  const auto& W = s.world_position;
+  std::array<double, 3> out{};
+  for (int r = 0; r < 3; ++r) {
+    const double e_max = r < 2 ? g.lateral : g.wv_hi;
+    if (p.transform == Transform::relative_to_eye) {
+      out[r] = 8 * hu(m, e_max) + 0x1.0p-45 * (std::fabs(W[r]) + e_max);
+      continue;
+    }
+    const double column = r < 2 ? g.side : g.side * std::sqrt(2.0) * m.sin_tilt;
+    double entries = 2 * 0.5 * hu(m, column);
+    double t = r == 2 ? g.D : 0.0;
+    if (!s.at_world_origin()) {
+      if (p.transform == Transform::camera_relative) {
+        entries += 0x1.0p-52 * 2 * (std::fabs(W[r]) + g.D) + hu(m, t);
+      } else {
+        t = std::fabs(W[r]) + t;
+        entries += hu(m, t);
+      }
+    }
+    if (m.premultiplied) {
+      out[r] = p.matrix_precision == MatrixPrecision::single ? entries * b32::kMargin : 0.0;
+      continue;
+    }
+    double sum = entries + b32::row_rounding(m.rounding, {{0.5 * column, false},
+                                                          {0.5 * column, false},
+                                                          {t, true}});
+    if (view_translated_on_gpu(s)) sum += hu(m, std::fabs(W[r])) + hu(m, e_max + std::fabs(W[r]));
+    out[r] = sum * b32::kMargin;
+  }
+  return out;
+}
+
+// (2) The clip coordinates: each computed from the computed eye position (or, premultiplied, the
+// object position) by a row of binary32 P (P * MV), against the exact product of that row with
+// the same input:
+// - separate: x = P00 e_x, y = P11 e_y (one product each, sums with zeros exact), z = a e_z + b
+//   (a product unless a is a power of two, and one sum), w = -e_z exactly;
+// - premultiplied: P * MV's entries rounded (binary32: a e_z's product and sum for the
+//   translation, one product elsewhere, -M's entries exact in the w row; binary64: each rounded
+//   once), then each row of three terms (row_rounding); w then carries rounding of its own;
+// - llvmpipe's clip stage (in the model whatever the row's pipeline says; the planes cross the
+//   x and y planes of the clip volume): a vertex made on a clip plane is out + t (in - out) per
+//   coordinate with one t, so t's own error keeps it on the computed edge, in the computed
+//   triangle's plane; the difference, the product and the sum round once each, at most
+//   |in - out| twice and |c| once, for each of the (at most two) planes a corner vertex crosses;
+//   the ends' errors carry through the convex combination at most as the larger.
+Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
+  const b32::Rounding& R = m.rounding;
+  const double aa = std::fabs(m.a), ab = std::fabs(m.b);
+  const double zc_max = std::max(std::fabs(-m.a * g.wv_lo + m.b), std::fabs(-m.a * g.wv_hi + m.b));
+  const double xc_max = m.P00 * g.lateral, yc_max = m.P11 * g.lateral;
+  Clip4 c;
+  if (!m.premultiplied) {
+    c.x = b32::row_rounding(R, {{xc_max, b32::exact_factor(m.P00)}});
+    c.y = b32::row_rounding(R, {{yc_max, b32::exact_factor(m.P11)}});
+    c.z = b32::row_rounding(R, {{aa * g.wv_hi, b32::exact_factor(m.a)}, {ab, true}});
+  } else {
+    const bool single = m.scene->pipeline.matrix_precision == MatrixPrecision::single;
+    const double zcol = g.side * std::sqrt(2.0) * m.sin_tilt;
+    c.x = hu(m, m.P00 * g.side) + b32::row_rounding(R, {{0.5 * xc_max, false}, {0.5 * xc_max, false}});
+    c.y = hu(m, m.P11 * g.side) + b32::row_rounding(R, {{0.5 * yc_max, false}, {0.5 * yc_max, false}});
+    c.z = hu(m, aa * zcol) + (single ? hu(m, aa * g.D) : 0.0) + hu(m, aa * g.D + ab) +
+          b32::row_rounding(R, {{0.5 * aa * zcol, false}, {0.5 * aa * zcol, false},
+                                {aa * g.D + ab, true}});
+    c.w = (single ? 0.0 : hu(m, zcol) + hu(m, g.D)) +
+          b32::row_rounding(R, {{0.5 * zcol, false}, {0.5 * zcol, false}, {g.D, true}});
+  }
+  const double dw = g.wv_hi - g.wv_lo;
+  c.x += 2 * (2 * hu(m, 2 * xc_max) + hu(m, xc_max));
+  c.y += 2 * (2 * hu(m, 2 * yc_max) + hu(m, yc_max));
+  c.z += 2 * (2 * hu(m, aa * dw) + hu(m, zc_max));
+  c.w += 2 * (2 * hu(m, dw) + hu(m, g.wv_hi));
+  c.x *= b32::kMargin;
+  c.y *= b32::kMargin;
+  c.z *= b32::kMargin;
+  c.w *= b32::kMargin;
+  return c;
+}
+
+// A shader's log (or log2): OpenCL's within 3 ulp, llvmpipe's within 3.84 (ln) and 3.60 (log2)
+// ulp over every binary32 argument >= 1 (docs/mts.md, "Techniques"): 4 ulp, 8 half-ulps.
+constexpr double kLogHalfUlps = 8;
+
+// (3) A shader's own arithmetic from an exact w in [lo, hi] to the depth it writes (the input's
+// error enters through the slope, depth_slope): every step a binary32 operation within half an ulp
+// of its result, the log within kLogHalfUlps; a quotient by a constant as a division or as a
+// product with its reciprocal (two roundings).
+double shader_own(const RowModel& m, double lo, double hi) {
+  const ProbeConstants& pc = m.pc;
+  const double f_max = std::max(std::fabs(exact_depth(m, lo)), std::fabs(exact_depth(m, hi)));
+  switch (m.ti.fragment) {
+    case FragmentDepth::linear:
+      return hu(m, hi - pc.near) / pc.range + 2 * hu(m, f_max);
+    case FragmentDepth::w_buffer:
+      return 2 * hu(m, f_max);
+    case FragmentDepth::threejs_log: {
+      // fl(fl(log2(fl(1 + w)) FC) 0.5): the product by one half is exact
+      const double x_hi = 1 + hi, l2 = std::log2(x_hi);
+      return 0.5 * pc.threejs_fc * (hu(m, x_hi) / ((1 + lo) * M_LN2) + kLogHalfUlps * hu(m, l2)) +
+             0.5 * hu(m, 2 * f_max);
+    }
+    case FragmentDepth::cesium_log: {
+      // fl(log2(fl(fl(w - n) + 1)) C)
+      const double x_hi = (hi - pc.near) + 1, l2 = std::log2(x_hi);
+      return pc.cesium_inv_log2 * ((hu(m, hi - pc.near) + hu(m, x_hi)) / (((lo - pc.near) + 1) * M_LN2) +
+                                   kLogHalfUlps * hu(m, l2)) +
+             hu(m, f_max);
+    }
+    case FragmentDepth::log:
+    case FragmentDepth::none:
+      break;
+  }
+  if (m.vertex_log && m.pc.vertex_log == MTS_VERTEX_LOG_THREEJS) {
+    const double x_hi = 1 + hi, l2 = std::log2(x_hi);
+    return 0.5 * pc.threejs_fc * (hu(m, x_hi) / ((1 + lo) * M_LN2) + kLogHalfUlps * hu(m, l2)) +
+           0.5 * hu(m, 2 * f_max);
+  }
+  // Gilg's fl(ln(fl(fl(k w) + 1)) / L): the argument's roundings through the log's slope 1 / x,
+  // the log's own error, then the quotient's (or the reciprocal's and product's) two roundings.
+  const double k = pc.log_k, x_hi = k * hi + 1;
+  const double arg = (b32::exact_factor(k) ? 0.0 : hu(m, k * hi)) + hu(m, x_hi);
+  return (arg / (k * lo + 1) + kLogHalfUlps * hu(m, std::log(x_hi))) / pc.log_L + 2 * hu(m, f_max);
+}
+
+// (4) The divide and the viewport transform of one vertex whose clip coordinates carry errors c,
+// as the value the plane interpolates (window depth, or q = 1/w for fragment-stage depth), and
+// window x and y:
+// - q = fl(1 / w), or a correctly rounded divide in its place (one rounding fewer; the same
+//   bound): reciprocal_error;
+// - ndc = fl(clip q): product_error, rounding at the largest |ndc| of the vertices (from the
+//   exact map, not from |clip| / w_min, which would cross a binade the values never reach);
+// - window depth fl(fl(0.5 z) + 0.5) (gl; the product by one half exact, or one fma) or z
+//   (zero_to_one); window x fl(fl(x (W/2)) + W/2), or one fma; snapped to 2^-bits where the
+//   pipeline snaps;
+// - vertex-stage log depth (log_vertex): the shader's depth F(w) from the clip w, its z rewritten
+//   (2 F - 1) w (gl) or F w, which the divide turns back: F's error twice, the rewrite's -1 and
+//   product, the divide's, the viewport's.
+struct WindowError {
+  double value = 0, x = 0, y = 0;
+};
+WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4& c) {
+  const b32::Rounding& R = m.rounding;
+  const Scene& s = *m.scene;
+  WindowError out;
+  const double eq = b32::reciprocal_error(R, g.wv_lo, c.w);
+  const double q_max = 1 / (g.wv_lo - c.w);
+  if (m.fragment) {
+    out.value = eq;
+  } else if (m.vertex_log) {
+    const double eF = shader_own(m, g.wv_lo, g.wv_hi) + depth_slope(m, g.wv_lo, g.wv_hi) * c.w;
+    const double factor = m.pc.depth_gl ? 2 : 1;
+    const double zc = (factor * eF + hu(m, 1.0)) * g.wv_hi + hu(m, g.wv_hi);
+    const double zn = b32::product_error(R, g.wv_hi, zc, q_max, eq, 1.0);
+    out.value = m.pc.depth_gl ? 0.5 * zn + hu(m, 1.0) : zn;
+  } else {
+    const double zc_max =
+        std::max(std::fabs(-m.a * g.wv_lo + m.b), std::fabs(-m.a * g.wv_hi + m.b));
+    const double zn_max = std::max(std::fabs(-m.a + m.b / g.wv_lo), std::fabs(-m.a + m.b / g.wv_hi));
+    const double zn = b32::product_error(R, zc_max, c.z, q_max, eq, zn_max);
+    const double d_max =
+        std::max(std::fabs(exact_depth(m, g.wv_lo)), std::fabs(exact_depth(m, g.wv_hi)));
+    out.value = m.pc.depth_gl ? 0.5 * zn + hu(m, d_max + 0.5 * zn) : zn;
+  }
+  const double snap = s.pipeline.snap_bits > 0 ? std::ldexp(1.0, -s.pipeline.snap_bits - 1) : 0.0;
+  const auto window = [&](double P, double clip_err, int size) {
+    const double c_max = P * g.lateral, n_max = c_max * q_max, h = 0.5 * size;
+    const double en = b32::product_error(R, c_max, clip_err, q_max, eq, n_max);
+    return h * en + (b32::exact_factor(h) ? 0.0 : hu(m, h * n_max)) + hu(m, h * n_max + h) + snap;
+  };
+  out.x = window(m.P00, c.x, s.viewport_w);
+  out.y = window(m.P11, c.y, s.viewport_h);
+  out.value *= b32::kMargin;
+  return out;
+}
+
+// The value's gradient in window space, per pixel in x and y. A plane's window depth (or q) is
+// affine in screen space: d = F(w) with w = D / (1 - rx u - ry v), u = x_ndc / P00, so
+// dd/dpx = F'(w) (w^2 / D) rx (2 / (W P00)) = -scale b rx 2 / (W P00 D) for a projection, and
+// rx 2 / (W P00 D) for q: constants over the plane, at most tan_tilt in place of rx.
+// log_vertex's per-vertex log is interpolated, not affine: its plane's gradient is bounded by the
+// largest slope of F along w, with half again for the triangle's shape.
+std::array<double, 2> gradient(const RowModel& m, const PlaneGeometry& g) {
+  double k = 0;
+  if (m.fragment)
+    k = 1 / g.D;
+  else if (m.vertex_log)
+    k = 1.5 * depth_slope(m, g.wv_lo, g.wv_hi) * g.wv_hi * g.wv_hi / g.D;
+  else
+    k = m.scale * std::fabs(m.b) / g.D;
+  const Scene& s = *m.scene;
+  return {k * m.tan_tilt * 2 / (s.viewport_w * m.P00), k * m.tan_tilt * 2 / (s.viewport_h * m.P11)};
+}
+
+// The value's slope along w at the vertices: how an eye-space error in z moves it.
+double value_slope(const RowModel& m, const PlaneGeometry& g) {
+  if (m.fragment) return 1 / (g.wv_lo * g.wv_lo);
+  if (m.vertex_log) return depth_slope(m, g.wv_lo, g.wv_hi);
+  return m.scale * std::fabs(m.b) / (g.wv_lo * g.wv_lo);
+}
+
+// The largest |value| at a kernel pixel.
+double pixel_value_max(const RowModel& m, const PlaneGeometry& g) {
+  if (m.fragment) return 1 / g.wp_lo;
+  return std::max(std::fabs(exact_depth(m, g.wp_lo)), std::fabs(exact_depth(m, g.wp_hi)));
+}
+
+}  // namespace
+
+const char* term_name(int t) {
+  static const char* const names[kTermCount] = {"vertex",   "clip",          "divide",
+                                                "position", "setup",         "interpolation",
+                                                "shader",   "storage"};
+  return names[t];
+}
+
+double DepthError::total() const {
+  double out = 0;
+  for (const double t : term) out += t;
+  return out * b32::kMargin;
+}
+
+double largest_pixel_depth(const RowModel& m, const PlaneGeometry& g) {
+  return std::max(std::fabs(exact_depth(m, g.wp_lo)), std::fabs(exact_depth(m, g.wp_hi)));
+}
+
+// The fan triangles llvmpipe's clip stage makes are assumed to keep a smallest angle of 1 degree
+// (the grid's own triangles are near right isosceles): the set-up's determinant then loses at
+// most 1 / sin(1 deg) to cancellation (docs/mts.md lists it among the model's assumptions).
+constexpr double kKappa = 57.3;
+
+DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
+  const Scene& s = *m.scene;
+  const std::array<double, 3> ee = eye_error(m, g);
+  const Clip4 c = clip_rounding(m, g);
+  const WindowError own = window_error(m, g, Clip4{});
+  const WindowError all = window_error(m, g, c);
+  const std::array<double, 2> G = gradient(m, g);
+  const double q_max = 1 / g.wv_lo;
+  const double xn_max = m.P00 * g.lateral * q_max, yn_max = m.P11 * g.lateral * q_max;
+  // An eye-space error moves the vertex's window position by (W/2) d(x_ndc) with
+  // x_ndc = P00 e_x / w: P00 / w per unit of e_x, |x_ndc| / w per unit of e_z.
+  const double geo_x = 0.5 * s.viewport_w * (m.P00 * ee[0] + xn_max * ee[2]) * q_max * b32::kMargin;
+  const double geo_y = 0.5 * s.viewport_h * (m.P11 * ee[1] + yn_max * ee[2]) * q_max * b32::kMargin;
+  // (5) The plane at a covered pixel p. With lambda~ the computed triangle's barycentrics at p and
+  // grad v the exact plane's gradient, the plane through the computed vertices is exactly
+  // sum lambda~_i [(v~_i - v_i) - grad v . (x~_i - x_i)] away from the exact plane at p (write
+  // v(p) = sum lambda~_i v(x~_i); v is affine). A covered pixel centre lies inside the computed
+  // triangle up to its edge tests' rounding, lambda~_i >= -0.01, sum |lambda~_i| <= 1.02: each
+  // vertex's error, value and position through the gradient, counts at most 1.02 times.
+  DepthError out;
+  auto& v = out.term;
+  v[kVertex] = value_slope(m, g) * ee[2] + G[0] * geo_x + G[1] * geo_y;
+  v[kClip] = std::max(0.0, all.value - own.value) + G[0] * (all.x - own.x) + G[1] * (all.y - own.y);
+  v[kDivide] = own.value;
+  v[kPosition] = G[0] * own.x + G[1] * own.y;
+  for (double& t : v) t *= 1.02;
+  // Set-up: the gradients from differences, products, the determinant and a quotient, each
+  // rounded: within (6 kappa + 4) u of both gradients' magnitudes, kappa bounding the triangle's
+  // |e1| |e2| / |det| at its anchor vertex, over a pixel no farther from the anchor vertex than
+  // the grid quad's extent (a fan triangle of the clip stage lies inside its grid triangle). The
+  // origin forms anchor the plane at the framebuffer's origin with a0 = d0 - (gx x0 + gy y0)
+  // from the same rounded gradients, so the gradients' error still multiplies p - (x0, y0); a0's
+  // own roundings are the evaluation's.
+  const double quad_x = 0.5 * s.viewport_w * m.P00 * g.side / s.plane_subdivisions * q_max;
+  const double quad_y = 0.5 * s.viewport_h * m.P11 * g.side / s.plane_subdivisions * q_max;
+  v[kSetup] = (6 * kKappa + 4) * kU * (G[0] + G[1]) * (quad_x + quad_y);
+  // Evaluation: c0 + gx (px - x0) + gy (py - y0), or llvmpipe's fused form from an anchor at the
+  // origin, or softpipe's quad steps: at most four roundings at the magnitude of the value plus
+  // the slopes' reach, four at the slopes' reach, and the coordinates' differences; a pixel lies at
+  // most X = W (1 + |x_ndc|) from the anchor (a vertex, or the framebuffer's origin).
+  const double X = s.viewport_w * (1 + xn_max), Y = s.viewport_h * (1 + yn_max);
+  const double reach = G[0] * X + G[1] * Y;
+  v[kInterpolation] = 4 * hu(m, pixel_value_max(m, g) + reach) + 4 * hu(m, reach) +
+                      G[0] * hu(m, X) + G[1] * hu(m, Y);
+  if (!m.fragment) return out;
+  // (6) Fragment-stage depth: w = fl(1 / q~) with q~ within Eq of q >= 1 / wp_hi, then the
+  // shader's depth F(w): the interpolation's error through 1 / q and F's slope, w's rounding and
+  // the shader's own arithmetic.
+  const double Eq = out.total();
+  const double q_min = 1 / g.wp_hi;
+  if (!(Eq < 0.5 * q_min)) {
+    for (double& t : v) t = INFINITY;
+    return out;
+  }
+  const double to_w = 1 / (q_min * (q_min - Eq));
+  const double ew = Eq * to_w + hu(m, g.wp_hi + Eq * to_w);
+  const double Fp = depth_slope(m, std::max(g.wp_lo - ew, 0.5 * g.wp_lo), g.wp_hi + ew);
+  for (int t = 0; t < kShader; ++t) v[t] *= to_w * Fp;
+  v[kShader] = Fp * hu(m, g.wp_hi + Eq * to_w) + shader_own(m, g.wp_lo - ew, g.wp_hi + ew);
+  return out;
+}
+
+}  // namespace depthprec::bound

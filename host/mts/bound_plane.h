@@ -1,0 +1,36 @@
+// How far any implementation of the bound model can store a plane's depth from its exact value at
+// any kernel pixel, over the whole rotation cube (docs/mts.md "The guaranteed bound"), term by
+// term: each term is written beside the binary32 arithmetic it bounds in bound_plane.cpp.
+#pragma once
+
+#include <array>
+
+#include "host/mts/bound_geometry.h"
+
+namespace depthprec::bound {
+
+enum Term {
+  kVertex,         // the vertex stage's rows (and the matrices' entries) moving a vertex in eye space
+  kClip,           // the clip coordinates' rounding: P's rows, llvmpipe's clip stage
+  kDivide,         // the divide by w and the viewport transform
+  kPosition,       // window x and y errors (and snapping) through the plane's depth gradient
+  kSetup,          // the depth plane's gradients rounded, over the distance to the pixel
+  kInterpolation,  // evaluating (or stepping) the plane at the pixel
+  kShader,         // a fragment shader's own arithmetic and its log
+  kStorage,        // the conversion to the stored code
+  kTermCount
+};
+const char* term_name(int term);
+
+struct DepthError {
+  std::array<double, kTermCount> term{};
+  double total() const;
+};
+
+// Bound on |computed depth - exact depth| at any pixel centre of the kernel for plane g.
+DepthError depth_error(const RowModel& m, const PlaneGeometry& g);
+
+// The largest depth the plane has at a kernel pixel (for the storage's spacing).
+double largest_pixel_depth(const RowModel& m, const PlaneGeometry& g);
+
+}  // namespace depthprec::bound

@@ -1,0 +1,153 @@
+#include "host/mts/mts_bound.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/base/errors.h"
+#include "host/mts/bound_plane.h"
+
+namespace depthprec {
+
+namespace {
+
+using bound::DepthError;
+using bound::PlaneGeometry;
+using bound::RowModel;
+
+// The conversion's freedom in depth units: two depths that differ by more than it never store one
+// code, and every conversion is monotone, so the farther one stores the larger (or, reversed,
+// the smaller) code. A unorm code c(d) lies within an interval of width W of d N (N the largest
+// code): 1 for the exact conversion, llvmpipe's double rounding 1 + 2^-7, 3/2 and 3 for unorm16,
+// 24 and 32, softpipe's truncation after a binary32 product 1 + 2^-8, 2 and just over 1
+// (kernels/mts/bounds.cl GAP_CODE_WIDTH): the model takes the largest. A float format stores one
+// code for an interval at most its spacing wide; binary32 depth into a binary32 buffer is stored as
+// it is, where only a strict difference counts.
+double storage_width(const RowModel& m, double d_min, double d_max) {
+  const StorageFormat& f = m.format;
+  if (f.is_unorm()) {
+    const unsigned bits = f.bits();
+    const double codes = bits <= 16 ? 1.0078125 : bits <= 24 ? 2.0 : 3.0;
+    return codes / f.max_code();
+  }
+  if (f.name() == "float32" && d_min > 0x1.0p-126) return 0;
+  return f.spacing_at(d_max);
+}
+
+struct BoundCheck {
+  bool holds = false;
+  std::array<double, bound::kTermCount> terms{};
+  std::string why;
+};
+
+BoundCheck check(const RowModel& m, double z, double s) {
+  BoundCheck v;
+  const double DA = bound::geometry_distance(m, z), DB = bound::geometry_distance(m, z + s);
+  if (!(DB > DA)) {
+    v.why = "plane B coincides with plane A";
+    return v;
+  }
+  const PlaneGeometry gA = bound::plane_geometry(m, DA), gB = bound::plane_geometry(m, DB);
+  if (!(gA.wv_lo > 0) || !(1 - m.tan_tilt * (m.xn_max / m.P00 + m.yn_max / m.P11) > 0)) {
+    v.why = "the plane can pass the eye";
+    return v;
+  }
+  const DepthError eA = bound::depth_error(m, gA), eB = bound::depth_error(m, gB);
+  const double EA = eA.total(), EB = eB.total();
+  if (!std::isfinite(EA + EB)) {
+    v.why = "an error bound is not finite (w's error reaches half of w)";
+    return v;
+  }
+  // Plane A's fragments stay inside the depth range (a clipped A would leave B alone at the pixel).
+  const double aN = bound::exact_depth(m, gA.wp_lo), aF = bound::exact_depth(m, gA.wp_hi);
+  const double a_lo = std::min(aN, aF) - EA, a_hi = std::max(aN, aF) + EA;
+  const bool a_inside = m.fragment ? gA.wp_lo > m.pc.near && gA.wp_hi < m.pc.far
+                                   : a_lo > 0 && a_hi < 1;
+  if (!a_inside) {
+    v.why = "plane A's fragments can be clipped";
+    return v;
+  }
+  // The exact gap is monotone in w for every map (its derivative has one sign), so its least value
+  // over A's pixels is at an end of their range; log_vertex interpolates per-vertex depths, whose
+  // gap is a convex combination of the vertices'.
+  const double lo = m.vertex_log ? gA.wv_lo : gA.wp_lo, hi = m.vertex_log ? gA.wv_hi : gA.wp_hi;
+  const double lm1 = (DB - DA) / DA;
+  const double gap = std::min(bound::exact_gap(m, lm1, lo), bound::exact_gap(m, lm1, hi));
+  const double b_max = bound::largest_pixel_depth(m, gB) + EB;
+  const double d_max = std::max(a_hi, b_max);
+  const double d_min = std::max(0.0, std::min(a_lo, std::min(bound::exact_depth(m, gB.wp_lo),
+                                                             bound::exact_depth(m, gB.wp_hi)) -
+                                                        EB));
+  for (int t = 0; t < bound::kTermCount; ++t) v.terms[t] = eA.term[t] + eB.term[t];
+  v.terms[bound::kStorage] = storage_width(m, d_min, d_max);
+  double need = 0;
+  for (const double t : v.terms) need += t;
+  v.holds = gap > need * binary32_error::kMargin;
+  if (!v.holds) v.why = "the gap does not clear the error bounds";
+  return v;
+}
+
+std::string dominant_term(const BoundCheck& v) {
+  int best = 0;
+  for (int t = 1; t < bound::kTermCount; ++t)
+    if (v.terms[t] > v.terms[best]) best = t;
+  return bound::term_name(best);
+}
+
+}  // namespace
+
+bool bound_holds(const Scene& scene, const EvalPair& pair, double z, double s) {
+  return check(bound::row_model(scene, pair, z), z, s).holds;
+}
+
+MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
+  MtsBound out;
+  RowModel m;
+  try {
+    m = bound::row_model(scene, pair, z);
+  } catch (const InputError& e) {
+    out.why = e.what();
+    return out;
+  }
+  const double cap = scene.max_separation_factor * z;
+  // Doubling from below the vertex bound up to the first separation that holds, then bisection to
+  // the scene's rel_precision, as the search brackets mts.
+  double lo = 0, hi = std::max(vertex_bound(z), z * 0x1.0p-40);
+  BoundCheck at_hi = check(m, z, hi);
+  while (!at_hi.holds) {
+    if (at_hi.why == "plane A's fragments can be clipped" ||
+        at_hi.why == "the plane can pass the eye") {
+      out.why = at_hi.why;
+      return out;
+    }
+    lo = hi;
+    hi *= 2;
+    if (hi > cap) {
+      out.s = INFINITY;
+      out.why = "no separation up to max_separation_factor z clears the error bounds";
+      return out;
+    }
+    at_hi = check(m, z, hi);
+  }
+  while ((hi - lo) / hi > scene.rel_precision) {
+    const double mid = 0.5 * (lo + hi);
+    BoundCheck at_mid = check(m, z, mid);
+    if (at_mid.holds) {
+      hi = mid;
+      at_hi = at_mid;
+    } else {
+      lo = mid;
+    }
+  }
+  // The bound is meant for every separation above it: the error bounds change with plane B's
+  // distance, so it is checked again at every doubling up to the search's ceiling.
+  for (double t = 2 * hi; t <= cap; t *= 2)
+    if (!check(m, z, t).holds) {
+      out.why = "the error bounds fail again at a larger separation";
+      return out;
+    }
+  out.s = hi;
+  out.dominant = dominant_term(at_hi);
+  return out;
+}
+
+}  // namespace depthprec

@@ -1,0 +1,38 @@
+// The guaranteed MTS (docs/mts.md "The guaranteed bound"): a separation at and above which plane B
+// provably never wins against plane A at any pixel of the kernel, for every orientation in the
+// scene's rotation cube (the continuum, not samples), under every implementation the bound model
+// allows. It is analysis, not sampling: forward error bounds, one beside each binary32 step, added
+// up against the exact gap between the planes.
+#pragma once
+
+#include <limits>
+#include <string>
+
+#include "host/model/scene.h"
+
+namespace depthprec {
+
+// The bound model's name, as rows print it: every binary32 step correctly rounded to nearest, in
+// any order, fused or not, with every choice the emulated profiles make (docs/mts.md lists them).
+constexpr const char* kBoundModel = "binary32";
+
+struct MtsBound {
+  // The smallest separation found at which the bound holds (plane B at the search's fl32(z + s), as
+  // mts), to the scene's rel_precision; +inf where none holds up to max_separation_factor z, NaN
+  // where the model has no bound for the row (`why` says why).
+  double s = std::numeric_limits<double>::quiet_NaN();
+  std::string why;
+  // The error term that weighs most at s (vertex, clip, divide, viewport, position, setup,
+  // interpolation, shader, storage), so a user sees what a tighter implementation would have to
+  // improve.
+  std::string dominant;
+};
+
+// The bound for one row: pair at distance z of scene.
+MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z);
+
+// Whether the model proves that no pixel fights at requested separation s (for tests and the
+// dense scan): the exact gap exceeds both planes' error bounds and the conversion's width.
+bool bound_holds(const Scene& scene, const EvalPair& pair, double z, double s);
+
+}  // namespace depthprec
