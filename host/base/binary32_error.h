@@ -4,6 +4,7 @@
 // picks. tests/base/binary32_error.cpp checks each against exact arithmetic by brute force.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 
@@ -16,15 +17,16 @@ namespace depthprec::binary32_error {
 // denormals are flushed, the whole value (at most 2^-126). `directed` (rounding towards zero or
 // any directed mode) moves by up to the full spacing.
 inline double half_ulp(double m, bool flush = false, bool directed = false) {
-  double h;
-  if (!(m >= 0x1.0p-126)) {
-    h = flush ? 0x1.0p-126 : 0x1.0p-150;
-    return directed && !flush ? 2 * h : h;
+  double h = 0x1.0p-150;  // half the subnormal spacing 2^-149
+  if (m >= 0x1.0p-126) {
+    int e = 0;
+    std::frexp(m, &e);  // m = f 2^e, f in [0.5, 1): binade [2^(e-1), 2^e)
+    h = std::ldexp(1.0, e - 25);
   }
-  int e = 0;
-  std::frexp(m, &e);  // m = f 2^e, f in [0.5, 1): binade [2^(e-1), 2^e)
-  h = std::ldexp(1.0, e - 25);
-  return directed ? 2 * h : h;
+  if (directed) h *= 2;
+  // A result of magnitude below 2^-126 (m bounds it from above only) flushed to zero moves by
+  // its whole magnitude.
+  return flush ? std::max(h, 0x1.0p-126) : h;
 }
 
 // Binary64's own rounding of the bounds below (2^-53 per step, a few dozen steps) stays far below
@@ -78,13 +80,13 @@ inline double reciprocal_error(const Rounding& r, double w_min, double ew) {
 }
 
 // The product x~ q~ of computed values, |x~ - x| <= ex, |q~ - q| <= eq, with |x| <= x_max,
-// |q| <= q_max, rounded: within q_max ex + x_max eq + ex eq + half_ulp(x_max q_max + ...). The
-// quotient x / w correctly rounded is within the same bound with eq the reciprocal's propagated
-// error alone.
+// |q| <= q_max, rounded: within q_max ex + x_max eq + ex eq + half_ulp(result_max + that), with
+// result_max >= |x q| (from the exact map where x_max q_max would cross a binade the values never
+// reach). The quotient x~ / w~ correctly rounded is within the same bound, eq the reciprocal's.
 inline double product_error(const Rounding& r, double x_max, double ex, double q_max, double eq,
-                            bool exact = false) {
+                            double result_max) {
   const double carried = q_max * ex + x_max * eq + ex * eq;
-  return (carried + (exact ? 0.0 : r.half_ulp(x_max * q_max + carried))) * kMargin;
+  return (carried + r.half_ulp(result_max + carried)) * kMargin;
 }
 
 }  // namespace depthprec::binary32_error

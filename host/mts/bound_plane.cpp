@@ -303,13 +303,15 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   const double quad_x = 0.5 * s.viewport_w * m.P00 * g.side / s.plane_subdivisions * q_max;
   const double quad_y = 0.5 * s.viewport_h * m.P11 * g.side / s.plane_subdivisions * q_max;
   v[kSetup] = (6 * kKappa + 4) * kU * (G[0] + G[1]) * (quad_x + quad_y);
-  // Evaluation: c0 + gx (px - x0) + gy (py - y0), or llvmpipe's fused form from an anchor at the
-  // origin, or softpipe's quad steps: at most four roundings at the magnitude of the value plus
-  // the slopes' reach, four at the slopes' reach, and the coordinates' differences; a pixel lies at
+  // Evaluation: c0 + gx (px - x0) + gy (py - y0) (two sums at the value's magnitude, two products
+  // and two coordinate differences), llvmpipe's a0 = c0 - (gx x0 + gy y0) then two fma (three and
+  // three), or softpipe's a0, (a0 + gx qx) + gy qy and a step in x and in y (five sums at the
+  // value's magnitude plus the slopes' reach, five products and sums at the reach): five and
+  // five, and the coordinates' differences (tests/base/binary32_error_proof.cpp); a pixel lies at
   // most X = W (1 + |x_ndc|) from the anchor (a vertex, or the framebuffer's origin).
   const double X = s.viewport_w * (1 + xn_max), Y = s.viewport_h * (1 + yn_max);
   const double reach = G[0] * X + G[1] * Y;
-  v[kInterpolation] = 4 * hu(m, pixel_value_max(m, g) + reach) + 4 * hu(m, reach) +
+  v[kInterpolation] = 5 * hu(m, pixel_value_max(m, g) + reach) + 5 * hu(m, reach) +
                       G[0] * hu(m, X) + G[1] * hu(m, Y);
   if (!m.fragment) return out;
   // (6) Fragment-stage depth: w = fl(1 / q~) with q~ within Eq of q >= 1 / wp_hi, then the
