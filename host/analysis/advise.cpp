@@ -1,4 +1,5 @@
 #include "host/analysis/advise.h"
+#include "host/analysis/advise_bound.h"
 
 #include <fmt/format.h>
 
@@ -12,10 +13,6 @@
 #include "host/mts/worst_case.h"
 
 namespace depthprec {
-
-// The largest near plane tried is the nearest content's distance over this: the scene's planes
-// are tilted and span more than the view, so at z_min they reach a little nearer than z_min.
-constexpr double kNearestContentMargin = 1.01;
 
 // Under worst-case sampling an answer must also hold this many times farther on its safe side
 // (a larger near plane, a smaller far plane): the MTS is not monotone in the planes, and a user
@@ -276,6 +273,7 @@ nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPa
   }
   if (j.contains("smallest_near") && has_far_plane(pair.technique))
     far_search(rt, scene, pair, r, j, far_used);
+  j.update(bound_answer(scene, pair, r));
   j["distances_checked"] = advise_distances(r).size();
   return j;
 }

@@ -16,6 +16,10 @@ namespace depthprec {
 
 class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
+// The largest near plane tried is the nearest content's distance over this: the scene's planes
+// are tilted and span more than the view, so at z_min they reach a little nearer than z_min.
+constexpr double kNearestContentMargin = 1.01;
+
 struct AdviseRequest {
   double z_min = 0, z_max = 0;  // the content's distances (eye space, scene units)
   double separation = 0;        // needed there: absolute, or relative to z

@@ -100,11 +100,14 @@ std::string render_advise_output(const nlohmann::json& header,
   // Ranked: the nearest affordable near plane first; set-ups that cannot meet it last.
   std::vector<const nlohmann::json*> ranked;
   for (const auto& r : records) ranked.push_back(&r);
-  const auto near_of = [](const nlohmann::json* r) {
-    return r->contains("smallest_near") ? r->at("smallest_near").get<double>() : INFINITY;
+  // Ranked by the near plane the guaranteed MTS allows, then by the sampled one.
+  const auto near_of = [](const nlohmann::json* r, const char* key) {
+    return r->contains(key) ? r->at(key).get<double>() : INFINITY;
   };
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [&](const auto* a, const auto* b) { return near_of(a) < near_of(b); });
+  std::stable_sort(ranked.begin(), ranked.end(), [&](const auto* a, const auto* b) {
+    return std::make_pair(near_of(a, "near_bound"), near_of(a, "smallest_near")) <
+           std::make_pair(near_of(b, "near_bound"), near_of(b, "smallest_near"));
+  });
   if (out.format_out == "json") {
     nlohmann::json ranking = nlohmann::json::array();
     for (const auto* r : ranked) ranking.push_back(pair_label(*r));
@@ -122,13 +125,18 @@ std::string render_advise_output(const nlohmann::json& header,
     const std::string v = num(r, "largest_far");
     return !csv && r.value("far_holds_to_ceiling", false) ? ">= " + v : v;
   };
+  const auto far_bound = [&](const nlohmann::json& r) {
+    if (!r.contains("far_bound")) return none;
+    const std::string v = num(r, "far_bound");
+    return !csv && r.value("far_bound_to_ceiling", false) ? ">= " + v : v;
+  };
   Cells cells;
   int rank = 1;
   for (const auto* r : ranked) {
     cells.push_back(
-        {r->contains("smallest_near") ? std::to_string(rank++) : none,
+        {r->contains("near_bound") || r->contains("smallest_near") ? std::to_string(rank++) : none,
          r->at("technique").get<std::string>(), r->at("format").get<std::string>(),
-         r->at("depth_range").get<std::string>(),
+         r->at("depth_range").get<std::string>(), num(*r, "near_bound"), far_bound(*r),
          num(*r, "smallest_near") + (!csv && r->value("far_tightened", false) ? " *" : ""),
          r->at("holds_from_floor").get<bool>() ? (csv ? "" : "(floor)") : num(*r, "next_near"),
          num(*r, "fails_at"), far(*r), std::to_string(r->at("near_steps").get<int>())});
@@ -139,10 +147,10 @@ std::string render_advise_output(const nlohmann::json& header,
       cells.back().push_back(r->value("far_tightened", false) ? "true" : "false");
     }
   }
-  std::vector<Column> cols = {
-      {"rank"},          {"technique", true},   {"format", true}, {"depth_range", true},
-      {"smallest near"}, {"next down (fails)"}, {"fails at z"},   {"largest far"},
-      {"steps"}};
+  std::vector<Column> cols = {{"rank"},          {"technique", true},   {"format", true},
+                              {"depth_range", true},   {"near (bound)"},      {"far (bound)"},
+                              {"smallest near"}, {"next down (fails)"}, {"fails at z"},
+                              {"largest far"},   {"steps"}};
   if (csv) {
     cols.push_back({"far holds to ceiling", true});
     cols.push_back({"far tightened", true});
@@ -157,7 +165,10 @@ std::string render_advise_output(const nlohmann::json& header,
                   "nearest content holds; '-': not even a near plane next to the content does. "
                   "largest far: with that near plane, the farthest far plane that still holds "
                   "(techniques with a far plane; >=: even the ceiling tried holds). *: only with "
-                  "the far plane pulled in to the farthest content, the scene's far plane fails",
+                  "the far plane pulled in to the farthest content, the scene's far plane fails. "
+                  "near (bound), far (bound): the same under the guaranteed MTS (mts_bound within "
+                  "the separation at every distance checked: no fight on any implementation of the "
+                  "bound model, in any orientation; docs/mts.md)",
                   human(header.value("content_near", 0.0)), human(header.value("content_far", 0.0)),
                   rel ? fmt::format("{} x z", human(s)) : human(s),
                   header.value("scene_name", std::string("?")),

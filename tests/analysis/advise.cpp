@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "host/analysis/advise_bound.h"
+#include "host/mts/mts_bound.h"
 #include "tests/support/mts_fixture.h"
 #include "tests/support/run_cli.h"
 
@@ -161,4 +163,28 @@ TEST_CASE("round_printed rounds to the four digits text shows, on the side asked
   CHECK(round_printed(4.32e6 + 1, false) == 4.32e6);
   CHECK(round_printed(0.0012345, true) == 0.001235);
   CHECK(round_printed(999.95, true) == 1000);
+}
+
+TEST_CASE("advise's near plane under the guaranteed MTS clears the separation, and one a tenth "
+          "nearer does not",
+          "[advise][bound]") {
+  const Scene scene = load_scene("", {"far=5e4"});
+  const EvalPair pair{Technique::standard, "unorm24", DepthRange::gl};
+  AdviseRequest r;
+  r.z_min = r.z_max = 500;
+  r.separation = 0.01;
+  const nlohmann::json j = bound_answer(scene, pair, r);
+  REQUIRE(j.contains("near_bound"));
+  const double n = j["near_bound"].get<double>();
+  CHECK(mts_bound(with_near(scene, n), pair, 500).s <= 0.01);
+  CHECK(mts_bound(with_near(scene, n / 1.1), pair, 500).s > 0.01);
+  CHECK(n == round_printed(n, true));  // as text prints it
+  // The sampled answer sits nearer: the bound costs a near plane further out.
+  const auto cli = run_cli(
+      "advise --range 500,500 --separation 0.01 -t standard -f unorm24 --far 5e4 "
+      "--format-out json --no-timing");
+  REQUIRE(cli.exit_code == 0);
+  const auto rec = nlohmann::json::parse(cli.output)["records"].at(0);
+  CHECK(rec["near_bound"].get<double>() == n);
+  CHECK(rec["smallest_near"].get<double>() < n);
 }
