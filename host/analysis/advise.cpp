@@ -1,5 +1,4 @@
 #include "host/analysis/advise.h"
-#include "host/analysis/advise_bound.h"
 
 #include <fmt/format.h>
 
@@ -273,7 +272,6 @@ nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPa
   }
   if (j.contains("smallest_near") && has_far_plane(pair.technique))
     far_search(rt, scene, pair, r, j, far_used);
-  j.update(bound_answer(scene, pair, r));
   j["distances_checked"] = advise_distances(r).size();
   return j;
 }

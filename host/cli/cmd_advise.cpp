@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/analysis/advise.h"
+#include "host/analysis/advise_bound.h"
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
 #include "host/cli/commands.h"
@@ -86,7 +87,10 @@ void run_advise(const AdviseOptions& o, const GlobalOptions& g) {
         header["separation_is_relative"] = r.relative;
         header["distances_checked"] = advise_distances(r);
         return pair_units(scene, [&rt, &scene, &r](const EvalPair& pair) {
-          return advise_record(rt, scene, pair, r);
+          // The sampled answer, and beside it the guaranteed MTS's.
+          nlohmann::json rec = advise_record(rt, scene, pair, r);
+          rec.update(bound_answer(scene, pair, r));
+          return rec;
         });
       },
       render_advise_output);
