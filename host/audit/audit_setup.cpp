@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <glm/glm.hpp>
 #include <initializer_list>
 
 #include "host/audit/depth_tolerance.h"
@@ -14,7 +13,6 @@
 #include "host/runtime/kernel_variant.h"
 #include "interface/audit_layout.h"
 #include "interface/mts_layout.h"
-#include "interface/relative_to_eye.h"
 
 namespace depthprec {
 
@@ -37,82 +35,32 @@ float rounded_up(double x) {
   return static_cast<double>(f) >= x ? f : std::nextafter(f, INFINITY);
 }
 
-// The vertex stage of object position p up to its clip position.
-void vertex_clip(const Scene& s, const ProbeConstants& pc, const DrawMatrices& st,
-                 const std::array<float, 3>& p, float clip[4]) {
-  const VertexForm form = s.pipeline.vertex;
-  const float obj[4] = {p[0], p[1], p[2], 1.0f};
-  float eye[4] = {0, 0, 0, 1};
-  if (st.relative_to_eye) {
-    float rel[4] = {0, 0, 0, 1};
-    for (int r = 0; r < 3; ++r) {
-      const double* m = &st.world[r * 4];
-      const double world = ((m[0] * p[0] + m[1] * p[1]) + m[2] * p[2]) + m[3];
-      rel[r] = dp_rte_eye(world, st.eye_high[r], st.eye_low[r]);
-    }
-    for (int r = 0; r < 3; ++r) eye[r] = mat_row_dot(st.first, r, rel, form);
-  } else if (st.premultiplied) {
-    for (int r = 0; r < 4; ++r) clip[r] = object_row_dot(st.first, r, obj, form);
-    return;
-  } else {
-    for (int r = 0; r < 3; ++r) eye[r] = object_row_dot(st.first, r, obj, form);
-    if (st.view_on_gpu) {
-      const float model[4] = {eye[0], eye[1], eye[2], 1.0f};
-      for (int r = 0; r < 3; ++r) eye[r] = mat_row_dot(st.second, r, model, form);
-    }
+// A draw as the application holds it (host/model/vertex_stage.h): its world matrix and the
+// camera's view in binary64 (the glTF's node transforms, the camera), each held in the matrix
+// precision, the same under every transform: this application forms no translation apart, so
+// camera-relative it hands the GPU their product V M, formed in the matrix precision.
+class AuditDraw final : public ApplicationDraw {
+ public:
+  AuditDraw(MatrixPrecision precision, const Draw& d, const AuditCamera& cam)
+      : precision_(precision), d_(d), cam_(cam) {}
+  Mat4d model(Transform) const override { return held_in(precision_, d_.world); }
+  ViewMatrix view(Transform) const override {
+    return {ViewMatrix::Form::general, held_in(precision_, cam_.view)};
   }
-  for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, form);
-}
+  Mat4d world() const override { return d_.world; }
+  Vec3 eye() const override { return cam_.eye; }
+
+ private:
+  MatrixPrecision precision_;
+  const Draw& d_;
+  const AuditCamera& cam_;
+};
 
 }  // namespace
 
-// The product of binary64 matrices as the application forms it (docs/spec.md 2.1): under
-// matrix_precision float each factor rounded to binary32 and the product formed in binary32 (glm,
-// left to right, as the MTS's plane matrices are), under double formed in binary64 and rounded
-// once.
-Mat4f composed(const Scene& s, std::initializer_list<Mat4d> factors) {
-  if (s.pipeline.matrix_precision == MatrixPrecision::single) {
-    using M32 = glm::mat<4, 4, float, glm::defaultp>;  // column-major: m[c][r]
-    M32 product(1.0f);
-    for (const Mat4d& f : factors) {
-      M32 m(0.0f);
-      for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) m[c][r] = static_cast<float>(f[r * 4 + c]);
-      product = product * m;
-    }
-    Mat4f out{};
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) out[r * 4 + c] = product[c][r];
-    return out;
-  }
-  Mat4d product = mat_identity();
-  for (const Mat4d& f : factors) product = mat_mul(product, f);
-  return rounded(product);
-}
-
-DrawMatrices draw_matrices(const Scene& s, const ProbeConstants& pc, const Draw& d,
-                           const AuditCamera& cam) {
-  DrawMatrices st;
-  st.world = d.world;
-  if (s.pipeline.transform == Transform::relative_to_eye) {
-    st.relative_to_eye = true;
-    Mat4d rot = cam.view;
-    rot[3] = rot[7] = rot[11] = 0;
-    st.first = rounded(rot);
-    for (int i = 0; i < 3; ++i) dp_rte_encode(cam.eye[i], &st.eye_high[i], &st.eye_low[i]);
-  } else if (s.pipeline.compose == Compose::premultiplied) {
-    Mat4d p{};
-    for (int i = 0; i < 16; ++i) p[i] = pc.P_full[i];
-    st.first = composed(s, {p, cam.view, d.world});
-    st.premultiplied = true;
-  } else if (s.pipeline.transform == Transform::absolute) {
-    st.first = rounded(d.world);
-    st.second = rounded(cam.view);
-    st.view_on_gpu = true;
-  } else {
-    st.first = composed(s, {cam.view, d.world});
-  }
-  return st;
+VertexStage draw_vertex_stage(const Scene& s, const ProbeConstants& pc, const Draw& d,
+                              const AuditCamera& cam) {
+  return vertex_stage(s.pipeline, pc.P_full, AuditDraw(s.pipeline.matrix_precision, d, cam));
 }
 
 AuditCamera look_at_camera(const std::array<double, 3>& eye, const std::array<double, 3>& target,
@@ -206,15 +154,17 @@ DrawVertices draw_vertices(const Scene& s, const AuditSetup& a, const Draw& d,
                            const AuditCamera& cam) {
   const TechniqueInfo& ti = info(depth_path(s, a.pair.technique));
   const bool gl = a.pair.depth_range == DepthRange::gl;
-  const DrawMatrices st = draw_matrices(s, a.pc, d, cam);
+  const VertexStage st = draw_vertex_stage(s, a.pc, d, cam);
   DrawVertices dv;
   dv.v.resize(d.positions.size());
   dv.error.resize(d.positions.size());
   dv.bad.assign(d.positions.size(), 0);
   for (size_t i = 0; i < d.positions.size(); ++i) {
+    const auto& p = d.positions[i];
+    const float obj[4] = {p[0], p[1], p[2], 1.0f};
     float clip[4];
-    vertex_clip(s, a.pc, st, d.positions[i], clip);
-    dv.error[i] = vertex_clip_error(s, a.pc, st, d.positions[i]);
+    vertex_clip(st, a.pc.P, obj, s.pipeline.vertex, clip);
+    dv.error[i] = vertex_clip_error(a.pc, st, p);
     if (ti.from == DepthFrom::vertex_log)
       clip[2] = vertex_log_clip_z(a.pc, s.pipeline.log, gl, clip[3]);
     dv.v[i] = window_vertex(s, gl, clip, static_cast<int>(i));

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "host/audit/draw_matrices.h"
 #include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/model/scene_geometry.h"
@@ -33,9 +32,12 @@ AuditCamera look_at_camera(const std::array<double, 3>& eye, const std::array<do
 // The glTF camera's node transform (scale removed) as the view; its yfov.
 AuditCamera gltf_view(const GltfCamera& camera, int width, int height);
 
-// What the GPU gets per draw (DrawMatrices, host/audit/draw_matrices.h).
-DrawMatrices draw_matrices(const Scene& scene, const ProbeConstants& pc, const Draw& draw,
-                           const AuditCamera& camera);
+// What the GPU gets per draw (host/model/vertex_stage.h; docs/audit.md "Vertex stage"): the
+// draw's world matrix and the camera's view, from the one decision every vertex stage takes
+// (vertex_stage), under the pipeline's transform, compose and matrix_precision. `render` uploads
+// the same matrices.
+VertexStage draw_vertex_stage(const Scene& scene, const ProbeConstants& pc, const Draw& draw,
+                              const AuditCamera& camera);
 
 // The scene the audit's set-ups run under: viewport, kernel and field of view from the camera.
 Scene audit_scene(Scene scene, const AuditCamera& camera);

@@ -193,34 +193,34 @@ RecordTolerance plane_tolerance(const WindowError* const v[3], double ax, double
 
 }  // namespace
 
-ClipError vertex_clip_error(const Scene&, const ProbeConstants& pc, const DrawMatrices& st,
+ClipError vertex_clip_error(const ProbeConstants& pc, const VertexStage& st,
                             const std::array<float, 3>& p) {
-  double x[4] = {p[0], p[1], p[2], 1.0}, ex[4] = {0, 0, 0, 0};
+  const float obj[4] = {p[0], p[1], p[2], 1.0f};
+  const double x[4] = {p[0], p[1], p[2], 1.0}, ex[4] = {0, 0, 0, 0};
   double eye[4] = {0, 0, 0, 1}, eeye[4] = {0, 0, 0, 0};
-  if (st.relative_to_eye) {
-    // World position in binary64, differenced against the eye's two binary32 parts in emulated
-    // double-single arithmetic (interface/relative_to_eye.h): within a few u of the difference
-    // and 2^-46 of the world coordinate (the split's low part), then the view's rotation.
-    double rel[4] = {0, 0, 0, 1}, erel[4] = {0, 0, 0, 0};
-    for (int r = 0; r < 3; ++r) {
-      const double* m = &st.world[r * 4];
-      const double world = ((m[0] * p[0] + m[1] * p[1]) + m[2] * p[2]) + m[3];
-      rel[r] = world - st.eye_high[r] - st.eye_low[r];
-      erel[r] = gamma(4) * std::fabs(rel[r]) + 0x1.0p-46 * std::fabs(world);
-    }
-    row_times(st.first, 3, rel, erel, eye, eeye);
-  } else if (st.premultiplied) {
+  if (st.path == VertexPath::premultiplied) {
     ClipError out{};
     double clip[4];
-    row_times(st.first, 4, x, ex, clip, out.data());
+    row_times(st.matrix, 4, x, ex, clip, out.data());
     return out;
-  } else {
-    row_times(st.first, 3, x, ex, eye, eeye);
-    if (st.view_on_gpu) {
-      const double model[4] = {eye[0], eye[1], eye[2], 1.0},
-                   emodel[4] = {eeye[0], eeye[1], eeye[2], 0.0};
-      row_times(st.second, 3, model, emodel, eye, eeye);
+  }
+  if (st.path == VertexPath::relative_to_eye) {
+    // World position in binary64, differenced against the eye's two binary32 parts in emulated
+    // double-single arithmetic (interface/relative_to_eye.h): within a few u of the difference
+    // and 2^-46 of the world coordinate (the split's low part).
+    for (int r = 0; r < 3; ++r) {
+      const double world = world_row(st.world, r, obj);
+      eye[r] = world - st.eye_high[r] - st.eye_low[r];
+      eeye[r] = gamma(4) * std::fabs(eye[r]) + 0x1.0p-46 * std::fabs(world);
     }
+  } else {
+    row_times(st.matrix, 3, x, ex, eye, eeye);
+  }
+  if (st.view != VertexStage::View::none) {
+    // The view's rows times (eye, 1); a translation alone is the rows of the identity and t, whose
+    // products by 1 and 0 are exact: what is left is the sum's one rounding, x + t.
+    const double v[4] = {eye[0], eye[1], eye[2], 1.0}, ev[4] = {eeye[0], eeye[1], eeye[2], 0.0};
+    row_times(st.view_matrix, 3, v, ev, eye, eeye);
   }
   eye[3] = 1;
   eeye[3] = 0;

@@ -12,7 +12,6 @@
 
 #include <array>
 
-#include "host/audit/draw_matrices.h"
 #include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/model/storage_format.h"
@@ -23,10 +22,11 @@ namespace depthprec {
 // A bound on |computed - exact| of each clip coordinate (x, y, z, w) of a vertex.
 using ClipError = std::array<double, 4>;
 
-// The vertex stage of object position p under the draw's matrices (DrawMatrices), as vertex_clip
-// computes it: each product of a row with a vector, in any association, fused or not, within
-// gamma(4) of the sum of its terms' magnitudes, plus the inputs' own errors through the row.
-ClipError vertex_clip_error(const Scene& scene, const ProbeConstants& pc, const DrawMatrices& draw,
+// The vertex stage of object position p under the draw's description (VertexStage,
+// host/model/vertex_stage.h), step by step as vertex_clip computes it: each product of a row with a
+// vector, in any association, fused or not, within gamma(4) of the sum of its terms' magnitudes,
+// plus the inputs' own errors through the row.
+ClipError vertex_clip_error(const ProbeConstants& pc, const VertexStage& stage,
                             const std::array<float, 3>& p);
 
 // A vertex c the clip stage made, crossing `planes` planes, of a triangle whose largest clip

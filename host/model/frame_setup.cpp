@@ -27,9 +27,10 @@ Mat4f to_row_major(const Mat<T>& m) {
   return out;
 }
 
-// The same in binary64, never rounded.
-std::array<double, 16> row_major_f64(const Mat<double>& m) {
-  std::array<double, 16> out{};
+// The same in binary64, never rounded (a binary32 matrix exactly).
+template <class T>
+Mat4d row_major_f64(const Mat<T>& m) {
+  Mat4d out{};
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) out[r * 4 + c] = m[c][r];
   return out;
@@ -57,14 +58,14 @@ T model_distance(double D) {
   return static_cast<T>(D);
 }
 
-// The translation of a plane's model matrix at distance D (binary64; docs/spec.md 2, "World
-// position"): its centre in the world (absolute, relative_to_eye), or that minus the camera's
-// position, formed in binary64 as camera-relative rendering forms it (camera_relative). At the
-// world origin every transform gives (0, 0, -D).
-std::array<double, 3> plane_translation(const Scene& s, double D) {
+// The translation of a plane's model matrix at distance D under transform t (binary64; docs/spec.md
+// 2, "World position"): its centre in the world (absolute, relative_to_eye), or that minus the
+// camera's position, formed in binary64 as camera-relative rendering forms it (camera_relative).
+// At the world origin every transform gives (0, 0, -D).
+std::array<double, 3> plane_translation(const Scene& s, double D, Transform t) {
   const auto& wp = s.world_position;
   const std::array<double, 3> centre = {wp[0], wp[1], wp[2] - D};
-  if (s.pipeline.transform != Transform::camera_relative) return centre;
+  if (t != Transform::camera_relative) return centre;
   return {centre[0] - wp[0], centre[1] - wp[1], centre[2] - wp[2]};
 }
 
@@ -117,6 +118,19 @@ Mat<T> model(const Scene& s, double D, const Angles& ang, const std::array<doubl
   return Tr * (Rx * Ry * Rz) * S;
 }
 
+// The MTS camera's view under transform t, in the matrix precision: it looks down -z without
+// rotation, so its view is the translation -world_position under the absolute transform away
+// from the world origin, and the identity elsewhere (camera-relative, the model's translation is
+// relative to it already; relative to eye, the difference from its position is the GPU's).
+ViewMatrix camera_view(const Scene& s, Transform t) {
+  ViewMatrix v;
+  if (t != Transform::absolute || s.at_world_origin()) return v;
+  v.form = ViewMatrix::Form::translation;
+  for (int i = 0; i < 3; ++i) v.m[i * 4 + 3] = -s.world_position[i];
+  v.m = held_in(s.pipeline.matrix_precision, v.m);
+  return v;
+}
+
 template <class T>
 ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, double f64) {
   ProbeConstants pc;
@@ -144,19 +158,21 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
   pc.vertex_log = static_cast<int>(vertex_log(info(pair.technique)));
   pc.depth_gl = pair.depth_range == DepthRange::gl;
   const Pipeline& pipe = s.pipeline;
+  const VertexPath path = vertex_path(pipe);
   pc.forms = (pipe.divide == Divide::exact ? MTS_F_DIVIDE_EXACT : 0u) |
-             (pipe.compose == Compose::premultiplied ? MTS_F_COMPOSE_PREMULT : 0u) |
+             (path == VertexPath::premultiplied ? MTS_F_COMPOSE_PREMULT : 0u) |
              (pipe.viewport == ViewportForm::fma ? MTS_F_VIEWPORT_FMA : 0u) |
              (pipe.vertex == VertexForm::fma ? MTS_F_VERTEX_FMA : 0u);
   pc.snap_bits = pipe.snap_bits;
-  // The view matrix's translation, -world_position, applied on the GPU after the model matrix
-  // (absolute, compose separate); premultiplied, the host folds it into P * V * M.
+  // The view's translation, applied on the GPU after the model matrix (plane_vertex_stage's view:
+  // model_then_view away from the origin); premultiplied, the host folds it into P * V * M.
   const auto& wp = s.world_position;
   if (view_translated_on_gpu(s)) {
     pc.forms |= MTS_F_VIEW_TRANSLATE;
-    for (int i = 0; i < 3; ++i) pc.view[i] = static_cast<float>(static_cast<T>(-wp[i]));
+    const ViewMatrix v = camera_view(s, pipe.transform);
+    for (int i = 0; i < 3; ++i) pc.view[i] = static_cast<float>(v.m[i * 4 + 3]);
   }
-  if (pipe.transform == Transform::relative_to_eye)
+  if (path == VertexPath::relative_to_eye)
     for (int i = 0; i < 3; ++i) dp_rte_encode(wp[i], &pc.eye_high[i], &pc.eye_low[i]);
   pc.layer_near = n64;
   pc.layer_far = f64;
@@ -203,8 +219,8 @@ Angles frame_angles(const Scene& s, int frame) {
 }
 
 bool view_translated_on_gpu(const Scene& s) {
-  return s.pipeline.transform == Transform::absolute && s.pipeline.compose == Compose::separate &&
-         !s.at_world_origin();
+  return vertex_path(s.pipeline) == VertexPath::model_then_view &&
+         camera_view(s, s.pipeline.transform).form == ViewMatrix::Form::translation;
 }
 
 ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z,
@@ -228,86 +244,81 @@ ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z,
 
 namespace {
 
-// P * MV, or P * V * MV under the absolute transform away from the world origin (V: the camera's
-// translation), in precision T as glm evaluates it, left to right.
-template <class T>
-Mat<T> premultiplied(const Scene& s, const Mat<T>& P, const Mat<T>& M) {
-  if (s.pipeline.transform != Transform::absolute || s.at_world_origin()) return P * M;
-  Mat<T> V(T(1));
-  for (int i = 0; i < 3; ++i) V[3][i] = static_cast<T>(-s.world_position[i]);
-  return P * V * M;
-}
+// A plane as the application holds it (host/model/vertex_stage.h): its model matrix built from the
+// frame's angles in the matrix precision (as glm builds it, in binary32 under float), the camera's
+// view, and relative to eye its world matrix in binary64 and the camera's position.
+class PlaneDraw final : public ApplicationDraw {
+ public:
+  PlaneDraw(const Scene& s, const ProbeConstants& pc, double D, int frame, double tilt)
+      : s_(s), D_(D), tilt_(tilt), angles_(frame_orientation(s, pc, frame)) {}
+  Mat4d model(Transform t) const override {
+    const std::array<double, 3> at = plane_translation(s_, D_, t);
+    if (s_.pipeline.matrix_precision == MatrixPrecision::single)
+      return row_major_f64(depthprec::model<float>(s_, D_, angles_, at, tilt_));
+    return row_major_f64(depthprec::model<double>(s_, D_, angles_, at, tilt_));
+  }
+  ViewMatrix view(Transform t) const override { return camera_view(s_, t); }
+  Mat4d world() const override {
+    return row_major_f64(depthprec::model<double>(
+        s_, D_, angles_, plane_translation(s_, D_, Transform::absolute), tilt_));
+  }
+  Vec3 eye() const override { return s_.world_position; }
+
+ private:
+  const Scene& s_;
+  double D_, tilt_;
+  Angles angles_;
+};
 
 }  // namespace
 
-Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame, double tilt) {
-  if (s.pipeline.transform == Transform::relative_to_eye)
-    throw Error(ExitCode::internal,
-                "plane_matrix: relative_to_eye hands the GPU world positions "
-                "(plane_world_matrix), not a model-view");
-  const bool premult = s.pipeline.compose == Compose::premultiplied;
-  if (s.pipeline.matrix_precision == MatrixPrecision::single) {
-    const Mat<float> M =
-        model<float>(s, D, frame_orientation(s, pc, frame), plane_translation(s, D), tilt);
-    if (!premult) return to_row_major(M);
-    Mat<float> P;
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) P[c][r] = pc.P[r * 4 + c];
-    return to_row_major(premultiplied(s, P, M));
-  }
-  const Mat<double> M =
-      model<double>(s, D, frame_orientation(s, pc, frame), plane_translation(s, D), tilt);
-  if (!premult) return to_row_major(M);
-  Mat<double> P;  // the binary64 P, so P * MV is rounded once, at the end
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) P[c][r] = pc.P_full[r * 4 + c];
-  return to_row_major(premultiplied(s, P, M));
+VertexStage plane_vertex_stage(const Scene& s, const ProbeConstants& pc, double D, int frame,
+                               double tilt) {
+  return vertex_stage(s.pipeline, pc.P_full, PlaneDraw(s, pc, D, frame, tilt));
 }
 
-Mat4d plane_world_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame,
-                         double tilt) {
-  return row_major_f64(
-      model<double>(s, D, frame_orientation(s, pc, frame), plane_translation(s, D), tilt));
+Mat4f plane_matrix(const Scene& s, const ProbeConstants& pc, double D, int frame, double tilt) {
+  const VertexStage st = plane_vertex_stage(s, pc, D, frame, tilt);
+  if (st.path == VertexPath::relative_to_eye)
+    throw Error(ExitCode::internal,
+                "plane_matrix: relative_to_eye hands the GPU world positions "
+                "(plane_vertex_stage's world), not a model-view");
+  return st.matrix;
 }
 
 void append_plane_words(std::vector<float>& words, const Scene& s, const ProbeConstants& pc,
                         double D, int frame, double tilt) {
-  if (s.pipeline.transform == Transform::relative_to_eye) {
-    const std::array<double, 16> m = plane_world_matrix(s, pc, D, frame, tilt);
+  const VertexStage st = plane_vertex_stage(s, pc, D, frame, tilt);
+  if (st.path == VertexPath::relative_to_eye) {
     const size_t at = words.size();
     words.resize(at + MTS_WORLD_MAT_STRIDE);
-    std::memcpy(words.data() + at, m.data(), sizeof m);
+    std::memcpy(words.data() + at, st.world.data(), sizeof st.world);
     return;
   }
-  const Mat4f m = plane_matrix(s, pc, D, frame, tilt);
-  words.insert(words.end(), m.begin(), m.end());
+  words.insert(words.end(), st.matrix.begin(), st.matrix.end());
 }
 
-void plane_vertex_clip(const Scene& s, const ProbeConstants& pc, const std::vector<float>& words,
-                       const float obj[4], VertexForm form, float clip[4]) {
-  float eye[4] = {0, 0, 0, 1.0f};
-  if (s.pipeline.transform == Transform::relative_to_eye) {
-    std::array<double, 16> W{};
-    std::memcpy(W.data(), words.data(), sizeof W);
-    for (int r = 0; r < 3; ++r)
-      eye[r] =
-          dp_rte_eye(dp_rte_world_row(W.data(), r, obj[0], obj[1]), pc.eye_high[r], pc.eye_low[r]);
-  } else {
-    Mat4f M{};
-    std::copy(words.begin(), words.begin() + MTS_MAT_STRIDE, M.begin());
-    if (s.pipeline.compose == Compose::premultiplied) {  // P * MV already
-      for (int r = 0; r < 4; ++r) clip[r] = object_row_dot(M, r, obj, form);
-      return;
-    }
-    for (int r = 0; r < 4; ++r) eye[r] = object_row_dot(M, r, obj, form);
-    if (pc.forms & MTS_F_VIEW_TRANSLATE)  // the view matrix: the camera's translation alone
-      for (int r = 0; r < 3; ++r) eye[r] = eye[r] + pc.view[r];
+VertexStage read_plane_words(const Scene& s, const ProbeConstants& pc, const float* words) {
+  VertexStage st;
+  st.path = vertex_path(s.pipeline);
+  if (st.path == VertexPath::relative_to_eye) {
+    std::memcpy(st.world.data(), words, sizeof st.world);
+    st.eye_high = pc.eye_high;
+    st.eye_low = pc.eye_low;
+    return st;
   }
-  for (int r = 0; r < 4; ++r) clip[r] = mat_row_dot(pc.P, r, eye, form);
+  std::copy(words, words + MTS_MAT_STRIDE, st.matrix.begin());
+  if (pc.forms & MTS_F_VIEW_TRANSLATE) {  // the view: the camera's translation alone
+    st.view = VertexStage::View::translation;
+    st.view_matrix = rounded(mat_identity());
+    for (int r = 0; r < 3; ++r) st.view_matrix[r * 4 + 3] = pc.view[r];
+  }
+  return st;
 }
 
 size_t plane_words(const Scene& s) {
-  return s.pipeline.transform == Transform::relative_to_eye ? MTS_WORLD_MAT_STRIDE : MTS_MAT_STRIDE;
+  return vertex_path(s.pipeline) == VertexPath::relative_to_eye ? MTS_WORLD_MAT_STRIDE
+                                                                : MTS_MAT_STRIDE;
 }
 
 double plane_matrix_distance(const Scene& s, double D) {

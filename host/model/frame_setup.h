@@ -10,6 +10,7 @@
 
 #include "host/model/matrix.h"
 #include "host/model/scene.h"
+#include "host/model/vertex_stage.h"
 #include "interface/mts_layout.h"
 
 namespace depthprec {
@@ -18,29 +19,6 @@ namespace depthprec {
 // as the kernels' vertex stage computes it (kernels/mts/setup/vertex.cl).
 inline float grid_coordinate(int g, int i) {
   return static_cast<float>(i) / static_cast<float>(g) - 0.5f;
-}
-
-// Row r of m times a computed vector v in binary32, in the kernels' order (kernels/mts/common.cl
-// mat_vec): ((m0 x + m1 y) + m2 z) + m3 w, or under VertexForm::fma the chain a shader compiler
-// fuses it into, fma(m3, w, fma(m2, z, fma(m1, y, m0 x))).
-inline float mat_row_dot(const Mat4f& m, int r, const float v[4],
-                         VertexForm form = VertexForm::separate) {
-  const float* row = &m[r * 4];
-  if (form == VertexForm::fma)
-    return std::fma(row[3], v[3], std::fma(row[2], v[2], std::fma(row[1], v[1], row[0] * v[0])));
-  return ((row[0] * v[0] + row[1] * v[1]) + row[2] * v[2]) + row[3] * v[3];
-}
-
-// Row r of m times an object position (x, y, z, 1) (kernels/mts/common.cl obj_row16 for the
-// planes' z = 0): as mat_row_dot, except that under VertexForm::fma the compiler, which sees the
-// constant w, folds it away and fuses what is left as fma(m2, z, fma(m1, y, fma(m0, x, m3))). For
-// a plane's z = 0 the outer fma adds an exact zero: fma(m1, y, fma(m0, x, m3)), what the compiler
-// makes of the planes' positions, whose z it folds too.
-inline float object_row_dot(const Mat4f& m, int r, const float obj[4], VertexForm form) {
-  const float* row = &m[r * 4];
-  if (form == VertexForm::fma)
-    return std::fma(row[2], obj[2], std::fma(row[1], obj[1], std::fma(row[0], obj[0], row[3])));
-  return mat_row_dot(m, r, obj);
 }
 
 // Orientations sampled at run time (worst-case sampling's rounds, host/mts/worst_case.h; no scene
@@ -77,8 +55,8 @@ struct ProbeConstants {
 ProbeConstants probe_constants(const Scene& scene, const EvalPair& pair, double z,
                                const Orientations& orientations = {});
 
-// Whether the GPU applies the view matrix after the model matrix (the absolute transform away from
-// the world origin, compose separate): MTS_F_VIEW_TRANSLATE in the probe constants.
+// Whether the GPU adds the view's translation after the model matrix (vertex_path model_then_view,
+// the camera away from the world origin): MTS_F_VIEW_TRANSLATE in the probe constants.
 bool view_translated_on_gpu(const Scene& scene);
 
 // The rotation angles of frame k of the paper's path in radians (binary64; the animation input,
@@ -88,30 +66,31 @@ Angles frame_angles(const Scene& scene, int frame);
 // constants carry (worst-case sampling), else the path's.
 Angles frame_orientation(const Scene& scene, const ProbeConstants& pc, int frame);
 
-// Model-view of a plane at requested distance D (binary64: z for plane A, z + s for plane B) in
-// frame k; with compose = premultiplied, P * MV instead. tilt (radians, `bias --tilt`) turns the
-// plane about the view's x axis on top of the frame's rotation, and sizes it in each frame to
-// cover the view still (host/model/tilted_plane.h).
+// What the GPU gets for a plane at requested distance D (binary64: z for plane A, z + s for
+// plane B) in frame k (host/model/vertex_stage.h): its model matrix with the world translation,
+// built in the matrix precision from the frame's angles, and the camera's view (a translation,
+// none at the world origin); camera-relative the model with its translation formed in binary64
+// and no view; relative to eye its world matrix in binary64 and the camera's position. tilt
+// (radians, `bias --tilt`) turns the plane about the view's x axis on top of the frame's
+// rotation, and sizes it in each frame to cover the view still (host/model/tilted_plane.h).
+VertexStage plane_vertex_stage(const Scene& scene, const ProbeConstants& pc, double D, int frame,
+                               double tilt = 0);
+
+// plane_vertex_stage's matrix: the model-view, or P * MV under compose = premultiplied (not
+// relative to eye, where the GPU gets world positions).
 Mat4f plane_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame,
                    double tilt = 0);
 
-// Under the relative_to_eye transform, what the GPU gets instead of plane_matrix: the plane's world
-// matrix in binary64 (the application's), from which it forms each vertex's world position.
-Mat4d plane_world_matrix(const Scene& scene, const ProbeConstants& pc, double D, int frame,
-                         double tilt = 0);
 // Appends what the set-up kernels read of one plane (plane_words(scene) floats): plane_matrix, or
-// under relative_to_eye plane_world_matrix's 16 doubles in 32 floats' place.
+// under relative_to_eye the world matrix's 16 doubles in 32 floats' place.
 void append_plane_words(std::vector<float>& words, const Scene& scene, const ProbeConstants& pc,
                         double D, int frame, double tilt = 0);
 size_t plane_words(const Scene& scene);  // MTS_MAT_STRIDE, or MTS_WORLD_MAT_STRIDE
 
-// The vertex stage up to the clip position (kernels/mts/setup/vertex.cl) of the plane's object
-// position obj (x, y, 0, 1) from its words: relative to eye, the eye's offset from the split world
-// position; else the model-view (with the view's translation under MTS_F_VIEW_TRANSLATE); then P,
-// unless the words are P * MV already. In binary32, rows in `form`.
-void plane_vertex_clip(const Scene& scene, const ProbeConstants& pc,
-                       const std::vector<float>& words, const float obj[4], VertexForm form,
-                       float clip[4]);
+// The vertex stage as the set-up kernels read it (kernels/mts/setup/vertex.cl): one plane's words
+// (append_plane_words, plane_words(scene) floats from `words`) with the probe constants' view
+// translation (MTS_F_VIEW_TRANSLATE) and eye. vertex_clip of it is the kernels' clip position.
+VertexStage read_plane_words(const Scene& scene, const ProbeConstants& pc, const float* words);
 
 // The distance plane_matrix builds a plane from when tilt is 0: D rounded to binary32 under
 // matrix_precision float, D itself under double. Two distances with the same value give the same

@@ -34,7 +34,7 @@ enum class PlaneForm { vertex, origin_fma, origin_quads };
 enum class ViewportForm { separate, fma };
 // The vertex stage's matrix-vector products, row by row: separate multiplies and adds in the
 // order ((m0 x + m1 y) + m2 z) + m3 w, or fused as llvmpipe's compiled vertex shader fuses
-// depthprec's (host/model/frame_setup.h; measured pixel by pixel, docs/validation.md).
+// depthprec's (host/model/vertex_stage.h; measured pixel by pixel, docs/validation.md).
 enum class VertexForm { separate, fma };
 // The shaders' natural log (log_vertex, log_fragment): the library's (OpenCL's log, <= 3 ulp), or
 // llvmpipe's approximation (interface/llvmpipe_log.h).

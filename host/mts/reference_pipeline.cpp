@@ -32,7 +32,8 @@ struct Plane {
 // flip: each quad split along its other diagonal (b to d), as kernels/mts/setup.cl's
 // triangle_vertices16 does for the bias measurement's overlay; bias: its offsets, or none.
 // words: what the set-up kernel reads of the plane (append_plane_words): its model-view (or
-// P * MV), or relative to eye its binary64 world matrix.
+// P * MV), or relative to eye its binary64 world matrix; read as the kernel reads them
+// (read_plane_words) into the vertex stage's description, whose clip positions vertex_clip gives.
 Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc,
                   const std::vector<float>& words, bool flip = false,
                   const BiasTerms* bias = nullptr) {
@@ -42,12 +43,13 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
   const float hw = 0.5f * static_cast<float>(s.viewport_w);
   const float hh = 0.5f * static_cast<float>(s.viewport_h);
   Plane plane;
+  const VertexStage stage = read_plane_words(s, pc, words.data());
   std::vector<Vertex> v((g + 1) * (g + 1));
   for (int j = 0; j <= g; ++j) {
     for (int i = 0; i <= g; ++i) {
       const float obj[4] = {grid_coordinate(g, i), grid_coordinate(g, j), 0.0f, 1.0f};
       float clip[4];
-      plane_vertex_clip(s, pc, words, obj, s.pipeline.vertex, clip);
+      vertex_clip(stage, pc.P, obj, s.pipeline.vertex, clip);
       if (ti.from == DepthFrom::vertex_log)
         clip[2] = vertex_log_clip_z(pc, s.pipeline.log, gl, clip[3]);
       Vertex& vx = v[j * (g + 1) + i];

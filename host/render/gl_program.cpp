@@ -9,6 +9,7 @@
 #include "host/base/embedded_sources.h"
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
+#include "host/model/vertex_stage.h"
 #include "host/runtime/kernel_variant.h"
 
 namespace depthprec {
@@ -52,9 +53,9 @@ std::string shader_defines(const Scene& scene, const EvalPair& pair) {
       "{}\n",
       static_cast<int>(ti.from), static_cast<int>(ti.fragment), static_cast<int>(vertex_log(ti)),
       pair.depth_range == DepthRange::gl ? 1 : 0,
-      scene.pipeline.compose == Compose::premultiplied ? 1 : 0,
+      vertex_path(scene.pipeline) == VertexPath::premultiplied ? 1 : 0,
       view_translated_on_gpu(scene) ? 1 : 0,
-      scene.pipeline.transform == Transform::relative_to_eye ? 1 : 0);
+      vertex_path(scene.pipeline) == VertexPath::relative_to_eye ? 1 : 0);
 }
 
 unsigned link_program(const std::string& vertex_path, const std::string& fragment_path,

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "host/base/errors.h"
+#include "host/model/vertex_stage.h"
 #include "host/render/gl_depth_format.h"
 #include "host/render/gl_program.h"
 #include "host/runtime/kernel_variant.h"
@@ -15,14 +16,13 @@ namespace depthprec {
 
 std::vector<uint32_t> render_winners(GlContext&, const Scene& scene, const EvalPair& pair,
                                      const SceneGeometry& g, const AuditCamera& cam) {
-  if (scene.pipeline.transform == Transform::relative_to_eye)
+  if (vertex_path(scene.pipeline) == VertexPath::relative_to_eye)
     throw InputError("audit --source rendered: the relative_to_eye transform is emulated only");
   const Scene s = audit_scene(scene, cam);
   const ProbeConstants pc = probe_constants(s, pair, s.near);
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const GlDepthFormat depth = gl_depth_format(pair.format);
-  const bool view_on_gpu =
-      s.pipeline.compose != Compose::premultiplied && s.pipeline.transform == Transform::absolute;
+  const bool view_on_gpu = vertex_path(s.pipeline) == VertexPath::model_then_view;
   const unsigned program = link_program(
       "host/render/shaders/audit.vert", "host/render/shaders/audit.frag",
       shader_defines(s, pair) + fmt::format("#define VIEW_ON_GPU {}\n", view_on_gpu ? 1 : 0));
@@ -68,9 +68,9 @@ std::vector<uint32_t> render_winners(GlContext&, const Scene& scene, const EvalP
   glCreateVertexArrays(1, &vao);
   glBindVertexArray(vao);
   for (const Draw& d : g.draws) {
-    const DrawMatrices m = draw_matrices(s, pc, d, cam);
-    glUniformMatrix4fv(loc("FIRST"), 1, GL_TRUE, m.first.data());
-    glUniformMatrix4fv(loc("SECOND"), 1, GL_TRUE, m.second.data());
+    const VertexStage m = draw_vertex_stage(s, pc, d, cam);
+    glUniformMatrix4fv(loc("FIRST"), 1, GL_TRUE, m.matrix.data());
+    glUniformMatrix4fv(loc("SECOND"), 1, GL_TRUE, m.view_matrix.data());
     glUniform1ui(loc("first_triangle"), d.first_triangle);
     GLuint vbo = 0, ibo = 0;
     glCreateBuffers(1, &vbo);

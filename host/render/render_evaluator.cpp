@@ -189,21 +189,21 @@ void RenderEvaluator::begin_frame(const ProbeConstants& pc, const Target& t) {
 }
 
 void RenderEvaluator::set_plane(const ProbeConstants& pc, double D, int frame, double tilt) {
-  if (scene_.pipeline.transform != Transform::relative_to_eye) {
-    const Mat4f m = plane_matrix(scene_, pc, D, frame, tilt);
-    glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, m.data());
+  const VertexStage st = plane_vertex_stage(scene_, pc, D, frame, tilt);
+  if (st.path != VertexPath::relative_to_eye) {
+    glUniformMatrix4fv(loc_mv_, 1, GL_TRUE, st.matrix.data());
     return;
   }
   // The application's binary64 world positions of the grid's vertices, split for the GPU.
-  const std::array<double, 16> W = plane_world_matrix(scene_, pc, D, frame, tilt);
   const int g = scene_.plane_subdivisions;
   std::vector<float> parts;
   for (int j = 0; j <= g; ++j)
     for (int i = 0; i <= g; ++i) {
       float high[3], low[3];
       for (int r = 0; r < 3; ++r)
-        dp_rte_encode(dp_rte_world_row(W.data(), r, grid_coordinate(g, i), grid_coordinate(g, j)),
-                      high + r, low + r);
+        dp_rte_encode(
+            dp_rte_world_row(st.world.data(), r, grid_coordinate(g, i), grid_coordinate(g, j)),
+            high + r, low + r);
       parts.insert(parts.end(), high, high + 3);
       parts.insert(parts.end(), low, low + 3);
     }
@@ -253,8 +253,7 @@ std::vector<uint8_t> RenderEvaluator::read(const Target& t) {
 
 bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double tilt) const {
   const ProbeConstants pc = probe_constants(scene_, pair_, z, orientations_);
-  std::vector<float> words;
-  append_plane_words(words, scene_, pc, D, frame, tilt);
+  const VertexStage stage = plane_vertex_stage(scene_, pc, D, frame, tilt);
   const bool gl = pair_.depth_range == DepthRange::gl;
   const bool vertex_log = info(depth_path(scene_, pair_.technique)).from == DepthFrom::vertex_log;
   const int g = scene_.plane_subdivisions;
@@ -262,7 +261,7 @@ bool RenderEvaluator::leaves_depth_range(double z, double D, int frame, double t
     for (int i = 0; i <= g; ++i) {
       const float obj[4] = {grid_coordinate(g, i), grid_coordinate(g, j), 0.0f, 1.0f};
       float clip[4];
-      plane_vertex_clip(scene_, pc, words, obj, VertexForm::separate, clip);
+      vertex_clip(stage, pc.P, obj, VertexForm::separate, clip);
       if (vertex_log) clip[2] = vertex_log_clip_z(pc, LogForm::library, gl, clip[3]);
       if (!(clip[3] > 0) || clip[2] > clip[3] || clip[2] < (gl ? -clip[3] : 0.0f)) return true;
     }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "host/model/vertex_stage.h"
 #include "host/runtime/opencl_runtime.h"
 
 namespace depthprec {
@@ -34,7 +35,7 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
                          : p.plane == PlaneForm::origin_quads ? 2
                                                               : 0;
   const int llvmpipe_log = p.log == LogForm::llvmpipe ? 1 : 0;
-  const int rte = p.transform == Transform::relative_to_eye ? 1 : 0;
+  const int rte = vertex_path(p) == VertexPath::relative_to_eye ? 1 : 0;
   const std::string base = base_build_options(p.denormals == Denormals::flush);
   v.options = fmt::format(
       "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DCOMPARE_GREATER={} -DCONTRACT={} "

@@ -26,8 +26,8 @@
 #define LANES ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 
 // m * v row by row for 16 vectors in lanes, fused (MTS_F_VERTEX_FMA) or not
-// (host/model/frame_setup.h mat_row_dot): a computed vector, or a plane's object position (x, y, 0,
-// 1), whose constant z and w a shader compiler folds away (obj_row16).
+// (host/model/vertex_stage.h mat_row_dot): a computed vector, or a plane's object position (x, y,
+// 0, 1), whose constant z and w a shader compiler folds away (obj_row16).
 typedef struct {
   float16 x, y, z, w;
 } vec4x16_t;

@@ -1,7 +1,8 @@
 // The audit's vertex stage for `depthprec audit --source rendered`: object position to clip space
-// with the matrices the emulation uses (host/audit/audit_setup.h DrawMatrices): P (V (M p)) under
-// the absolute transform (VIEW_ON_GPU), P (MV p) camera-relative, or (P V M) p premultiplied; then
-// vertex-stage log depth. The arithmetic is the driver's.
+// with the matrices the emulation uses (host/audit/audit_setup.h draw_vertex_stage,
+// host/model/vertex_stage.h): P (V (M p)) under the absolute transform (VIEW_ON_GPU:
+// model_then_view), P (MV p) camera-relative, or (P V M) p premultiplied; then vertex-stage log
+// depth. The arithmetic is the driver's.
 layout(location = 0) in vec3 position;
 
 uniform mat4 P;

@@ -1,5 +1,7 @@
 // The vertex stage: clip coordinates, the divide, the window transform, snapping; and which grid
-// vertices make each triangle.
+// vertices make each triangle. The host describes the clip coordinates' part once
+// (host/model/vertex_stage.h: vertex_path, vertex_clip) and packs what this reads of it
+// (host/model/frame_setup.h append_plane_words, the probe constants' MTS_F_* bits and view).
 
 #if RELATIVE_TO_EYE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
