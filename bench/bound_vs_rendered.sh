@@ -38,7 +38,7 @@ for name, run in runs:
         if r["verdict"] != "resolved":
             continue
         rows += 1
-        b = r["mts_bound"]
+        b = r.get("mts_bound")
         if not isinstance(b, (int, float)):
             unbounded += 1
             continue

@@ -31,7 +31,8 @@ double turning_point(double good, double bad, double precision, bool up, double 
     (holds(mid) ? good : bad) = mid;
   }
   double step = precision;
-  for (double v = round_printed(good, up);; v = round_printed(up ? v * (1 + step) : v / (1 + step), up)) {
+  for (double v = round_printed(good, up);;
+       v = round_printed(up ? v * (1 + step) : v / (1 + step), up)) {
     if (up ? v > limit : v < limit) return good;
     if (holds_onwards(holds, v, up, limit)) return v;
     step *= 2;

@@ -151,10 +151,10 @@ std::string render_advise_output(const nlohmann::json& header,
       cells.back().push_back(r->value("far_tightened", false) ? "true" : "false");
     }
   }
-  std::vector<Column> cols = {{"rank"},          {"technique", true},   {"format", true},
-                              {"depth_range", true},   {"near (bound)"},      {"far (bound)"},
-                              {"smallest near"}, {"next down (fails)"}, {"fails at z"},
-                              {"largest far"},   {"steps"}};
+  std::vector<Column> cols = {
+      {"rank"},         {"technique", true}, {"format", true},  {"depth_range", true},
+      {"near (bound)"}, {"far (bound)"},     {"smallest near"}, {"next down (fails)"},
+      {"fails at z"},   {"largest far"},     {"steps"}};
   if (csv) {
     cols.push_back({"far holds to ceiling", true});
     cols.push_back({"far tightened", true});

@@ -29,11 +29,10 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   // Binary32 arithmetic rounds to nearest in every profile; flushing subnormal results is allowed
   // (it only matters below 2^-126, where no depth of a resolved row lies).
   m.rounding = {true, false};
-  m.premultiplied = p.compose == Compose::premultiplied;
+  m.path = vertex_path(p);
+  m.premultiplied = m.path == VertexPath::premultiplied;
   if (m.premultiplied && !s.at_world_origin())
     throw InputError("no bound model for compose premultiplied away from the world origin");
-  if (p.transform == Transform::relative_to_eye && m.premultiplied)
-    throw InputError("no bound model for relative_to_eye with compose premultiplied");
   // Under premultiplied binary64 matrices the GPU gets P * MV rounded once from binary64: the
   // depths follow the binary64 P; otherwise the binary32 P the GPU multiplies by.
   const bool full = m.premultiplied && p.matrix_precision == MatrixPrecision::binary64;

@@ -8,6 +8,7 @@
 #include "host/model/scene.h"
 #include "host/model/storage_format.h"
 #include "host/model/technique.h"
+#include "host/model/vertex_stage.h"
 
 namespace depthprec::bound {
 
@@ -22,9 +23,10 @@ struct RowModel {
   double a = 0, b = 0;  // the third row of the P the depths follow: z_clip = a e_z + b
   double scale = 1;     // window depth = scale z_ndc + (1 - scale): 0.5 under gl, else 1
   double P00 = 0, P11 = 0;
-  double sin_tilt = 0, tan_tilt = 0;  // bounds over the cube (widened, docs/mts.md)
-  double xn_max = 0, yn_max = 0;      // |x_ndc|, |y_ndc| of the kernel's pixel centres
-  double sign = 1;                    // +1 where plane B must store the larger depth
+  double sin_tilt = 0, tan_tilt = 0;              // bounds over the cube (widened, docs/mts.md)
+  double xn_max = 0, yn_max = 0;                  // |x_ndc|, |y_ndc| of the kernel's pixel centres
+  double sign = 1;                                // +1 where plane B must store the larger depth
+  VertexPath path = VertexPath::model_then_view;  // which matrices the GPU gets (vertex_stage.h)
   bool premultiplied = false, fragment = false, vertex_log = false;
 };
 

@@ -32,8 +32,9 @@ double hu(const RowModel& m, double magnitude) {
 // - under the absolute transform away from the origin, the view's translation, rounded once, and
 //   its sum with the model's product.
 // relative_to_eye forms the eye offset in emulated double-single arithmetic from binary64 world
-// positions: within 4 u of the offset and 2^-46 of the world coordinate (interface/relative_to_eye.h),
-// doubled here. Premultiplied matrices have no eye stage: only binary32 M~'s entries carry over.
+// positions: within 4 u of the offset and 2^-46 of the world coordinate
+// (interface/relative_to_eye.h), doubled here. Premultiplied matrices have no eye stage: only
+// binary32 M~'s entries carry over.
 std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
   const Scene& s = *m.scene;
   const Pipeline& p = s.pipeline;
@@ -41,7 +42,7 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
   std::array<double, 3> out{};
   for (int r = 0; r < 3; ++r) {
     const double e_max = r < 2 ? g.lateral : g.wv_hi;
-    if (p.transform == Transform::relative_to_eye) {
+    if (m.path == VertexPath::relative_to_eye) {
       out[r] = 8 * hu(m, e_max) + 0x1.0p-45 * (std::fabs(W[r]) + e_max);
       continue;
     }
@@ -49,7 +50,7 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
     double entries = 2 * 0.5 * hu(m, column);
     double t = r == 2 ? g.D : 0.0;
     if (!s.at_world_origin()) {
-      if (p.transform == Transform::camera_relative) {
+      if (m.path == VertexPath::model_view) {
         entries += 0x1.0p-52 * 2 * (std::fabs(W[r]) + g.D) + hu(m, t);
       } else {
         t = std::fabs(W[r]) + t;
@@ -60,10 +61,11 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
       out[r] = p.matrix_precision == MatrixPrecision::single ? entries * b32::kMargin : 0.0;
       continue;
     }
-    double sum = entries + b32::row_rounding(m.rounding, {{0.5 * column, false},
-                                                          {0.5 * column, false},
-                                                          {t, true}});
-    if (view_translated_on_gpu(s)) sum += hu(m, std::fabs(W[r])) + hu(m, e_max + std::fabs(W[r]));
+    double sum =
+        entries +
+        b32::row_rounding(m.rounding, {{0.5 * column, false}, {0.5 * column, false}, {t, true}});
+    if (m.path == VertexPath::model_then_view && !s.at_world_origin())
+      sum += hu(m, std::fabs(W[r])) + hu(m, e_max + std::fabs(W[r]));
     out[r] = sum * b32::kMargin;
   }
   return out;
@@ -96,11 +98,13 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
   } else {
     const bool single = m.scene->pipeline.matrix_precision == MatrixPrecision::single;
     const double zcol = g.side * std::sqrt(2.0) * m.sin_tilt;
-    c.x = hu(m, m.P00 * g.side) + b32::row_rounding(R, {{0.5 * xc_max, false}, {0.5 * xc_max, false}});
-    c.y = hu(m, m.P11 * g.side) + b32::row_rounding(R, {{0.5 * yc_max, false}, {0.5 * yc_max, false}});
+    c.x = hu(m, m.P00 * g.side) +
+          b32::row_rounding(R, {{0.5 * xc_max, false}, {0.5 * xc_max, false}});
+    c.y = hu(m, m.P11 * g.side) +
+          b32::row_rounding(R, {{0.5 * yc_max, false}, {0.5 * yc_max, false}});
     c.z = hu(m, aa * zcol) + (single ? hu(m, aa * g.D) : 0.0) + hu(m, aa * g.D + ab) +
-          b32::row_rounding(R, {{0.5 * aa * zcol, false}, {0.5 * aa * zcol, false},
-                                {aa * g.D + ab, true}});
+          b32::row_rounding(
+              R, {{0.5 * aa * zcol, false}, {0.5 * aa * zcol, false}, {aa * g.D + ab, true}});
     c.w = (single ? 0.0 : hu(m, zcol) + hu(m, g.D)) +
           b32::row_rounding(R, {{0.5 * zcol, false}, {0.5 * zcol, false}, {g.D, true}});
   }
@@ -141,8 +145,9 @@ double shader_own(const RowModel& m, double lo, double hi) {
     case FragmentDepth::cesium_log: {
       // fl(log2(fl(fl(w - n) + 1)) C)
       const double x_hi = (hi - pc.near) + 1, l2 = std::log2(x_hi);
-      return pc.cesium_inv_log2 * ((hu(m, hi - pc.near) + hu(m, x_hi)) / (((lo - pc.near) + 1) * M_LN2) +
-                                   kLogHalfUlps * hu(m, l2)) +
+      return pc.cesium_inv_log2 *
+                 ((hu(m, hi - pc.near) + hu(m, x_hi)) / (((lo - pc.near) + 1) * M_LN2) +
+                  kLogHalfUlps * hu(m, l2)) +
              hu(m, f_max);
     }
     case FragmentDepth::log:
@@ -194,7 +199,8 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
   } else {
     const double zc_max =
         std::max(std::fabs(-m.a * g.wv_lo + m.b), std::fabs(-m.a * g.wv_hi + m.b));
-    const double zn_max = std::max(std::fabs(-m.a + m.b / g.wv_lo), std::fabs(-m.a + m.b / g.wv_hi));
+    const double zn_max =
+        std::max(std::fabs(-m.a + m.b / g.wv_lo), std::fabs(-m.a + m.b / g.wv_hi));
     const double zn = b32::product_error(R, zc_max, c.z, q_max, eq, zn_max);
     const double d_max =
         std::max(std::fabs(exact_depth(m, g.wv_lo)), std::fabs(exact_depth(m, g.wv_hi)));
@@ -246,9 +252,8 @@ double pixel_value_max(const RowModel& m, const PlaneGeometry& g) {
 }  // namespace
 
 const char* term_name(int t) {
-  static const char* const names[kTermCount] = {"vertex",   "clip",          "divide",
-                                                "position", "setup",         "interpolation",
-                                                "shader",   "storage"};
+  static const char* const names[kTermCount] = {"vertex", "clip",          "divide", "position",
+                                                "setup",  "interpolation", "shader", "storage"};
   return names[t];
 }
 

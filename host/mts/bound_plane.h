@@ -10,11 +10,11 @@
 namespace depthprec::bound {
 
 enum Term {
-  kVertex,         // the vertex stage's rows (and the matrices' entries) moving a vertex in eye space
-  kClip,           // the clip coordinates' rounding: P's rows, llvmpipe's clip stage
-  kDivide,         // the divide by w and the viewport transform
-  kPosition,       // window x and y errors (and snapping) through the plane's depth gradient
-  kSetup,          // the depth plane's gradients rounded, over the distance to the pixel
+  kVertex,    // the vertex stage's rows (and the matrices' entries) moving a vertex in eye space
+  kClip,      // the clip coordinates' rounding: P's rows, llvmpipe's clip stage
+  kDivide,    // the divide by w and the viewport transform
+  kPosition,  // window x and y errors (and snapping) through the plane's depth gradient
+  kSetup,     // the depth plane's gradients rounded, over the distance to the pixel
   kInterpolation,  // evaluating (or stepping) the plane at the pixel
   kShader,         // a fragment shader's own arithmetic and its log
   kStorage,        // the conversion to the stored code

@@ -60,8 +60,8 @@ BoundCheck check(const RowModel& m, double z, double s) {
   // Plane A's fragments stay inside the depth range (a clipped A would leave B alone at the pixel).
   const double aN = bound::exact_depth(m, gA.wp_lo), aF = bound::exact_depth(m, gA.wp_hi);
   const double a_lo = std::min(aN, aF) - EA, a_hi = std::max(aN, aF) + EA;
-  const bool a_inside = m.fragment ? gA.wp_lo > m.pc.near && gA.wp_hi < m.pc.far
-                                   : a_lo > 0 && a_hi < 1;
+  const bool a_inside =
+      m.fragment ? gA.wp_lo > m.pc.near && gA.wp_hi < m.pc.far : a_lo > 0 && a_hi < 1;
   if (!a_inside) {
     v.why = "plane A's fragments can be clipped";
     return v;

@@ -56,7 +56,6 @@ json row_to_json(const MtsRow& r, bool timing) {
   j.update({{"source", to_string(r.source)},
             {"z", r.z},
             {"mts", number(r.mts)},
-            {"mts_bound", number(r.mts_bound)},
             {"bound_model", kBoundModel},
             {"bound_by", r.bound_note},
             {"mts_paper", number(r.mts_paper)},
@@ -75,6 +74,7 @@ json row_to_json(const MtsRow& r, bool timing) {
             {"clean_min", number(r.clean_min)},
             {"flags", r.flags()},
             {"verdict", to_string(r.verdict())}});
+  if (!std::isnan(r.mts_bound)) j["mts_bound"] = number(r.mts_bound);  // left out where none
   if (r.below_one_code) j["code_width"] = number(r.code_width);
   if (r.attributed()) {
     j["storage_mts"] = number(r.storage_mts);
@@ -131,8 +131,7 @@ MtsRow row_from_json(const json& j) {
   }
   r.z = read_number(j, "z");
   r.mts = read_number(j, "mts");
-  if (j.contains("mts_bound") && !j.at("mts_bound").is_null())
-    r.mts_bound = read_number(j, "mts_bound");
+  if (j.contains("mts_bound")) r.mts_bound = read_number(j, "mts_bound");
   r.bound_note = j.value("bound_by", "");
   r.mts_paper = j.contains("mts_paper") ? read_number(j, "mts_paper") : r.mts;
   r.orientations = j.contains("orientations") ? read_count<uint64_t>(j, "orientations") : 0;

@@ -165,9 +165,10 @@ TEST_CASE("round_printed rounds to the four digits text shows, on the side asked
   CHECK(round_printed(999.95, true) == 1000);
 }
 
-TEST_CASE("advise's near plane under the guaranteed MTS clears the separation, and one a tenth "
-          "nearer does not",
-          "[advise][bound]") {
+TEST_CASE(
+    "advise's near plane under the guaranteed MTS clears the separation, and one a tenth "
+    "nearer does not",
+    "[advise][bound]") {
   const Scene scene = load_scene("", {"far=5e4"});
   const EvalPair pair{Technique::standard, "unorm24", DepthRange::gl};
   AdviseRequest r;

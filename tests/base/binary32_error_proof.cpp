@@ -89,10 +89,9 @@ void row_term(uint64_t n, Worst& w) {
                                                  {mags[2], exact_factor(m[2])},
                                                  {mags[3], exact_factor(m[3])}});
     const float t0 = m[0] * x[0], t1 = m[1] * x[1], t2 = m[2] * x[2], t3 = m[3] * x[3];
-    const float forms[5] = {
-        ((t0 + t1) + t2) + t3, t0 + (t1 + (t2 + t3)), (t0 + t1) + (t2 + t3),
-        std::fma(m[3], x[3], std::fma(m[2], x[2], std::fma(m[1], x[1], t0))),
-        std::fma(m[2], x[2], std::fma(m[1], x[1], std::fma(m[0], x[0], t3)))};
+    const float forms[5] = {((t0 + t1) + t2) + t3, t0 + (t1 + (t2 + t3)), (t0 + t1) + (t2 + t3),
+                            std::fma(m[3], x[3], std::fma(m[2], x[2], std::fma(m[1], x[1], t0))),
+                            std::fma(m[2], x[2], std::fma(m[1], x[1], std::fma(m[0], x[0], t3)))};
     for (const float f : forms) w.see(f - exact, bound, "row_rounding");
   }
 }
@@ -144,8 +143,10 @@ void evaluation_term(uint64_t n, Worst& w) {
     const float x0 = random_float(-2, 8, true), y0 = random_float(-2, 8, true);
     const int qx = pix(rng) & ~1, qy = pix(rng) & ~1, odd_x = static_cast<int>(rng() & 1),
               odd_y = static_cast<int>(rng() & 1);
-    const float px = static_cast<float>(qx + odd_x) + 0.5f, py = static_cast<float>(qy + odd_y) + 0.5f;
-    const Exact exact = static_cast<Exact>(c0) + static_cast<Exact>(gx) * (static_cast<Exact>(px) - x0) +
+    const float px = static_cast<float>(qx + odd_x) + 0.5f,
+                py = static_cast<float>(qy + odd_y) + 0.5f;
+    const Exact exact = static_cast<Exact>(c0) +
+                        static_cast<Exact>(gx) * (static_cast<Exact>(px) - x0) +
                         static_cast<Exact>(gy) * (static_cast<Exact>(py) - y0);
     const double X = 2 * std::max(512.0, static_cast<double>(x0)) + 2;
     const double Y = 2 * std::max(512.0, static_cast<double>(y0)) + 2;
@@ -205,11 +206,12 @@ void setup_term(uint64_t n, Worst& w) {
       Lx = std::max(Lx, std::fabs(static_cast<double>(x[k]) - x[0]));
       Ly = std::max(Ly, std::fabs(static_cast<double>(y[k]) - y[0]));
     }
-    const double bound = (6 * kappa + 4) * kU * (std::fabs(static_cast<double>(gxe)) +
-                                                  std::fabs(static_cast<double>(gye))) *
-                         (Lx + Ly);
+    const double bound =
+        (6 * kappa + 4) * kU *
+        (std::fabs(static_cast<double>(gxe)) + std::fabs(static_cast<double>(gye))) * (Lx + Ly);
     const auto at = [&](float sx, float sy) {
-      return (static_cast<Exact>(sx) - gxe) * (px - x[0]) + (static_cast<Exact>(sy) - gye) * (py - y[0]);
+      return (static_cast<Exact>(sx) - gxe) * (px - x[0]) +
+             (static_cast<Exact>(sy) - gye) * (py - y[0]);
     };
     // vertex form
     const float e1x = x[1] - x[0], e1y = y[1] - y[0], e2x = x[2] - x[0], e2y = y[2] - y[0];
@@ -230,11 +232,12 @@ void setup_term(uint64_t n, Worst& w) {
 // of width 1 + 2^-7 (unorm16), 2 (unorm24), 3 (unorm32) under every conversion the profiles use.
 void conversion_term(uint64_t n, Worst& w) {
   for (const char* name : {"unorm16", "unorm24", "unorm32"}) {
-    const double width = std::string(name) == "unorm16" ? 1.0078125
-                         : std::string(name) == "unorm24" ? 2.0 : 3.0;
+    const double width = std::string(name) == "unorm16"   ? 1.0078125
+                         : std::string(name) == "unorm24" ? 2.0
+                                                          : 3.0;
     for (const Conversion c : {Conversion::exact, Conversion::llvmpipe, Conversion::softpipe}) {
-      const StorageFormat f = StorageFormat::parse(name, depthprec::Rounding::nearest_even,
-                                                   Denormals::keep, c);
+      const StorageFormat f =
+          StorageFormat::parse(name, depthprec::Rounding::nearest_even, Denormals::keep, c);
       const double N = f.max_code();
       double lo = INFINITY, hi = -INFINITY;
       std::uniform_real_distribution<float> d01(0.0f, 1.0f);
@@ -253,9 +256,10 @@ void conversion_term(uint64_t n, Worst& w) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr,
-                 "usage: binary32_error_proof half_ulp|row|divide|viewport|evaluation|setup|conversion "
-                 "[TRIALS]\n");
+    std::fprintf(
+        stderr,
+        "usage: binary32_error_proof half_ulp|row|divide|viewport|evaluation|setup|conversion "
+        "[TRIALS]\n");
     return 2;
   }
   const uint64_t n = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000000ull;

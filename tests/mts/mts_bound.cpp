@@ -47,9 +47,9 @@ TEST_CASE("the guaranteed MTS is at or above the sampled worst case on every res
   int resolved = 0, bounded = 0;
   for (const std::string prof : {"ideal", "llvmpipe", "softpipe"}) {
     std::vector<std::string> sets = profile(prof).sets;
-    sets.insert(sets.end(), {"kernel=[32,32]", "viewport=[32,32]", "frames=16",
-                             "worst_case.round_size=32", "worst_case.max_rounds=2",
-                             "distances=[1.005,3,100,5000,300000,2e7]"});
+    sets.insert(sets.end(),
+                {"kernel=[32,32]", "viewport=[32,32]", "frames=16", "worst_case.round_size=32",
+                 "worst_case.max_rounds=2", "distances=[1.005,3,100,5000,300000,2e7]"});
     const Scene s = load_scene("", sets);
     for (const Technique t :
          {Technique::standard, Technique::reversed, Technique::reversed_infinite,
