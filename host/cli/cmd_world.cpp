@@ -6,6 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/analysis/world_bound.h"
 #include "host/analysis/world_sweep.h"
 #include "host/base/errors.h"
 #include "host/cli/commands.h"
@@ -66,7 +67,11 @@ void run_world(const WorldOptions& o, const GlobalOptions& g) {
         header["transforms"] = names;
         header["world_distance_limit"] = world_distance_limit(r);
         return pair_units(scene, [&rt, &scene, &r](const EvalPair& pair) {
-          return world_record(rt, scene, pair, r);
+          // The sampled answer, and beside it, per transform, the guaranteed MTS's.
+          nlohmann::json rec = world_record(rt, scene, pair, r);
+          for (const Transform t : r.transforms)
+            rec["transforms"][to_string(t)].update(world_bound(scene, pair, r, t));
+          return rec;
         });
       },
       render_world_output);
@@ -88,6 +93,10 @@ std::string render_world_output(const nlohmann::json& header,
   const auto limit = [&](const nlohmann::json& t) {
     const std::string v = num(t, "limit");
     return !csv && t.value("holds_to_bound", false) ? ">= " + v : v;
+  };
+  const auto limit_bound = [&](const nlohmann::json& t) {
+    const std::string v = num(t, "limit_bound");
+    return !csv && t.value("limit_bound_to_limit", false) ? ">= " + v : v;
   };
   const auto spacing = [&](const nlohmann::json& t) {
     const std::string v = num(t, "spacing");
@@ -118,6 +127,7 @@ std::string render_world_output(const nlohmann::json& header,
     const std::string t = brief(transforms[k].get<std::string>());
     if (shows_origin[k]) cols.push_back({(k == 0 && !csv ? "" : t) + "mts at 0"});
     cols.push_back({t + "limit R"});
+    cols.push_back({t + "limit R (bound)"});
     cols.push_back({t + "spacing"});
     if (csv) cols.push_back({t + "axis", true});
     if (csv) cols.push_back({t + "limit from", true});
@@ -135,6 +145,7 @@ std::string render_world_output(const nlohmann::json& header,
       auto& row = cells.back();
       if (shows_origin[k]) row.push_back(num(t, "mts_at_origin"));
       row.push_back(limit(t));
+      row.push_back(limit_bound(t));
       row.push_back(spacing(t));
       if (csv) row.push_back(t.value("axis", ""));
       if (csv) row.push_back(t.value("limit_from", ""));
@@ -155,7 +166,10 @@ std::string render_world_output(const nlohmann::json& header,
           "is decided per binade. limit R: every position below it holds: the start of the first "
           "binade whose spacing reaches the separation, or of an earlier one whose sawtooth peak "
           "was measured to fail; >=: even {} (world_position's bound) holds; '-': not even the "
-          "origin holds. spacing: the grid's spacing there and the axis whose coordinate reaches "
+          "origin holds. limit R (bound): the same under the guaranteed MTS (every position below "
+          "it has mts_bound within the separation: no fight on any implementation of the bound "
+          "model, in any orientation; a binade's start, docs/mts.md). spacing: the grid's spacing "
+          "there and the axis whose coordinate reaches "
           "it first (z: along this view; x or y: across it, which this view sees only through the "
           "planes' slope, but a camera turned toward that axis sees it in depth, so the limit "
           "stands for any view). mts below: the largest MTS measured below the limit. R fails: a "

@@ -29,8 +29,9 @@ double hu(const RowModel& m, double magnitude) {
 //   from it rounded once (absolute: world + centre; camera_relative: a binary64 difference first,
 //   within 2^-52 of its operands);
 // - the row itself, ((m0 x + m1 y) + m2 0) + m3, in any association, fused or not (row_rounding);
-// - under the absolute transform away from the origin, the view's translation, rounded once, and
-//   its sum with the model's product.
+// - under the absolute transform away from the origin, the view's translation, rounded once (the
+//   same value for both planes, counted for each all the same), and its sum with the model's
+//   product, which rounds at the eye coordinate's magnitude (the world's cancels).
 // relative_to_eye forms the eye offset in emulated double-single arithmetic from binary64 world
 // positions: within 4 u of the offset and 2^-46 of the world coordinate
 // (interface/relative_to_eye.h), doubled here. Premultiplied matrices have no eye stage: only
@@ -65,7 +66,7 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
         entries +
         b32::row_rounding(m.rounding, {{0.5 * column, false}, {0.5 * column, false}, {t, true}});
     if (m.path == VertexPath::model_then_view && !s.at_world_origin())
-      sum += hu(m, std::fabs(W[r])) + hu(m, e_max + std::fabs(W[r]));
+      sum += hu(m, std::fabs(W[r])) + hu(m, e_max);
     out[r] = sum * b32::kMargin;
   }
   return out;

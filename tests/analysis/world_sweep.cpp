@@ -7,6 +7,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "host/analysis/world_bound.h"
+#include "host/mts/mts_bound.h"
 #include "host/mts/worst_case.h"
 #include "tests/support/mts_fixture.h"
 #include "tests/support/run_cli.h"
@@ -159,4 +161,26 @@ TEST_CASE("world refuses what it cannot sweep", "[world][cli]") {
       run_cli("world -t reversed -f float32 --separation 0.01 --transforms eye_relative");
   CHECK(transform.exit_code == 3);
   CHECK_THAT(transform.output, Contains("relative_to_eye"));
+}
+
+TEST_CASE("world's limit under the guaranteed MTS: every binade below it holds, its own does not",
+          "[world][bound]") {
+  const Scene scene = load_scene("", {});
+  const EvalPair pair{Technique::reversed, "float32", DepthRange::zero_to_one};
+  WorldRequest r;
+  r.z = 100;
+  r.separation = 0.01;
+  const nlohmann::json j = world_bound(scene, pair, r, Transform::absolute);
+  REQUIRE(j.contains("limit_bound"));
+  const double R = j["limit_bound"].get<double>();
+  CHECK(j["mts_bound_at_origin"].get<double>() <= 0.01);
+  CHECK_FALSE(j["limit_bound_to_limit"].get<bool>());
+  const auto bound_at = [&](double d) {
+    const double c = d / std::sqrt(3.0);
+    return mts_bound(with_world(scene, {c, c, c}, Transform::absolute), pair, r.z).s;
+  };
+  for (const double d : {R / 4, R / 2, std::nextafter(R, 0.0)}) CHECK(bound_at(d) <= 0.01);
+  CHECK((bound_at(R) > 0.01 || bound_at(std::nextafter(2 * R, 0.0)) > 0.01));
+  // camera-relative rendering keeps the content's precision wherever it is.
+  CHECK(world_bound(scene, pair, r, Transform::camera_relative)["limit_bound_to_limit"] == true);
 }
