@@ -79,6 +79,33 @@ void run_world(const WorldOptions& o, const GlobalOptions& g) {
 
 }  // namespace
 
+// What the world table says, above it.
+static std::string world_caption(const nlohmann::json& header) {
+  const auto dir = header.value("direction", std::vector<double>{1, 1, 1});
+  return fmt::format(
+      "How far from the world origin content can sit (scene {}): camera and planes moved a "
+      "world distance R along ({}, {}, {}); content at eye distance {} needs a separation of "
+      "{}. What the vertex stage keeps of a world coordinate is a grid whose spacing is "
+      "constant within a binade of the coordinate, and within one the MTS saws from about 0 "
+      "to a full spacing as the planes' translation moves between grid points, so the limit "
+      "is decided per binade. limit R: every position below it holds: the start of the first "
+      "binade whose spacing reaches the separation, or of an earlier one whose sawtooth peak "
+      "was measured to fail; >=: even {} (world_position's bound) holds; '-': not even the "
+      "origin holds. limit R (bound): the same under the guaranteed MTS (every position below "
+      "it has mts_bound within the separation: no fight on any implementation of the bound "
+      "model, in any orientation; a binade's start, docs/mts.md). spacing: the grid's spacing "
+      "there and the axis whose coordinate reaches "
+      "it first (z: along this view; x or y: across it, which this view sees only through the "
+      "planes' slope, but a camera turned toward that axis sees it in depth, so the limit "
+      "stands for any view). mts below: the largest MTS measured below the limit. R fails: a "
+      "position measured to fail, the view's depth coordinate at its sawtooth peak just past "
+      "its own limit. mts at 0: the MTS at the origin (another transform's only where it "
+      "differs). abs: absolute, cam-rel: camera_relative, rte: relative_to_eye",
+      header.value("scene_name", std::string("?")), human(dir[0]), human(dir[1]), human(dir[2]),
+      human(header.value("z", 0.0)), human(header.value("separation", 0.0)),
+      human(header.value("world_distance_limit", 0.0)));
+}
+
 std::string render_world_output(const nlohmann::json& header,
                                 const std::vector<nlohmann::json>& records,
                                 const OutputOptions& out) {
@@ -155,31 +182,7 @@ std::string render_world_output(const nlohmann::json& header,
       if (csv) row.push_back(t.value("holds_to_bound", false) ? "true" : "false");
     }
   }
-  const auto dir = header.value("direction", std::vector<double>{1, 1, 1});
-  return captioned(
-      fmt::format(
-          "How far from the world origin content can sit (scene {}): camera and planes moved a "
-          "world distance R along ({}, {}, {}); content at eye distance {} needs a separation of "
-          "{}. What the vertex stage keeps of a world coordinate is a grid whose spacing is "
-          "constant within a binade of the coordinate, and within one the MTS saws from about 0 "
-          "to a full spacing as the planes' translation moves between grid points, so the limit "
-          "is decided per binade. limit R: every position below it holds: the start of the first "
-          "binade whose spacing reaches the separation, or of an earlier one whose sawtooth peak "
-          "was measured to fail; >=: even {} (world_position's bound) holds; '-': not even the "
-          "origin holds. limit R (bound): the same under the guaranteed MTS (every position below "
-          "it has mts_bound within the separation: no fight on any implementation of the bound "
-          "model, in any orientation; a binade's start, docs/mts.md). spacing: the grid's spacing "
-          "there and the axis whose coordinate reaches "
-          "it first (z: along this view; x or y: across it, which this view sees only through the "
-          "planes' slope, but a camera turned toward that axis sees it in depth, so the limit "
-          "stands for any view). mts below: the largest MTS measured below the limit. R fails: a "
-          "position measured to fail, the view's depth coordinate at its sawtooth peak just past "
-          "its own limit. mts at 0: the MTS at the origin (another transform's only where it "
-          "differs). abs: absolute, cam-rel: camera_relative, rte: relative_to_eye",
-          header.value("scene_name", std::string("?")), human(dir[0]), human(dir[1]), human(dir[2]),
-          human(header.value("z", 0.0)), human(header.value("separation", 0.0)),
-          human(header.value("world_distance_limit", 0.0))),
-      cols, cells, out.format_out);
+  return captioned(world_caption(header), cols, cells, out.format_out);
 }
 
 void add_world_command(CLI::App& app, GlobalOptions& global) {
