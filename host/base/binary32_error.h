@@ -74,9 +74,10 @@ inline bool exact_factor(double m) {
 
 // The reciprocal of a computed value w~ within ew of w > 0 (ew < w / 2), rounded: |fl(1/w~) - 1/w|
 // <= ew / (w (w - ew)) + half_ulp(1 / (w - ew)), w the smallest w of the range. A divide x / w in
-// its place rounds once instead of twice: quotient() covers it.
-inline double reciprocal_error(const Rounding& r, double w_min, double ew) {
-  return (ew / (w_min * (w_min - ew)) + r.half_ulp(1.0 / (w_min - ew))) * kMargin;
+// its place rounds once instead of twice: product_error covers it. half_ulps: how far the
+// reciprocal may lie from the correctly rounded one (2: within 1 ulp, as D3D 11.3 allows).
+inline double reciprocal_error(const Rounding& r, double w_min, double ew, double half_ulps = 1) {
+  return (ew / (w_min * (w_min - ew)) + half_ulps * r.half_ulp(1.0 / (w_min - ew))) * kMargin;
 }
 
 // The product x~ q~ of computed values, |x~ - x| <= ex, |q~ - q| <= eq, with |x| <= x_max,

@@ -132,6 +132,9 @@ struct Scene {
   double max_separation_factor = 0;
   int stiffness_probes = 0;  // per side of each resolved MTS (docs/stability.md)
   Sampling sampling = Sampling::worst_case;
+  // The guaranteed MTS's bound model (host/model/bound_model.h): binary32, a profile's own, or
+  // an API's envelope.
+  std::string bound_model = "binary32";
   WorstCaseSettings worst_case;
   Pipeline pipeline;
   TechniqueParams params;

@@ -9,6 +9,7 @@
 #include "host/base/named_choice.h"
 #include "host/model/profile.h"
 #include "host/model/scene.h"
+#include "host/model/bound_model.h"
 #include "host/model/scene_reader.h"
 
 namespace depthprec {
@@ -155,6 +156,7 @@ void read_search_fields(const Reader& r, Scene& s) {
   if (s.max_separation_factor < 1) r.fail("max_separation_factor", "must be >= 1");
   s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
   s.sampling = r.choice("sampling", parse_sampling);
+  s.bound_model = r.choice("bound_model", [](const std::string& v) { return bound_model(v).name; });
 }
 
 void read_worst_case(const Reader& r, WorstCaseSettings& w) {

@@ -25,6 +25,7 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.pc = probe_constants(s, pair, z);
   m.ti = info(depth_path(s, pair.technique));
   m.format = s.storage_format(pair);
+  m.model = &bound_model(s.bound_model);
   const Pipeline& p = s.pipeline;
   // Binary32 arithmetic rounds to nearest in every profile; flushing subnormal results is allowed
   // (it only matters below 2^-126, where no depth of a resolved row lies).

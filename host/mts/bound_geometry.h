@@ -4,6 +4,7 @@
 #pragma once
 
 #include "host/base/binary32_error.h"
+#include "host/model/bound_model.h"
 #include "host/model/frame_setup.h"
 #include "host/model/scene.h"
 #include "host/model/storage_format.h"
@@ -20,6 +21,7 @@ struct RowModel {
   TechniqueInfo ti;   // the depth path's (layered: its layer mapping's)
   StorageFormat format;
   binary32_error::Rounding rounding;
+  const BoundModel* model = nullptr;  // the scene's bound_model
   double a = 0, b = 0;  // the third row of the P the depths follow: z_clip = a e_z + b
   double scale = 1;     // window depth = scale z_ndc + (1 - scale): 0.5 under gl, else 1
   double P00 = 0, P11 = 0;

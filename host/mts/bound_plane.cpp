@@ -109,11 +109,13 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
     c.w = (single ? 0.0 : hu(m, zcol) + hu(m, g.D)) +
           b32::row_rounding(R, {{0.5 * zcol, false}, {0.5 * zcol, false}, {g.D, true}});
   }
-  const double dw = g.wv_hi - g.wv_lo;
-  c.x += 2 * (2 * hu(m, 2 * xc_max) + hu(m, xc_max));
-  c.y += 2 * (2 * hu(m, 2 * yc_max) + hu(m, yc_max));
-  c.z += 2 * (2 * hu(m, aa * dw) + hu(m, zc_max));
-  c.w += 2 * (2 * hu(m, dw) + hu(m, g.wv_hi));
+  if (m.model->clip_stage) {
+    const double dw = g.wv_hi - g.wv_lo;
+    c.x += 2 * (2 * hu(m, 2 * xc_max) + hu(m, xc_max));
+    c.y += 2 * (2 * hu(m, 2 * yc_max) + hu(m, yc_max));
+    c.z += 2 * (2 * hu(m, aa * dw) + hu(m, zc_max));
+    c.w += 2 * (2 * hu(m, dw) + hu(m, g.wv_hi));
+  }
   c.x *= b32::kMargin;
   c.y *= b32::kMargin;
   c.z *= b32::kMargin;
@@ -121,14 +123,11 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
   return c;
 }
 
-// A shader's log (or log2): OpenCL's within 3 ulp, llvmpipe's within 3.84 (ln) and 3.60 (log2)
-// ulp over every binary32 argument >= 1 (docs/mts.md, "Techniques"): 4 ulp, 8 half-ulps.
-constexpr double kLogHalfUlps = 8;
-
 // (3) A shader's own arithmetic from an exact w in [lo, hi] to the depth it writes (the input's
 // error enters through the slope, depth_slope): every step a binary32 operation within half an ulp
-// of its result, the log within kLogHalfUlps; a quotient by a constant as a division or as a
-// product with its reciprocal (two roundings).
+// of its result, the log within the model's log_half_ulps (OpenCL's 3 ulp, llvmpipe's 3.84
+// and 3.60); a quotient by a constant as a division or as a product with its reciprocal (two
+// roundings).
 double shader_own(const RowModel& m, double lo, double hi) {
   const ProbeConstants& pc = m.pc;
   const double f_max = std::max(std::fabs(exact_depth(m, lo)), std::fabs(exact_depth(m, hi)));
@@ -140,7 +139,8 @@ double shader_own(const RowModel& m, double lo, double hi) {
     case FragmentDepth::threejs_log: {
       // fl(fl(log2(fl(1 + w)) FC) 0.5): the product by one half is exact
       const double x_hi = 1 + hi, l2 = std::log2(x_hi);
-      return 0.5 * pc.threejs_fc * (hu(m, x_hi) / ((1 + lo) * M_LN2) + kLogHalfUlps * hu(m, l2)) +
+      return 0.5 * pc.threejs_fc *
+                 (hu(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hu(m, l2)) +
              0.5 * hu(m, 2 * f_max);
     }
     case FragmentDepth::cesium_log: {
@@ -148,7 +148,7 @@ double shader_own(const RowModel& m, double lo, double hi) {
       const double x_hi = (hi - pc.near) + 1, l2 = std::log2(x_hi);
       return pc.cesium_inv_log2 *
                  ((hu(m, hi - pc.near) + hu(m, x_hi)) / (((lo - pc.near) + 1) * M_LN2) +
-                  kLogHalfUlps * hu(m, l2)) +
+                  m.model->log_half_ulps * hu(m, l2)) +
              hu(m, f_max);
     }
     case FragmentDepth::log:
@@ -157,14 +157,16 @@ double shader_own(const RowModel& m, double lo, double hi) {
   }
   if (m.vertex_log && m.pc.vertex_log == MTS_VERTEX_LOG_THREEJS) {
     const double x_hi = 1 + hi, l2 = std::log2(x_hi);
-    return 0.5 * pc.threejs_fc * (hu(m, x_hi) / ((1 + lo) * M_LN2) + kLogHalfUlps * hu(m, l2)) +
+    return 0.5 * pc.threejs_fc *
+               (hu(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hu(m, l2)) +
            0.5 * hu(m, 2 * f_max);
   }
   // Gilg's fl(ln(fl(fl(k w) + 1)) / L): the argument's roundings through the log's slope 1 / x,
   // the log's own error, then the quotient's (or the reciprocal's and product's) two roundings.
   const double k = pc.log_k, x_hi = k * hi + 1;
   const double arg = (b32::exact_factor(k) ? 0.0 : hu(m, k * hi)) + hu(m, x_hi);
-  return (arg / (k * lo + 1) + kLogHalfUlps * hu(m, std::log(x_hi))) / pc.log_L + 2 * hu(m, f_max);
+  return (arg / (k * lo + 1) + m.model->log_half_ulps * hu(m, std::log(x_hi))) / pc.log_L +
+         2 * hu(m, f_max);
 }
 
 // (4) The divide and the viewport transform of one vertex whose clip coordinates carry errors c,
@@ -187,7 +189,7 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
   const b32::Rounding& R = m.rounding;
   const Scene& s = *m.scene;
   WindowError out;
-  const double eq = b32::reciprocal_error(R, g.wv_lo, c.w);
+  const double eq = b32::reciprocal_error(R, g.wv_lo, c.w, m.model->reciprocal_half_ulps);
   const double q_max = 1 / (g.wv_lo - c.w);
   if (m.fragment) {
     out.value = eq;
@@ -207,7 +209,8 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
         std::max(std::fabs(exact_depth(m, g.wv_lo)), std::fabs(exact_depth(m, g.wv_hi)));
     out.value = m.pc.depth_gl ? 0.5 * zn + hu(m, d_max + 0.5 * zn) : zn;
   }
-  const double snap = s.pipeline.snap_bits > 0 ? std::ldexp(1.0, -s.pipeline.snap_bits - 1) : 0.0;
+  const int snap_bits = m.model->snap_bits > 0 ? m.model->snap_bits : s.pipeline.snap_bits;
+  const double snap = snap_bits > 0 ? std::ldexp(1.0, -snap_bits - 1) : 0.0;
   const auto window = [&](double P, double clip_err, int size) {
     const double c_max = P * g.lateral, n_max = c_max * q_max, h = 0.5 * size;
     const double en = b32::product_error(R, c_max, clip_err, q_max, eq, n_max);
@@ -317,8 +320,10 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   // most X = W (1 + |x_ndc|) from the anchor (a vertex, or the framebuffer's origin).
   const double X = s.viewport_w * (1 + xn_max), Y = s.viewport_h * (1 + yn_max);
   const double reach = G[0] * X + G[1] * Y;
-  v[kInterpolation] = 5 * hu(m, pixel_value_max(m, g) + reach) + 5 * hu(m, reach) +
-                      G[0] * hu(m, X) + G[1] * hu(m, Y);
+  const BoundModel& bm = *m.model;
+  v[kInterpolation] = bm.value_roundings * hu(m, pixel_value_max(m, g) + reach) +
+                      bm.reach_roundings * hu(m, reach) + G[0] * hu(m, X) + G[1] * hu(m, Y) +
+                      bm.interpolation_relative * pixel_value_max(m, g);
   if (!m.fragment) return out;
   // (6) Fragment-stage depth: w = fl(1 / q~) with q~ within Eq of q >= 1 / wp_hi, then the
   // shader's depth F(w): the interpolation's error through 1 / q and F's slope, w's rounding and

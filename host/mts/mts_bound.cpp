@@ -17,17 +17,15 @@ using bound::RowModel;
 // The conversion's freedom in depth units: two depths that differ by more than it never store one
 // code, and every conversion is monotone, so the farther one stores the larger (or, reversed,
 // the smaller) code. A unorm code c(d) lies within an interval of width W of d N (N the largest
-// code): 1 for the exact conversion, llvmpipe's double rounding 1 + 2^-7, 3/2 and 3 for unorm16,
-// 24 and 32, softpipe's truncation after a binary32 product 1 + 2^-8, 2 and just over 1
-// (kernels/mts/bounds.cl GAP_CODE_WIDTH): the model takes the largest. A float format stores one
-// code for an interval at most its spacing wide; binary32 depth into a binary32 buffer is stored as
-// it is, where only a strict difference counts.
+// code), W the model's (host/model/bound_model.h). A float format stores one code for an interval
+// at most its spacing wide; binary32 depth into a binary32 buffer is stored as it is, where only
+// a strict difference counts.
 double storage_width(const RowModel& m, double d_min, double d_max) {
   const StorageFormat& f = m.format;
   if (f.is_unorm()) {
     const unsigned bits = f.bits();
-    const double codes = bits <= 16 ? 1.0078125 : bits <= 24 ? 2.0 : 3.0;
-    return codes / f.max_code();
+    const double* w = m.model->unorm_width;
+    return (bits <= 16 ? w[0] : bits <= 24 ? w[1] : std::max(w[2], w[1])) / f.max_code();
   }
   if (f.name() == "float32" && d_min > 0x1.0p-126) return 0;
   return f.spacing_at(d_max);

@@ -12,10 +12,6 @@
 
 namespace depthprec {
 
-// The bound model's name, as rows print it: every binary32 step correctly rounded to nearest, in
-// any order, fused or not, with every choice the emulated profiles make (docs/mts.md lists them).
-constexpr const char* kBoundModel = "binary32";
-
 struct MtsBound {
   // The smallest separation found at which the bound holds (plane B at the search's fl32(z + s), as
   // mts), to the scene's rel_precision; +inf where none holds up to max_separation_factor z, NaN

@@ -72,13 +72,14 @@ struct MtsRow {
   double mts_paper = std::numeric_limits<double>::quiet_NaN();
   uint64_t orientations = 0;
   double convergence = 0;
-  // The guaranteed MTS (host/mts/mts_bound.h, model kBoundModel): a separation at and above which
+  // The guaranteed MTS (host/mts/mts_bound.h) under bound_model (the scene's,
+  // host/model/bound_model.h): a separation at and above which
   // no pixel can fight in any orientation of the cube under any implementation of the model. NaN
   // where the row has no MTS or the model has no bound (bound_note says why), +inf where no
   // separation up to the search's ceiling clears the error bounds; otherwise bound_note names the
   // error term that weighs most.
   double mts_bound = std::numeric_limits<double>::quiet_NaN();
-  std::string bound_note;
+  std::string bound_model, bound_note;
   // MTS attribution (table --attribute; NaN when not computed): the MTS of the storage-limited
   // pipeline (exact up to binary64, then stored) and of the arithmetic-limited one (the binary32
   // pipeline, no storage quantisation); the vertex bound is the third factor.

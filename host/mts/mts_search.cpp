@@ -215,6 +215,7 @@ void finish_row(const Scene& scene, const EvalPair& pair, const Bisection& b,
   if (row.verdict() == Verdict::resolved) {
     const MtsBound b = mts_bound(scene, pair, row.z);
     row.mts_bound = b.s;
+    row.bound_model = scene.bound_model;
     row.bound_note = std::isnan(b.s) || std::isinf(b.s) ? b.why : b.dominant;
   }
 }

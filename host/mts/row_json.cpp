@@ -9,7 +9,6 @@
 
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
-#include "host/mts/mts_bound.h"
 
 namespace depthprec {
 
@@ -56,7 +55,7 @@ json row_to_json(const MtsRow& r, bool timing) {
   j.update({{"source", to_string(r.source)},
             {"z", r.z},
             {"mts", number(r.mts)},
-            {"bound_model", kBoundModel},
+            {"bound_model", r.bound_model},
             {"bound_by", r.bound_note},
             {"mts_paper", number(r.mts_paper)},
             {"orientations", r.orientations},
@@ -133,6 +132,7 @@ MtsRow row_from_json(const json& j) {
   r.mts = read_number(j, "mts");
   if (j.contains("mts_bound")) r.mts_bound = read_number(j, "mts_bound");
   r.bound_note = j.value("bound_by", "");
+  r.bound_model = j.value("bound_model", "");
   r.mts_paper = j.contains("mts_paper") ? read_number(j, "mts_paper") : r.mts;
   r.orientations = j.contains("orientations") ? read_count<uint64_t>(j, "orientations") : 0;
   r.convergence = j.contains("convergence") ? read_number(j, "convergence") : 0;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <map>
 
-#include "host/mts/mts_bound.h"
 #include "host/output/text_table.h"
 
 namespace depthprec {
@@ -46,7 +45,7 @@ std::string bound_grid(const Scene& scene, const std::vector<MtsRow>& rows, bool
       "Guaranteed MTS (mts_bound, model {}): no pixel fights at or above it in any orientation "
       "within the rotation cube under any implementation of the model (docs/mts.md, \"The "
       "guaranteed bound\"); - = no MTS to bound\n\n",
-      kBoundModel);
+      scene.bound_model);
   out += grid(cols, cells, md);
   for (const auto& [why, where] : without) {
     out += md ? "\n" : "";

@@ -16,7 +16,6 @@
 #include "host/base/errors.h"
 #include "host/base/version.h"
 #include "host/model/frame_setup.h"
-#include "host/mts/mts_bound.h"
 #include "host/mts/row_json.h"
 #include "host/output/bound_table.h"
 #include "host/output/json_header.h"
@@ -212,7 +211,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
       c.push_back(number_cell(r.kernel_seconds, format, "{:.3f}"));
       if (rendered) c.push_back(full ? exact(r.frames_per_second) : human(r.frames_per_second));
     }
-    if (full) c.push_back(kBoundModel);
+    if (full) c.push_back(r.bound_model);
     c.push_back(r.bound_note);
     c.push_back(r.flags());
     cells.push_back(c);

@@ -1,6 +1,7 @@
 // The guaranteed MTS (host/mts/mts_bound.h, docs/mts.md "The guaranteed bound"): never below the
 // sampled worst case, never a fight at or above it in a dense scan of the rotation cube under every
-// profile, and a row the model cannot bound says why.
+// profile (each under its own bound model), the models ordered as their freedoms are, and a row
+// the model cannot bound says why.
 #include "host/mts/mts_bound.h"
 
 #include <fmt/format.h>
@@ -97,7 +98,9 @@ TEST_CASE("no orientation of a dense scan fights at the guaranteed MTS, under ev
       {{Technique::layered, "float32", DepthRange::gl}, 4096},
   };
   for (const std::string prof : {"ideal", "llvmpipe", "softpipe"}) {
-    const Scene s = load_scene("", profile(prof).sets);
+    std::vector<std::string> sets = profile(prof).sets;
+    sets.push_back("bound_model=" + prof);  // the profile's own model, the tightest
+    const Scene s = load_scene("", sets);
     uint64_t seed = 1;
     for (const auto& [pair, z] : rows) {
       const MtsBound b = mts_bound(s, pair, z);
@@ -128,4 +131,26 @@ TEST_CASE("a row the bound model cannot bound says why, and its table cell is em
       "pipeline.compose=premultiplied --set world_position=[1e5,0,0]");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Catch::Contains(",binary32,no bound model for compose premultiplied"));
+}
+
+TEST_CASE("a bound model that allows more never bounds lower", "[mts][bound]") {
+  // binary32 holds every profile's choices, d3d11 and vulkan_min more still.
+  const std::vector<std::pair<EvalPair, double>> rows = {
+      {{Technique::standard, "unorm24", DepthRange::gl}, 512},
+      {{Technique::reversed, "float32", DepthRange::zero_to_one}, 4096},
+      {{Technique::log_fragment, "float32", DepthRange::gl}, 64},
+      {{Technique::linear, "unorm16", DepthRange::gl}, 1000}};
+  const auto at = [](const std::string& model, const EvalPair& pair, double z) {
+    return mts_bound(load_scene("", {"bound_model=" + model}), pair, z).s;
+  };
+  for (const auto& [pair, z] : rows) {
+    INFO(pair.label() << " z = " << z);
+    const double all = at("binary32", pair, z);
+    for (const std::string prof : {"ideal", "llvmpipe", "softpipe"})
+      CHECK(at(prof, pair, z) <= all);
+    CHECK(at("ideal", pair, z) < all);
+    CHECK(at("vulkan_min", pair, z) >= all);
+  }
+  CHECK_THROWS_WITH(load_scene("", {"bound_model=gpu"}),
+                    Catch::Contains("binary32, ideal, llvmpipe, softpipe, d3d11, vulkan_min"));
 }

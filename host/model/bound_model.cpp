@@ -1,0 +1,102 @@
+#include "host/model/bound_model.h"
+
+#include <fmt/format.h>
+
+#include "host/base/errors.h"
+
+namespace depthprec {
+
+const std::vector<BoundModel>& bound_models() {
+  // The unorm widths: the exact conversion 1 code; llvmpipe's binary32 product then rint
+  // 1 + 2^-7, 3/2, 3; softpipe's truncation after a binary32 product 1 + 2^-8, 2, just over 1
+  // (kernels/mts/bounds.cl GAP_CODE_WIDTH, tests/base/binary32_error_proof.cpp); D3D's 0.6 ulp
+  // either side, 1.2.
+  static const std::vector<BoundModel> models = {
+      {"binary32",
+       "every binary32 step correctly rounded, in any order, fused or not, with every choice the "
+       "ideal, llvmpipe and softpipe profiles make",
+       "IEEE 754 binary32; the profiles (docs/spec.md 2)",
+       true,
+       5,
+       5,
+       1,
+       {1.0078125, 2, 3},
+       8,
+       0,
+       0},
+      {"ideal",
+       "the ideal profile's choices alone (docs/spec.md 2)",
+       "IEEE 754 binary32; OpenCL 1.2's log (3 ulp)",
+       false,
+       2,
+       2,
+       1,
+       {1, 1, 1},
+       6,
+       0,
+       0},
+      {"llvmpipe",
+       "the llvmpipe profile's choices alone",
+       "Mesa 22.3 llvmpipe (docs/validation.md)",
+       true,
+       3,
+       3,
+       1,
+       {1.0078125, 1.5, 3},
+       8,
+       0,
+       0},
+      {"softpipe",
+       "the softpipe profile's choices alone",
+       "Mesa 22.3 softpipe (docs/validation.md)",
+       true,
+       5,
+       5,
+       1,
+       {1.00390625, 2, 1.000001},
+       8,
+       0,
+       0},
+      {"d3d11",
+       "what Direct3D 11.3 allows: binary32 within 0.5 ulp, reciprocal within 1 ulp, positions "
+       "snapped to 8 fractional bits, unorm conversion within 0.6 ulp, any evaluation form",
+       "D3D 11.3 functional spec 3.1.3 (arithmetic, x/y as x (1/y)), 3.1.3.2 (denormals flushed), "
+       "3.2.3.6 (float to unorm 0.6 ulp), 15.16 (8-bit snapping)",
+       true,
+       5,
+       5,
+       2,
+       {1.2, 1.2, 1.2},
+       8,
+       8,
+       0},
+      {"vulkan_min",
+       "the least a Vulkan implementation must do: 4 sub-pixel bits, depth interpolated to 1 part "
+       "in 10^5, otherwise as binary32",
+       "Vulkan subPixelPrecisionBits minimum 4; depth interpolation '1 part in 10^5' "
+       "(gpuweb/cts#4657, not yet checked against the specification's text)",
+       true,
+       5,
+       5,
+       1,
+       {1.0078125, 2, 3},
+       8,
+       4,
+       1e-5},
+  };
+  return models;
+}
+
+const BoundModel& bound_model(const std::string& name) {
+  for (const BoundModel& m : bound_models())
+    if (name == m.name) return m;
+  throw InputError(fmt::format("unknown bound model '{}': one of {}", name, bound_model_names()));
+}
+
+std::string bound_model_names() {
+  std::string out;
+  for (const BoundModel& m : bound_models()) out += (out.empty() ? "" : ", ") + std::string(m.name);
+  return out;
+}
+
+}  // namespace depthprec

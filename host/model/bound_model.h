@@ -1,0 +1,36 @@
+// The bound models of the guaranteed MTS (docs/mts.md "The guaranteed bound"): what an
+// implementation's arithmetic may do, as the error bounds of host/mts/bound_plane.cpp read it. The
+// default, binary32, holds every choice the emulated profiles make at once; a profile's own model
+// holds its choices alone; an API's envelope holds what its specification allows (the section it
+// comes from in `source`). A scene names one (`bound_model`); every per-model fact is here.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace depthprec {
+
+struct BoundModel {
+  const char* name;
+  const char* what;    // one line for docs and --help
+  const char* source;  // where its tolerances come from
+  bool clip_stage;     // vertices made by a clip stage (llvmpipe's: out + t (in - out))
+  // Roundings of the plane's evaluation at the value's magnitude and at the slopes' reach: the
+  // vertex-anchored form 2 and 2, llvmpipe's origin form with fma 3 and 3, softpipe's quads 5
+  // and 5.
+  int value_roundings, reach_roundings;
+  double reciprocal_half_ulps;  // 1: correctly rounded; 2: within 1 ulp (D3D 11.3 3.1.3)
+  // A unorm conversion's width in codes (code - d N within an interval this wide), for 16, 24
+  // and 32 bits.
+  double unorm_width[3];
+  double log_half_ulps;  // the shaders' log and log2
+  int snap_bits;         // window positions snapped to 2^-bits; 0: as pipeline.snap says
+  // Depth interpolation not otherwise specified: an error up to this fraction of the value.
+  double interpolation_relative;
+};
+
+const std::vector<BoundModel>& bound_models();
+const BoundModel& bound_model(const std::string& name);  // throws InputError naming the models
+std::string bound_model_names();                         // "binary32, ideal, ..."
+
+}  // namespace depthprec
