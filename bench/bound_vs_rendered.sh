@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The guaranteed MTS against rendering: every row of data/validation.json rendered on the system's
-# OpenGL, on llvmpipe and on softpipe (its profile), and each rendered row's MTS held against its
+# OpenGL, on llvmpipe and on softpipe, and each rendered row's MTS held against its
 # mts_bound (the bound does not depend on the sampling; the rendering samples the paper's frames
 # unless extra arguments say otherwise). Prints and writes bench/results/bound_vs_rendered.txt
 # (bench/results.sh), headed by commit, machine, date and CPU target.
@@ -17,13 +17,13 @@ trap 'rm -rf "$out" "$result.tmp"' EXIT
 
 measure() {
   result_header "bench/bound_vs_rendered.sh: depthprec render data/validation.json ${args[*]}" \
-    "on llvmpipe, then with --profile softpipe on softpipe; rendered mts against mts_bound"
+    "on llvmpipe, then on softpipe (GALLIUM_DRIVER); rendered mts against mts_bound"
   /usr/bin/time -f '%e' -o "$out/l.time" \
     "$bin" render data/validation.json "${args[@]}" -q --no-timing --format-out json \
     -o "$out/llvmpipe.json"
   GALLIUM_DRIVER=softpipe MESA_GL_VERSION_OVERRIDE=4.5 MESA_GLSL_VERSION_OVERRIDE=450 \
     /usr/bin/time -f '%e' -o "$out/s.time" \
-    "$bin" render data/validation.json --profile softpipe "${args[@]}" -q --no-timing \
+    "$bin" render data/validation.json "${args[@]}" -q --no-timing \
     --format-out json -o "$out/softpipe.json"
   python3 - "$out/llvmpipe.json" "$out/softpipe.json" "$out/l.time" "$out/s.time" <<'PY'
 import json, statistics, sys
