@@ -32,8 +32,11 @@ struct FightPair {
   std::vector<PixelSample> samples;
   std::vector<uint32_t> triangles;  // the triangles fighting at the sampled pixels
   // The fixes (audit_fixes.h): NaN / empty / nullopt where none was found or asked for.
-  double mts = NAN;     // the set-up's MTS at depth_median (the scene's measurement)
-  double offset = NAN;  // move the front surface this much nearer: mts - separation_min
+  double mts = NAN;        // the set-up's MTS at depth_median (the scene's measurement)
+  double mts_bound = NAN;  // and its guaranteed MTS there (host/mts/mts_bound.h)
+  // Move the front surface this much nearer: mts_bound (mts where the model has no bound) less
+  // separation_min.
+  double offset = NAN;
   std::optional<double> near_plane;    // the nearest near plane that resolves the sample
   std::vector<std::string> resolving;  // other set-ups that resolve the sample
   std::optional<double> bias_units;    // constant depth bias on the front surface (API units)

@@ -141,17 +141,23 @@ std::vector<EvalPair> default_alternatives(const Scene& scene, const EvalPair& a
 
 namespace {
 
-// The MTS of a set-up at eye depth z, in the measurement scene placed where the pair is
-// (world_position: the eye of the view it fights in, so the vertex transform's rounding far from
-// the origin is the pair's) under the near plane and transform tried; NaN without a device. One
-// search per (set-up, transform, near, z, place), kept.
+// The MTS and the guaranteed MTS of a set-up at eye depth z, in the measurement scene placed where
+// the pair is (world_position: the eye of the view it fights in, so the vertex transform's rounding
+// far from the origin is the pair's) under the near plane and transform tried; NaN without a
+// device (the bound, too: it comes with the row). One search per (set-up, transform, near, z,
+// place), kept.
+struct MtsAndBound {
+  double mts = NAN, bound = NAN;
+  // What a fix must clear: the bound, or the sampled MTS where the model has none.
+  double needed() const { return std::isnan(bound) ? mts : bound; }
+};
 class MtsAtPair {
  public:
   MtsAtPair(OpenClRuntime* rt, const Scene& measurement, const FixRequest& req)
       : rt_(rt), measurement_(measurement), req_(req) {}
-  double operator()(const EvalPair& p, const Scene& tried, double z,
-                    const std::array<double, 3>& at) {
-    if (!req_.mts || !rt_) return NAN;
+  MtsAndBound operator()(const EvalPair& p, const Scene& tried, double z,
+                         const std::array<double, 3>& at) {
+    if (!req_.mts || !rt_) return {};
     const auto key = std::make_tuple(p.label(), tried.pipeline.transform, tried.near, z, at);
     if (!known_.count(key)) {
       Scene m = measurement_;
@@ -160,7 +166,12 @@ class MtsAtPair {
       m.evaluate = {p};
       m.distances = {z};
       m.world_position = at;
-      known_[key] = z > tried.near && z < m.far ? run_scene(*rt_, m, req_.log).rows.at(0).mts : NAN;
+      MtsAndBound v;
+      if (z > tried.near && z < m.far) {
+        const MtsRow row = run_scene(*rt_, m, req_.log).rows.at(0);
+        v = {row.mts, row.mts_bound};
+      }
+      known_[key] = v;
     }
     return known_[key];
   }
@@ -169,7 +180,7 @@ class MtsAtPair {
   OpenClRuntime* rt_;
   const Scene& measurement_;
   const FixRequest& req_;
-  std::map<std::tuple<std::string, Transform, double, double, std::array<double, 3>>, double>
+  std::map<std::tuple<std::string, Transform, double, double, std::array<double, 3>>, MtsAndBound>
       known_;
 };
 
@@ -220,8 +231,10 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
     const double z = std::stod(fmt::format("{:.3g}", fp.depth_median));
     const std::array<double, 3> at =
         fp.samples.empty() ? std::array<double, 3>{} : frames.at(fp.samples[0].frame).eye;
-    fp.mts = mts_of(pair, scene, z, at);
-    fp.offset = std::isnan(fp.mts) ? NAN : std::max(0.0, fp.mts - fp.separation_min);
+    const MtsAndBound here = mts_of(pair, scene, z, at);
+    fp.mts = here.mts;
+    fp.mts_bound = here.bound;
+    fp.offset = std::isnan(here.needed()) ? NAN : std::max(0.0, here.needed() - fp.separation_min);
     const SceneGeometry sub = only(g, fp.triangles);
     const PairCheck check(sub, frames, fp, draw_in(sub, g.draws[fp.front_draw]));
     if (fp.samples.empty() || !check.fights(scene, pair)) {
@@ -229,12 +242,13 @@ void add_fixes(OpenClRuntime* rt, const Scene& scene, const Scene& measurement,
       continue;
     }
     // A fix holds when the pair's pixels no longer fight in any view and the pair's smallest
-    // separation is at least the MTS there (so it holds for the other orientations and positions
-    // the MTS samples, not by the luck of one rounding).
+    // separation is at least the guaranteed MTS there (so it holds for every orientation and
+    // every implementation of the bound model, not by the luck of one rounding; the sampled MTS
+    // where the model has no bound).
     const auto holds = [&](const Scene& s, const EvalPair& p) {
       if (check.fights(s, p)) return false;
-      const double m = mts_of(p, s, z, at);
-      return std::isnan(m) || m <= fp.separation_min;
+      const double needed = mts_of(p, s, z, at).needed();
+      return std::isnan(needed) || needed <= fp.separation_min;
     };
     // The nearest near plane: steps of 2^(1/4) out to the pair's nearest depth.
     for (double n = scene.near * 1.189207115002721; n < fp.depth_min / 1.01;

@@ -35,6 +35,7 @@ nlohmann::json pair_json(const SceneGeometry& g, const FightPair& p) {
       {"separation_min", json_number(p.separation_min)},
       {"separation_median", json_number(p.separation_median)},
       {"mts", optional_number(p.mts)},
+      {"mts_bound", optional_number(p.mts_bound)},
       {"offset_needed", optional_number(p.offset)},
       {"near_plane_that_resolves",
        p.near_plane ? json_number(*p.near_plane) : nlohmann::json(nullptr)},
