@@ -4,8 +4,10 @@
 
 #include <cmath>
 
+#include "host/base/binary32_error.h"
 #include "host/base/json_number.h"
 #include "host/model/resolve.h"
+#include "host/mts/mts_bound.h"
 
 namespace depthprec {
 
@@ -168,6 +170,32 @@ std::vector<nlohmann::json> bias_pair_rows(BiasEvaluator& evaluator, const Scene
                    search_bias(evaluator, scene, pair, options, distances), mts);
 }
 
+namespace {
+
+// The constant bias under the guaranteed MTS's model (host/mts/mts_bound.h coplanar_spread): the
+// two surfaces' stored depths lie within the spread of each other at every kernel pixel, in every
+// orientation, on every implementation of the model, so an offset beyond the spread and its own
+// roundings (r units, and its sum with the depth: half an ulp of each) keeps B in front
+// everywhere. r is the smallest the plane's depths give (the float rule's r grows with the
+// exponent of the primitive's largest depth). Null where the model has no bound or the clamp
+// stops the offset short of it. A slope factor has no such bound: a plane facing the eye has no
+// slope to scale.
+nlohmann::json units_under_bound(const Scene& scene, const EvalPair& pair, const BiasRule& rule,
+                                 const BiasOptions& options, double z) {
+  const CoplanarSpread cs = coplanar_spread(scene, pair, z);
+  if (std::isnan(cs.spread)) return nullptr;
+  const double r = rule.float_rule ? rule.r_at(static_cast<float>(cs.depth_min)) : rule.r_fixed;
+  const double need = cs.spread + 2 * binary32_error::half_ulp(cs.depth_max);
+  const double units = std::floor(need / r * (1 + 0x1.0p-20)) + 1;
+  const double sign = bias_sign(scene, pair);
+  if (clamp_binds(options.clamp, static_cast<int>(sign)) && options.clamp != 0 &&
+      std::fabs(options.clamp) <= need)
+    return nullptr;
+  return sign * units;
+}
+
+}  // namespace
+
 std::vector<nlohmann::json> bias_rows(const Scene& scene, const EvalPair& pair,
                                       const BiasOptions& options, RowSource source,
                                       const std::vector<double>& distances,
@@ -225,6 +253,8 @@ std::vector<nlohmann::json> bias_rows(const Scene& scene, const EvalPair& pair,
                                                    : std::numeric_limits<double>::infinity());
       }
     }
+    if (source == RowSource::emulated)
+      j["units_bound"] = units_under_bound(scene, pair, rule, options, z);
     j["mts"] = std::isnan(mts[k]) ? nlohmann::json(nullptr) : nlohmann::json(mts[k]);
     j["probes"] = u.probes + f.probes + answers[k].with_factor.probes;
     j["seconds"] = answers[k].seconds;

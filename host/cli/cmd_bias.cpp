@@ -256,6 +256,7 @@ std::vector<std::string> bias_row(const nlohmann::json& r, const std::string& fo
                                   r.at("depth_range").get<std::string>(),
                                   bias_number(r, "z", format),
                                   bias_value_or_verdict(r, "units", "verdict", format),
+                                  bias_number(r, "units_bound", format),
                                   bias_value_or_verdict(r, "factor", "factor_verdict", format),
                                   bias_number(r, "set_factor", format),
                                   bias_value_or_verdict(r, "set_units", "set_verdict", format),
@@ -346,17 +347,10 @@ std::string bias_caption(const nlohmann::json& header, const BiasTable& t) {
 }
 
 std::vector<Column> bias_columns(bool csv) {
-  std::vector<Column> cols = {{"technique", true},
-                              {"format", true},
-                              {"depth_range", true},
-                              {"z"},
-                              {"units"},
-                              {"factor"},
-                              {"set factor"},
-                              {"set units"},
-                              {"offset"},
-                              {"eye separation"},
-                              {"MTS"}};
+  std::vector<Column> cols = {
+      {"technique", true}, {"format", true}, {"depth_range", true}, {"z"},         {"units"},
+      {"units (bound)"},   {"factor"},       {"set factor"},        {"set units"}, {"offset"},
+      {"eye separation"},  {"MTS"}};
   if (csv)
     for (const char* c : {"units verdict", "factor verdict", "set verdict"})
       cols.push_back({c, true});

@@ -93,6 +93,24 @@ std::string dominant_term(const BoundCheck& v) {
 
 }  // namespace
 
+CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double z) {
+  CoplanarSpread out;
+  RowModel m;
+  try {
+    m = bound::row_model(scene, pair, z);
+  } catch (const InputError&) {
+    return out;
+  }
+  const PlaneGeometry g = bound::plane_geometry(m, bound::geometry_distance(m, z));
+  const double E = bound::depth_error(m, g).total();
+  const double a = bound::exact_depth(m, g.wp_lo), b = bound::exact_depth(m, g.wp_hi);
+  out.depth_min = std::max(0.0, std::min(a, b) - E);
+  out.depth_max = std::max(a, b) + E;
+  if (std::isfinite(E))
+    out.spread = (2 * E + storage_width(m, out.depth_min, out.depth_max)) * binary32_error::kMargin;
+  return out;
+}
+
 bool bound_holds(const Scene& scene, const EvalPair& pair, double z, double s) {
   return check(bound::row_model(scene, pair, z), z, s).holds;
 }

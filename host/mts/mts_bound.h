@@ -27,6 +27,16 @@ struct MtsBound {
 // The bound for one row: pair at distance z of scene.
 MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z);
 
+// How far apart two computations of one plane at distance z (two tessellations of it, the
+// coplanar surfaces `bias` measures) can store their depths under the model, at any kernel pixel
+// and orientation: both planes' error bounds and the conversion's width, in window depth; with the
+// plane's smallest and largest depth at a kernel pixel. NaN spread where the model has none.
+struct CoplanarSpread {
+  double spread = std::numeric_limits<double>::quiet_NaN();
+  double depth_min = 0, depth_max = 0;
+};
+CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double z);
+
 // Whether the model proves that no pixel fights at requested separation s (for tests and the
 // dense scan): the exact gap exceeds both planes' error bounds and the conversion's width.
 bool bound_holds(const Scene& scene, const EvalPair& pair, double z, double s);

@@ -180,6 +180,16 @@ TEST_CASE("a camera-facing decal needs a few units, and its eye-space reach grow
     CHECK(row["units_fails"].get<double>() == u + 1);
   }
   for (const auto& row : reversed) CHECK(row["units"].get<double>() >= 1);  // GREATER: positive
+  // Under the guaranteed MTS's model the constant bias is at least the one the search found, of
+  // the same sign: it covers every orientation and implementation, the search its samples.
+  for (const auto* rows : {&standard, &reversed})
+    for (const auto& row : *rows) {
+      INFO(row.dump());
+      const double u = row["units"], ub = row["units_bound"];
+      CHECK(ub * u > 0);
+      CHECK(std::fabs(ub) >= std::fabs(u));
+      CHECK(ub == std::round(ub));
+    }
   // a fixed offset in window depth is a fixed step of 1/w, so its eye-space reach is about
   // z^2 / n times it: z 10 times farther, 100 times the separation
   const double units100 = standard[0]["units"], units1e4 = standard[2]["units"];
