@@ -61,6 +61,7 @@ nlohmann::json level_record(OpenClRuntime& rt, const Scene& base, const Level& l
   for (const auto& r : run.rows)
     rows.push_back({{"row", row_key(r.pair, r.z)},
                     {"mts", json_number(r.mts)},
+                    {"mts_bound", json_number(r.mts_bound)},
                     {"unresolvable", r.unresolvable}});
   return {{"level", lv.name},
           {"kernel", lv.kernel},
@@ -88,8 +89,21 @@ std::vector<LevelResult> evaluate_levels(const std::vector<nlohmann::json>& reco
     r.mean_orientations = rec.value("mean_orientations", 0.0);
     r.seconds = rec.value("seconds", 0.0);
     r.pairs = rec.at("fragment_pairs").get<uint64_t>();
-    std::vector<double> errs;
+    std::vector<double> errs, costs;
     const auto& rows = rec.at("rows");
+    // What the guaranteed MTS costs against this level's sampled answer, row by row.
+    for (const auto& row : rows) {
+      const double m = number_from_json(row.at("mts"), "mts"),
+                   b = row.contains("mts_bound")
+                           ? number_from_json(row.at("mts_bound"), "mts_bound")
+                           : NAN;
+      if (std::isfinite(m) && m > 0 && std::isfinite(b)) costs.push_back(b / m);
+    }
+    std::sort(costs.begin(), costs.end());
+    if (!costs.empty())
+      r.median_bound_cost = costs.size() % 2
+                                ? costs[costs.size() / 2]
+                                : 0.5 * (costs[costs.size() / 2 - 1] + costs[costs.size() / 2]);
     for (size_t i = 0; i < rows.size() && i < ref_rows.size(); ++i) {
       const bool unres = rows[i].at("unresolvable").get<bool>(),
                  ref_unres = ref_rows[i].at("unresolvable").get<bool>();

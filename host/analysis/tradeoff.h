@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@ struct LevelResult {
   uint64_t pairs = 0;
   double mean_orientations = 0;  // per resolved row
   double median_err = 0, max_err = 0;
+  // The median of mts_bound / mts over the level's rows that have both: what the guaranteed
+  // answer costs against the sampled one (NaN when none has).
+  double median_bound_cost = std::numeric_limits<double>::quiet_NaN();
   int verdict_changes = 0;
   std::vector<std::string> changed;  // "technique/format/range z" of each verdict change
   bool pareto = false;

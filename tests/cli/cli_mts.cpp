@@ -116,6 +116,9 @@ TEST_CASE("tradeoff reports every ladder level against the reference with a Pare
   REQUIRE(j["levels"].size() == 19);
   CHECK(j["levels"][0]["level"] == "reference");
   CHECK(j["levels"][0]["max_rel_err"] == 0.0);
+  // The guaranteed MTS costs something against every level's sampled answer, never less than it.
+  for (const auto& l : j["levels"])
+    if (!l["median_bound_over_mts"].is_null()) CHECK(l["median_bound_over_mts"].get<double>() >= 1);
   int pareto = 0;
   for (const auto& l : j["levels"]) pareto += l["pareto"].get<bool>() ? 1 : 0;
   CHECK(pareto >= 1);
