@@ -33,11 +33,24 @@ inline double half_ulp(double m, bool flush = false, bool directed = false) {
 // this relative margin, which every sum of error terms is multiplied by.
 constexpr double kMargin = 1.0 + 0x1.0p-30;
 
-// How a binary32 implementation rounds: to nearest (every profile), or directed; whether it
-// flushes results below 2^-126 to zero.
+// How an implementation rounds: to nearest (every profile), or directed; whether it flushes
+// results below 2^-126 to zero. bits: the significand's precision, 24 for binary32; a shader's
+// mediump may carry as few as 11 (GLSL ES: relative precision 2^-10, normal from 2^-14), where
+// half_ulp scales accordingly.
 struct Rounding {
   bool flush = false, directed = false;
-  double half_ulp(double m) const { return binary32_error::half_ulp(m, flush, directed); }
+  int bits = 24;
+  double half_ulp(double m) const {
+    if (bits == 24) return binary32_error::half_ulp(m, flush, directed);
+    // Below 2^-14 a mediump value may be flushed: its whole magnitude.
+    double h = 0x1.0p-14;
+    if (m >= 0x1.0p-14) {
+      int e = 0;
+      std::frexp(m, &e);
+      h = std::ldexp(1.0, e - 1 - bits);
+    }
+    return directed ? 2 * h : h;
+  }
 };
 
 // One term m_j x_j of a row times a vector: an upper bound on its magnitude, and whether the

@@ -83,6 +83,20 @@ const std::vector<BoundModel>& bound_models() {
        8,
        4,
        1e-5},
+      {"gles_mediump",
+       "shaders in GLSL ES mediump (relative precision 2^-10, magnitudes to 2^14: binary16's), "
+       "the fixed-function stages in binary32, otherwise as binary32",
+       "GLSL ES 3.00 4.5.1 (mediump: relative precision 2^-10, range 2^14)",
+       true,
+       5,
+       5,
+       1,
+       {1.0078125, 2, 3},
+       8,
+       0,
+       0,
+       11,
+       0x1.0p14},
   };
   return models;
 }

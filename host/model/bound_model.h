@@ -5,6 +5,7 @@
 // comes from in `source`). A scene names one (`bound_model`); every per-model fact is here.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct BoundModel {
   int snap_bits;         // window positions snapped to 2^-bits; 0: as pipeline.snap says
   // Depth interpolation not otherwise specified: an error up to this fraction of the value.
   double interpolation_relative;
+  // The shaders' precision (the vertex stage, and the fragment stage where it writes depth):
+  // significand bits (24: binary32; 11: GLSL ES mediump, relative precision 2^-10) and the
+  // largest magnitude they hold (mediump: 2^14).
+  int shader_bits = 24;
+  double shader_range = INFINITY;
 };
 
 const std::vector<BoundModel>& bound_models();

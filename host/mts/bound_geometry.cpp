@@ -26,6 +26,7 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.ti = info(depth_path(s, pair.technique));
   m.format = s.storage_format(pair);
   m.model = &bound_model(s.bound_model);
+  m.shader_rounding = {true, false, m.model->shader_bits};
   const Pipeline& p = s.pipeline;
   // Binary32 arithmetic rounds to nearest in every profile; flushing subnormal results is allowed
   // (it only matters below 2^-126, where no depth of a resolved row lies).

@@ -20,8 +20,9 @@ struct RowModel {
   ProbeConstants pc;  // plane A's constants: P in the matrix precision, the shaders' constants
   TechniqueInfo ti;   // the depth path's (layered: its layer mapping's)
   StorageFormat format;
-  binary32_error::Rounding rounding;
-  const BoundModel* model = nullptr;  // the scene's bound_model
+  binary32_error::Rounding rounding;         // the fixed-function stages: binary32
+  binary32_error::Rounding shader_rounding;  // the shaders: the model's precision
+  const BoundModel* model = nullptr;         // the scene's bound_model
   double a = 0, b = 0;  // the third row of the P the depths follow: z_clip = a e_z + b
   double scale = 1;     // window depth = scale z_ndc + (1 - scale): 0.5 under gl, else 1
   double P00 = 0, P11 = 0;

@@ -14,8 +14,12 @@ struct Clip4 {
   double x = 0, y = 0, z = 0, w = 0;
 };
 
+// Half an ulp of the fixed-function stages (binary32) and of the shaders (the model's precision).
 double hu(const RowModel& m, double magnitude) {
   return m.rounding.half_ulp(magnitude);
+}
+double hs(const RowModel& m, double magnitude) {
+  return m.shader_rounding.half_ulp(magnitude);
 }
 
 // (1) The vertex stage. A vertex is M v, v = (x, y, 0, 1) with |x|, |y| <= 0.5, M = T R~ S the
@@ -44,18 +48,18 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
   for (int r = 0; r < 3; ++r) {
     const double e_max = r < 2 ? g.lateral : g.wv_hi;
     if (m.path == VertexPath::relative_to_eye) {
-      out[r] = 8 * hu(m, e_max) + 0x1.0p-45 * (std::fabs(W[r]) + e_max);
+      out[r] = 8 * hs(m, e_max) + 0x1.0p-45 * (std::fabs(W[r]) + e_max);
       continue;
     }
     const double column = r < 2 ? g.side : g.side * std::sqrt(2.0) * m.sin_tilt;
-    double entries = 2 * 0.5 * hu(m, column);
+    double entries = 2 * 0.5 * hs(m, column);
     double t = r == 2 ? g.D : 0.0;
     if (!s.at_world_origin()) {
       if (m.path == VertexPath::model_view) {
-        entries += 0x1.0p-52 * 2 * (std::fabs(W[r]) + g.D) + hu(m, t);
+        entries += 0x1.0p-52 * 2 * (std::fabs(W[r]) + g.D) + hs(m, t);
       } else {
         t = std::fabs(W[r]) + t;
-        entries += hu(m, t);
+        entries += hs(m, t);
       }
     }
     if (m.premultiplied) {
@@ -63,16 +67,17 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
       continue;
     }
     double sum =
-        entries +
-        b32::row_rounding(m.rounding, {{0.5 * column, false}, {0.5 * column, false}, {t, true}});
+        entries + b32::row_rounding(m.shader_rounding,
+                                    {{0.5 * column, false}, {0.5 * column, false}, {t, true}});
     if (m.path == VertexPath::model_then_view && !s.at_world_origin())
-      sum += hu(m, std::fabs(W[r])) + hu(m, e_max);
+      sum += hs(m, std::fabs(W[r])) + hs(m, e_max);
     out[r] = sum * b32::kMargin;
   }
   return out;
 }
 
-// (2) The clip coordinates: each computed from the computed eye position (or, premultiplied, the
+// (2) The clip coordinates (the vertex shader, in the model's shader precision): each computed
+// from the computed eye position (or, premultiplied, the
 // object position) by a row of binary32 P (P * MV), against the exact product of that row with
 // the same input:
 // - separate: x = P00 e_x, y = P11 e_y (one product each, sums with zeros exact), z = a e_z + b
@@ -87,7 +92,7 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
 //   |in - out| twice and |c| once, for each of the (at most two) planes a corner vertex crosses;
 //   the ends' errors carry through the convex combination at most as the larger.
 Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
-  const b32::Rounding& R = m.rounding;
+  const b32::Rounding& R = m.shader_rounding;
   const double aa = std::fabs(m.a), ab = std::fabs(m.b);
   const double zc_max = std::max(std::fabs(-m.a * g.wv_lo + m.b), std::fabs(-m.a * g.wv_hi + m.b));
   const double xc_max = m.P00 * g.lateral, yc_max = m.P11 * g.lateral;
@@ -99,17 +104,17 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
   } else {
     const bool single = m.scene->pipeline.matrix_precision == MatrixPrecision::single;
     const double zcol = g.side * std::sqrt(2.0) * m.sin_tilt;
-    c.x = hu(m, m.P00 * g.side) +
+    c.x = hs(m, m.P00 * g.side) +
           b32::row_rounding(R, {{0.5 * xc_max, false}, {0.5 * xc_max, false}});
-    c.y = hu(m, m.P11 * g.side) +
+    c.y = hs(m, m.P11 * g.side) +
           b32::row_rounding(R, {{0.5 * yc_max, false}, {0.5 * yc_max, false}});
-    c.z = hu(m, aa * zcol) + (single ? hu(m, aa * g.D) : 0.0) + hu(m, aa * g.D + ab) +
+    c.z = hs(m, aa * zcol) + (single ? hs(m, aa * g.D) : 0.0) + hs(m, aa * g.D + ab) +
           b32::row_rounding(
               R, {{0.5 * aa * zcol, false}, {0.5 * aa * zcol, false}, {aa * g.D + ab, true}});
-    c.w = (single ? 0.0 : hu(m, zcol) + hu(m, g.D)) +
+    c.w = (single ? 0.0 : hs(m, zcol) + hs(m, g.D)) +
           b32::row_rounding(R, {{0.5 * zcol, false}, {0.5 * zcol, false}, {g.D, true}});
   }
-  if (m.model->clip_stage) {
+  if (m.model->clip_stage) {  // fixed function: binary32
     const double dw = g.wv_hi - g.wv_lo;
     c.x += 2 * (2 * hu(m, 2 * xc_max) + hu(m, xc_max));
     c.y += 2 * (2 * hu(m, 2 * yc_max) + hu(m, yc_max));
@@ -133,23 +138,23 @@ double shader_own(const RowModel& m, double lo, double hi) {
   const double f_max = std::max(std::fabs(exact_depth(m, lo)), std::fabs(exact_depth(m, hi)));
   switch (m.ti.fragment) {
     case FragmentDepth::linear:
-      return hu(m, hi - pc.near) / pc.range + 2 * hu(m, f_max);
+      return hs(m, hi - pc.near) / pc.range + 2 * hs(m, f_max);
     case FragmentDepth::w_buffer:
-      return 2 * hu(m, f_max);
+      return 2 * hs(m, f_max);
     case FragmentDepth::threejs_log: {
       // fl(fl(log2(fl(1 + w)) FC) 0.5): the product by one half is exact
       const double x_hi = 1 + hi, l2 = std::log2(x_hi);
       return 0.5 * pc.threejs_fc *
-                 (hu(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hu(m, l2)) +
-             0.5 * hu(m, 2 * f_max);
+                 (hs(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hs(m, l2)) +
+             0.5 * hs(m, 2 * f_max);
     }
     case FragmentDepth::cesium_log: {
       // fl(log2(fl(fl(w - n) + 1)) C)
       const double x_hi = (hi - pc.near) + 1, l2 = std::log2(x_hi);
       return pc.cesium_inv_log2 *
-                 ((hu(m, hi - pc.near) + hu(m, x_hi)) / (((lo - pc.near) + 1) * M_LN2) +
-                  m.model->log_half_ulps * hu(m, l2)) +
-             hu(m, f_max);
+                 ((hs(m, hi - pc.near) + hs(m, x_hi)) / (((lo - pc.near) + 1) * M_LN2) +
+                  m.model->log_half_ulps * hs(m, l2)) +
+             hs(m, f_max);
     }
     case FragmentDepth::log:
     case FragmentDepth::none:
@@ -158,15 +163,15 @@ double shader_own(const RowModel& m, double lo, double hi) {
   if (m.vertex_log && m.pc.vertex_log == MTS_VERTEX_LOG_THREEJS) {
     const double x_hi = 1 + hi, l2 = std::log2(x_hi);
     return 0.5 * pc.threejs_fc *
-               (hu(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hu(m, l2)) +
-           0.5 * hu(m, 2 * f_max);
+               (hs(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hs(m, l2)) +
+           0.5 * hs(m, 2 * f_max);
   }
   // Gilg's fl(ln(fl(fl(k w) + 1)) / L): the argument's roundings through the log's slope 1 / x,
   // the log's own error, then the quotient's (or the reciprocal's and product's) two roundings.
   const double k = pc.log_k, x_hi = k * hi + 1;
-  const double arg = (b32::exact_factor(k) ? 0.0 : hu(m, k * hi)) + hu(m, x_hi);
-  return (arg / (k * lo + 1) + m.model->log_half_ulps * hu(m, std::log(x_hi))) / pc.log_L +
-         2 * hu(m, f_max);
+  const double arg = (b32::exact_factor(k) ? 0.0 : hs(m, k * hi)) + hs(m, x_hi);
+  return (arg / (k * lo + 1) + m.model->log_half_ulps * hs(m, std::log(x_hi))) / pc.log_L +
+         2 * hs(m, f_max);
 }
 
 // (4) The divide and the viewport transform of one vertex whose clip coordinates carry errors c,

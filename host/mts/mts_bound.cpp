@@ -31,6 +31,8 @@ double storage_width(const RowModel& m, double d_min, double d_max) {
   return f.spacing_at(d_max);
 }
 
+constexpr const char* kBeyondShaderRange = "a vertex coordinate exceeds the shaders' range";
+
 struct BoundCheck {
   bool holds = false;
   std::array<double, bound::kTermCount> terms{};
@@ -47,6 +49,15 @@ BoundCheck check(const RowModel& m, double z, double s) {
   const PlaneGeometry gA = bound::plane_geometry(m, DA), gB = bound::plane_geometry(m, DB);
   if (!(gA.wv_lo > 0) || !(1 - m.tan_tilt * (m.xn_max / m.P00 + m.yn_max / m.P11) > 0)) {
     v.why = "the plane can pass the eye";
+    return v;
+  }
+  // The shaders hold every vertex coordinate, eye and clip, world ones too away from the origin.
+  double largest = std::max(gB.wv_hi, std::fabs(m.a) * gB.wv_hi + std::fabs(m.b));
+  largest = std::max(largest, std::max(m.P00, m.P11) * gB.lateral);
+  for (const double w : m.scene->world_position)
+    largest = std::max(largest, std::fabs(w) + gB.wv_hi);
+  if (!(largest < m.model->shader_range)) {
+    v.why = kBeyondShaderRange;
     return v;
   }
   const DepthError eA = bound::depth_error(m, gA), eB = bound::depth_error(m, gB);
@@ -131,7 +142,7 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
   BoundCheck at_hi = check(m, z, hi);
   while (!at_hi.holds) {
     if (at_hi.why == "plane A's fragments can be clipped" ||
-        at_hi.why == "the plane can pass the eye") {
+        at_hi.why == "the plane can pass the eye" || at_hi.why == kBeyondShaderRange) {
       out.why = at_hi.why;
       return out;
     }
@@ -156,11 +167,16 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
   }
   // The bound is meant for every separation above it: the error bounds change with plane B's
   // distance, so it is checked again at every doubling up to the search's ceiling.
-  for (double t = 2 * hi; t <= cap; t *= 2)
-    if (!check(m, z, t).holds) {
+  // Where plane B leaves the shaders' range (gles_mediump's 2^14) the check ends: no content
+  // there can be drawn at all.
+  for (double t = 2 * hi; t <= cap; t *= 2) {
+    const BoundCheck at = check(m, z, t);
+    if (at.why == kBeyondShaderRange) break;
+    if (!at.holds) {
       out.why = "the error bounds fail again at a larger separation";
       return out;
     }
+  }
   out.s = hi;
   out.dominant = dominant_term(at_hi);
   return out;

@@ -150,7 +150,25 @@ TEST_CASE("a bound model that allows more never bounds lower", "[mts][bound]") {
       CHECK(at(prof, pair, z) <= all);
     CHECK(at("ideal", pair, z) < all);
     CHECK(at("vulkan_min", pair, z) >= all);
+    // mediump: larger, or none where plane B would pass 2^14 before the bound holds (linear
+    // unorm16 at 1000 needs 15,432)
+    const double mediump = at("gles_mediump", pair, z);
+    CHECK((std::isnan(mediump) || mediump > all));
   }
+  // mediump shaders far from the origin along the view: binary16's spacing at 3000 (2) moves the
+  // vertices, which camera-relative rendering avoids; past 2^14 nothing can be drawn.
+  const EvalPair standard{Technique::standard, "unorm24", DepthRange::gl};
+  const auto far_out = [&](const std::string& transform) {
+    return mts_bound(load_scene("", {"bound_model=gles_mediump", "world_position=[0,0,3000]",
+                                     "pipeline.transform=" + transform}),
+                     standard, 100)
+        .s;
+  };
+  CHECK(far_out("absolute") > 2 * far_out("camera_relative"));
+  const MtsBound beyond = mts_bound(load_scene("", {"bound_model=gles_mediump"}), standard, 20000);
+  CHECK(std::isnan(beyond.s));
+  CHECK_THAT(beyond.why, Catch::Contains("shaders' range"));
   CHECK_THROWS_WITH(load_scene("", {"bound_model=gpu"}),
-                    Catch::Contains("binary32, ideal, llvmpipe, softpipe, d3d11, vulkan_min"));
+                    Catch::Contains("binary32, ideal, llvmpipe, softpipe, d3d11, vulkan_min, "
+                                    "gles_mediump"));
 }
