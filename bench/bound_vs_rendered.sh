@@ -25,33 +25,9 @@ measure() {
     /usr/bin/time -f '%e' -o "$out/s.time" \
     "$bin" render data/validation.json "${args[@]}" -q --no-timing \
     --format-out json -o "$out/softpipe.json"
-  python3 - "$out/llvmpipe.json" "$out/softpipe.json" "$out/l.time" "$out/s.time" <<'PY'
-import json, statistics, sys
-runs = [("llvmpipe", json.load(open(sys.argv[1]))), ("softpipe", json.load(open(sys.argv[2])))]
-times = [open(p).read().strip() for p in sys.argv[3:5]]
-print(f"rendering took {times[0]} s (llvmpipe) and {times[1]} s (softpipe)\n")
-print("| driver | pair | z | rendered mts | mts_bound | bound / rendered |")
-print("|---|---|---|---|---|---|")
-for name, run in runs:
-    below, rows, ratios, unbounded = 0, 0, [], 0
-    for r in run["rows"]:
-        if r["verdict"] != "resolved":
-            continue
-        rows += 1
-        b = r.get("mts_bound")
-        if not isinstance(b, (int, float)):
-            unbounded += 1
-            continue
-        ratios.append(b / r["mts"])
-        if b < r["mts"]:
-            below += 1
-        pair = f"{r['technique']}/{r['format']}/{r['depth_range']}"
-        print(f"| {name} | {pair} | {r['z']:g} | {r['mts']:.6g} | {b:.6g} | {b / r['mts']:.3g} |")
-    print()
-    print(f"{name}: {rows} resolved rows, {len(ratios)} with a finite bound, {unbounded} without; "
-          f"bound below the rendered MTS on {below}; bound / rendered: min "
-          f"{min(ratios):.3g}, median {statistics.median(ratios):.3g}\n")
-PY
+  echo "rendering took $(cat "$out/l.time") s (llvmpipe) and $(cat "$out/s.time") s (softpipe)"
+  echo
+  python3 bench/bound_vs_rendered.py llvmpipe="$out/llvmpipe.json" softpipe="$out/softpipe.json"
 }
 
 measure | tee "$result.tmp"
