@@ -93,9 +93,10 @@ int main(int argc, char** argv) {
       o.at[z] = fighting;
       MtsEvaluator ev(rt, one, pair, o);
       const MtsRow own = search_pair(ev, one, pair, {z}).at(0);
-      fmt::print("{:<9} {:<36} z = {:<9g} mts_bound {:<11.4g} FIGHTS at ({:.17g}, {:.17g}, {:.17g}) "
-                 "rad, whose own MTS is {:.4g}\n",
-                 prof, pair.label(), z, b.s, fighting[0][0], fighting[0][1], fighting[0][2], own.mts);
+      fmt::print(
+          "{:<9} {:<36} z = {:<9g} mts_bound {:<11.4g} FIGHTS at ({:.17g}, {:.17g}, {:.17g}) "
+          "rad, whose own MTS is {:.4g}\n",
+          prof, pair.label(), z, b.s, fighting[0][0], fighting[0][1], fighting[0][2], own.mts);
       // The same orientation as the scene's one frame (rotation_offset), without the kernel's
       // shortcuts and through the host reference pipeline: which of them says it fights.
       Scene frame = s;
@@ -114,12 +115,13 @@ int main(int argc, char** argv) {
                                                     : ref.code_b[i] <= ref.code_a[i];
         if (f && ref_fights++ == 0) first = i;
       }
-      fmt::print("          as a frame: kernel {}, without shortcuts {}, host reference {} fighting "
-                 "pixels{}\n",
-                 to_string(o_fast), to_string(o_plain), ref_fights,
-                 ref_fights ? fmt::format(" (first: pixel {}, codes A {} B {})", first,
-                                          ref.code_a[first], ref.code_b[first])
-                            : "");
+      fmt::print(
+          "          as a frame: kernel {}, without shortcuts {}, host reference {} fighting "
+          "pixels{}\n",
+          to_string(o_fast), to_string(o_plain), ref_fights,
+          ref_fights ? fmt::format(" (first: pixel {}, codes A {} B {})", first, ref.code_a[first],
+                                   ref.code_b[first])
+                     : "");
       std::fflush(stdout);
     }
   }

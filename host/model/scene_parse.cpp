@@ -7,9 +7,9 @@
 
 #include "host/base/errors.h"
 #include "host/base/named_choice.h"
+#include "host/model/bound_model.h"
 #include "host/model/profile.h"
 #include "host/model/scene.h"
-#include "host/model/bound_model.h"
 #include "host/model/scene_reader.h"
 
 namespace depthprec {
