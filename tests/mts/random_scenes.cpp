@@ -66,10 +66,10 @@ bool has_nan(const MtsRow& r) {
 
 }  // namespace
 
-TEST_CASE("random scenes end, hold no NaN, and the reference confirms their brackets",
+TEST_CASE("random scenes end, hold no NaN, and the reference confirms their brackets and bounds",
           "[mts][reference][property]") {
   std::mt19937 rng(20261123);
-  int measured = 0, confirmed = 0;
+  int measured = 0, confirmed = 0, bounded = 0;
   for (int k = 0; k < 14; ++k) {
     const Drawn d = draw_scene(rng);
     std::string all;
@@ -92,6 +92,14 @@ TEST_CASE("random scenes end, hold no NaN, and the reference confirms their brac
     for (const MtsRow& r : run.rows) {
       INFO(r.pair.label() << " z = " << r.z << " verdict " << to_string(r.verdict()));
       CHECK_FALSE(has_nan(r));
+      // The guaranteed MTS of a resolved row is never below its MTS, and the plain reference
+      // pipeline finds no fight there in any of the scene's frames.
+      if (r.verdict() == Verdict::resolved && std::isfinite(r.mts_bound)) {
+        CHECK(r.mts_bound >= r.mts);
+        const Outcome at_bound = reference_outcome(scene, r.pair, {r.z, r.mts_bound}).outcome;
+        CHECK((at_bound == Outcome::clean || at_bound == Outcome::clipped));
+        ++bounded;
+      }
       const bool log = takes_shader_log(info(r.pair.technique));
       // log_* match the reference within one code, not bit for bit: no bracket check for them
       if (checked || log || r.verdict() != Verdict::resolved) continue;
@@ -105,4 +113,5 @@ TEST_CASE("random scenes end, hold no NaN, and the reference confirms their brac
   }
   CHECK(measured >= 5);  // the draw exercises the measurement, not only the refusals
   CHECK(confirmed >= 4);
+  CHECK(bounded >= 4);
 }
