@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <random>
 #include <string>
 
 #include "host/base/binary32_error.h"
@@ -25,13 +24,35 @@ namespace {
 static_assert(LDBL_MANT_DIG >= 64, "the reference needs x87 extended precision");
 using Exact = long double;
 
-std::mt19937_64 rng(20261128);
+// xoshiro256** (Blackman and Vigna): the trials' random numbers at a few cycles each, where the
+// standard library's engines and distributions took most of the run.
+struct Xoshiro {
+  uint64_t s[4] = {0x9E3779B97F4A7C15ull, 0xBF58476D1CE4E5B9ull, 0x94D049BB133111EBull, 20261128};
+  static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  uint64_t operator()() {
+    const uint64_t out = rotl(s[1] * 5, 7) * 9, t = s[1] << 17;
+    s[2] ^= s[0];
+    s[3] ^= s[1];
+    s[1] ^= s[2];
+    s[0] ^= s[3];
+    s[2] ^= t;
+    s[3] = rotl(s[3], 45);
+    return out;
+  }
+};
+Xoshiro rng;
+
+// Uniform in [0, 1) with 53 random bits; an integer in [lo, hi].
+double u01() {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+int integer(int lo, int hi) {
+  return lo + static_cast<int>(rng() % static_cast<uint64_t>(hi - lo + 1));
+}
 
 // A binary32 with a random significand and an exponent in [lo, hi], random sign unless positive.
 float random_float(int lo, int hi, bool positive = false) {
-  std::uniform_int_distribution<int> e(lo, hi);
-  std::uniform_real_distribution<double> m(1.0, 2.0);
-  const float v = static_cast<float>(std::ldexp(m(rng), e(rng)));
+  const float v = static_cast<float>(std::ldexp(1 + u01(), integer(lo, hi)));
   return positive || (rng() & 1) ? v : -v;
 }
 
@@ -53,10 +74,8 @@ const binary32_error::Rounding kNearest{false, false};
 
 // half_ulp: rounding a real x to binary32 moves it at most half_ulp(m) for any m >= |x|.
 void half_ulp_term(uint64_t n, Worst& w) {
-  std::uniform_real_distribution<double> m(1.0, 2.0);
-  std::uniform_int_distribution<int> e(-140, 120);
   for (uint64_t i = 0; i < n; ++i) {
-    const double x = std::ldexp(m(rng), e(rng));
+    const double x = std::ldexp(1 + u01(), integer(-140, 120));
     const double bound_at = x * (1 + (i & 3) * 0.37);
     const Exact err = static_cast<Exact>(static_cast<float>(x)) - x;
     w.see(err, half_ulp(bound_at), "half_ulp");
@@ -99,10 +118,9 @@ void row_term(uint64_t n, Worst& w) {
 // reciprocal_error and product_error: x~ / w~ formed as fl(x~ fl(1/w~)) or fl(x~ / w~), with
 // x~ within ex of x and w~ within ew of w, against the exact x / w.
 void divide_term(uint64_t n, Worst& w) {
-  std::uniform_real_distribution<double> frac(0.0, 1.0);
   for (uint64_t i = 0; i < n; ++i) {
     const float wt = random_float(-10, 30, true), xt = random_float(-10, 30);
-    const double ew = wt * 0x1.0p-20 * frac(rng), ex = std::fabs(xt) * 0x1.0p-20 * frac(rng);
+    const double ew = wt * 0x1.0p-20 * u01(), ex = std::fabs(xt) * 0x1.0p-20 * u01();
     const Exact wx = static_cast<Exact>(wt) - ew * (rng() & 1 ? 1 : -1);
     const Exact xx = static_cast<Exact>(xt) - ex * (rng() & 1 ? 1 : -1);
     const double w_min = static_cast<double>(wx);
@@ -135,14 +153,13 @@ void viewport_term(uint64_t n, Worst& w) {
 // 5 half_ulp(reach) + |gx| half_ulp(X) + |gy| half_ulp(Y), V = |value|, reach = |gx| X + |gy| Y,
 // X >= every |coordinate| and |px - x0|.
 void evaluation_term(uint64_t n, Worst& w) {
-  std::uniform_int_distribution<int> pix(0, 511);
   for (uint64_t i = 0; i < n; ++i) {
     const float c0 = random_float(-8, 0, true);
     const int ge = -8 - static_cast<int>(rng() % 24);
     const float gx = random_float(ge - 2, ge), gy = random_float(ge - 2, ge);
     const float x0 = random_float(-2, 8, true), y0 = random_float(-2, 8, true);
-    const int qx = pix(rng) & ~1, qy = pix(rng) & ~1, odd_x = static_cast<int>(rng() & 1),
-              odd_y = static_cast<int>(rng() & 1);
+    const int qx = integer(0, 511) & ~1, qy = integer(0, 511) & ~1,
+              odd_x = static_cast<int>(rng() & 1), odd_y = static_cast<int>(rng() & 1);
     const float px = static_cast<float>(qx + odd_x) + 0.5f,
                 py = static_cast<float>(qy + odd_y) + 0.5f;
     const Exact exact = static_cast<Exact>(c0) +
@@ -176,18 +193,17 @@ void evaluation_term(uint64_t n, Worst& w) {
 // bounding |e1| |e2| / |det| at the anchor (the model's smallest angle, 1 degree: 57.3), L the
 // triangle's extent from the anchor.
 void setup_term(uint64_t n, Worst& w) {
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
   const double kappa = 57.3, kU = 0x1.0p-24;
   for (uint64_t i = 0; i < n; ++i) {
     float x[3], y[3], d[3];
     const int ge = -6 - static_cast<int>(rng() % 24);
     const double gx = random_float(ge - 2, ge), gy = random_float(ge - 2, ge);
-    const double c = 0.25 + 0.7 * u01(rng);
+    const double c = 0.25 + 0.7 * u01();
     const double size = std::ldexp(1.0, static_cast<int>(rng() % 7));
-    const float ox = static_cast<float>(512 * u01(rng)), oy = static_cast<float>(512 * u01(rng));
+    const float ox = static_cast<float>(512 * u01()), oy = static_cast<float>(512 * u01());
     for (int k = 0; k < 3; ++k) {
-      x[k] = ox + static_cast<float>(size * u01(rng));
-      y[k] = oy + static_cast<float>(size * u01(rng));
+      x[k] = ox + static_cast<float>(size * u01());
+      y[k] = oy + static_cast<float>(size * u01());
       d[k] = static_cast<float>(c + gx * (x[k] - ox) + gy * (y[k] - oy));
     }
     const Exact ex1 = static_cast<Exact>(x[1]) - x[0], ey1 = static_cast<Exact>(y[1]) - y[0];
@@ -198,7 +214,7 @@ void setup_term(uint64_t n, Worst& w) {
     const Exact ed1 = static_cast<Exact>(d[1]) - d[0], ed2 = static_cast<Exact>(d[2]) - d[0];
     const Exact gxe = (ed1 * ey2 - ed2 * ey1) / det, gye = (ed2 * ex1 - ed1 * ex2) / det;
     // A point of the triangle, and the triangle's extent from vertex 0.
-    double a = u01(rng), b = u01(rng);
+    double a = u01(), b = u01();
     if (a + b > 1) a = 1 - a, b = 1 - b;
     const Exact px = x[0] + a * ex1 + b * ex2, py = y[0] + a * ey1 + b * ey2;
     double Lx = 0, Ly = 0;
@@ -240,9 +256,10 @@ void conversion_term(uint64_t n, Worst& w) {
           StorageFormat::parse(name, depthprec::Rounding::nearest_even, Denormals::keep, c);
       const double N = f.max_code();
       double lo = INFINITY, hi = -INFINITY;
-      std::uniform_real_distribution<float> d01(0.0f, 1.0f);
       for (uint64_t i = 0; i < n / 9; ++i) {
-        const float d = d01(rng);
+        // a step of 2^-24 in [0, 1), or a binary32 of any binade from 2^-30 up
+        const float d =
+            (i & 1) ? static_cast<float>(rng() >> 40) * 0x1.0p-24f : random_float(-30, -1, true);
         const double off = static_cast<double>(f.encode(d)) - static_cast<Exact>(d) * N;
         lo = std::min(lo, off);
         hi = std::max(hi, off);
