@@ -180,6 +180,19 @@ TEST_CASE(
   CHECK(mts_bound(with_near(scene, n), pair, 500).s <= 0.01);
   CHECK(mts_bound(with_near(scene, n / 1.1), pair, 500).s > 0.01);
   CHECK(n == round_printed(n, true));  // as text prints it
+  // standard has a far plane: with that near the bound holds at the far plane found, and linear
+  // (whose precision the far plane spreads) gets a finite one.
+  REQUIRE(j.contains("far_bound"));
+  CHECK(bound_within(scene, pair, r, n, j["far_bound"].get<double>()));
+  const EvalPair linear{Technique::linear, "unorm24", DepthRange::gl};
+  AdviseRequest wide = r;
+  wide.separation = 1;
+  const nlohmann::json lj = bound_answer(scene, linear, wide);
+  REQUIRE(lj.contains("far_bound"));
+  CHECK_FALSE(lj["far_bound_to_ceiling"].get<bool>());
+  const double f = lj["far_bound"].get<double>();
+  CHECK(bound_within(scene, linear, wide, lj["near_bound"].get<double>(), f));
+  CHECK_FALSE(bound_within(scene, linear, wide, lj["near_bound"].get<double>(), 2 * f));
   // The sampled answer sits nearer: the bound costs a near plane further out.
   const auto cli = run_cli(
       "advise --range 500,500 --separation 0.01 -t standard -f unorm24 --far 5e4 "
