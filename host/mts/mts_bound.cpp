@@ -51,11 +51,13 @@ BoundCheck check(const RowModel& m, double z, double s) {
     v.why = "the plane can pass the eye";
     return v;
   }
-  // The shaders hold every vertex coordinate, eye and clip, world ones too away from the origin.
+  // The shaders hold every vertex coordinate, eye and clip, and under the absolute transform the
+  // world's too (camera-relative and relative-to-eye rendering never hand them a world one).
   double largest = std::max(gB.wv_hi, std::fabs(m.a) * gB.wv_hi + std::fabs(m.b));
   largest = std::max(largest, std::max(m.P00, m.P11) * gB.lateral);
-  for (const double w : m.scene->world_position)
-    largest = std::max(largest, std::fabs(w) + gB.wv_hi);
+  if (m.path == VertexPath::model_then_view)
+    for (const double w : m.scene->world_position)
+      largest = std::max(largest, std::fabs(w) + gB.wv_hi);
   if (!(largest < m.model->shader_range)) {
     v.why = kBeyondShaderRange;
     return v;
