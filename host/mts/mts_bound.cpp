@@ -124,6 +124,14 @@ CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double 
   return out;
 }
 
+void set_mts_bound(MtsRow& row, const Scene& scene) {
+  if (row.verdict() != Verdict::resolved) return;
+  const MtsBound b = mts_bound(scene, row.pair, row.z);
+  row.mts_bound = b.s;
+  row.bound_model = scene.bound_model;
+  row.bound_note = std::isfinite(b.s) ? b.dominant : b.why;
+}
+
 bool bound_holds(const Scene& scene, const EvalPair& pair, double z, double s) {
   return check(bound::row_model(scene, pair, z), z, s).holds;
 }

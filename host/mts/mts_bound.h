@@ -9,6 +9,7 @@
 #include <string>
 
 #include "host/model/scene.h"
+#include "host/mts/mts_row.h"
 
 namespace depthprec {
 
@@ -36,6 +37,10 @@ struct CoplanarSpread {
   double depth_min = 0, depth_max = 0;
 };
 CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double z);
+
+// A final row's guaranteed MTS under the scene's bound model: mts_bound, bound_model and
+// bound_note (the dominant term, or why there is none); left NaN on a row without an MTS.
+void set_mts_bound(MtsRow& row, const Scene& scene);
 
 // Whether the model proves that no pixel fights at requested separation s (for tests and the
 // dense scan): the exact gap exceeds both planes' error bounds and the conversion's width.

@@ -7,7 +7,6 @@
 #include "host/model/frame_setup.h"
 #include "host/model/resolve.h"
 #include "host/model/technique.h"
-#include "host/mts/mts_bound.h"
 
 namespace depthprec {
 
@@ -212,12 +211,6 @@ void finish_row(const Scene& scene, const EvalPair& pair, const Bisection& b,
     row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
   }
   row.mts_paper = row.mts;
-  if (row.verdict() == Verdict::resolved) {
-    const MtsBound b = mts_bound(scene, pair, row.z);
-    row.mts_bound = b.s;
-    row.bound_model = scene.bound_model;
-    row.bound_note = std::isnan(b.s) || std::isinf(b.s) ? b.why : b.dominant;
-  }
 }
 
 }  // namespace

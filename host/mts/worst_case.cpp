@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <memory>
 
 #include "host/base/errors.h"
 #include "host/model/frame_setup.h"
+#include "host/mts/mts_bound.h"
 #include "host/mts/mts_evaluator.h"
 #include "host/mts/mts_search.h"
 #include "host/mts/refinement.h"
@@ -159,17 +161,33 @@ std::vector<MtsRow> search_sampled(EvaluatorSource<ProbeEvaluator>& source, cons
                                    const std::function<void(const MtsRow&)>& on_row,
                                    const std::function<bool()>& stop) {
   const bool worst_case = scene.sampling == Sampling::worst_case;
+  // The guaranteed MTS belongs to a final row, not to the searches the refinement runs inside
+  // it: each row gets it once, as it is handed on (or returned).
+  std::map<double, MtsRow> handed_on;  // paper sampling: rows bounded as they were handed on
+  std::function<void(const MtsRow&)> final_row;
+  if (on_row && !worst_case)
+    final_row = [&](const MtsRow& r) {
+      MtsRow bounded = r;
+      set_mts_bound(bounded, scene);
+      on_row(bounded);
+      handed_on.emplace(r.z, bounded);
+    };
   std::vector<MtsRow> rows;
   {
     const std::unique_ptr<ProbeEvaluator> ev = source.make(scene, {});
     // Under worst-case sampling a row is final only once refined.
-    rows = search_pair(*ev, scene, pair, distances,
-                       worst_case ? std::function<void(const MtsRow&)>() : on_row, stop);
+    rows = search_pair(*ev, scene, pair, distances, final_row, stop);
     source.retire(*ev);
   }
-  if (!worst_case) return rows;
-  refine_worst_case(source, scene, pair, rows, stop);
-  if (on_row)
+  if (worst_case) refine_worst_case(source, scene, pair, rows, stop);
+  for (MtsRow& r : rows) {
+    const auto it = handed_on.find(r.z);
+    if (it != handed_on.end())
+      r = it->second;
+    else
+      set_mts_bound(r, scene);
+  }
+  if (on_row && worst_case)
     for (const MtsRow& r : rows) on_row(r);
   return rows;
 }
