@@ -141,13 +141,8 @@ double shader_own(const RowModel& m, double lo, double hi) {
       return hs(m, hi - pc.near) / pc.range + 2 * hs(m, f_max);
     case FragmentDepth::w_buffer:
       return 2 * hs(m, f_max);
-    case FragmentDepth::threejs_log: {
-      // fl(fl(log2(fl(1 + w)) FC) 0.5): the product by one half is exact
-      const double x_hi = 1 + hi, l2 = std::log2(x_hi);
-      return 0.5 * pc.threejs_fc *
-                 (hs(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hs(m, l2)) +
-             0.5 * hs(m, 2 * f_max);
-    }
+    case FragmentDepth::threejs_log:
+      break;  // as three.js's vertex-stage log, below
     case FragmentDepth::cesium_log: {
       // fl(log2(fl(fl(w - n) + 1)) C)
       const double x_hi = (hi - pc.near) + 1, l2 = std::log2(x_hi);
@@ -160,7 +155,9 @@ double shader_own(const RowModel& m, double lo, double hi) {
     case FragmentDepth::none:
       break;
   }
-  if (m.vertex_log && m.pc.vertex_log == MTS_VERTEX_LOG_THREEJS) {
+  if (m.ti.fragment == FragmentDepth::threejs_log ||
+      (m.vertex_log && m.pc.vertex_log == MTS_VERTEX_LOG_THREEJS)) {
+    // fl(fl(log2(fl(1 + w)) FC) 0.5): the product by one half is exact
     const double x_hi = 1 + hi, l2 = std::log2(x_hi);
     return 0.5 * pc.threejs_fc *
                (hs(m, x_hi) / ((1 + lo) * M_LN2) + m.model->log_half_ulps * hs(m, l2)) +
@@ -254,8 +251,7 @@ double value_slope(const RowModel& m, const PlaneGeometry& g) {
 
 // The largest |value| at a kernel pixel.
 double pixel_value_max(const RowModel& m, const PlaneGeometry& g) {
-  if (m.fragment) return 1 / g.wp_lo;
-  return std::max(std::fabs(exact_depth(m, g.wp_lo)), std::fabs(exact_depth(m, g.wp_hi)));
+  return m.fragment ? 1 / g.wp_lo : pixel_depths(m, g).magnitude();
 }
 
 }  // namespace
@@ -272,8 +268,9 @@ double DepthError::total() const {
   return out * b32::kMargin;
 }
 
-double largest_pixel_depth(const RowModel& m, const PlaneGeometry& g) {
-  return std::max(std::fabs(exact_depth(m, g.wp_lo)), std::fabs(exact_depth(m, g.wp_hi)));
+PixelDepths pixel_depths(const RowModel& m, const PlaneGeometry& g) {
+  const double a = exact_depth(m, g.wp_lo), b = exact_depth(m, g.wp_hi);
+  return {std::min(a, b), std::max(a, b)};
 }
 
 // The fan triangles llvmpipe's clip stage makes are assumed to keep a smallest angle of 1 degree

@@ -3,7 +3,9 @@
 // term: each term is written beside the binary32 arithmetic it bounds in bound_plane.cpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "host/mts/bound_geometry.h"
 
@@ -30,7 +32,12 @@ struct DepthError {
 // Bound on |computed depth - exact depth| at any pixel centre of the kernel for plane g.
 DepthError depth_error(const RowModel& m, const PlaneGeometry& g);
 
-// The largest depth the plane has at a kernel pixel (for the storage's spacing).
-double largest_pixel_depth(const RowModel& m, const PlaneGeometry& g);
+// The least and the greatest exact depth the plane has at a kernel pixel (the ends of the pixels'
+// range of w, the map being monotone).
+struct PixelDepths {
+  double lo, hi;
+  double magnitude() const { return std::max(std::fabs(lo), std::fabs(hi)); }
+};
+PixelDepths pixel_depths(const RowModel& m, const PlaneGeometry& g);
 
 }  // namespace depthprec::bound

@@ -69,8 +69,8 @@ BoundCheck check(const RowModel& m, double z, double s) {
     return v;
   }
   // Plane A's fragments stay inside the depth range (a clipped A would leave B alone at the pixel).
-  const double aN = bound::exact_depth(m, gA.wp_lo), aF = bound::exact_depth(m, gA.wp_hi);
-  const double a_lo = std::min(aN, aF) - EA, a_hi = std::max(aN, aF) + EA;
+  const bound::PixelDepths a = bound::pixel_depths(m, gA), b = bound::pixel_depths(m, gB);
+  const double a_lo = a.lo - EA, a_hi = a.hi + EA;
   const bool a_inside =
       m.fragment ? gA.wp_lo > m.pc.near && gA.wp_hi < m.pc.far : a_lo > 0 && a_hi < 1;
   if (!a_inside) {
@@ -83,11 +83,8 @@ BoundCheck check(const RowModel& m, double z, double s) {
   const double lo = m.vertex_log ? gA.wv_lo : gA.wp_lo, hi = m.vertex_log ? gA.wv_hi : gA.wp_hi;
   const double lm1 = (DB - DA) / DA;
   const double gap = std::min(bound::exact_gap(m, lm1, lo), bound::exact_gap(m, lm1, hi));
-  const double b_max = bound::largest_pixel_depth(m, gB) + EB;
-  const double d_max = std::max(a_hi, b_max);
-  const double d_min = std::max(0.0, std::min(a_lo, std::min(bound::exact_depth(m, gB.wp_lo),
-                                                             bound::exact_depth(m, gB.wp_hi)) -
-                                                        EB));
+  const double d_max = std::max(a_hi, b.magnitude() + EB);
+  const double d_min = std::max(0.0, std::min(a_lo, b.lo - EB));
   for (int t = 0; t < bound::kTermCount; ++t) v.terms[t] = eA.term[t] + eB.term[t];
   v.terms[bound::kStorage] = storage_width(m, d_min, d_max);
   double need = 0;
@@ -116,9 +113,9 @@ CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double 
   }
   const PlaneGeometry g = bound::plane_geometry(m, bound::geometry_distance(m, z));
   const double E = bound::depth_error(m, g).total();
-  const double a = bound::exact_depth(m, g.wp_lo), b = bound::exact_depth(m, g.wp_hi);
-  out.depth_min = std::max(0.0, std::min(a, b) - E);
-  out.depth_max = std::max(a, b) + E;
+  const bound::PixelDepths d = bound::pixel_depths(m, g);
+  out.depth_min = std::max(0.0, d.lo - E);
+  out.depth_max = d.hi + E;
   if (std::isfinite(E))
     out.spread = (2 * E + storage_width(m, out.depth_min, out.depth_max)) * binary32_error::kMargin;
   return out;
