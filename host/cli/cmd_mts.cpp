@@ -100,7 +100,7 @@ void add_jobs_option(CLI::App* cmd, MtsOptions& o) {
          "device's cores stay busy while one pair waits between launches; they share the plane-A "
          "cache's memory, and with fewer pairs than jobs a pair's distances are split between "
          "them. The rows are the same for any value; measured times include the other "
-         "pairs' share of the device, so use 1 to time rows alone. --attribute always runs one")
+         "pairs' share of the device, so use 1 to time rows alone")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
 }

@@ -87,7 +87,6 @@ void run_report(const ReportOptions& o, const GlobalOptions& global) {
     OpenClRuntime rt(global.device);
     RunControl control;
     control.attribute = !o.no_attribute;  // the report shows what limits each number
-    control.jobs = 1;
     control.stop = interrupt_requested;
     const auto log = [&global](const std::string& line) {
       if (global.verbose) fmt::print(stderr, "{}\n", line);

@@ -32,7 +32,7 @@ struct RunControl {
   bool attribute = false;  // also the storage- and arithmetic-limited MTS of every row
   // Pairs evaluated side by side, each by its own host thread and queue: the device's cores stay
   // busy while one pair's launch drains or its host waits. Rows are the same for any number;
-  // measured times then include the other pairs' share of the device. Attribution runs one.
+  // measured times then include the other pairs' share of the device.
   // The jobs share the plane-A cache's budget; with fewer pairs than jobs a pair's distances are
   // split between them. 2: the default table takes 6.0 s with two jobs against 6.8 s with one,
   // 280-300 MB either way (docs/performance.md).

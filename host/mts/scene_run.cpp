@@ -21,10 +21,13 @@ namespace {
 
 // The attribution factors of a pair's rows: the storage-limited MTS from the binary64 pipeline
 // (kernels/mts_exact.cl) and the arithmetic-limited MTS from the same binary32 pipeline storing
-// in float32, which holds every binary32 depth exactly (a float32 pair is its own). The factor
-// searches skip the stiffness probes: they report a number, not a stability check.
+// in float32, which holds every binary32 depth exactly (a float32 pair is its own; another
+// pair's comes from arithmetic, given the float32 pair and the scene without stiffness probes).
+// The factor searches skip the stiffness probes: they report a number, not a stability check.
+using ArithmeticMts = std::function<std::vector<double>(const EvalPair& raw, const Scene& plain,
+                                                        const std::vector<double>& zs)>;
 void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                    std::vector<MtsRow>& rows, std::map<std::string, double>& arithmetic_cache,
+                    std::vector<MtsRow>& rows, const ArithmeticMts& arithmetic,
                     const std::function<bool()>& stop) {
   Scene plain = scene;
   plain.stiffness_probes = 0;
@@ -35,19 +38,14 @@ void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
   const auto storage = search_sampled(exact, plain, pair, zs, {}, stop);
   EvalPair raw = pair;
   raw.format = "float32";
-  const bool is_raw = pair.format == "float32";
-  if (is_raw)
-    for (const auto& r : rows) arithmetic_cache[row_key(raw, r.z)] = r.mts;
-  std::vector<double> missing;
-  for (double z : zs)
-    if (!arithmetic_cache.count(row_key(raw, z))) missing.push_back(z);
-  if (!missing.empty()) {
-    for (const auto& r : search_sampled(rt, plain, raw, missing, stop))
-      arithmetic_cache[row_key(raw, r.z)] = r.mts;
-  }
+  std::vector<double> arithmetic_mts;
+  if (pair.format == "float32")
+    for (const auto& r : rows) arithmetic_mts.push_back(r.mts);
+  else
+    arithmetic_mts = arithmetic(raw, plain, zs);
   for (size_t i = 0; i < rows.size(); ++i) {
     rows[i].storage_mts = storage[i].beyond_far ? INFINITY : storage[i].mts;
-    rows[i].arithmetic_mts = arithmetic_cache[row_key(raw, rows[i].z)];
+    rows[i].arithmetic_mts = arithmetic_mts[i];
     rows[i].set_dominant(scene.rel_precision);
   }
 }
@@ -154,7 +152,7 @@ void SceneRun::plan_units() {
   parts_left_.assign(np, 0);
   for (size_t p = 0; p < np; ++p) {
     const std::vector<double>& fresh = plan_[p].fresh;
-    const size_t k = control_.attribute ? 1 : std::clamp<size_t>(fresh.size(), 1, parts_per_pair);
+    const size_t k = std::clamp<size_t>(fresh.size(), 1, parts_per_pair);
     for (size_t i = 0; i < k; ++i) {
       Unit u{p, {}};
       for (size_t d = i; d < fresh.size(); d += k) u.zs.push_back(fresh[d]);
@@ -164,15 +162,22 @@ void SceneRun::plan_units() {
   }
   // Units are taken in scene order, so a pair waits only for earlier ones, each finished or in
   // progress on another job: no cycle.
-  jobs_ = control_.attribute ? 1
-                             : static_cast<int>(std::min<size_t>(
-                                   static_cast<size_t>(std::max(1, control_.jobs)), units_.size()));
+  jobs_ = static_cast<int>(
+      std::min<size_t>(static_cast<size_t>(std::max(1, control_.jobs)), units_.size()));
   Scene round_scene = scene_;  // worst-case sampling's rounds, in chunks of round_size
   round_scene.frames = scene_.worst_case.round_size;
   for (const Unit& u : units_) {
-    prime_widths_ |= MtsEvaluator::widest_launches(scene_, plan_[u.pair].variant, jobs_);
-    if (scene_.sampling == Sampling::worst_case)
-      prime_widths_ |= MtsEvaluator::widest_launches(round_scene, plan_[u.pair].variant, jobs_);
+    std::vector<KernelVariant> variants{plan_[u.pair].variant};
+    if (control_.attribute && scene_.evaluate[u.pair].format != "float32") {
+      EvalPair raw = scene_.evaluate[u.pair];  // its arithmetic-limited MTS may be searched
+      raw.format = "float32";
+      variants.push_back(mts_variant(scene_, raw));
+    }
+    for (const KernelVariant& v : variants) {
+      prime_widths_ |= MtsEvaluator::widest_launches(scene_, v, jobs_);
+      if (scene_.sampling == Sampling::worst_case)
+        prime_widths_ |= MtsEvaluator::widest_launches(round_scene, v, jobs_);
+    }
   }
   stats_.assign(np, PairStats{});
   finished_.assign(np, 0);
@@ -202,6 +207,60 @@ void SceneRun::job() {
   }
 }
 
+std::unique_ptr<ProbeEvaluator> SceneRun::RunSource::make(const Scene& s, const Orientations& o) {
+  auto ev = std::make_unique<MtsEvaluator>(run_.rt_, s, pair_, o);
+  ev->share_plane_a_budget(run_.jobs_);
+  if (run_.jobs_ > 1) ev->prime_launches(run_.prime_widths_, run_.primer_);
+  return ev;
+}
+
+void SceneRun::RunSource::retire(ProbeEvaluator& ev) {
+  if (stats_of_ != kNoStats)
+    run_.add_stats(stats_of_, static_cast<const MtsEvaluator&>(ev));  // as make built it
+}
+
+// The arithmetic-limited MTS of pair p's distances zs: the MTS of raw, its float32 pair, where
+// an earlier pair of the run is raw and computes the distance itself (its row, once that pair is
+// done), else a search of raw over the plain scene, kept for later pairs. Either way the value
+// does not depend on which job ran first: the jobs can attribute side by side.
+std::vector<double> SceneRun::arithmetic_mts(size_t p, const EvalPair& raw, const Scene& plain,
+                                             const std::vector<double>& zs,
+                                             const std::function<bool()>& stop) {
+  size_t sibling = p;
+  for (size_t q = 0; q < p; ++q)
+    if (scene_.evaluate[q].label() == raw.label()) sibling = q;
+  std::vector<double> out(zs.size(), NAN);
+  std::vector<double> missing;
+  {
+    std::unique_lock<std::mutex> lock(m_);
+    if (sibling < p) {
+      // The sibling's units were all taken before p's (scene order): it finishes without p.
+      while (!pair_finished_.wait_for(lock, std::chrono::milliseconds(100),
+                                      [&] { return finished_[sibling] != 0; }))
+        if (control_.stop && control_.stop()) throw Error(ExitCode::interrupted, "interrupted");
+      if (failed_) throw Error(ExitCode::interrupted, "interrupted");
+    }
+    const std::vector<double>& fresh = plan_[sibling].fresh;
+    for (size_t i = 0; i < zs.size(); ++i) {
+      if (sibling < p && std::find(fresh.begin(), fresh.end(), zs[i]) != fresh.end())
+        out[i] = computed_.at(computation_key(sibling, zs[i])).mts;
+      else if (const auto it = arithmetic_cache_.find(row_key(raw, zs[i]));
+               it != arithmetic_cache_.end())
+        out[i] = it->second;
+      else
+        missing.push_back(zs[i]);
+    }
+  }
+  if (missing.empty()) return out;
+  RunSource source(*this, raw, RunSource::kNoStats);
+  const std::vector<MtsRow> found = search_sampled(source, plain, raw, missing, {}, stop);
+  std::lock_guard<std::mutex> lock(m_);
+  for (const MtsRow& r : found) arithmetic_cache_.emplace(row_key(raw, r.z), r.mts);
+  for (size_t i = 0; i < zs.size(); ++i)
+    if (std::isnan(out[i])) out[i] = arithmetic_cache_.at(row_key(raw, zs[i]));
+  return out;
+}
+
 // Searches some of a pair's distances in one evaluator (and under worst-case sampling refines
 // them, an evaluator per round); rows go to the journal as they finish.
 void SceneRun::compute(size_t p, const std::vector<double>& zs) {
@@ -212,28 +271,14 @@ void SceneRun::compute(size_t p, const std::vector<double>& zs) {
   if (!control_.attribute) on_row = [this](const MtsRow& r) { pass_on(r); };
   // The run's evaluators: the plane-A budget shared between the jobs, launches primed, and
   // their statistics the pair's.
-  class Source : public EvaluatorSource<ProbeEvaluator> {
-   public:
-    Source(SceneRun& run, size_t p) : run_(run), p_(p) {}
-    std::unique_ptr<ProbeEvaluator> make(const Scene& s, const Orientations& o) override {
-      auto ev = std::make_unique<MtsEvaluator>(run_.rt_, s, run_.scene_.evaluate[p_], o);
-      ev->share_plane_a_budget(run_.jobs_);
-      if (run_.jobs_ > 1) ev->prime_launches(run_.prime_widths_, run_.primer_);
-      return ev;
-    }
-    void retire(ProbeEvaluator& ev) override {
-      run_.add_stats(p_, static_cast<const MtsEvaluator&>(ev));  // as make built it
-    }
-
-   private:
-    SceneRun& run_;
-    size_t p_;
-  } source(*this, p);
+  RunSource source(*this, pair, p);
   std::vector<MtsRow> rows = search_sampled(source, scene_, pair, zs, on_row, stop);
   if (control_.attribute) {
-    // The arithmetic cache makes a row's attribution depend on which pairs ran before it:
-    // attribution runs one job (RunControl::jobs), so that order is the scene's.
-    attribute_rows(rt_, scene_, pair, rows, arithmetic_cache_, stop);
+    const ArithmeticMts arithmetic = [&](const EvalPair& raw, const Scene& plain,
+                                         const std::vector<double>& want) {
+      return arithmetic_mts(p, raw, plain, want, stop);
+    };
+    attribute_rows(rt_, scene_, pair, rows, arithmetic, stop);
     for (const auto& r : rows) pass_on(r);
   }
   std::lock_guard<std::mutex> lock(m_);

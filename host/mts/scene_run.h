@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "host/mts/mts_evaluator.h"
+#include "host/mts/refinement.h"
 #include "host/mts/run_rows.h"
 #include "host/runtime/kernel_variant.h"
 
@@ -68,6 +69,24 @@ class SceneRun {
   // part logs the pair, takes over its identical rows and finishes it.
   void job();
   void compute(size_t p, const std::vector<double>& zs);
+  std::vector<double> arithmetic_mts(size_t p, const EvalPair& raw, const Scene& plain,
+                                     const std::vector<double>& zs,
+                                     const std::function<bool()>& stop);
+  // The run's evaluators of one pair: the plane-A budget shared between the jobs, launches
+  // primed, and their statistics those of pair stats_of (kNoStats: nobody's).
+  class RunSource : public EvaluatorSource<ProbeEvaluator> {
+   public:
+    static constexpr size_t kNoStats = SIZE_MAX;
+    RunSource(SceneRun& run, const EvalPair& pair, size_t stats_of)
+        : run_(run), pair_(pair), stats_of_(stats_of) {}
+    std::unique_ptr<ProbeEvaluator> make(const Scene& s, const Orientations& o) override;
+    void retire(ProbeEvaluator& ev) override;
+
+   private:
+    SceneRun& run_;
+    const EvalPair& pair_;
+    size_t stats_of_;
+  };
   void add_stats(size_t p, const MtsEvaluator& ev);
   void take_over_identical_rows(size_t p);
   void finish_pair(size_t p);
@@ -106,7 +125,7 @@ class SceneRun {
   std::vector<size_t> parts_left_;
   std::vector<PairStats> stats_;
   std::map<std::string, MtsRow> computed_;
-  std::map<std::string, double> arithmetic_cache_;  // row key of a float32 pair -> its MTS
+  std::map<std::string, double> arithmetic_cache_;  // row key of a float32 pair -> its search
   std::vector<char> finished_;
   std::vector<std::vector<MtsRow>> pair_rows_;
   std::vector<std::vector<std::string>> pair_log_;

@@ -231,6 +231,28 @@ TEST_CASE("many jobs launching the same kernels run to the end with the bytes of
   CHECK(slurp(out) == slurp(one));
 }
 
+// Attribution runs side by side too: a pair's arithmetic-limited MTS is its float32 sibling's
+// where an earlier pair is that sibling (unorm16 here, which waits for it) and a search of its own
+// where none is (unorm24, listed before float32), so the bytes are one job's whichever job gets
+// there first. Several jobs also run the storage-limited kernel side by side, each launch as wide
+// as every other.
+TEST_CASE("attribution gives the bytes of one job with several", "[batch][attribution]") {
+  const std::string args =
+      "table -t standard,log_fragment -f unorm24,float32,unorm16 --kernel 48x48 --frames 12 "
+      "--distances 2,300,40000 --attribute --no-timing --format-out json";
+  const std::string one = fresh("/tmp/depthprec_test_attr1.json");
+  REQUIRE(run_cli(args + " --jobs 1 -o " + one).exit_code == 0);
+  const std::string text = slurp(one);
+  CHECK(text.find("\"arithmetic_mts\"") != std::string::npos);
+  for (const int jobs : {2, 5}) {
+    const std::string out = fresh("/tmp/depthprec_test_attr" + std::to_string(jobs) + ".json");
+    const auto r = run_cli(args + " --jobs " + std::to_string(jobs) + " -o " + out);
+    INFO("--jobs " << jobs << ": " << r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK(slurp(out) == text);
+  }
+}
+
 // An output that is a device or a pipe (-o /dev/null, a FIFO) is written in place: replacing it
 // through a temporary file would, as root, leave a regular file where /dev/null was. Nor is a
 // journal made beside it. A FIFO stands for /dev/null here, so a regression breaks no device.
