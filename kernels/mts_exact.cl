@@ -4,11 +4,12 @@
  * arithmetic, no interpolation error), the technique's exact mapping D(w), then the storage
  * format's correctly rounded code (df_encode_f64). What is left is the error of storage alone.
  *
- * Defines: DEPTH_MAP (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f,
- * 7 log2(1 + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f - n + 1); host/model/technique.h
- * DepthMap), CLIP_W (1: the technique writes depth in the fragment stage -- clip by the standard
- * volume n <= w <= f and clamp d; 0: clip where d leaves [0, 1]), COMPARE_GREATER, and the
- * format's. */
+ * Defines: ROW_ENDS (1: decide a row from its end pixels where that is certain, below; 0: every
+ * pixel, to check that the shortcut changes nothing), DEPTH_MAP (0 standard, 1 infinite, 2
+ * reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1 + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f
+ * - n + 1); host/model/technique.h DepthMap), CLIP_W (1: the technique writes depth in the fragment
+ * stage -- clip by the standard volume n <= w <= f and clamp d; 0: clip where d leaves [0, 1]),
+ * COMPARE_GREATER, and the format's. */
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define DF_ENABLE_FP64 1
 #include "formats/depth_format.h"
@@ -88,16 +89,110 @@ static exact_row_t exact_row(__global const double4* pl, double ndc_y, double sx
   return r;
 }
 
-/* w at 8 pixels of the row (ndc_x), and whether the plane's square covers them. */
-static double8 exact_w8(exact_row_t r, double8 ndc_x, long8* covered) {
+/* w at 8 pixels of the row (ndc_x), and whether the plane's square, its half-sides times
+ * shrink (1: the square itself), covers them. */
+static double8 exact_w8(exact_row_t r, double8 ndc_x, double shrink, long8* covered) {
   const double8 t = r.num / (r.den0 + r.den1 * ndc_x);
   const double8 u = t * (r.ua0 + r.ua1 * ndc_x) - r.ca, v = t * (r.ub0 + r.ub1 * ndc_x) - r.cb;
-  *covered = (t > 0.0) & (fabs(u) <= r.ha) & (fabs(v) <= r.hb);
+  *covered = (t > 0.0) & (fabs(u) <= r.ha * shrink) & (fabs(v) <= r.hb * shrink);
   return t;
 }
 
+/* Eight pixels of the row from x0: their flags and fragment pairs, as mts_raster reports them. */
+static void pixels8(exact_row_t ra, exact_row_t rb, uint x0, double ox, double vw, uint kw,
+                    double n, double f, double k, df_format fmt, ulong* pairs, uint* flags) {
+  const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
+  const long8 active = xs < (double)kw;
+  const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
+  long8 cov_a, cov_b;
+  const double8 wa = exact_w8(ra, ndc_x, 1.0, &cov_a), wb = exact_w8(rb, ndc_x, 1.0, &cov_b);
+  const long8 covered = active & cov_a & cov_b;
+  if (any(active & ~covered)) *flags |= MTS_R_UNCOVERED;
+  double8 da = exact_depth8(wa, n, f, k), db = exact_depth8(wb, n, f, k);
+  const long8 finite = isfinite(da) & isfinite(db);
+  if (any(covered & ~finite)) *flags |= MTS_R_NONFINITE;
+#if CLIP_W
+  const long8 inside = (wa >= n) & (wa <= f) & (wb >= n) & (wb <= f);
+  da = clamp(da, 0.0, 1.0);
+  db = clamp(db, 0.0, 1.0);
+#else
+  const long8 inside = (da >= 0.0) & (da <= 1.0) & (db >= 0.0) & (db <= 1.0);
+#endif
+  if (any(covered & finite & ~inside)) *flags |= MTS_R_CLIPPED;
+  const long8 ok = covered & finite & inside;
+  *pairs += (ulong)(-(long)(ok.s0 + ok.s1 + ok.s2 + ok.s3 + ok.s4 + ok.s5 + ok.s6 + ok.s7));
+  const uint8 ca = encode8(da, fmt), cb = encode8(db, fmt);
+#if COMPARE_GREATER
+  const int8 fight = cb >= ca;
+#else
+  const int8 fight = cb <= ca;
+#endif
+  if (any(convert_long8(fight) & ok)) *flags |= MTS_R_FIGHT;
+}
+
+#if ROW_ENDS
+/* Stretches of a row decided clean from their two end pixels alone: where plane B's codes lie
+ * many codes beyond A's (the descent's probes, far above the MTS) no pixel between can fight.
+ * - Along the row ndc_x, den0 + den1 ndc_x (rounding is monotone) and t = num / den are
+ *   monotone in x as computed, while den keeps its sign -- it does between two ends where t > 0.
+ *   So w, inside (w in [n, f]) and finiteness hold at every pixel between ends where they hold.
+ *   The exact u and v are Moebius maps of x, monotone, and their computed values within a few
+ *   ulps of them: ends covered by the square shrunk by 2^-36 (kShrink) put every pixel between
+ *   inside the square itself.
+ * - D(w) as computed is the exact, monotone D(w) times (1 + e), |e| a few binary64 ulps (its
+ *   quotients and products; log1p within 2 ulp), far below a code's step, so a pixel's code is
+ *   within one of the code of the exact D, which is monotone along the row: every code of the
+ *   stretch lies within 2 of the range its ends span. A stretch whose plane-B codes lie 5 or
+ *   more beyond its plane-A codes at both ends is clean at every pixel (ENDS_MARGIN, 6).
+ * - !CLIP_W: D inside [0, 1] is checked at the ends with a margin of 2^-46 below 1 (its sign is
+ *   exact), so no pixel between leaves it by D's own rounding. */
+#define ENDS_MARGIN 6
+#define kShrink (1.0 - 0x1.0p-36)
+
+/* Both planes' codes at 8 pixels xs of the row, 'ahead' the codes of the plane that must be
+ * ahead (B's; A's under COMPARE_GREATER), and which pixels are certain (above). */
+typedef struct {
+  long8 ok, ahead, behind;
+} ends8_t;
+
+static ends8_t ends8(exact_row_t ra, exact_row_t rb, double8 xs, double ox, double vw, double n,
+                     double f, double k, df_format fmt) {
+  const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
+  long8 cov_a, cov_b;
+  const double8 wa = exact_w8(ra, ndc_x, kShrink, &cov_a),
+                wb = exact_w8(rb, ndc_x, kShrink, &cov_b);
+  double8 da = exact_depth8(wa, n, f, k), db = exact_depth8(wb, n, f, k);
+#if CLIP_W
+  const long8 inside = (wa >= n) & (wa <= f) & (wb >= n) & (wb <= f);
+  da = clamp(da, 0.0, 1.0);
+  db = clamp(db, 0.0, 1.0);
+#else
+  const double top = 1.0 - 0x1.0p-46;
+  const long8 inside = (da >= 0.0) & (da <= top) & (db >= 0.0) & (db <= top);
+#endif
+  ends8_t e;
+  e.ok = cov_a & cov_b & isfinite(da) & isfinite(db) & inside;
+  const long8 ca = convert_long8(encode8(da, fmt)), cb = convert_long8(encode8(db, fmt));
+#if COMPARE_GREATER
+  e.ahead = ca;
+  e.behind = cb;
+#else
+  e.ahead = cb;
+  e.behind = ca;
+#endif
+  return e;
+}
+
+/* Which of four stretches, the ends of stretch j in lanes 2j and 2j + 1, are clean throughout. */
+static long4 stretches_clean(ends8_t e) {
+  const long4 lo = min(e.ahead.even, e.ahead.odd), hi = max(e.behind.even, e.behind.odd);
+  return e.ok.even & e.ok.odd & (lo - hi >= (long4)ENDS_MARGIN);
+}
+#endif
+
 /* One work item per (probe, frame, kernel row), 8 pixels at a time: flags of the row's pixels
- * and the number of fragment pairs, as mts_raster reports them. */
+ * and the number of fragment pairs, as mts_raster reports them; MTS_R_BOUNDS where pixels of the
+ * row were decided from end pixels. */
 __kernel void mts_exact(__global const double4* planes, const uint kw, const uint kh,
                         const double ox, const double oy, const double vw, const double vh,
                         const double sx, const double sy, const double k, __global uint* out,
@@ -113,34 +208,36 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   const exact_row_t ra = exact_row(A, ndc_y, sx, sy), rb = exact_row(B, ndc_y, sx, sy);
   ulong pairs = 0;
   uint flags = 0;
-  for (uint x0 = 0; x0 < kw; x0 += 8) {
-    const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
-    const long8 active = xs < (double)kw;
-    const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
-    long8 cov_a, cov_b;
-    const double8 wa = exact_w8(ra, ndc_x, &cov_a), wb = exact_w8(rb, ndc_x, &cov_b);
-    const long8 covered = active & cov_a & cov_b;
-    if (any(active & ~covered)) flags |= MTS_R_UNCOVERED;
-    double8 da = exact_depth8(wa, n, f, k), db = exact_depth8(wb, n, f, k);
-    const long8 finite = isfinite(da) & isfinite(db);
-    if (any(covered & ~finite)) flags |= MTS_R_NONFINITE;
-#if CLIP_W
-    const long8 inside = (wa >= n) & (wa <= f) & (wb >= n) & (wb <= f);
-    da = clamp(da, 0.0, 1.0);
-    db = clamp(db, 0.0, 1.0);
-#else
-    const long8 inside = (da >= 0.0) & (da <= 1.0) & (db >= 0.0) & (db <= 1.0);
-#endif
-    if (any(covered & finite & ~inside)) flags |= MTS_R_CLIPPED;
-    const long8 ok = covered & finite & inside;
-    pairs += (ulong)(-(long)(ok.s0 + ok.s1 + ok.s2 + ok.s3 + ok.s4 + ok.s5 + ok.s6 + ok.s7));
-    const uint8 ca = encode8(da, fmt), cb = encode8(db, fmt);
-#if COMPARE_GREATER
-    const int8 fight = cb >= ca;
-#else
-    const int8 fight = cb <= ca;
-#endif
-    if (any(convert_long8(fight) & ok)) flags |= MTS_R_FIGHT;
+#if ROW_ENDS
+  /* The whole row first; where its ends leave room for stretches of 8 pixels (the codes' gap
+   * beyond the margin and twice a stretch's share of the row's spread), stretches of 8. */
+  const double last = (double)(kw - 1);
+  const ends8_t row =
+      ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox, vw, n, f, k, fmt);
+  if (stretches_clean(row).s0) {
+    out[item] = MTS_R_BOUNDS | ((uint)min(kw, 0xffffffu) << MTS_R_COUNT_SHIFT);
+    return;
   }
+  const long gap = min(row.ahead.s0 - row.behind.s0, row.ahead.s1 - row.behind.s1);
+  const long spread = abs(row.ahead.s1 - row.ahead.s0) + abs(row.behind.s1 - row.behind.s0);
+  if (row.ok.s0 && row.ok.s1 && gap >= ENDS_MARGIN + 2 * (spread * 8 / (long)kw + 1)) {
+    for (uint x0 = 0; x0 < kw; x0 += 32) {
+      const double8 xs =
+          min((double8)((double)x0) + (double8)(0, 7, 8, 15, 16, 23, 24, 31), (double8)last);
+      const long4 clean = stretches_clean(ends8(ra, rb, xs, ox, vw, n, f, k, fmt));
+      const long c[4] = {clean.s0, clean.s1, clean.s2, clean.s3};
+      for (uint j = 0; j < 4 && x0 + 8 * j < kw; ++j) {
+        if (c[j]) {
+          pairs += min(8u, kw - (x0 + 8 * j));
+          flags |= MTS_R_BOUNDS;
+        } else
+          pixels8(ra, rb, x0 + 8 * j, ox, vw, kw, n, f, k, fmt, &pairs, &flags);
+      }
+    }
+    out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << MTS_R_COUNT_SHIFT);
+    return;
+  }
+#endif
+  for (uint x0 = 0; x0 < kw; x0 += 8) pixels8(ra, rb, x0, ox, vw, kw, n, f, k, fmt, &pairs, &flags);
   out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << MTS_R_COUNT_SHIFT);
 }

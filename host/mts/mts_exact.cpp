@@ -11,17 +11,24 @@
 
 namespace depthprec {
 
-namespace {}  // namespace
+namespace {
+
+// The work-items of every mts_exact launch: 64 frames of a 200-row kernel.
+constexpr size_t kExactLaunchWidth = 64 * 200;
+static_assert(kExactLaunchWidth % kWorkGroup == 0, "whole work-groups");
+
+}  // namespace
 
 ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                               const Orientations& orientations)
+                               const Orientations& orientations, bool shortcuts)
     : rt_(rt), scene_(scene), pair_(pair), orientations_(orientations) {
   const Technique t = depth_path(scene, pair.technique);
   const TechniqueInfo& ti = info(t);
-  const std::string options = fmt::format("{} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}",
-                                          base_build_options(false), static_cast<int>(info(t).map),
-                                          ti.from == DepthFrom::fragment ? 1 : 0,
-                                          ti.greater ? 1 : 0, scene.storage_format(pair).defines());
+  const std::string options =
+      fmt::format("{} -DROW_ENDS={} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}",
+                  base_build_options(false), shortcuts ? 1 : 0, static_cast<int>(info(t).map),
+                  ti.from == DepthFrom::fragment ? 1 : 0, ti.greater ? 1 : 0,
+                  scene.storage_format(pair).defines());
   kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options), "mts_exact");
 }
 
@@ -62,12 +69,18 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
              static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
              static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
              aspect * tan_half, tan_half, scene_.params.log_k, out, static_cast<cl_uint>(items));
-    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(padded_size(items)),
-                                     cl::NDRange(kWorkGroup));
+    // Every launch is kExactLaunchWidth work-items wide, offset along the items: evaluators of
+    // one program running side by side (attribution's jobs) then never launch it wider than an
+    // earlier launch did, which PoCL 3.1 cannot take while others are in flight
+    // (MtsEvaluator::prime_launches says how it aborts).
+    for (size_t first = 0; first < items; first += kExactLaunchWidth)
+      rt_.queue().enqueueNDRangeKernel(kernel_, cl::NDRange(first), cl::NDRange(kExactLaunchWidth),
+                                       cl::NDRange(kWorkGroup));
     std::vector<uint32_t> rows(items);
     rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (const uint32_t w : rows) rows_from_ends_ += (w & MTS_R_BOUNDS) != 0;
     uint64_t after_decision = 0;  // work the -v breakdown counts for the emulated pipeline only
     fold_launch(rows, active, done, frames, kh, results, decided, after_decision);
     for (const size_t i : active)

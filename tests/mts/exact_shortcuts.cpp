@@ -1,0 +1,52 @@
+// The storage-limited pipeline's shortcut (kernels/mts_exact.cl, ROW_ENDS): rows and stretches of
+// 8 pixels decided clean from their end pixels change no probe result. Probes run from s = z down
+// past the storage-limited MTS over a round's orientations (the cube's corners first, where the
+// planes are steepest), with and without the shortcut, at distances where the codes' spread along
+// a row is wide and narrow, for a less- and a greater-compare, a unorm and a float format, a
+// vertex-stage and a fragment-stage mapping.
+#include <catch2/catch.hpp>
+#include <vector>
+
+#include "host/model/frame_setup.h"
+#include "host/mts/mts_exact.h"
+#include "host/mts/sampler.h"
+#include "tests/support/mts_fixture.h"
+
+using namespace depthprec;
+
+TEST_CASE("the storage-limited pipeline's end-pixel shortcut changes no probe result",
+          "[attribution][bounds]") {
+  Scene scene = load_scene("", {"kernel=[48,48]", "viewport=[48,48]"});
+  const std::vector<Angles> chunk = round_orientations(scene, 1);
+  scene.frames = 24;
+  Orientations sampled;
+  std::vector<Probe> probes;
+  for (double z : {1.005, 30.0, 3000.0, 2e6}) {
+    sampled.at[z] = std::vector<Angles>(chunk.begin(), chunk.begin() + scene.frames);
+    for (double f = 1.0; f > 1e-9; f /= 2) probes.push_back({z, z * f});
+  }
+  for (const EvalPair& pair : {EvalPair{Technique::standard, "unorm24", DepthRange::gl},
+                               EvalPair{Technique::reversed, "float32", DepthRange::zero_to_one},
+                               EvalPair{Technique::log_fragment, "unorm16", DepthRange::gl}}) {
+    ExactEvaluator with(runtime(), scene, pair, sampled),
+        without(runtime(), scene, pair, sampled, false);
+    const auto a = with.run(probes), b = without.run(probes);
+    int fights = 0, clean = 0;
+    for (size_t k = 0; k < probes.size(); ++k) {
+      INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
+      CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
+      CHECK(a[k].frames == b[k].frames);
+      CHECK(a[k].deciding_frame == b[k].deciding_frame);
+      CHECK(a[k].fragment_pairs == b[k].fragment_pairs);
+      CHECK(a[k].any_uncovered == b[k].any_uncovered);
+      CHECK(a[k].any_clipped == b[k].any_clipped);
+      fights += a[k].outcome == Outcome::fight;
+      clean += a[k].outcome == Outcome::clean;
+    }
+    INFO(pair.label());
+    CHECK(with.rows_decided_from_ends() > 0);  // the shortcut was taken
+    CHECK(without.rows_decided_from_ends() == 0);
+    CHECK(fights > 0);  // the descent reaches separations that fight
+    CHECK(clean > 0);
+  }
+}
