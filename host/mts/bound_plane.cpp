@@ -115,9 +115,15 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
           b32::row_rounding(R, {{0.5 * zcol, false}, {0.5 * zcol, false}, {g.D, true}});
   }
   if (m.model->clip_stage) {  // fixed function: binary32
-    const double dw = g.wv_hi - g.wv_lo;
-    c.x += 2 * (2 * hu(m, 2 * xc_max) + hu(m, xc_max));
-    c.y += 2 * (2 * hu(m, 2 * yc_max) + hu(m, yc_max));
+    // |in - out|: both ends lie in one grid triangle (the clip stage's polygons stay inside the
+    // triangle they clip), where a coordinate differs most between two of its vertices: across
+    // the quad's diagonal, (dx, dy) of length sqrt(2)/N in the plane's unit square. e_x's row of
+    // R has length 1, e_z's at most sqrt(2) sin r, so x_clip differs by at most
+    // P00 side sqrt(2)/N = 2 xc_max/N and w (and z_clip / a) by 2 side sin r/N = dw/N.
+    const double n = std::max(1, m.scene->plane_subdivisions);
+    const double dw = (g.wv_hi - g.wv_lo) / n;
+    c.x += 2 * (2 * hu(m, 2 * xc_max / n) + hu(m, xc_max));
+    c.y += 2 * (2 * hu(m, 2 * yc_max / n) + hu(m, yc_max));
     c.z += 2 * (2 * hu(m, aa * dw) + hu(m, zc_max));
     c.w += 2 * (2 * hu(m, dw) + hu(m, g.wv_hi));
   }
