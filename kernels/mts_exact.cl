@@ -4,7 +4,8 @@
  * arithmetic, no interpolation error), the technique's exact mapping D(w), then the storage
  * format's correctly rounded code (df_encode_f64). What is left is the error of storage alone.
  *
- * Defines: ROW_ENDS (1: decide a row from its end pixels where that is certain, below; 0: every
+ * Defines: A_CACHED (1: plane A's codes and status at every pixel come from mts_exact_a's cache,
+ * filled once per distance and frame for the probes that follow), ROW_ENDS (1: decide a row from its end pixels where that is certain, below; 0: every
  * pixel, to check that the shortcut changes nothing), DEPTH_MAP (0 standard, 1 infinite, 2
  * reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1 + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f
  * - n + 1); host/model/technique.h DepthMap), CLIP_W (1: the technique writes depth in the fragment
@@ -99,29 +100,54 @@ static double8 exact_w8(exact_row_t r, double8 ndc_x, double shrink, long8* cove
 }
 
 /* Eight pixels of the row from x0: their flags and fragment pairs, as mts_raster reports them. */
+/* Plane A's status bits at a pixel (A_CACHED), as pixels8 computes them. */
+#define A_COVERED 1
+#define A_FINITE 2
+#define A_INSIDE 4
+
+/* One plane at 8 pixels: its code (clamped into [0, 1] first under CLIP_W) and whether the
+ * pixels are covered, finite and inside, as the pixel loop decides them for each plane. */
+static uint8 plane8(exact_row_t r, double8 ndc_x, double n, double f, double k, df_format fmt,
+                    long8* covered, long8* finite, long8* inside) {
+  const double8 w = exact_w8(r, ndc_x, 1.0, covered);
+  double8 d = exact_depth8(w, n, f, k);
+  *finite = isfinite(d);
+#if CLIP_W
+  *inside = (w >= n) & (w <= f);
+  d = clamp(d, 0.0, 1.0);
+#else
+  *inside = (d >= 0.0) & (d <= 1.0);
+#endif
+  return encode8(d, fmt);
+}
+
+/* Eight pixels of the row from x0: their flags and fragment pairs, as mts_raster reports them.
+ * a_code, a_bits: plane A's codes and status bits of the row (A_CACHED; unread otherwise). */
 static void pixels8(exact_row_t ra, exact_row_t rb, uint x0, double ox, double vw, uint kw,
-                    double n, double f, double k, df_format fmt, ulong* pairs, uint* flags) {
+                    double n, double f, double k, df_format fmt, __global const uint* a_code,
+                    __global const uchar* a_bits, ulong* pairs, uint* flags) {
   const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
   const long8 active = xs < (double)kw;
   const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
-  long8 cov_a, cov_b;
-  const double8 wa = exact_w8(ra, ndc_x, 1.0, &cov_a), wb = exact_w8(rb, ndc_x, 1.0, &cov_b);
+  long8 cov_a, cov_b, fin_a, fin_b, in_a, in_b;
+#if A_CACHED
+  const uint8 ca = vload8(0, a_code + x0);
+  const long8 bits = convert_long8(vload8(0, a_bits + x0));
+  cov_a = (bits & (long8)A_COVERED) != (long8)0;
+  fin_a = (bits & (long8)A_FINITE) != (long8)0;
+  in_a = (bits & (long8)A_INSIDE) != (long8)0;
+#else
+  const uint8 ca = plane8(ra, ndc_x, n, f, k, fmt, &cov_a, &fin_a, &in_a);
+#endif
+  const uint8 cb = plane8(rb, ndc_x, n, f, k, fmt, &cov_b, &fin_b, &in_b);
   const long8 covered = active & cov_a & cov_b;
   if (any(active & ~covered)) *flags |= MTS_R_UNCOVERED;
-  double8 da = exact_depth8(wa, n, f, k), db = exact_depth8(wb, n, f, k);
-  const long8 finite = isfinite(da) & isfinite(db);
+  const long8 finite = fin_a & fin_b;
   if (any(covered & ~finite)) *flags |= MTS_R_NONFINITE;
-#if CLIP_W
-  const long8 inside = (wa >= n) & (wa <= f) & (wb >= n) & (wb <= f);
-  da = clamp(da, 0.0, 1.0);
-  db = clamp(db, 0.0, 1.0);
-#else
-  const long8 inside = (da >= 0.0) & (da <= 1.0) & (db >= 0.0) & (db <= 1.0);
-#endif
+  const long8 inside = in_a & in_b;
   if (any(covered & finite & ~inside)) *flags |= MTS_R_CLIPPED;
   const long8 ok = covered & finite & inside;
   *pairs += (ulong)(-(long)(ok.s0 + ok.s1 + ok.s2 + ok.s3 + ok.s4 + ok.s5 + ok.s6 + ok.s7));
-  const uint8 ca = encode8(da, fmt), cb = encode8(db, fmt);
 #if COMPARE_GREATER
   const int8 fight = cb >= ca;
 #else
@@ -190,13 +216,50 @@ static long4 stretches_clean(ends8_t e) {
 }
 #endif
 
+#if A_CACHED
+/* Plane A's codes and status bits at every pixel of one kernel row of a (distance, frame), for
+ * the probes at that distance that follow: one work item per (frame, kernel row) of `planes`
+ * (plane A's records, then B's, whose centre.w holds the mapping's far), written at frame
+ * first_frame + its index of the cache (rows of kw_pad pixels). */
+__kernel void mts_exact_a(__global const double4* planes, const uint kw, const uint kh,
+                          const double ox, const double oy, const double vw, const double vh,
+                          const double sx, const double sy, const double k, const uint items,
+                          const uint kw_pad, const uint first_frame, __global uint* a_code,
+                          __global uchar* a_bits) {
+  const uint item = get_global_id(0);
+  if (item >= items) return;
+  const uint y = item % kh, fr = item / kh;
+  __global const double4* A = planes + (size_t)fr * 8;
+  const double n = A[3].w, f = A[7].w;
+  const df_format fmt = DF_FORMAT_FROM_DEFINES();
+  const double ndc_y = 2.0 * (oy + (double)y + 0.5) / vh - 1.0;
+  const exact_row_t ra = exact_row(A, ndc_y, sx, sy);
+  const size_t base = ((size_t)(first_frame + fr) * kh + y) * kw_pad;
+  for (uint x0 = 0; x0 < kw; x0 += 8) {
+    const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
+    const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
+    long8 cov, fin, in;
+    vstore8(plane8(ra, ndc_x, n, f, k, fmt, &cov, &fin, &in), 0, a_code + base + x0);
+    const long8 bits = (cov & (long8)A_COVERED) | (fin & (long8)A_FINITE) | (in & (long8)A_INSIDE);
+    vstore8(convert_uchar8(bits), 0, a_bits + base + x0);
+  }
+}
+#endif
+
 /* One work item per (probe, frame, kernel row), 8 pixels at a time: flags of the row's pixels
  * and the number of fragment pairs, as mts_raster reports them; MTS_R_BOUNDS where pixels of the
- * row were decided from end pixels. */
+ * row were decided from end pixels. A_CACHED: a_frame gives each (probe, frame) its frame of
+ * plane A's cache. */
 __kernel void mts_exact(__global const double4* planes, const uint kw, const uint kh,
                         const double ox, const double oy, const double vw, const double vh,
-                        const double sx, const double sy, const double k, __global uint* out,
-                        const uint items) {
+                        const double sx, const double sy, const double k, const uint items,
+                        __global uint* out
+#if A_CACHED
+                        ,
+                        const uint kw_pad, __global const uint* a_frame,
+                        __global const uint* a_code_all, __global const uchar* a_bits_all
+#endif
+) {
   const uint item = get_global_id(0);
   if (item >= items) return;
   const uint y = item % kh, pf = item / kh;
@@ -206,14 +269,22 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   const df_format fmt = DF_FORMAT_FROM_DEFINES();
   const double ndc_y = 2.0 * (oy + (double)y + 0.5) / vh - 1.0;
   const exact_row_t ra = exact_row(A, ndc_y, sx, sy), rb = exact_row(B, ndc_y, sx, sy);
+#if A_CACHED
+  const size_t a_row = ((size_t)a_frame[pf] * kh + y) * kw_pad;
+  __global const uint* a_code = a_code_all + a_row;
+  __global const uchar* a_bits = a_bits_all + a_row;
+#else
+  __global const uint* a_code = 0;
+  __global const uchar* a_bits = 0;
+#endif
   ulong pairs = 0;
   uint flags = 0;
 #if ROW_ENDS
   /* The whole row first; where its ends leave room for stretches of 8 pixels (the codes' gap
    * beyond the margin and twice a stretch's share of the row's spread), stretches of 8. */
   const double last = (double)(kw - 1);
-  const ends8_t row =
-      ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox, vw, n, f, k, fmt);
+  const ends8_t row = ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox,
+                            vw, n, f, k, fmt);
   if (stretches_clean(row).s0) {
     out[item] = MTS_R_BOUNDS | ((uint)min(kw, 0xffffffu) << MTS_R_COUNT_SHIFT);
     return;
@@ -222,22 +293,24 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   const long spread = abs(row.ahead.s1 - row.ahead.s0) + abs(row.behind.s1 - row.behind.s0);
   if (row.ok.s0 && row.ok.s1 && gap >= ENDS_MARGIN + 2 * (spread * 8 / (long)kw + 1)) {
     for (uint x0 = 0; x0 < kw; x0 += 32) {
-      const double8 xs =
-          min((double8)((double)x0) + (double8)(0, 7, 8, 15, 16, 23, 24, 31), (double8)last);
+      const double8 xs = min((double8)((double)x0) + (double8)(0, 7, 8, 15, 16, 23, 24, 31),
+                             (double8)last);
       const long4 clean = stretches_clean(ends8(ra, rb, xs, ox, vw, n, f, k, fmt));
       const long c[4] = {clean.s0, clean.s1, clean.s2, clean.s3};
       for (uint j = 0; j < 4 && x0 + 8 * j < kw; ++j) {
         if (c[j]) {
           pairs += min(8u, kw - (x0 + 8 * j));
           flags |= MTS_R_BOUNDS;
-        } else
-          pixels8(ra, rb, x0 + 8 * j, ox, vw, kw, n, f, k, fmt, &pairs, &flags);
+        } else {
+          pixels8(ra, rb, x0 + 8 * j, ox, vw, kw, n, f, k, fmt, a_code, a_bits, &pairs, &flags);
+        }
       }
     }
     out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << MTS_R_COUNT_SHIFT);
     return;
   }
 #endif
-  for (uint x0 = 0; x0 < kw; x0 += 8) pixels8(ra, rb, x0, ox, vw, kw, n, f, k, fmt, &pairs, &flags);
+  for (uint x0 = 0; x0 < kw; x0 += 8)
+    pixels8(ra, rb, x0, ox, vw, kw, n, f, k, fmt, a_code, a_bits, &pairs, &flags);
   out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << MTS_R_COUNT_SHIFT);
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
@@ -13,9 +14,13 @@ namespace depthprec {
 
 namespace {
 
-// The work-items of every mts_exact launch: 64 frames of a 200-row kernel.
+// The work-items of every mts_exact and mts_exact_a launch: 64 frames of a 200-row kernel.
 constexpr size_t kExactLaunchWidth = 64 * 200;
 static_assert(kExactLaunchWidth % kWorkGroup == 0, "whole work-groups");
+
+// Plane A's cache of one evaluator (attribution runs one per job): 5 bytes a pixel, so the
+// default scene's paper frames (100 x 200 x 200) hold 3 distances, 20 MB each.
+constexpr size_t kCacheBudget = 64u << 20;
 
 }  // namespace
 
@@ -24,17 +29,106 @@ ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const Eval
     : rt_(rt), scene_(scene), pair_(pair), orientations_(orientations) {
   const Technique t = depth_path(scene, pair.technique);
   const TechniqueInfo& ti = info(t);
-  const std::string options =
-      fmt::format("{} -DROW_ENDS={} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}",
-                  base_build_options(false), shortcuts ? 1 : 0, static_cast<int>(info(t).map),
-                  ti.from == DepthFrom::fragment ? 1 : 0, ti.greater ? 1 : 0,
-                  scene.storage_format(pair).defines());
-  kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options), "mts_exact");
+  options_ = fmt::format("{} -DROW_ENDS={} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}",
+                         base_build_options(false), shortcuts ? 1 : 0,
+                         static_cast<int>(info(t).map), ti.from == DepthFrom::fragment ? 1 : 0,
+                         ti.greater ? 1 : 0, scene.storage_format(pair).defines());
+  kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options_ + " -DA_CACHED=0"),
+                       "mts_exact");
+  kw_pad_ = (static_cast<size_t>(scene.kernel_w) + 7) / 8 * 8;
+  const size_t per_distance = static_cast<size_t>(scene.frames) *
+                              static_cast<size_t>(scene.kernel_h) * kw_pad_ *
+                              (sizeof(uint32_t) + 1);
+  slots_ = shortcuts ? kCacheBudget / std::max<size_t>(1, per_distance) : 0;
+}
+
+std::vector<double> ExactEvaluator::plane_records(const std::vector<Probe>& probes,
+                                                  const std::vector<size_t>& which, int first,
+                                                  int count) const {
+  std::vector<double> planes(which.size() * static_cast<size_t>(count) * 2 * 16);
+  for (size_t i = 0; i < which.size(); ++i) {
+    const Probe& pr = probes[which[i]];
+    // the mapping's near and far ride in the spare centre.w slots: plane A's layer for
+    // layered, so every probe of a launch keeps its own
+    const ProbeConstants pc = probe_constants(scene_, pair_, pr.z, orientations_);
+    for (int f = 0; f < count; ++f)
+      for (int p = 0; p < 2; ++p) {
+        const auto M = model_matrix_f64(scene_, pc, p == 0 ? pr.z : pr.z + pr.s, first + f);
+        double* dst = planes.data() + ((i * static_cast<size_t>(count) + f) * 2 + p) * 16;
+        for (int c = 0; c < 4; ++c)
+          for (int r = 0; r < 3; ++r) dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
+        dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
+      }
+  }
+  return planes;
+}
+
+// Every launch is kExactLaunchWidth work-items wide, offset along the items: evaluators of one
+// program running side by side (attribution's jobs) then never launch it wider than an earlier
+// launch did, which PoCL 3.1 cannot take while others are in flight (MtsEvaluator::prime_launches
+// says how it aborts).
+void ExactEvaluator::launch(cl::Kernel& k, size_t items) {
+  for (size_t first = 0; first < items; first += kExactLaunchWidth)
+    rt_.queue().enqueueNDRangeKernel(k, cl::NDRange(first), cl::NDRange(kExactLaunchWidth),
+                                     cl::NDRange(kWorkGroup));
+}
+
+// A distance's first run computes plane A in every probe (a fighting probe stops after a few
+// frames, which a fill of every frame would not); from its second on the probes read the cache,
+// once every distance of the run has a slot (search_pair's windows hold distances_at_once()).
+std::vector<size_t> ExactEvaluator::cache_slots(const std::vector<Probe>& probes) {
+  bool use = slots_ > 0;
+  std::vector<double> zs;
+  for (const Probe& p : probes) {
+    use &= runs_at_[p.z]++ >= 1;
+    if (std::find(zs.begin(), zs.end(), p.z) == zs.end()) zs.push_back(p.z);
+  }
+  if (!use || zs.size() > slots_) return {};
+  const auto kh = static_cast<size_t>(scene_.kernel_h), frames = static_cast<size_t>(scene_.frames);
+  if (slot_z_.empty()) {
+    const size_t cells = slots_ * frames * kh * kw_pad_;
+    a_code_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * cells);
+    a_bits_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, cells);
+    slot_z_.assign(slots_, NAN);
+    const cl::Program program = rt_.program("kernels/mts_exact.cl", options_ + " -DA_CACHED=1");
+    cached_ = cl::Kernel(program, "mts_exact");
+    fill_ = cl::Kernel(program, "mts_exact_a");
+  }
+  const double tan_half = std::tan(scene_.fov_y_deg * glm::pi<double>() / 360.0);
+  const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
+  for (const double z : zs) {
+    if (std::find(slot_z_.begin(), slot_z_.end(), z) != slot_z_.end()) continue;
+    // a free slot, or one whose distance this run does not probe
+    size_t slot = 0;
+    while (!std::isnan(slot_z_[slot]) &&
+           std::find(zs.begin(), zs.end(), slot_z_[slot]) != zs.end())
+      ++slot;
+    slot_z_[slot] = z;
+    const std::vector<double> planes =
+        plane_records({Probe{z, 0.0}}, {0}, 0, static_cast<int>(frames));
+    const cl::Buffer plane_buf = buffer_of(rt_.context(), planes);
+    const size_t items = frames * kh;
+    set_args(fill_, plane_buf, static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(kh),
+             static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
+             static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
+             static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
+             aspect * tan_half, tan_half, scene_.params.log_k, static_cast<cl_uint>(items),
+             static_cast<cl_uint>(kw_pad_), static_cast<cl_uint>(slot * frames), a_code_,
+             a_bits_);
+    launch(fill_, items);
+    ++cache_fills_;
+  }
+  std::vector<size_t> out;
+  for (const Probe& p : probes)
+    out.push_back(static_cast<size_t>(
+        std::find(slot_z_.begin(), slot_z_.end(), p.z) - slot_z_.begin()));
+  return out;
 }
 
 std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
+  const std::vector<size_t> slots = cache_slots(probes);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const double tan_half = std::tan(scene_.fov_y_deg * glm::pi<double>() / 360.0);
   const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
@@ -44,38 +138,34 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
     if (active.empty()) break;
     const int frames = batch_frames(done, scene_.frames);
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<double> planes(active.size() * frames * 2 * 16);
-    for (size_t i = 0; i < active.size(); ++i) {
-      const Probe& pr = probes[active[i]];
-      // the mapping's near and far ride in the spare centre.w slots: plane A's layer for
-      // layered, so every probe of a launch keeps its own
-      const ProbeConstants pc = probe_constants(scene_, pair_, pr.z, orientations_);
-      for (int f = 0; f < frames; ++f)
-        for (int p = 0; p < 2; ++p) {
-          const auto M = model_matrix_f64(scene_, pc, p == 0 ? pr.z : pr.z + pr.s, done + f);
-          double* dst = planes.data() + ((i * frames + f) * 2 + p) * 16;
-          for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 3; ++r)
-              dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
-          dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
-        }
-    }
-    cl::Buffer plane_buf(rt_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                         sizeof(double) * planes.size(), planes.data());
+    const std::vector<double> planes = plane_records(probes, active, done, frames);
+    const cl::Buffer plane_buf = buffer_of(rt_.context(), planes);
     const size_t items = active.size() * frames * kh;
     cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    set_args(kernel_, plane_buf, kw, kh,
-             static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
-             static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
-             static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
-             aspect * tan_half, tan_half, scene_.params.log_k, out, static_cast<cl_uint>(items));
-    // Every launch is kExactLaunchWidth work-items wide, offset along the items: evaluators of
-    // one program running side by side (attribution's jobs) then never launch it wider than an
-    // earlier launch did, which PoCL 3.1 cannot take while others are in flight
-    // (MtsEvaluator::prime_launches says how it aborts).
-    for (size_t first = 0; first < items; first += kExactLaunchWidth)
-      rt_.queue().enqueueNDRangeKernel(kernel_, cl::NDRange(first), cl::NDRange(kExactLaunchWidth),
-                                       cl::NDRange(kWorkGroup));
+    const auto bind = [&](cl::Kernel& k, const auto&... cache) {
+      set_args(k, plane_buf, kw, kh,
+               static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
+               static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
+               static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
+               aspect * tan_half, tan_half, scene_.params.log_k, static_cast<cl_uint>(items), out,
+               cache...);
+    };
+    cl::Kernel& k = slots.empty() ? kernel_ : cached_;
+    cl::Buffer a_frame;  // alive until the launch has run
+    if (slots.empty()) {
+      bind(k);
+    } else {
+      // each (probe, frame) of the launch: its frame of the cache
+      std::vector<uint32_t> frame_of(active.size() * static_cast<size_t>(frames));
+      for (size_t i = 0; i < active.size(); ++i)
+        for (int f = 0; f < frames; ++f)
+          frame_of[i * static_cast<size_t>(frames) + static_cast<size_t>(f)] =
+              static_cast<uint32_t>(slots[active[i]] * static_cast<size_t>(scene_.frames) +
+                                    static_cast<size_t>(done + f));
+      a_frame = buffer_of(rt_.context(), frame_of);
+      bind(k, static_cast<cl_uint>(kw_pad_), a_frame, a_code_, a_bits_);
+    }
+    launch(k, items);
     std::vector<uint32_t> rows(items);
     rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     const double secs =

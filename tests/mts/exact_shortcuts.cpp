@@ -1,5 +1,6 @@
-// The storage-limited pipeline's shortcut (kernels/mts_exact.cl, ROW_ENDS): rows and stretches of
-// 8 pixels decided clean from their end pixels change no probe result. Probes run from s = z down
+// The storage-limited pipeline's shortcuts (kernels/mts_exact.cl) change no probe result: rows and
+// stretches of 8 pixels decided clean from their end pixels (ROW_ENDS), and plane A read from the
+// cache the evaluator fills for a distance's second run on (A_CACHED). Probes run from s = z down
 // past the storage-limited MTS over a round's orientations (the cube's corners first, where the
 // planes are steepest), with and without the shortcut, at distances where the codes' spread along
 // a row is wide and narrow, for a less- and a greater-compare, a unorm and a float format, a
@@ -14,7 +15,7 @@
 
 using namespace depthprec;
 
-TEST_CASE("the storage-limited pipeline's end-pixel shortcut changes no probe result",
+TEST_CASE("the storage-limited pipeline's shortcuts change no probe result",
           "[attribution][bounds]") {
   Scene scene = load_scene("", {"kernel=[48,48]", "viewport=[48,48]"});
   const std::vector<Angles> chunk = round_orientations(scene, 1);
@@ -30,20 +31,25 @@ TEST_CASE("the storage-limited pipeline's end-pixel shortcut changes no probe re
                                EvalPair{Technique::log_fragment, "unorm16", DepthRange::gl}}) {
     ExactEvaluator with(runtime(), scene, pair, sampled),
         without(runtime(), scene, pair, sampled, false);
-    const auto a = with.run(probes), b = without.run(probes);
-    int fights = 0, clean = 0;
-    for (size_t k = 0; k < probes.size(); ++k) {
-      INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
-      CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
-      CHECK(a[k].frames == b[k].frames);
-      CHECK(a[k].deciding_frame == b[k].deciding_frame);
-      CHECK(a[k].fragment_pairs == b[k].fragment_pairs);
-      CHECK(a[k].any_uncovered == b[k].any_uncovered);
-      CHECK(a[k].any_clipped == b[k].any_clipped);
-      fights += a[k].outcome == Outcome::fight;
-      clean += a[k].outcome == Outcome::clean;
-    }
+    const auto b = without.run(probes);
+    const auto first = with.run(probes);  // plane A computed in every probe
+    REQUIRE(with.cache_fills() == 0);
+    const auto cached = with.run(probes);  // plane A from the cache
     INFO(pair.label());
+    CHECK(with.cache_fills() == 4);
+    int fights = 0, clean = 0;
+    for (const auto& a : {first, cached})
+      for (size_t k = 0; k < probes.size(); ++k) {
+        INFO(" z = " << probes[k].z << " s = " << probes[k].s);
+        CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
+        CHECK(a[k].frames == b[k].frames);
+        CHECK(a[k].deciding_frame == b[k].deciding_frame);
+        CHECK(a[k].fragment_pairs == b[k].fragment_pairs);
+        CHECK(a[k].any_uncovered == b[k].any_uncovered);
+        CHECK(a[k].any_clipped == b[k].any_clipped);
+        fights += a[k].outcome == Outcome::fight;
+        clean += a[k].outcome == Outcome::clean;
+      }
     CHECK(with.rows_decided_from_ends() > 0);  // the shortcut was taken
     CHECK(without.rows_decided_from_ends() == 0);
     CHECK(fights > 0);  // the descent reaches separations that fight
