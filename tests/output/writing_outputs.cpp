@@ -8,7 +8,6 @@
 #include "tests/support/run_cli.h"
 
 using Catch::Matchers::Contains;
-using depthprec::test::fresh;
 using depthprec::test::run_cli;
 using depthprec::test::run_cli_stdout_to;
 
@@ -17,16 +16,33 @@ namespace {
 const std::string kTiny =
     "-t standard -f unorm24 --distances 2,4 --kernel 32x32 --frames 4 --no-timing -q";
 
+// Two shards of one tiny run, made once per process (GENERATE runs a test case again for each of
+// its values) and copied to dir/a.json and dir/b.json for each.
+void tiny_shards(const std::string& dir) {
+  static const std::string made = [] {
+    const std::string d = "/tmp/depthprec_test_tiny_shards";
+    std::system(("rm -rf " + d + " && mkdir -p " + d).c_str());
+    REQUIRE(
+        run_cli("mts " + kTiny + " --format-out json --shard 1/2 -o " + d + "/a.json").exit_code ==
+        0);
+    REQUIRE(
+        run_cli("mts " + kTiny + " --format-out json --shard 2/2 -o " + d + "/b.json").exit_code ==
+        0);
+    return d;
+  }();
+  REQUIRE(std::system(("cp " + made + "/a.json " + made + "/b.json " + dir + "/").c_str()) == 0);
+}
+
 }  // namespace
 
 // /dev/full takes every write as a full disk does: the data is buffered, and the flush fails.
 // Before, each of these exited 0 with its result lost.
 TEST_CASE("a result standard output cannot take is an output error naming standard output",
           "[cli][output][errors]") {
-  const std::string part1 = fresh("/tmp/depthprec_test_full_part1.json"),
-                    part2 = fresh("/tmp/depthprec_test_full_part2.json");
-  REQUIRE(run_cli("mts " + kTiny + " --format-out json --shard 1/2 -o " + part1).exit_code == 0);
-  REQUIRE(run_cli("mts " + kTiny + " --format-out json --shard 2/2 -o " + part2).exit_code == 0);
+  const std::string dir = "/tmp/depthprec_test_full";
+  std::system(("mkdir -p " + dir).c_str());
+  tiny_shards(dir);
+  const std::string part1 = dir + "/a.json", part2 = dir + "/b.json";
   const auto args = GENERATE_COPY(values<std::string>({
       "mts " + kTiny + " --format-out json",
       "table " + kTiny,
@@ -60,8 +76,7 @@ TEST_CASE("an output that names an input is refused before any work", "[cli][out
                "cp " + scene + " " + dir + "/x.json.tmp")
                   .c_str());
   const std::string a = dir + "/a.json", b = dir + "/b.json";
-  REQUIRE(run_cli("mts " + kTiny + " --format-out json --shard 1/2 -o " + a).exit_code == 0);
-  REQUIRE(run_cli("mts " + kTiny + " --format-out json --shard 2/2 -o " + b).exit_code == 0);
+  tiny_shards(dir);
   const std::string shard_text = depthprec::test::slurp(a);
   const auto [args, input] = GENERATE_COPY(table<std::string, std::string>({
       {"mts " + scene + " " + kTiny + " -o " + scene, scene},
