@@ -5,9 +5,10 @@
  * format's correctly rounded code (df_encode_f64). What is left is the error of storage alone.
  *
  * Defines: A_CACHED (1: plane A's codes and status at every pixel come from mts_exact_a's cache,
- * filled once per distance and frame for the probes that follow), ROW_ENDS (1: decide a row from its end pixels where that is certain, below; 0: every
- * pixel, to check that the shortcut changes nothing), DEPTH_MAP (0 standard, 1 infinite, 2
- * reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1 + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f
+ * filled once per distance and frame for the probes that follow), ROW_ENDS (1: decide a row from
+ * its end pixels where that is certain, below; 0: every pixel, to check that the shortcut changes
+ * nothing), DEPTH_MAP (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1
+ * + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f
  * - n + 1); host/model/technique.h DepthMap), CLIP_W (1: the technique writes depth in the fragment
  * stage -- clip by the standard volume n <= w <= f and clamp d; 0: clip where d leaves [0, 1]),
  * COMPARE_GREATER, and the format's. */
@@ -283,8 +284,8 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   /* The whole row first; where its ends leave room for stretches of 8 pixels (the codes' gap
    * beyond the margin and twice a stretch's share of the row's spread), stretches of 8. */
   const double last = (double)(kw - 1);
-  const ends8_t row = ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox,
-                            vw, n, f, k, fmt);
+  const ends8_t row =
+      ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox, vw, n, f, k, fmt);
   if (stretches_clean(row).s0) {
     out[item] = MTS_R_BOUNDS | ((uint)min(kw, 0xffffffu) << MTS_R_COUNT_SHIFT);
     return;
@@ -293,8 +294,8 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   const long spread = abs(row.ahead.s1 - row.ahead.s0) + abs(row.behind.s1 - row.behind.s0);
   if (row.ok.s0 && row.ok.s1 && gap >= ENDS_MARGIN + 2 * (spread * 8 / (long)kw + 1)) {
     for (uint x0 = 0; x0 < kw; x0 += 32) {
-      const double8 xs = min((double8)((double)x0) + (double8)(0, 7, 8, 15, 16, 23, 24, 31),
-                             (double8)last);
+      const double8 xs =
+          min((double8)((double)x0) + (double8)(0, 7, 8, 15, 16, 23, 24, 31), (double8)last);
       const long4 clean = stretches_clean(ends8(ra, rb, xs, ox, vw, n, f, k, fmt));
       const long c[4] = {clean.s0, clean.s1, clean.s2, clean.s3};
       for (uint j = 0; j < 4 && x0 + 8 * j < kw; ++j) {

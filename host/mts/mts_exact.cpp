@@ -33,8 +33,8 @@ ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const Eval
                          base_build_options(false), shortcuts ? 1 : 0,
                          static_cast<int>(info(t).map), ti.from == DepthFrom::fragment ? 1 : 0,
                          ti.greater ? 1 : 0, scene.storage_format(pair).defines());
-  kernel_ = cl::Kernel(rt_.program("kernels/mts_exact.cl", options_ + " -DA_CACHED=0"),
-                       "mts_exact");
+  kernel_ =
+      cl::Kernel(rt_.program("kernels/mts_exact.cl", options_ + " -DA_CACHED=0"), "mts_exact");
   kw_pad_ = (static_cast<size_t>(scene.kernel_w) + 7) / 8 * 8;
   const size_t per_distance = static_cast<size_t>(scene.frames) *
                               static_cast<size_t>(scene.kernel_h) * kw_pad_ *
@@ -56,7 +56,8 @@ std::vector<double> ExactEvaluator::plane_records(const std::vector<Probe>& prob
         const auto M = model_matrix_f64(scene_, pc, p == 0 ? pr.z : pr.z + pr.s, first + f);
         double* dst = planes.data() + ((i * static_cast<size_t>(count) + f) * 2 + p) * 16;
         for (int c = 0; c < 4; ++c)
-          for (int r = 0; r < 3; ++r) dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
+          for (int r = 0; r < 3; ++r)
+            dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
         dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
       }
   }
@@ -100,8 +101,7 @@ std::vector<size_t> ExactEvaluator::cache_slots(const std::vector<Probe>& probes
     if (std::find(slot_z_.begin(), slot_z_.end(), z) != slot_z_.end()) continue;
     // a free slot, or one whose distance this run does not probe
     size_t slot = 0;
-    while (!std::isnan(slot_z_[slot]) &&
-           std::find(zs.begin(), zs.end(), slot_z_[slot]) != zs.end())
+    while (!std::isnan(slot_z_[slot]) && std::find(zs.begin(), zs.end(), slot_z_[slot]) != zs.end())
       ++slot;
     slot_z_[slot] = z;
     const std::vector<double> planes =
@@ -113,15 +113,14 @@ std::vector<size_t> ExactEvaluator::cache_slots(const std::vector<Probe>& probes
              static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
              static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
              aspect * tan_half, tan_half, scene_.params.log_k, static_cast<cl_uint>(items),
-             static_cast<cl_uint>(kw_pad_), static_cast<cl_uint>(slot * frames), a_code_,
-             a_bits_);
+             static_cast<cl_uint>(kw_pad_), static_cast<cl_uint>(slot * frames), a_code_, a_bits_);
     launch(fill_, items);
     ++cache_fills_;
   }
   std::vector<size_t> out;
   for (const Probe& p : probes)
-    out.push_back(static_cast<size_t>(
-        std::find(slot_z_.begin(), slot_z_.end(), p.z) - slot_z_.begin()));
+    out.push_back(
+        static_cast<size_t>(std::find(slot_z_.begin(), slot_z_.end(), p.z) - slot_z_.begin()));
   return out;
 }
 
@@ -143,8 +142,7 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
     const size_t items = active.size() * frames * kh;
     cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
     const auto bind = [&](cl::Kernel& k, const auto&... cache) {
-      set_args(k, plane_buf, kw, kh,
-               static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
+      set_args(k, plane_buf, kw, kh, static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
                static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
                static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
                aspect * tan_half, tan_half, scene_.params.log_k, static_cast<cl_uint>(items), out,

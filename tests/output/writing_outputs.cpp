@@ -17,10 +17,11 @@ const std::string kTiny =
     "-t standard -f unorm24 --distances 2,4 --kernel 32x32 --frames 4 --no-timing -q";
 
 // Two shards of one tiny run, made once per process (GENERATE runs a test case again for each of
-// its values) and copied to dir/a.json and dir/b.json for each.
+// its values) beside the first caller's dir (ctest runs each case in a process of its own, side
+// by side), and copied to dir/a.json and dir/b.json for each value.
 void tiny_shards(const std::string& dir) {
-  static const std::string made = [] {
-    const std::string d = "/tmp/depthprec_test_tiny_shards";
+  static const std::string made = [&dir] {
+    const std::string d = dir + "_shards";
     std::system(("rm -rf " + d + " && mkdir -p " + d).c_str());
     REQUIRE(
         run_cli("mts " + kTiny + " --format-out json --shard 1/2 -o " + d + "/a.json").exit_code ==
