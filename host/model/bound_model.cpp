@@ -10,7 +10,8 @@ const std::vector<BoundModel>& bound_models() {
   // The unorm widths: the exact conversion 1 code; llvmpipe's binary32 product then rint
   // 1 + 2^-7, 3/2, 3; softpipe's truncation after a binary32 product 1 + 2^-8, 2, just over 1
   // (kernels/mts/bounds.cl GAP_CODE_WIDTH, tests/base/binary32_error_proof.cpp); D3D's 0.6 ulp
-  // either side, 1.2.
+  // either side, 1.2; Vulkan's either of the two nearest codes one more than the binary32
+  // product leaves (an exact value maps to one code over an interval 2 codes wide, not 1).
   static const std::vector<BoundModel> models = {
       {"binary32",
        "every binary32 step correctly rounded, in any order, fused or not, with every choice the "
@@ -72,14 +73,16 @@ const std::vector<BoundModel>& bound_models() {
        0},
       {"vulkan_min",
        "the least a Vulkan implementation must do: 4 sub-pixel bits, depth interpolated to 1 part "
-       "in 10^5, otherwise as binary32",
-       "Vulkan subPixelPrecisionBits minimum 4; depth interpolation '1 part in 10^5' "
-       "(gpuweb/cts#4657, not yet checked against the specification's text)",
+       "in 10^5, a unorm code either of the two nearest, otherwise as binary32",
+       "Vulkan: subPixelPrecisionBits minimum 4 (Limits); fixed-function results 'accurate to "
+       "about 1 part in 10^5' (Fundamentals, Floating-Point Computation), taken for the "
+       "interpolated depth; float to unorm 'one of the two ... closest' integers (Fundamentals, "
+       "Conversion From Floating-Point to Normalized Fixed-Point)",
        true,
        5,
        5,
        1,
-       {1.0078125, 2, 3},
+       {2.0078125, 3, 4},
        8,
        4,
        1e-5},
