@@ -17,26 +17,14 @@
 #include "host/mts/mts_search.h"
 #include "host/mts/reference_pipeline.h"
 #include "host/runtime/opencl_runtime.h"
+#include "tests/support/bound_scan_rows.h"
 
 using namespace depthprec;
 
 int main(int argc, char** argv) {
   const size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 100000;
   const size_t chunk = 5000;  // orientations per evaluator: plane A's memory stays bounded
-  const std::vector<std::pair<EvalPair, double>> rows = {
-      {{Technique::standard, "float32", DepthRange::gl}, 1.005},
-      {{Technique::standard, "unorm24", DepthRange::gl}, 512},
-      {{Technique::standard, "float32", DepthRange::gl}, 65536},
-      {{Technique::reversed, "float32", DepthRange::zero_to_one}, 2},
-      {{Technique::reversed, "float32", DepthRange::zero_to_one}, 16384},
-      {{Technique::reversed, "unorm24", DepthRange::zero_to_one}, 4096},
-      {{Technique::reversed_infinite, "float32", DepthRange::zero_to_one}, 8388608},
-      {{Technique::log_fragment, "float32", DepthRange::gl}, 1024},
-      {{Technique::log_fragment, "unorm24", DepthRange::gl}, 64},
-      {{Technique::linear, "float32", DepthRange::gl}, 16384},
-      {{Technique::linear, "unorm24", DepthRange::gl}, 8192},
-      {{Technique::layered, "float32", DepthRange::gl}, 4096},
-  };
+  const std::vector<std::pair<EvalPair, double>>& rows = test::bound_scan_rows();
   OpenClRuntime rt;
   // Whether any of the angles fights at separation sep (one evaluator over them all).
   const auto fights = [&rt](const Scene& s, const EvalPair& pair, double z, double sep,

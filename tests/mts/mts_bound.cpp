@@ -13,6 +13,7 @@
 #include "host/model/frame_setup.h"
 #include "host/mts/refinement.h"
 #include "host/mts/worst_case.h"
+#include "tests/support/bound_scan_rows.h"
 #include "tests/support/mts_fixture.h"
 #include "tests/support/run_cli.h"
 
@@ -83,20 +84,7 @@ TEST_CASE("no orientation of a dense scan fights at the guaranteed MTS, under id
   // A dozen rows of the default scene (docs/mts.md has the scan over 10^5 orientations,
   // bench/bound_scan.sh); here 1,500 uniform orientations per row and profile, and the cube's
   // corners.
-  const std::vector<std::pair<EvalPair, double>> rows = {
-      {{Technique::standard, "float32", DepthRange::gl}, 1.005},
-      {{Technique::standard, "unorm24", DepthRange::gl}, 512},
-      {{Technique::standard, "float32", DepthRange::gl}, 65536},
-      {{Technique::reversed, "float32", DepthRange::zero_to_one}, 2},
-      {{Technique::reversed, "float32", DepthRange::zero_to_one}, 16384},
-      {{Technique::reversed, "unorm24", DepthRange::zero_to_one}, 4096},
-      {{Technique::reversed_infinite, "float32", DepthRange::zero_to_one}, 8388608},
-      {{Technique::log_fragment, "float32", DepthRange::gl}, 1024},
-      {{Technique::log_fragment, "unorm24", DepthRange::gl}, 64},
-      {{Technique::linear, "float32", DepthRange::gl}, 16384},
-      {{Technique::linear, "unorm24", DepthRange::gl}, 8192},
-      {{Technique::layered, "float32", DepthRange::gl}, 4096},
-  };
+  const std::vector<std::pair<EvalPair, double>>& rows = test::bound_scan_rows();
   // softpipe is left out: its planes meet the clip stage's thinnest fan triangles, which the
   // model does not cover yet (docs/mts.md, "Not yet covered"; bench/bound_scan.sh finds them).
   for (const std::string prof : {"ideal", "llvmpipe"}) {
