@@ -14,6 +14,10 @@ namespace depthprec {
 // "" (CSV) where the row has none.
 std::string bound_cell(const MtsRow& r, bool full);
 
+// The resolved rows without a finite bound, by why: "no finite bound (WHY): N rows, PAIR at Z to
+// PAIR at Z", one line per reason.
+std::vector<std::string> rows_without_bound(const Scene& scene, const std::vector<MtsRow>& rows);
+
 // The wide table's second grid: mts_bound per pair by distance, with the model's name and, under
 // it, the rows without a bound and why.
 std::string bound_grid(const Scene& scene, const std::vector<MtsRow>& rows, bool markdown);

@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
 #include <set>
 
 #include "host/base/version.h"
 #include "host/model/frame_setup.h"
+#include "host/output/bound_table.h"
 
 namespace depthprec {
 
@@ -158,6 +160,47 @@ std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   return out;
 }
 
+// The guaranteed MTS of each row (docs/mts.md, "The guaranteed bound"): with the sampled MTS of
+// the table above, each answer's bracket.
+std::string bound_section(const Scene& scene, const std::vector<MtsRow>& rows) {
+  std::string model;
+  for (const auto& r : rows)
+    if (!std::isnan(r.mts_bound) && model.empty()) model = r.bound_model;
+  if (model.empty()) return "";
+  std::vector<std::string> labels;
+  std::set<std::string> seen;
+  for (const auto& p : scene.evaluate)
+    if (seen.insert(p.label()).second) labels.push_back(p.label());
+  std::map<std::pair<double, std::string>, const MtsRow*> at;
+  std::set<double> zs;
+  for (const auto& r : rows) {
+    at[{r.z, r.pair.label()}] = &r;
+    zs.insert(r.z);
+  }
+  std::vector<std::string> head = {"z"};
+  head.insert(head.end(), labels.begin(), labels.end());
+  std::vector<std::string> body;
+  for (double z : zs) {
+    std::string tr = cell(human(z));
+    for (const auto& l : labels) {
+      const auto it = at.find({z, l});
+      tr += cell(it == at.end() ? "" : bound_cell(*it->second, false));
+    }
+    body.push_back(tr);
+  }
+  std::string out = fmt::format(
+      "<h2>Guaranteed MTS</h2>\n<p>The separation at and above which no pixel fights in any "
+      "orientation within the rotation cube, under any implementation of the bound model "
+      "<code>{}</code> (docs/mts.md, \"The guaranteed bound\"). A fight was seen just below the "
+      "MTS above, none can happen at this: what an implementation of the model needs lies "
+      "between the two. -: no MTS to bound.</p>\n",
+      html_escape(model));
+  out += table(head, body);
+  for (const std::string& line : rows_without_bound(scene, rows))
+    out += "<p>" + html_escape(line) + "</p>\n";
+  return out;
+}
+
 std::string attribution_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   std::vector<std::string> body;
   for (const auto& r : rows) {
@@ -214,6 +257,7 @@ std::string html_report(const ReportPage& page) {
   if (!page.plot_svg.empty())
     out +=
         "<h2>MTS by distance</h2>\n<div class=\"plot\">\n" + inline_svg(page.plot_svg) + "</div>\n";
+  out += bound_section(scene, page.rows);
   out += attribution_section(scene, page.rows);
   out += lj_section(page.lj, scene);
   out += "<p class=\"meta\">" + html_escape(footer(page.run)) + "</p>\n</body>\n</html>\n";

@@ -90,4 +90,27 @@ cells() {
 [ "$(cells "$page" | wc -l)" -eq 40 ] || fail "the MTS table has $(cells "$page" | wc -l) cells, not 5 x (2 + 6)"
 diff <(cells "$page") <(cells "$tmp/from.html") >&2 ||
   fail "report --from table.json shows other numbers than the report that ran the scene"
+# The guaranteed MTS: a grid of the rows' mts_bound, each the JSON's to the page's four digits
+# ("-" where a row has none), the same whether the page ran the scene or read its table.
+bound_cells() {
+  sed -n '/<h2>Guaranteed MTS/,/<\/table>/p' "$1" |
+    grep -o '<td class="[^"]*"[^>]*>[^<]*</td>' | sed 's/<[^>]*>//g'
+}
+diff <(bound_cells "$page") <(bound_cells "$tmp/from.html") >&2 ||
+  fail "report --from table.json shows other guaranteed MTS than the report that ran the scene"
+python3 - "$tmp/table.json" > "$tmp/bounds.txt" <<'PY'
+import json, math, sys
+rows = json.load(open(sys.argv[1]))["rows"]
+labels = list(dict.fromkeys(f"{r['technique']}/{r['format']}/{r['depth_range']}" for r in rows))
+at = {(r["z"], f"{r['technique']}/{r['format']}/{r['depth_range']}"): r for r in rows}
+def human(v):
+    return "inf" if v == "inf" else "0" if v == 0 else f"{v:.4g}"
+for z in sorted({r["z"] for r in rows}):
+    print(human(z))
+    for label in labels:
+        print(human(at[(z, label)]["mts_bound"]) if "mts_bound" in at[(z, label)] else "-")
+PY
+diff <(bound_cells "$tmp/from.html") "$tmp/bounds.txt" >&2 ||
+  fail "the guaranteed MTS grid differs from the rows' mts_bound"
+grep -q '[0-9]e-0[0-9]' "$tmp/bounds.txt" || fail "no finite guaranteed MTS to check"
 echo "report: self-contained, loaded by $browser without a console message, screenshot checked"
