@@ -97,17 +97,29 @@ std::string scene_section(const Scene& s, size_t pairs) {
   return out + "</table></div>\n";
 }
 
-std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
+// A table of rows by distance and pair: the scene's pair labels, each once in scene order, the
+// distances the rows have, and each row at (z, label).
+struct RowGrid {
   std::vector<std::string> labels;
+  std::set<double> zs;
+  std::map<std::pair<double, std::string>, const MtsRow*> at;
+};
+
+RowGrid row_grid(const Scene& scene, const std::vector<MtsRow>& rows) {
+  RowGrid g;
   std::set<std::string> seen;
   for (const auto& p : scene.evaluate)
-    if (seen.insert(p.label()).second) labels.push_back(p.label());
-  std::map<std::pair<double, std::string>, const MtsRow*> at;
-  std::set<double> zs;
+    if (seen.insert(p.label()).second) g.labels.push_back(p.label());
   for (const auto& r : rows) {
-    at[{r.z, r.pair.label()}] = &r;
-    zs.insert(r.z);
+    g.at[{r.z, r.pair.label()}] = &r;
+    g.zs.insert(r.z);
   }
+  return g;
+}
+
+std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
+  const RowGrid grid = row_grid(scene, rows);
+  const auto& [labels, zs, at] = grid;
   std::vector<std::string> head = {"z", "vertex bound"};
   head.insert(head.end(), labels.begin(), labels.end());
   std::vector<std::string> body;
@@ -167,16 +179,8 @@ std::string bound_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   for (const auto& r : rows)
     if (!std::isnan(r.mts_bound) && model.empty()) model = r.bound_model;
   if (model.empty()) return "";
-  std::vector<std::string> labels;
-  std::set<std::string> seen;
-  for (const auto& p : scene.evaluate)
-    if (seen.insert(p.label()).second) labels.push_back(p.label());
-  std::map<std::pair<double, std::string>, const MtsRow*> at;
-  std::set<double> zs;
-  for (const auto& r : rows) {
-    at[{r.z, r.pair.label()}] = &r;
-    zs.insert(r.z);
-  }
+  const RowGrid grid = row_grid(scene, rows);
+  const auto& [labels, zs, at] = grid;
   std::vector<std::string> head = {"z"};
   head.insert(head.end(), labels.begin(), labels.end());
   std::vector<std::string> body;
