@@ -22,6 +22,21 @@ static_assert(kExactLaunchWidth % kWorkGroup == 0, "whole work-groups");
 // default scene's paper frames (100 x 200 x 200) hold 3 distances, 20 MB each.
 constexpr size_t kCacheBudget = 64u << 20;
 
+// Sets the arguments mts_exact and mts_exact_a open with (kernels/mts_exact.cl): the planes, the
+// kernel and viewport, the projection's slopes, log k and the items; then `more`, each kernel's
+// own.
+template <class... More>
+void bind_exact(cl::Kernel& k, const Scene& s, const cl::Buffer& planes, size_t items,
+                const More&... more) {
+  const double tan_half = std::tan(s.fov_y_deg * glm::pi<double>() / 360.0);
+  const double aspect = static_cast<double>(s.viewport_w) / s.viewport_h;
+  set_args(k, planes, static_cast<cl_uint>(s.kernel_w), static_cast<cl_uint>(s.kernel_h),
+           static_cast<double>((s.viewport_w - s.kernel_w) / 2),
+           static_cast<double>((s.viewport_h - s.kernel_h) / 2), static_cast<double>(s.viewport_w),
+           static_cast<double>(s.viewport_h), aspect * tan_half, tan_half, s.params.log_k,
+           static_cast<cl_uint>(items), more...);
+}
+
 }  // namespace
 
 ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
@@ -95,8 +110,6 @@ std::vector<size_t> ExactEvaluator::cache_slots(const std::vector<Probe>& probes
     cached_ = cl::Kernel(program, "mts_exact");
     fill_ = cl::Kernel(program, "mts_exact_a");
   }
-  const double tan_half = std::tan(scene_.fov_y_deg * glm::pi<double>() / 360.0);
-  const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
   for (const double z : zs) {
     if (std::find(slot_z_.begin(), slot_z_.end(), z) != slot_z_.end()) continue;
     // a free slot, or one whose distance this run does not probe
@@ -108,12 +121,8 @@ std::vector<size_t> ExactEvaluator::cache_slots(const std::vector<Probe>& probes
         plane_records({Probe{z, 0.0}}, {0}, 0, static_cast<int>(frames));
     const cl::Buffer plane_buf = buffer_of(rt_.context(), planes);
     const size_t items = frames * kh;
-    set_args(fill_, plane_buf, static_cast<cl_uint>(scene_.kernel_w), static_cast<cl_uint>(kh),
-             static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
-             static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
-             static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
-             aspect * tan_half, tan_half, scene_.params.log_k, static_cast<cl_uint>(items),
-             static_cast<cl_uint>(kw_pad_), static_cast<cl_uint>(slot * frames), a_code_, a_bits_);
+    bind_exact(fill_, scene_, plane_buf, items, static_cast<cl_uint>(kw_pad_),
+               static_cast<cl_uint>(slot * frames), a_code_, a_bits_);
     launch(fill_, items);
     ++cache_fills_;
   }
@@ -128,9 +137,7 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
   const std::vector<size_t> slots = cache_slots(probes);
-  const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
-  const double tan_half = std::tan(scene_.fov_y_deg * glm::pi<double>() / 360.0);
-  const double aspect = static_cast<double>(scene_.viewport_w) / scene_.viewport_h;
+  const auto kh = static_cast<size_t>(scene_.kernel_h);
   int done = 0;
   while (done < scene_.frames) {
     const std::vector<size_t> active = undecided(decided);
@@ -141,17 +148,10 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
     const cl::Buffer plane_buf = buffer_of(rt_.context(), planes);
     const size_t items = active.size() * frames * kh;
     cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * items);
-    const auto bind = [&](cl::Kernel& k, const auto&... cache) {
-      set_args(k, plane_buf, kw, kh, static_cast<double>((scene_.viewport_w - scene_.kernel_w) / 2),
-               static_cast<double>((scene_.viewport_h - scene_.kernel_h) / 2),
-               static_cast<double>(scene_.viewport_w), static_cast<double>(scene_.viewport_h),
-               aspect * tan_half, tan_half, scene_.params.log_k, static_cast<cl_uint>(items), out,
-               cache...);
-    };
     cl::Kernel& k = slots.empty() ? kernel_ : cached_;
     cl::Buffer a_frame;  // alive until the launch has run
     if (slots.empty()) {
-      bind(k);
+      bind_exact(k, scene_, plane_buf, items, out);
     } else {
       // each (probe, frame) of the launch: its frame of the cache
       std::vector<uint32_t> frame_of(active.size() * static_cast<size_t>(frames));
@@ -161,7 +161,8 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
               static_cast<uint32_t>(slots[active[i]] * static_cast<size_t>(scene_.frames) +
                                     static_cast<size_t>(done + f));
       a_frame = buffer_of(rt_.context(), frame_of);
-      bind(k, static_cast<cl_uint>(kw_pad_), a_frame, a_code_, a_bits_);
+      bind_exact(k, scene_, plane_buf, items, out, static_cast<cl_uint>(kw_pad_), a_frame, a_code_,
+                 a_bits_);
     }
     launch(k, items);
     std::vector<uint32_t> rows(items);
