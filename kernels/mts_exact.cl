@@ -107,17 +107,20 @@ static double8 exact_w8(exact_row_t r, double8 ndc_x, double shrink, long8* cove
 #define A_INSIDE 4
 
 /* One plane at 8 pixels: its code (clamped into [0, 1] first under CLIP_W) and whether the
- * pixels are covered, finite and inside, as the pixel loop decides them for each plane. */
-static uint8 plane8(exact_row_t r, double8 ndc_x, double n, double f, double k, df_format fmt,
-                    long8* covered, long8* finite, long8* inside) {
-  const double8 w = exact_w8(r, ndc_x, 1.0, covered);
+ * pixels are covered (by the square's half-sides times shrink), finite and inside (!CLIP_W: D at
+ * most top). The pixel loop takes the plane itself, shrink = top = 1; the end-pixel shortcut
+ * (ROW_ENDS) its margins. */
+static uint8 plane8(exact_row_t r, double8 ndc_x, double shrink, double top, double n, double f,
+                    double k, df_format fmt, long8* covered, long8* finite, long8* inside) {
+  const double8 w = exact_w8(r, ndc_x, shrink, covered);
   double8 d = exact_depth8(w, n, f, k);
   *finite = isfinite(d);
 #if CLIP_W
+  (void)top;
   *inside = (w >= n) & (w <= f);
   d = clamp(d, 0.0, 1.0);
 #else
-  *inside = (d >= 0.0) & (d <= 1.0);
+  *inside = (d >= 0.0) & (d <= top);
 #endif
   return encode8(d, fmt);
 }
@@ -138,9 +141,9 @@ static void pixels8(exact_row_t ra, exact_row_t rb, uint x0, double ox, double v
   fin_a = (bits & (long8)A_FINITE) != (long8)0;
   in_a = (bits & (long8)A_INSIDE) != (long8)0;
 #else
-  const uint8 ca = plane8(ra, ndc_x, n, f, k, fmt, &cov_a, &fin_a, &in_a);
+  const uint8 ca = plane8(ra, ndc_x, 1.0, 1.0, n, f, k, fmt, &cov_a, &fin_a, &in_a);
 #endif
-  const uint8 cb = plane8(rb, ndc_x, n, f, k, fmt, &cov_b, &fin_b, &in_b);
+  const uint8 cb = plane8(rb, ndc_x, 1.0, 1.0, n, f, k, fmt, &cov_b, &fin_b, &in_b);
   const long8 covered = active & cov_a & cov_b;
   if (any(active & ~covered)) *flags |= MTS_R_UNCOVERED;
   const long8 finite = fin_a & fin_b;
@@ -185,21 +188,14 @@ typedef struct {
 static ends8_t ends8(exact_row_t ra, exact_row_t rb, double8 xs, double ox, double vw, double n,
                      double f, double k, df_format fmt) {
   const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
-  long8 cov_a, cov_b;
-  const double8 wa = exact_w8(ra, ndc_x, kShrink, &cov_a),
-                wb = exact_w8(rb, ndc_x, kShrink, &cov_b);
-  double8 da = exact_depth8(wa, n, f, k), db = exact_depth8(wb, n, f, k);
-#if CLIP_W
-  const long8 inside = (wa >= n) & (wa <= f) & (wb >= n) & (wb <= f);
-  da = clamp(da, 0.0, 1.0);
-  db = clamp(db, 0.0, 1.0);
-#else
   const double top = 1.0 - 0x1.0p-46;
-  const long8 inside = (da >= 0.0) & (da <= top) & (db >= 0.0) & (db <= top);
-#endif
+  long8 cov_a, cov_b, fin_a, fin_b, in_a, in_b;
+  const long8 ca = convert_long8(
+                  plane8(ra, ndc_x, kShrink, top, n, f, k, fmt, &cov_a, &fin_a, &in_a)),
+              cb = convert_long8(
+                  plane8(rb, ndc_x, kShrink, top, n, f, k, fmt, &cov_b, &fin_b, &in_b));
   ends8_t e;
-  e.ok = cov_a & cov_b & isfinite(da) & isfinite(db) & inside;
-  const long8 ca = convert_long8(encode8(da, fmt)), cb = convert_long8(encode8(db, fmt));
+  e.ok = cov_a & cov_b & fin_a & fin_b & in_a & in_b;
 #if COMPARE_GREATER
   e.ahead = ca;
   e.behind = cb;
@@ -240,7 +236,7 @@ __kernel void mts_exact_a(__global const double4* planes, const uint kw, const u
     const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
     const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
     long8 cov, fin, in;
-    vstore8(plane8(ra, ndc_x, n, f, k, fmt, &cov, &fin, &in), 0, a_code + base + x0);
+    vstore8(plane8(ra, ndc_x, 1.0, 1.0, n, f, k, fmt, &cov, &fin, &in), 0, a_code + base + x0);
     const long8 bits = (cov & (long8)A_COVERED) | (fin & (long8)A_FINITE) | (in & (long8)A_INSIDE);
     vstore8(convert_uchar8(bits), 0, a_bits + base + x0);
   }
