@@ -39,6 +39,7 @@ void add_advise_command(CLI::App& app, GlobalOptions& global);
 void add_world_command(CLI::App& app, GlobalOptions& global);
 void add_audit_command(CLI::App& app, GlobalOptions& global);
 void add_bias_command(CLI::App& app, GlobalOptions& global);
+void add_shadow_command(CLI::App& app, GlobalOptions& global);
 // cache show, cache clear.
 void add_cache_command(CLI::App& app);
 

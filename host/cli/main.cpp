@@ -57,6 +57,7 @@ int run(int argc, char** argv) {
   cli::add_world_command(app, global);
   cli::add_audit_command(app, global);
   cli::add_bias_command(app, global);
+  cli::add_shadow_command(app, global);
   cli::add_cache_command(app);
   global.command_line = "depthprec";
   for (int i = 1; i < argc; ++i) global.command_line += std::string(" ") + argv[i];

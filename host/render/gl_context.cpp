@@ -153,4 +153,9 @@ std::string GlContext::description() const {
   return fmt::format("{}; OpenGL {}", renderer_, version_);
 }
 
+void check_gl(const char* what) {
+  const GLenum e = glGetError();
+  if (e != GL_NO_ERROR) throw RuntimeError(fmt::format("OpenGL error 0x{:x} in {}", e, what));
+}
+
 }  // namespace depthprec

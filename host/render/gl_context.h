@@ -34,6 +34,9 @@ class GlContext {
   std::string renderer_, version_, platform_;
 };
 
+// Throws RuntimeError naming `what` when the context has an OpenGL error pending.
+void check_gl(const char* what);
+
 // Every display --gl-device can name (surfaceless, device:0, ...) with what it renders on, or
 // why it cannot: what `depthprec devices` lists.
 struct GlDisplay {

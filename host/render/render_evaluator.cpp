@@ -28,11 +28,6 @@ namespace {
 constexpr size_t kMaxTargets = 64;
 constexpr size_t kTargetBudgetBytes = size_t(256) << 20;
 
-void check_gl(const char* what) {
-  const GLenum e = glGetError();
-  if (e != GL_NO_ERROR) throw RuntimeError(fmt::format("OpenGL error 0x{:x} in {}", e, what));
-}
-
 }  // namespace
 
 RenderEvaluator::RenderEvaluator(GlContext& gl, const Scene& scene, const EvalPair& pair,

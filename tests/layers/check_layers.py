@@ -30,7 +30,7 @@ LAYERS = [
     ["runtime"],
     ["mts", "lj"],
     ["bias", "analysis"],
-    ["audit"],
+    ["audit", "shadow"],
     ["output"],
     ["batch", "render"],
     ["cli"],

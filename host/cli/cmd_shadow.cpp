@@ -1,0 +1,191 @@
+// shadow: the smallest shadow-map biases per cascade of a directional light that leave no acne
+// on any receiver up to a slope limit, proven and witnessed, the shadow gap each costs and the
+// same in the engines' settings (host/shadow/, docs/shadow.md).
+#include <fmt/format.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "host/base/errors.h"
+#include "host/cli/commands.h"
+#include "host/cli/scene_options.h"
+#include "host/output/report.h"
+#include "host/output/shadow_output.h"
+#include "host/output/text_table.h"
+#include "host/render/gl_context.h"
+#include "host/render/render_shadow.h"
+#include "host/runtime/opencl_runtime.h"
+#include "host/shadow/shadow_run.h"
+
+namespace depthprec::cli {
+
+namespace {
+
+struct ShadowCliOptions {
+  OutputOptions out;
+  std::vector<double> splits, extent, light_near, light_far, world_position{0, 0, 0};
+  double camera_near = 0.1, fov = 60, aspect = 16.0 / 9.0, caster_padding = 0;
+  int resolution = 2048;
+  std::string format = "float32", filter = "pcf3", api = "gl", r_unorm, slope = "max";
+  bool reversed = false;
+  double slope_max = 80, elevation = 52, azimuth = 30;
+  std::vector<std::string> engines;
+  std::string bound_model = "binary32", source = "emulated", gl_device = GlDeviceChoice{}.text;
+  uint32_t planes = 2048, grid = 8;
+  uint64_t seed = 1;
+};
+
+ShadowRequest request_of(const ShadowCliOptions& o) {
+  ShadowRequest r;
+  ShadowSetup& s = r.setup;
+  const bool explicit_boxes = !o.extent.empty() || !o.light_near.empty() || !o.light_far.empty();
+  if (explicit_boxes && !o.splits.empty())
+    throw InputError(
+        "shadow: give the cascades as camera splits (--splits) or as light boxes (--extent with "
+        "--light-near and --light-far), not both");
+  if (explicit_boxes) {
+    if (o.light_near.size() != o.extent.size() || o.light_far.size() != o.extent.size())
+      throw InputError(fmt::format(
+          "shadow: --extent names {} cascades, --light-near {} and --light-far {}: one value "
+          "each per cascade",
+          o.extent.size(), o.light_near.size(), o.light_far.size()));
+    for (size_t i = 0; i < o.extent.size(); ++i) {
+      ShadowCascade c;
+      c.extent = o.extent[i];
+      c.near = o.light_near[i];
+      c.far = o.light_far[i];
+      s.cascades.push_back(c);
+    }
+  } else {
+    const std::vector<double> splits =
+        o.splits.empty() ? std::vector<double>{10, 40, 150, 600} : o.splits;
+    s.cascades = cascades_from_splits(splits, o.camera_near, o.fov, o.aspect, o.caster_padding);
+  }
+  s.resolution = o.resolution;
+  s.format = StorageFormat::parse(o.format);
+  s.reversed = o.reversed;
+  s.filter = parse_shadow_filter(o.filter);
+  s.raster.api = parse_bias_api(o.api);
+  if (!o.r_unorm.empty()) s.raster.unorm_r = parse_unorm_r(o.r_unorm);
+  s.raster.slope = parse_slope_form(o.slope);
+  validate(s.raster);
+  s.slope_max = o.slope_max;
+  if (o.world_position.size() != 3)
+    throw Error(ExitCode::usage, "shadow: --world-position takes three numbers: X,Y,Z");
+  s.world_position = {o.world_position[0], o.world_position[1], o.world_position[2]};
+  s.light_elevation = o.elevation;
+  s.light_azimuth = o.azimuth;
+  validate(s);
+  for (const std::string& e : o.engines) engine_info(e);  // unknown names fail here
+  r.engines = o.engines;
+  bound_model(o.bound_model);
+  r.bound_model = o.bound_model;
+  if (o.planes < 16 || o.grid < 1 || o.grid > 64)
+    throw InputError(
+        fmt::format("shadow: --planes {} (16 or more) --grid {} (1 to 64)", o.planes, o.grid));
+  r.sampling = {o.planes, o.grid, o.seed};
+  r.emulate = o.source != "bound";
+  return r;
+}
+
+void run_shadow(const ShadowCliOptions& o, const GlobalOptions& g) {
+  const ShadowRequest r = request_of(o);
+  check_writable(o.out.output);
+  std::unique_ptr<OpenClRuntime> rt;
+  if (r.emulate) rt = std::make_unique<OpenClRuntime>(g.device);
+  std::unique_ptr<GlContext> gl;
+  if (o.source == "rendered") gl = std::make_unique<GlContext>(GlDeviceChoice::parse(o.gl_device));
+  nlohmann::json header = shadow_header(r);
+  header["command"] = g.command_line;
+  if (rt) header["device"] = rt->description();
+  if (gl) header["renderer"] = gl->description();
+  std::vector<nlohmann::json> records;
+  for (size_t i = 0; i < r.setup.cascades.size(); ++i) {
+    if (!g.quiet)
+      fmt::print(stderr, "depthprec: shadow: cascade {} of {}\n", i + 1, r.setup.cascades.size());
+    nlohmann::json rec = shadow_record(rt.get(), r, i);
+    if (gl) rec["rendered"] = rendered_shadow_check(r, i, rec);
+    records.push_back(rec);
+  }
+  write_output(o.out.output, for_terminal(render_shadow_output(header, records, o.out.format_out),
+                                          o.out.format_out));
+  for (const auto& rec : records) {
+    if (rec.contains("witnessed") && !rec["witnessed"].value("bound_clean", true))
+      throw Error(ExitCode::internal,
+                  fmt::format("shadow: cascade {}: the emulation found acne at the proven bias: "
+                              "the bound is wrong (please report it with this command line)",
+                              rec.value("cascade", 0)));
+    if (rec.contains("rendered") && !rec["rendered"].value("clean_at_bound", true))
+      throw Error(ExitCode::internal,
+                  fmt::format("shadow: cascade {}: the rendered shadow pass shows acne at the "
+                              "proven bias: the bound does not hold for this driver",
+                              rec.value("cascade", 0)));
+  }
+}
+
+}  // namespace
+
+void add_shadow_command(CLI::App& app, GlobalOptions& global) {
+  auto o = std::make_shared<ShadowCliOptions>();
+  CLI::App* cmd =
+      app.add_subcommand("shadow",
+                         "The smallest shadow-map biases per cascade (constant, slope, normal "
+                         "offset) that leave no "
+                         "acne, the gap each costs, and each engine's settings")
+          ->footer(
+              "\nExamples:\n"
+              "  depthprec shadow\n"
+              "      four cascades split at 10/40/150/600 m, 2048^2 float32, 3x3 PCF, slopes to 80 "
+              "deg\n"
+              "  depthprec shadow --format unorm16 --filter nearest --splits 20,60 --engines "
+              "unity,bevy\n"
+              "  depthprec shadow --extent 50 --light-near -100 --light-far 25 --source bound\n"
+              "  depthprec shadow --splits 10,40 --source rendered --planes 64\n"
+              "      checks the bias on the system's OpenGL: no acne at it, acne 10 % below\n");
+  cmd->add_option("--splits", o->splits,
+                  "Camera distances where cascades end, metres (default 10,40,150,600)")
+      ->delimiter(',');
+  cmd->add_option("--camera-near", o->camera_near, "Where the first cascade starts, metres");
+  cmd->add_option("--fov", o->fov, "The camera's vertical field of view, degrees (default 60)");
+  cmd->add_option("--aspect", o->aspect, "The camera's aspect, width/height (default 16/9)");
+  cmd->add_option("--caster-padding", o->caster_padding,
+                  "Metres the light's box reaches beyond each cascade's sphere toward the light "
+                  "(default 0: pancaking)");
+  cmd->add_option("--extent", o->extent, "Cascades as light boxes: each square's side, metres")
+      ->delimiter(',');
+  cmd->add_option("--light-near", o->light_near, "Each box's near side, metres along the light")
+      ->delimiter(',');
+  cmd->add_option("--light-far", o->light_far, "Each box's far side, metres along the light")
+      ->delimiter(',');
+  cmd->add_option("--resolution", o->resolution, "Texels per side of each cascade (default 2048)");
+  cmd->add_option("--format", o->format, "unorm16, unorm24 or float32 (default float32)");
+  cmd->add_flag("--reversed", o->reversed, "Reversed depth: nearer the light is larger");
+  cmd->add_option("--filter", o->filter,
+                  "nearest, pcf2x2, pcfN (N x N hardware comparisons) or tentN (default pcf3)");
+  cmd->add_option("--api", o->api, "gl, d3d or vulkan: whose raster bias rule (default gl)");
+  cmd->add_option("--r-unorm", o->r_unorm, "pow2, step, double_step or double_pow2");
+  cmd->add_option("--slope", o->slope, "The raster slope: max or sqrt (default max)");
+  cmd->add_option("--slope-max", o->slope_max,
+                  "The largest angle between a receiver's normal and the light, degrees (default "
+                  "80)");
+  cmd->add_option("--world-position", o->world_position, "The cascades' centre, metres: X,Y,Z")
+      ->delimiter(',');
+  cmd->add_option("--light-elevation", o->elevation, "The light above the horizon, degrees (52)");
+  cmd->add_option("--light-azimuth", o->azimuth, "The light's azimuth, degrees (default 30)");
+  cmd->add_option("--engines", o->engines, "Engines to convert to (default all): " + engine_names())
+      ->delimiter(',');
+  cmd->add_option("--bound-model", o->bound_model,
+                  "What the proof allows the GPU: " + bound_model_names() + " (default binary32)");
+  cmd->add_option("--source", o->source,
+                  "bound (the proof alone), emulated (also the emulation's witnessed minimum; "
+                  "default) or rendered (also a shadow pass on the system's OpenGL)")
+      ->check(CLI::IsMember({"bound", "emulated", "rendered"}));
+  cmd->add_option("--planes", o->planes, "Receiver planes the emulation samples (default 2048)");
+  cmd->add_option("--grid", o->grid, "Receiver points per texel side (default 8)");
+  cmd->add_option("--seed", o->seed, "The sampling's seed (default 1)");
+  add_gl_device_option(cmd, o->gl_device);
+  o->out.add_to(*cmd);
+  cmd->callback([o, &global]() { run_shadow(*o, global); });
+}
+
+}  // namespace depthprec::cli

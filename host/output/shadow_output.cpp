@@ -1,0 +1,151 @@
+#include "host/output/shadow_output.h"
+
+#include <fmt/format.h>
+
+#include "host/output/text_table.h"
+
+namespace depthprec {
+
+namespace {
+
+std::string shadow_cell(const nlohmann::json& j, const char* key, const std::string& format) {
+  if (!j.contains(key) || j.at(key).is_null()) return format == "csv" ? "" : "-";
+  if (j.at(key).is_boolean()) return j.at(key).get<bool>() ? "yes" : "no";
+  return number_cell(j.at(key).get<double>(), format);
+}
+
+// "97 %": a witnessed value as a share of the bound's.
+std::string witnessed_share(const nlohmann::json& rec, const char* witnessed, const char* bound) {
+  if (!rec.contains("witnessed")) return "-";
+  const double b = rec["bound"][bound].get<double>();
+  return b > 0 ? fmt::format("{:.0f}%", 100 * rec["witnessed"][witnessed].get<double>() / b) : "-";
+}
+
+std::string camera_cell(const nlohmann::json& rec) {
+  if (!rec.contains("split")) return "-";
+  return human(rec["split"][0].get<double>()) + "-" + human(rec["split"][1].get<double>());
+}
+
+std::string caption(const nlohmann::json& h) {
+  return fmt::format(
+      "Shadow bias, directional light: {0}x{0} texels per cascade, {1}{2}, filter {3} (reads "
+      "texels up to {4} texels away per axis), receivers up to {5} degrees from the light, light "
+      "{6} degrees above the horizon, raster bias under {7} (r = {8}). Proven under bound model "
+      "{9}: no receiver up to the slope limit shadows itself. constant: a depth bias alone, in r "
+      "and in metres along the light. slope: the slope factor, with the constant the rounding "
+      "errors alone need (err r). normal: the receiver's offset along its normal, with that same "
+      "constant. gap: the shadow a wall standing on level ground loses at its foot, metres. "
+      "witnessed: the smallest clean value the emulation found, as a share of the proven one "
+      "(constant/slope/normal)",
+      h.value("resolution", 0), h.value("format", std::string("?")),
+      h.value("reversed", false) ? " reversed" : "", h.value("filter", std::string("?")),
+      human(h.value("reach_texels", 0.0)), human(h.value("slope_max_deg", 0.0)),
+      human(h.value("light_elevation_deg", 0.0)), h.value("api", std::string("?")),
+      human(h.value("r", 0.0)), h.value("bound_model", std::string("?")));
+}
+
+const std::vector<Column>& cascade_columns() {
+  static const std::vector<Column> cols = {
+      {"cascade", true}, {"camera m", true}, {"texel m"}, {"range m"},  {"constant r"},
+      {"constant m"},    {"gap m"},          {"slope"},   {"err r"},    {"gap m"},
+      {"normal texels"}, {"normal m"},       {"gap m"},   {"witnessed"}};
+  return cols;
+}
+
+std::vector<std::string> cascade_cells(const nlohmann::json& rec, const std::string& f) {
+  const nlohmann::json& b = rec["bound"];
+  std::string witnessed = "-";
+  if (rec.contains("witnessed"))
+    witnessed = rec["witnessed"].value("bound_clean", true)
+                    ? witnessed_share(rec, "constant_units", "constant_units") + "/" +
+                          witnessed_share(rec, "slope_factor", "slope_factor") + "/" +
+                          witnessed_share(rec, "normal_metres", "normal_metres")
+                    : "BOUND FAILED";
+  return {std::to_string(rec.value("cascade", 0)),
+          camera_cell(rec),
+          shadow_cell(rec, "texel", f),
+          shadow_cell(rec, "depth_range", f),
+          shadow_cell(b, "constant_units", f),
+          shadow_cell(b, "constant_metres", f),
+          shadow_cell(b, "gap_constant", f),
+          shadow_cell(b, "slope_factor", f),
+          shadow_cell(b, "error_units", f),
+          shadow_cell(b, "gap_slope", f),
+          shadow_cell(b, "normal_texels", f),
+          shadow_cell(b, "normal_metres", f),
+          shadow_cell(b, "gap_normal", f),
+          witnessed};
+}
+
+const std::vector<Column>& engine_columns() {
+  static const std::vector<Column> cols = {
+      {"cascade", true},         {"engine", true},    {"depth bias alone"},
+      {"normal bias"},           {"with depth bias"}, {"depth bias at default normal"},
+      {"defaults suffice", true}};
+  return cols;
+}
+
+std::vector<std::string> engine_cells(const nlohmann::json& rec, const nlohmann::json& e,
+                                      const std::string& f) {
+  return {std::to_string(rec.value("cascade", 0)),   e.value("engine", std::string("?")),
+          shadow_cell(e, "depth_alone", f),          shadow_cell(e, "normal_min", f),
+          shadow_cell(e, "depth_for_normal_min", f), shadow_cell(e, "depth_with_default_normal", f),
+          shadow_cell(e, "default_suffices", f)};
+}
+
+std::string engine_caption(const nlohmann::json& h) {
+  std::string units;
+  for (const auto& e : h["engines"]) {
+    const std::string name = e.value("engine", std::string("?"));
+    if (!e.value("public_formula", true)) {
+      units += fmt::format(" {}: {}.", name, "no conversion, its formula is not public");
+      continue;
+    }
+    units +=
+        fmt::format(" {}: depth bias in {}; normal bias in {}; defaults {} and {}.", name,
+                    e.value("depth_unit", std::string()), e.value("normal_unit", std::string()),
+                    human(e.value("default_depth", 0.0)), human(e.value("default_normal", 0.0)));
+  }
+  return "The same in each engine's settings (docs/shadow.md \"Engines\"), each with the raster "
+         "bias it always applies: the depth bias alone; the smallest normal bias and the depth "
+         "bias that goes with it ('-': its normal bias cannot cover shallow slopes alone); the "
+         "depth bias its default normal bias needs; whether its default pair suffices." +
+         units;
+}
+
+}  // namespace
+
+std::string render_shadow_output(const nlohmann::json& header,
+                                 const std::vector<nlohmann::json>& records,
+                                 const std::string& format) {
+  if (format == "json") {
+    nlohmann::json out = header;
+    out["cascades"] = records;
+    return out.dump(2) + "\n";
+  }
+  if (format == "csv") {
+    std::vector<Column> cols = cascade_columns();
+    const std::vector<Column>& ec = engine_columns();
+    cols.insert(cols.end(), ec.begin() + 1, ec.end());
+    Cells cells;
+    for (const auto& rec : records) {
+      const std::vector<std::string> c = cascade_cells(rec, format);
+      for (const auto& e : rec["engines"]) {
+        std::vector<std::string> row = c;
+        const std::vector<std::string> ecells = engine_cells(rec, e, format);
+        row.insert(row.end(), ecells.begin() + 1, ecells.end());
+        cells.push_back(row);
+      }
+    }
+    return csv(cols, cells);
+  }
+  Cells cascades, engines;
+  for (const auto& rec : records) {
+    cascades.push_back(cascade_cells(rec, format));
+    for (const auto& e : rec["engines"]) engines.push_back(engine_cells(rec, e, format));
+  }
+  return captioned(caption(header), cascade_columns(), cascades, format) + "\n" +
+         captioned(engine_caption(header), engine_columns(), engines, format);
+}
+
+}  // namespace depthprec

@@ -1,0 +1,148 @@
+#include "host/shadow/shadow_bound.h"
+
+#include <cmath>
+
+#include "host/base/binary32_error.h"
+
+namespace depthprec {
+
+namespace {
+
+using binary32_error::half_ulp;
+using binary32_error::kMargin;
+using binary32_error::row_rounding;
+using binary32_error::RowTerm;
+
+// |computed - exact| of one row of the light matrix times a point whose coordinates are at most
+// p[j] in magnitude, in the given arithmetic (any order, fused or not).
+double row_error(const binary32_error::Rounding& r, const std::array<float, 4>& m,
+                 const std::array<double, 3>& p) {
+  return row_rounding(r, {{std::fabs(m[0]) * p[0], false},
+                          {std::fabs(m[1]) * p[1], false},
+                          {std::fabs(m[2]) * p[2], false},
+                          {std::fabs(m[3]), true}});
+}
+
+}  // namespace
+
+double shadow_r(const ShadowSetup& s) {
+  const BiasRule rule = bias_rule(s.raster, s.format);
+  return rule.float_rule ? 0x1.0p-24 : rule.r_fixed;
+}
+
+double depth_per_texel(const ShadowSetup& s, size_t cascade, double theta) {
+  return s.texel(cascade) / s.cascades[cascade].depth_range() * std::tan(theta);
+}
+
+double gap_of(const ShadowSetup& s, double metres) {
+  return metres * std::cos(radians(s.light_elevation));
+}
+
+ShadowBound shadow_bound(const ShadowSetup& s, size_t cascade, const BoundModel& model) {
+  const ShadowCascade& c = s.cascades[cascade];
+  const LightMatrix L = light_matrix(s, cascade);
+  const double theta = radians(s.slope_max);
+  ShadowBound b;
+  b.texel = s.texel(cascade);
+  b.range = c.depth_range();
+  ShadowTerms& t = b.terms;
+  t.reach = s.filter.reach;
+
+  // Every point the pipeline transforms (caster vertices, receivers, receivers moved along their
+  // normal by at most the normal offset) lies in the cascade's box, or within the normal offset
+  // of it: per world axis at most |centre| plus the box's half-diagonal plus that offset.
+  const double half_diagonal =
+      std::sqrt(0.5 * c.extent * c.extent + std::max(c.near * c.near, c.far * c.far));
+  const double offset_reach = 2 * s.filter.reach * b.texel;  // beyond any normal offset used
+  std::array<double, 3> p{};
+  for (int j = 0; j < 3; ++j) p[j] = std::fabs(L.centre[j]) + half_diagonal + offset_reach;
+
+  binary32_error::Rounding shader;  // the vertex and fragment stages' arithmetic
+  shader.bits = model.shader_bits;
+  const binary32_error::Rounding fixed;  // the rasteriser's binary32
+  const double half_res = s.resolution / 2.0;
+
+  // Caster, vertex stage: x_ndc = row 0 . (p, 1), then x_w = x_ndc * res/2 + res/2 (a product
+  // and a sum, each within half an ulp of res), and snapping to 2^-snap_bits of a texel (half a
+  // step). Inside a triangle the snapped plane is the exact one displaced by a convex combination
+  // of the vertices' displacements: at most this far along each axis.
+  const int snap = model.snap_bits > 0 ? model.snap_bits : 8;
+  const double xy_transform =
+      std::max(row_error(shader, L.m[0], p), row_error(shader, L.m[1], p)) * half_res +
+      2 * half_ulp(s.resolution);
+  t.caster_xy = (xy_transform + std::ldexp(1.0, -snap - 1)) * kMargin;
+
+  // Caster depth: each vertex's D = row 2 . (p, 1) within row_error; inside the triangle the
+  // interpolation weights are non-negative and sum to 1, so the vertices' errors reach the texel
+  // at most as large. The interpolation itself (weights from exact fixed-point edge functions,
+  // one division, the weighted sum) rounds at the depth's magnitude, at most 1: the model's value
+  // and reach roundings plus its reciprocal's, and its own relative tolerance where it has one.
+  t.caster_vertex = row_error(shader, L.m[2], p);
+  t.interpolation = ((model.value_roundings + model.reach_roundings + model.reciprocal_half_ulps) *
+                         half_ulp(1.0) +
+                     model.interpolation_relative) *
+                    kMargin;
+
+  // Storage: a unorm code up to the conversion's width below d (2^n - 1) codes, then the code
+  // read back as binary32 for the comparison (exact up to 24 bits, half an ulp of 1 above); a
+  // float32 buffer stores the binary32 depth itself.
+  if (s.format.is_unorm()) {
+    const unsigned bits = s.format.bits();
+    const double width = model.unorm_width[bits <= 16 ? 0 : bits <= 24 ? 1 : 2];
+    t.storage =
+        width / (std::ldexp(1.0, static_cast<int>(bits)) - 1) + (bits > 24 ? half_ulp(1.0) : 0.0);
+  }
+
+  // Receiver: its world position is a varying interpolated by the camera's rasteriser (the same
+  // roundings as the caster's depth, at each coordinate's magnitude), moved along its normal
+  // (o n_j, then the sum: two roundings at most |p_j| + o), then transformed by the same rows.
+  std::array<double, 3> dp{};
+  for (int j = 0; j < 3; ++j)
+    dp[j] = (model.value_roundings + model.reach_roundings + model.reciprocal_half_ulps) *
+                shader.half_ulp(p[j]) +
+            model.interpolation_relative * p[j] + 2 * shader.half_ulp(p[j]);
+  auto moved = [&](int row) {
+    double e = 0;
+    for (int j = 0; j < 3; ++j) e += std::fabs(L.m[row][j]) * dp[j];
+    return (e + row_error(shader, L.m[row], p)) * kMargin;
+  };
+  t.receiver = moved(2);
+  t.receiver_xy = (std::max(moved(0), moved(1)) * half_res + 2 * half_ulp(s.resolution)) * kMargin;
+
+  // The recipes. A receiver at slope theta whose steepest direction makes angle phi with the
+  // map's axes reads texels up to reach' texels away per axis: their depths lie below its own by
+  // up to g reach' (|cos phi| + |sin phi|), g = depth_per_texel; at phi = 45 degrees,
+  // sqrt(2) g reach'.
+  const double rho = t.lateral_reach();
+  const double g = depth_per_texel(s, cascade, theta);
+  const double E = t.depth_errors();
+  const double r = shadow_r(s);
+  const double grow = (1 + kBiasArithmetic) * kMargin;
+  b.constant = (std::sqrt(2.0) * rho * g + E) * grow;
+  b.constant_units = b.constant / r;
+  b.constant_metres = b.constant * b.range;
+  b.error_constant = E * grow;
+  b.error_units = b.error_constant / r;
+  b.error_metres = b.error_constant * b.range;
+  // Slope: factor m covers g reach' (|cos| + |sin|) where m = g max(|cos|, |sin|) (or g for the
+  // sqrt form): the ratio is at most 2 (sqrt(2)), at phi = 45 degrees, for every theta.
+  const double ratio = s.raster.slope == SlopeForm::sqrt ? std::sqrt(2.0) : 2.0;
+  b.slope_factor = ratio * rho * grow / (1 - kSlopeRelativeError);
+  // Normal offset o: the moved point lies o / cos(theta) above the plane along the light, which
+  // must cover sqrt(2) reach' texel tan(theta): o = sqrt(2) reach' texel sin(theta).
+  b.normal_metres = std::sqrt(2.0) * rho * b.texel * std::sin(theta) * grow;
+  b.normal_texels = b.normal_metres / b.texel;
+
+  // Gaps: a wall facing the light makes the elevation's angle with it, so its slope bias is
+  // factor * texel / range * tan(elevation) at the worst azimuth; the normal offset moves the
+  // ground's lookup up along the wall, still behind it, and costs no gap.
+  const double elevation = radians(s.light_elevation);
+  b.gap_constant = gap_of(s, b.constant_metres);
+  const double wall_slope_depth =
+      s.light_elevation < 90 ? b.slope_factor * b.texel * std::tan(elevation) : 0.0;
+  b.gap_slope = s.light_elevation < 90 ? gap_of(s, wall_slope_depth + b.error_metres) : 0.0;
+  b.gap_normal = gap_of(s, b.error_metres);
+  return b;
+}
+
+}  // namespace depthprec
