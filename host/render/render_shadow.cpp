@@ -1,24 +1,15 @@
 #include "host/render/render_shadow.h"
 
-#include <epoxy/gl.h>
-#include <fmt/format.h>
-
 #include <algorithm>
-#include <array>
+#include <cmath>
 
-#include "host/base/errors.h"
-#include "host/render/gl_context.h"
-#include "host/render/gl_depth_format.h"
-#include "host/render/gl_program.h"
+#include "host/model/matrix.h"
+#include "host/render/shadow_pass.h"
 #include "interface/shadow_layout.h"
 
 namespace depthprec {
 
 namespace {
-
-// The part of the map drawn per plane: a window of this many texels around the receiver grid's
-// texel, the viewport shifted so that window coordinates stay those of the whole map.
-constexpr int kWindow = 128;
 
 // One bias setting as the rendered passes apply it: glPolygonOffset's factor and units on the
 // caster, a window-depth offset and a normal offset on the receiver.
@@ -46,26 +37,23 @@ std::vector<RenderedProbe> probes_of(const nlohmann::json& bound, bool reversed)
   return out;
 }
 
-struct GlObjects {
-  GLuint caster = 0, receiver = 0, vao = 0, vbo = 0, depth = 0, depth_fbo = 0, colour = 0,
-         colour_fbo = 0;
-  ~GlObjects() {
-    glDeleteProgram(caster);
-    glDeleteProgram(receiver);
-    glDeleteVertexArrays(1, &vao);
-    glDeleteBuffers(1, &vbo);
-    glDeleteTextures(1, &depth);
-    glDeleteFramebuffers(1, &depth_fbo);
-    glDeleteRenderbuffers(1, &colour);
-    glDeleteFramebuffers(1, &colour_fbo);
-  }
-};
+Vec3 scale3(const Vec3& v, double k) {
+  return {v[0] * k, v[1] * k, v[2] * k};
+}
 
-void set_light(GLuint program, const LightMatrix& L) {
-  const char* names[3] = {"light_x", "light_y", "light_z"};
-  for (int r = 0; r < 3; ++r)
-    glProgramUniform4f(program, glGetUniformLocation(program, names[r]), L.m[r][0], L.m[r][1],
-                       L.m[r][2], L.m[r][3]);
+Vec3 along(const Vec3& p, const Vec3& d, double t) {
+  return {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]};
+}
+
+// Where a ray from ground point p toward the light meets the wall (the plane through `foot` facing
+// the light horizontally, `height` tall): the distance along the light, or infinity if it passes.
+double wall_hit(const Vec3& p, const Vec3& to_light, const Vec3& foot, const Vec3& facing,
+                double height) {
+  const double den = dot(to_light, facing);
+  const double t = dot(sub(foot, p), facing) / den;
+  if (!(t >= 0)) return INFINITY;
+  const double y = p[1] + t * to_light[1];
+  return y >= foot[1] && y <= foot[1] + height ? t : INFINITY;
 }
 
 }  // namespace
@@ -73,108 +61,32 @@ void set_light(GLuint program, const LightMatrix& L) {
 nlohmann::json rendered_shadow_check(const ShadowRequest& r, size_t cascade,
                                      const nlohmann::json& record) {
   const ShadowSetup& s = r.setup;
-  GLint dims[2] = {0, 0};
-  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
-  if (s.resolution > dims[0])
-    throw InputError(
-        fmt::format("--source rendered: a {0}x{0} map exceeds this driver's largest viewport, {1}",
-                    s.resolution, dims[0]));
   ShadowSampling sampling = r.sampling;
   sampling.planes = std::min(sampling.planes, kRenderedShadowPlanes);
   const ShadowPlanes planes = shadow_planes(s, cascade, sampling);
-  const LightMatrix L = light_matrix(s, cascade);
-  const GlDepthFormat format = gl_depth_format(s.format.name());
   const int grid = static_cast<int>(sampling.grid);
-
-  GlObjects gl;
-  gl.caster = link_program("host/render/shaders/shadow_caster.vert",
-                           "host/render/shaders/shadow_caster.frag", "");
-  gl.receiver = link_program("host/render/shaders/shadow_receiver.vert",
-                             "host/render/shaders/shadow_receiver.frag", "");
-  set_light(gl.caster, L);
-  set_light(gl.receiver, L);
-  glCreateVertexArrays(1, &gl.vao);
-  glCreateBuffers(1, &gl.vbo);
-  glNamedBufferStorage(gl.vbo, 9 * sizeof(float), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  glVertexArrayVertexBuffer(gl.vao, 0, gl.vbo, 0, 3 * sizeof(float));
-  glEnableVertexArrayAttrib(gl.vao, 0);
-  glVertexArrayAttribFormat(gl.vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(gl.vao, 0, 0);
-  glCreateTextures(GL_TEXTURE_2D, 1, &gl.depth);
-  glTextureStorage2D(gl.depth, 1, format.internal, kWindow, kWindow);
-  glTextureParameteri(gl.depth, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(gl.depth, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTextureParameteri(gl.depth, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  glCreateFramebuffers(1, &gl.depth_fbo);
-  glNamedFramebufferTexture(gl.depth_fbo, GL_DEPTH_ATTACHMENT, gl.depth, 0);
-  glNamedFramebufferDrawBuffer(gl.depth_fbo, GL_NONE);
-  glCreateRenderbuffers(1, &gl.colour);
-  glNamedRenderbufferStorage(gl.colour, GL_R32F, grid, grid);
-  glCreateFramebuffers(1, &gl.colour_fbo);
-  glNamedFramebufferRenderbuffer(gl.colour_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, gl.colour);
-  for (GLuint fbo : {gl.depth_fbo, gl.colour_fbo})
-    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw RuntimeError("shadow --source rendered: a framebuffer is not complete on this driver");
-  check_gl("setting up the shadow pass");
-
-  const GLuint rp = gl.receiver;
-  glProgramUniform1i(rp, glGetUniformLocation(rp, "grid"), grid);
-  glProgramUniform1f(rp, glGetUniformLocation(rp, "reach"), static_cast<float>(s.filter.reach));
-  glProgramUniform1f(rp, glGetUniformLocation(rp, "half_res"),
-                     static_cast<float>(s.resolution / 2.0));
-  glProgramUniform1i(rp, glGetUniformLocation(rp, "reversed"), s.reversed ? 1 : 0);
-  glProgramUniform1i(rp, glGetUniformLocation(rp, "depth_map"), 0);
-
+  ShadowPass pass(s, cascade, grid);
   const std::vector<RenderedProbe> probes = probes_of(record["bound"], s.reversed);
   std::vector<uint64_t> acne(probes.size(), 0);
-  std::vector<float> flags(static_cast<size_t>(grid * grid));
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_SCISSOR_TEST);
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  glDepthRange(0.0, 1.0);
   for (uint32_t k = 0; k < planes.count; ++k) {
     const float* f = &planes.f[k * SHADOW_F_STRIDE];
     const double* d = &planes.d[k * SHADOW_D_STRIDE];
-    glNamedBufferSubData(gl.vbo, 0, 9 * sizeof(float), f);
-    // The window's first texel, so that texel (i, j) of the map is (i - x0, j - y0) of it.
-    const int x0 = static_cast<int>(f[SHADOW_F_BASE_U]) - kWindow / 2;
-    const int y0 = static_cast<int>(f[SHADOW_F_BASE_V]) - kWindow / 2;
-    glProgramUniform3d(rp, glGetUniformLocation(rp, "origin"), d[0], d[1], d[2]);
-    glProgramUniform3d(rp, glGetUniformLocation(rp, "du"), d[3], d[4], d[5]);
-    glProgramUniform3d(rp, glGetUniformLocation(rp, "dv"), d[6], d[7], d[8]);
-    glProgramUniform2f(rp, glGetUniformLocation(rp, "base"), f[SHADOW_F_BASE_U],
-                       f[SHADOW_F_BASE_V]);
-    glProgramUniform3f(rp, glGetUniformLocation(rp, "normal"), f[SHADOW_F_NORMAL],
-                       f[SHADOW_F_NORMAL + 1], f[SHADOW_F_NORMAL + 2]);
-    // The receiver's coordinates are the map's; the texture holds the window from (x0, y0).
-    glProgramUniform2i(rp, glGetUniformLocation(rp, "window_origin"), x0, y0);
+    const std::vector<float> triangle(f, f + 9);
+    const int x0 = static_cast<int>(f[SHADOW_F_BASE_U]) - ShadowPass::kWindow / 2;
+    const int y0 = static_cast<int>(f[SHADOW_F_BASE_V]) - ShadowPass::kWindow / 2;
+    ShadowReceivers rc;
+    rc.origin = {d[0], d[1], d[2]};
+    rc.du = {d[3], d[4], d[5]};
+    rc.dv = {d[6], d[7], d[8]};
+    rc.base = {f[SHADOW_F_BASE_U], f[SHADOW_F_BASE_V]};
+    rc.normal = {f[SHADOW_F_NORMAL], f[SHADOW_F_NORMAL + 1], f[SHADOW_F_NORMAL + 2]};
+    rc.reach = s.filter.reach;
     for (size_t p = 0; p < probes.size(); ++p) {
-      const RenderedProbe& pr = probes[p];
-      glBindFramebuffer(GL_FRAMEBUFFER, gl.depth_fbo);
-      glViewport(-x0, -y0, s.resolution, s.resolution);
-      glEnable(GL_DEPTH_TEST);
-      glDepthMask(GL_TRUE);
-      glDepthFunc(s.reversed ? GL_GREATER : GL_LESS);
-      glClearDepth(s.reversed ? 0.0 : 1.0);
-      glClear(GL_DEPTH_BUFFER_BIT);
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(pr.factor, pr.units);
-      glUseProgram(gl.caster);
-      glBindVertexArray(gl.vao);
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-      glDisable(GL_POLYGON_OFFSET_FILL);
-      glDisable(GL_DEPTH_TEST);
-      glBindFramebuffer(GL_FRAMEBUFFER, gl.colour_fbo);
-      glViewport(0, 0, grid, grid);
-      glUseProgram(rp);
-      glProgramUniform1f(rp, glGetUniformLocation(rp, "receiver_offset"), pr.receiver_offset);
-      glProgramUniform1f(rp, glGetUniformLocation(rp, "normal_offset"), pr.normal);
-      glBindTextureUnit(0, gl.depth);
-      glDrawArrays(GL_POINTS, 0, grid * grid);
-      glReadPixels(0, 0, grid, grid, GL_RED, GL_FLOAT, flags.data());
-      for (float v : flags) acne[p] += v != 0.0f ? 1 : 0;
+      pass.draw_casters(triangle, x0, y0, probes[p].factor, probes[p].units);
+      rc.receiver_offset = probes[p].receiver_offset;
+      rc.normal_offset = probes[p].normal;
+      for (float v : pass.receivers(rc)) acne[p] += v != 0.0f ? 1 : 0;
     }
-    check_gl("drawing a shadow pass");
   }
   nlohmann::json out;
   out["planes"] = planes.count;
@@ -186,7 +98,85 @@ nlohmann::json rendered_shadow_check(const ShadowRequest& r, size_t cascade,
     if (probes[p].level == 1.0 && acne[p] != 0) clean = false;
   }
   out["clean_at_bound"] = clean;
+  out["gap"] = rendered_shadow_gap(s, cascade, record["bound"]["constant_metres"].get<double>());
   return out;
+}
+
+nlohmann::json rendered_shadow_gap(const ShadowSetup& s, size_t cascade, double bias_metres) {
+  const LightMatrix L = light_matrix(s, cascade);
+  const Vec3 up{0, 1, 0}, to_light = scale3(L.basis[2], -1);
+  const Vec3 facing = normalized(Vec3{to_light[0], 0, to_light[2]});  // the wall's normal
+  const Vec3 side = cross(up, facing);
+  const double texel = s.texel(cascade), range = s.cascades[cascade].depth_range();
+  const double gap = gap_of(s, bias_metres), reach_out = 2 * gap;  // receivers up to here
+  const double tan_el = std::tan(radians(s.light_elevation));
+  // Tall enough that its top's shadow lands beyond the receivers; 16 texels wide.
+  const double height = 4 * reach_out * tan_el + texel, half_width = 8 * texel;
+  const int grid = 64;
+  ShadowPass pass(s, cascade, grid);
+  // The ray-cast reference: the first ground point whose ray to the light meets the wall farther
+  // than the bias, by bisection along the ground away from the light.
+  const Vec3 centre = L.centre;  // the wall's foot for the ray cast; the rendered foot moves
+  auto shadowed = [&](double dist) {
+    return wall_hit(along(centre, facing, -dist), to_light, centre, facing, height) > bias_metres;
+  };
+  double lo = 0, hi = reach_out;
+  for (int i = 0; i < 60; ++i) (shadowed(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  const double raycast = hi;
+  // Rendered: the wall and the ground drawn into the map, ground points behind the wall looked up
+  // through the nearest texel with the bias on the receiver, at 8 placements a texel apart by
+  // eighths (the edge's texel phase averages out).
+  double rendered = 0;
+  const int phases = 8;
+  for (int k = 0; k < phases; ++k) {
+    // Off the texel boundaries across the light (a nearest lookup exactly between two texels
+    // reads neither), and k eighths of a texel along it.
+    const Vec3 foot =
+        along(along(centre, L.basis[0], 0.37 * texel), L.basis[1], texel * k / phases);
+    auto corner = [&](double across, double toward, double rise) {
+      return along(along(along(foot, side, across), facing, toward), up, rise);
+    };
+    std::vector<float> tris;
+    auto quad = [&](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+      for (const Vec3* v : {&a, &b, &c, &a, &c, &d})
+        for (double x : *v) tris.push_back(static_cast<float>(x));
+    };
+    quad(corner(-half_width, 0, 0), corner(half_width, 0, 0), corner(half_width, 0, height),
+         corner(-half_width, 0, height));
+    quad(corner(-half_width, half_width, 0), corner(half_width, half_width, 0),
+         corner(half_width, -2 * reach_out, 0), corner(-half_width, -2 * reach_out, 0));
+    const double mx =
+        (dot(L.basis[0], sub(foot, L.centre)) / s.cascades[cascade].extent + 0.5) * s.resolution;
+    const double my =
+        (dot(L.basis[1], sub(foot, L.centre)) / s.cascades[cascade].extent + 0.5) * s.resolution;
+    pass.draw_casters(tris, static_cast<int>(mx) - ShadowPass::kWindow / 2,
+                      static_cast<int>(my) - ShadowPass::kWindow / 2, 0, 0);
+    // Receiver (gx, gy) at distance (gy + gx / grid) * step behind the wall's foot.
+    const double step = reach_out / grid;
+    ShadowReceivers rc;
+    rc.origin = foot;
+    rc.du = scale3(facing, -step);
+    rc.dv = scale3(facing, -step * grid);
+    rc.normal = {0, 1, 0};
+    rc.receiver_offset = static_cast<float>(bias_metres / range);
+    rc.reach = 0.5;
+    const std::vector<float> flags = pass.receivers(rc);
+    size_t first = flags.size();
+    for (size_t i = 0; i < flags.size(); ++i) {
+      // Row-major by gy: index gy * grid + gx is distance (gy + gx / grid) * step, in order.
+      if (flags[i] != 0.0f) {
+        first = i;
+        break;
+      }
+    }
+    rendered += step * static_cast<double>(first) / grid;
+  }
+  rendered /= phases;
+  return {{"bias_metres", bias_metres},
+          {"formula", gap},
+          {"raycast", raycast},
+          {"rendered", rendered},
+          {"filter", "nearest"}};
 }
 
 }  // namespace depthprec

@@ -51,6 +51,13 @@ TEST_CASE("a shadow pass on the system's OpenGL has no acne at the proven biases
     CHECK(r[recipe]["acne_at_bound"].get<uint64_t>() == 0);
     CHECK(r[recipe]["acne_at_90_percent"].get<uint64_t>() > 0);
   }
+  // The gap the constant costs a wall on level ground: the formula is the ray cast's, and the
+  // rendered shadow's edge lies within 5 % of it (the gap spans several texels here).
+  const auto& gap = r["gap"];
+  const double raycast = gap["raycast"].get<double>();
+  CHECK(gap["formula"].get<double>() == Approx(raycast).epsilon(1e-9));
+  CHECK(gap["rendered"].get<double>() == Approx(raycast).epsilon(0.05));
+  CHECK(raycast > 3 * j["cascades"][0]["texel"].get<double>());
 }
 
 TEST_CASE("shadow writes its cascades as text, CSV and JSON", "[shadow][cli]") {
