@@ -71,13 +71,14 @@
  * width x height): the record's source triangle that won the depth test, the exact front surface,
  * the margin (codes between the front surface and the next distinct one, in the depth test's
  * direction; <= 0 where it fights; INT_MAX with no surface behind it) and the flags. */
-#define AUDIT_PIXELS_BUFFERS(IN, OUT)                                                       \
-  IN(float, probe)                                                                          \
-  IN(float, records)                                                                        \
-  IN(uint, source)                                                                          \
-  IN(float, tolerance)                                                                      \
-  IN(double, ray) IN(double, planes) IN(uint, bins) IN(uint, bin_records) OUT(uint, winner) \
-      OUT(uint, front) OUT(int, margin) OUT(uint, flags)
+#define AUDIT_PIXELS_BUFFERS(IN, OUT)                                                        \
+  IN(float, probe)                                                                           \
+  IN(float, records)                                                                         \
+  IN(uint, source)                                                                           \
+  IN(float, tolerance)                                                                       \
+  IN(double, ray)                                                                            \
+  IN(double, planes) IN(uint, bins) IN(uint, bin_records) OUT(uint, winner) OUT(uint, front) \
+      OUT(int, margin) OUT(uint, flags)
 typedef struct {
   df_u32 width, height, tiles_x, tiles_y;
   df_u32 clear_code; /* the cleared depth buffer's code (far: 1.0, reversed 0.0) */

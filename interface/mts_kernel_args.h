@@ -51,22 +51,23 @@ typedef struct {
 
 /* mts_frame_bounds (kernels/mts/bounds.cl): the verdict of each band of each (probe, visit),
  * `items` bands in all; a probe's visit v is frame (first_frame + v) % frames_total. */
-#define MTS_FRAME_BOUNDS_BUFFERS(IN, OUT)                                                   \
-  IN(float, probes)                                                                         \
-  IN(float, tris)                                                                           \
-  IN(uint, vflags) IN(float, a_tris) IN(uint, a_vflags) IN(uint, a_bands) IN(uint, a_slots) \
-      OUT(uint, decided)
+#define MTS_FRAME_BOUNDS_BUFFERS(IN, OUT) \
+  IN(float, probes)                       \
+  IN(float, tris)                         \
+  IN(uint, vflags)                        \
+  IN(float, a_tris) IN(uint, a_vflags) IN(uint, a_bands) IN(uint, a_slots) OUT(uint, decided)
 typedef struct {
   MtsKernelArea area;
   df_u32 first_frame, frames_total, frames, items;
 } MtsFrameBoundsArgs;
 
 /* mts_raster (kernels/mts/raster.cl): the fight search of each band of each (probe, visit). */
-#define MTS_RASTER_BUFFERS(IN, OUT)                                                        \
-  IN(float, probes)                                                                        \
-  IN(float, tris)                                                                          \
-  IN(uint, vflags) IN(float, a_tris) IN(uint, a_vflags) IN(uint, a_rows) IN(uint, a_slots) \
-      IN(uint, a_codes) IN(uint, decided) OUT(uint, result)
+#define MTS_RASTER_BUFFERS(IN, OUT)                                                         \
+  IN(float, probes)                                                                         \
+  IN(float, tris)                                                                           \
+  IN(uint, vflags)                                                                          \
+  IN(float, a_tris) IN(uint, a_vflags) IN(uint, a_rows) IN(uint, a_slots) IN(uint, a_codes) \
+      IN(uint, decided) OUT(uint, result)
 typedef struct {
   MtsKernelArea area;
   df_u32 first_frame, frames_total, frames;

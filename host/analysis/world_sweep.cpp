@@ -28,6 +28,11 @@ double grid_spacing(double m, int precision) {
   return std::ldexp(1.0, e - precision);
 }
 
+// The vertex shader's significand: binary32's 24 bits, or binary16's 11 under mediump.
+int shader_bits(const Scene& scene) {
+  return scene.pipeline.shader_precision == ShaderPrecision::mediump ? 11 : 24;
+}
+
 // The magnitudes the sweep considers: from below any vertex's reach to above world_position's
 // bound plus the content's distance.
 constexpr int kFirstExponent = -30, kLastExponent = 62;
@@ -112,7 +117,7 @@ WorldLimit first_limit(const WorldProbe& probe, const SpacingLimit& by_spacing, 
 // separation along any view moves by at most two spacings per axis, lateral ones through the
 // planes' slope; the eye-space coordinates round too where the view's subtraction is inexact.
 bool holds_without_search(const WorldProbe& probe, double origin, double reach, double u) {
-  const double eye = grid_spacing(probe.r.z + reach, 24);
+  const double eye = grid_spacing(probe.r.z + reach, shader_bits(probe.scene));
   const double slope = steepest_slope(probe.scene);
   return origin + 2 * (u + eye) * (std::sqrt(3.0) + 2 * slope) <= probe.r.separation;
 }
@@ -252,10 +257,11 @@ double world_distance_limit(const WorldRequest& r) {
 double coordinate_spacing(Transform t, const Scene& scene, double magnitude) {
   switch (t) {
     case Transform::absolute: {
-      // Premultiplied in binary64, the host forms P * V * M before anything is rounded.
+      // Premultiplied in binary64, the host forms P * V * M before anything is rounded; a mediump
+      // shader holds even that matrix in binary16.
       const bool host64 = scene.pipeline.compose == Compose::premultiplied &&
                           scene.pipeline.matrix_precision == MatrixPrecision::binary64;
-      return grid_spacing(magnitude, host64 ? 53 : 24);
+      return grid_spacing(magnitude, std::min(host64 ? 53 : 24, shader_bits(scene)));
     }
     case Transform::camera_relative:
       return grid_spacing(magnitude, 53);

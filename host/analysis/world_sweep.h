@@ -41,8 +41,9 @@ double world_distance_limit(const WorldRequest& r);
 
 // The spacing of the grid that transform t keeps of world coordinates of this magnitude:
 // binary32's (absolute: the model matrix and the vertex's products; premultiplied in binary64,
-// binary64's), binary64's (camera_relative: the host forms the translation), or binary32's of
-// the low part, below 65536, and binary64's of the world position (relative_to_eye).
+// binary64's; binary16's under a mediump vertex shader), binary64's (camera_relative: the host
+// forms the translation), or binary32's of the low part, below 65536, and binary64's of the world
+// position (relative_to_eye).
 double coordinate_spacing(Transform t, const Scene& scene, double magnitude);
 
 // How far a vertex of either plane reaches from the plane's centre (its half-diagonal): a

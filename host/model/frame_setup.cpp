@@ -162,7 +162,8 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
   pc.forms = (pipe.divide == Divide::exact ? MTS_F_DIVIDE_EXACT : 0u) |
              (path == VertexPath::premultiplied ? MTS_F_COMPOSE_PREMULT : 0u) |
              (pipe.viewport == ViewportForm::fma ? MTS_F_VIEWPORT_FMA : 0u) |
-             (pipe.vertex == VertexForm::fma ? MTS_F_VERTEX_FMA : 0u);
+             (pipe.vertex == VertexForm::fma ? MTS_F_VERTEX_FMA : 0u) |
+             (pipe.shader_precision == ShaderPrecision::mediump ? MTS_F_MEDIUMP : 0u);
   pc.snap_bits = pipe.snap_bits;
   // The view's translation, applied on the GPU after the model matrix (plane_vertex_stage's view:
   // model_then_view away from the origin); premultiplied, the host folds it into P * V * M.
@@ -308,6 +309,7 @@ VertexStage read_plane_words(const Scene& s, const ProbeConstants& pc, const flo
     return st;
   }
   std::copy(words, words + MTS_MAT_STRIDE, st.matrix.begin());
+  st.mediump = (pc.forms & MTS_F_MEDIUMP) != 0;
   if (pc.forms & MTS_F_VIEW_TRANSLATE) {  // the view: the camera's translation alone
     st.view = VertexStage::View::translation;
     st.view_matrix = rounded(mat_identity());

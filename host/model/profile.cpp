@@ -13,7 +13,7 @@ const std::vector<Profile>& profiles() {
        "multiply and add",
        {"pipeline.plane=vertex", "pipeline.viewport=separate", "pipeline.vertex=separate",
         "pipeline.log=library", "pipeline.clip=none", "pipeline.conversion=exact",
-        "pipeline.snap=none"},
+        "pipeline.snap=none", "pipeline.shader_precision=highp"},
        "step"},
       // Mesa 22.3 as Debian 12 ships it (docs/validation.md): its vertex shader's fused products,
       // its depth-plane set-up and evaluation, its FMA viewport transform and its unorm
@@ -24,7 +24,7 @@ const std::vector<Profile>& profiles() {
        "conversions, its approximate log, its clip stage; bias r of unorm buffers 2/(2^n - 1)",
        {"pipeline.plane=origin_fma", "pipeline.viewport=fma", "pipeline.vertex=fma",
         "pipeline.log=llvmpipe", "pipeline.clip=llvmpipe", "pipeline.conversion=llvmpipe",
-        "pipeline.snap=none"},
+        "pipeline.snap=none", "pipeline.shader_precision=highp"},
        "double_step"},
       // Mesa 22.3's softpipe (docs/validation.md, "softpipe"): llvmpipe's draw module (its vertex
       // stage, viewport and clip stage), its own plane set-up stepped across 2x2 quads, truncated
@@ -36,8 +36,18 @@ const std::vector<Profile>& profiles() {
        "coverage, its shaders' log or its depth bias",
        {"pipeline.plane=origin_quads", "pipeline.viewport=fma", "pipeline.vertex=fma",
         "pipeline.log=llvmpipe", "pipeline.clip=llvmpipe", "pipeline.conversion=softpipe",
-        "pipeline.snap=none"},
+        "pipeline.snap=none", "pipeline.shader_precision=highp"},
        nullptr},
+      // A mobile GPU running a vertex shader declared mediump (GLSL ES: relative precision 2^-10,
+      // range 2^14; binary16 on the devices of the engines' reports, docs/spec.md 2): the ideal
+      // pipeline otherwise.
+      {"gles_mediump",
+       "the ideal pipeline with a GLSL ES mediump vertex shader: binary16 uniforms, products and "
+       "sums (interface/binary16.h)",
+       {"pipeline.plane=vertex", "pipeline.viewport=separate", "pipeline.vertex=separate",
+        "pipeline.log=library", "pipeline.clip=none", "pipeline.conversion=exact",
+        "pipeline.snap=none", "pipeline.shader_precision=mediump"},
+       "step"},
   };
   return table;
 }

@@ -83,7 +83,7 @@ const std::set<std::string> kPipelineKeys = {
     "depth_range", "matrix_precision", "compose", "divide",   "rounding",
     "denormals",   "contraction",      "plane",   "viewport", "conversion",
     "vertex",      "profile",          "log",     "clip",     "snap",
-    "transform"};
+    "transform",   "shader_precision"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 const std::set<std::string> kWorstCaseKeys = {"min_rounds", "max_rounds", "round_size",
                                               "tolerance"};

@@ -50,6 +50,9 @@ enum class ClipForm { none, llvmpipe };
 // relative_to_eye: Cesium's split of binary64 world positions into binary32 high and low parts
 // (interface/relative_to_eye.h), subtracted from the eye's on the GPU.
 enum class Transform { absolute, camera_relative, relative_to_eye };
+// The vertex shader's precision (GLSL ES): highp, binary32; mediump, binary16 (relative precision
+// 2^-10, interface/binary16.h), as mobile GPUs run a shader that declares it.
+enum class ShaderPrecision { highp, mediump };
 // The bound on world_position's coordinates, 2^40: relative to eye keeps a coordinate's high part
 // (a multiple of 65536) exact in binary32 below it.
 constexpr double kMaxWorldCoordinate = 1099511627776.0;
@@ -78,6 +81,7 @@ struct Pipeline {
   int clip_slots() const;
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
   Transform transform = Transform::absolute;
+  ShaderPrecision shader_precision = ShaderPrecision::highp;
 };
 
 struct EvalPair {

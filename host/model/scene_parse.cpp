@@ -190,6 +190,15 @@ void read_pipeline(const Reader& r, Pipeline& p) {
   p.snap_bits = r.none_or_integer("pipeline.snap", 1, 16);
   p.conversion = r.choice("pipeline.conversion", parse_conversion);
   p.transform = r.choice("pipeline.transform", parse_transform);
+  p.shader_precision = r.choice("pipeline.shader_precision", [](const std::string& v) {
+    return named_choice<ShaderPrecision>(
+        "shader_precision", v,
+        {{"highp", ShaderPrecision::highp}, {"mediump", ShaderPrecision::mediump}});
+  });
+  if (p.shader_precision == ShaderPrecision::mediump && p.transform == Transform::relative_to_eye)
+    r.fail("pipeline.shader_precision",
+           "mediump is not modelled with transform relative_to_eye: its binary32 high and low "
+           "parts would need a binary16 split of their own (use absolute or camera_relative)");
 }
 
 void read_technique_params(const Reader& r, TechniqueParams& p) {

@@ -5,6 +5,7 @@
 
 #include "host/base/errors.h"
 #include "host/runtime/kernel_variant.h"
+#include "interface/binary16.h"
 
 namespace depthprec::bound {
 
@@ -47,6 +48,15 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.P11 = P(1, 1);
   if (P(3, 2) != -1 || P(3, 3) != 0 || P(2, 0) != 0 || P(2, 1) != 0)
     throw InputError("no bound model for a projection whose w row is not (0, 0, -1, 0)");
+  // A mediump vertex shader (pipeline.shader_precision) computes in binary16 whatever the model
+  // allows, within GLSL ES mediump's range, and holds the projection's entries in binary16: the
+  // map its depths follow.
+  m.shader_range = m.model->shader_range;
+  if (p.shader_precision == ShaderPrecision::mediump) {
+    m.shader_rounding.bits = std::min(m.shader_rounding.bits, 11);
+    m.shader_range = std::min(m.shader_range, 16384.0);
+    for (double* e : {&m.a, &m.b, &m.P00, &m.P11}) *e = dp_binary16(static_cast<float>(*e));
+  }
   m.scale = m.pc.depth_gl ? 0.5 : 1.0;
   const double r = s.rotation_range_deg * M_PI / 180 + kTiltMargin;
   m.sin_tilt = std::sin(r);

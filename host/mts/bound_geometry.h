@@ -23,6 +23,9 @@ struct RowModel {
   binary32_error::Rounding rounding;         // the fixed-function stages: binary32
   binary32_error::Rounding shader_rounding;  // the shaders: the model's precision
   const BoundModel* model = nullptr;         // the scene's bound_model
+  // The shaders' largest magnitude: the model's, or GLSL ES mediump's 2^14 where the pipeline's
+  // shader precision is mediump (as shader_rounding's bits are then at most 11).
+  double shader_range = INFINITY;
   double a = 0, b = 0;  // the third row of the P the depths follow: z_clip = a e_z + b
   double scale = 1;     // window depth = scale z_ndc + (1 - scale): 0.5 under gl, else 1
   double P00 = 0, P11 = 0;

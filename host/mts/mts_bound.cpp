@@ -58,7 +58,7 @@ BoundCheck check(const RowModel& m, double z, double s) {
   if (m.path == VertexPath::model_then_view)
     for (const double w : m.scene->world_position)
       largest = std::max(largest, std::fabs(w) + gB.wv_hi);
-  if (!(largest < m.model->shader_range)) {
+  if (!(largest < m.shader_range)) {
     v.why = kBeyondShaderRange;
     return v;
   }

@@ -45,6 +45,9 @@ const std::vector<DriverSetting>& driver_settings() {
        differs<&Pipeline::conversion>, to_default<&Pipeline::conversion>},
       {"snap", "the driver snaps vertices to its own sub-pixel precision",
        differs<&Pipeline::snap_bits>, to_default<&Pipeline::snap_bits>},
+      {"shader_precision=mediump",
+       "desktop OpenGL runs every shader in binary32 (GLSL 4.5 ignores precision qualifiers)",
+       differs<&Pipeline::shader_precision>, nullptr},
   };
   return table;
 }

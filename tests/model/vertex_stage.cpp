@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "host/model/frame_setup.h"
+#include "interface/binary16.h"
 #include "interface/relative_to_eye.h"
 
 using namespace depthprec;
@@ -172,4 +173,32 @@ TEST_CASE("the kernels' words read back are the vertex stage they were packed fr
         }
     }
   }
+}
+
+TEST_CASE("mediump's rounding is the compiler's binary32-to-binary16 conversion",
+          "[vertex_stage]") {
+  // interface/binary16.h against GCC's _Float16 (IEEE binary16, to nearest, ties to even): every
+  // 4099th binary32 (both signs, every binade), and the edges: the largest finite, the first
+  // value that rounds to infinity, the subnormals' ends, ties either way.
+  size_t compared = 0;
+  auto check = [&](uint32_t bits) {
+    float x;
+    std::memcpy(&x, &bits, sizeof x);
+    if (std::isnan(x)) return;
+    const float expect = static_cast<float>(static_cast<_Float16>(x));
+    INFO(std::hex << bits);
+    REQUIRE(vs_same_bits(dp_binary16(x), expect));
+    ++compared;
+  };
+  for (uint64_t u = 0; u < 0x100000000ull; u += 4099) check(static_cast<uint32_t>(u));
+  for (const float x : {65504.0f, 65519.996f, 65520.0f, 0x1.0p-14f, 0x1.0p-24f, 0x1.8p-25f,
+                        0x1.0p-25f, 2049.0f, 2051.0f, 1.00048828125f, 1.00146484375f})
+    for (const float v : {x, -x}) {
+      uint32_t b;
+      std::memcpy(&b, &v, sizeof b);
+      check(b);
+    }
+  CHECK(compared > 1000000);
+  CHECK(dp_binary16(3000.5f) == 3000.0f);  // spacing 2 from 2048 on
+  CHECK(std::isinf(dp_binary16(65520.0f)));
 }

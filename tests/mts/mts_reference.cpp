@@ -155,6 +155,25 @@ TEST_CASE("away from the world origin the kernel follows the reference under eve
   }
 }
 
+// A GLSL ES mediump vertex shader (pipeline.shader_precision, interface/binary16.h): the kernel
+// follows the reference, codes and probe outcomes, at the origin and away from it, under each
+// transform it combines with and both compositions, with separate and fused rows.
+TEST_CASE("under a mediump vertex shader the kernel follows the reference",
+          "[mts][reference][mediump]") {
+  for (const auto& [transform, compose, vertex, world] :
+       {std::tuple{"absolute", "separate", "separate", "[0,0,0]"},
+        std::tuple{"absolute", "separate", "fma", "[1000,-500,3000]"},
+        std::tuple{"absolute", "premultiplied", "separate", "[1000,-500,3000]"},
+        std::tuple{"camera_relative", "separate", "separate", "[1000,-500,3000]"}}) {
+    const Scene scene = load_scene(
+        "", {"kernel=[48,40]", "viewport=[48,40]", "frames=12", "pipeline.shader_precision=mediump",
+             std::string("world_position=") + world, std::string("pipeline.transform=") + transform,
+             std::string("pipeline.compose=") + compose, std::string("pipeline.vertex=") + vertex});
+    INFO(transform << " " << compose << " " << vertex << " " << world);
+    check_three_pairs(scene);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("snapping moves window coordinates to the 2^-n pixel grid, half to even", "[snap]") {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "host/base/errors.h"
+#include "host/mts/mts_bound.h"
 #include "host/mts/mts_run.h"
 #include "interface/relative_to_eye.h"
 #include "tests/support/mts_fixture.h"
@@ -110,4 +111,34 @@ TEST_CASE("world_position out of range or malformed is refused with the key", "[
                     Catch::Matchers::Contains("world_position"));
   CHECK_THROWS_WITH(load_scene("", {"pipeline.transform=eye_relative"}),
                     Catch::Matchers::Contains("camera_relative"));
+}
+
+TEST_CASE(
+    "under mediump content 3000 units out along the view needs a unit, camera-relative far less",
+    "[world][mediump]") {
+  // A mediump vertex shader holds the planes' translation along the view axis, 3000 - 100, in
+  // binary16, whose spacing from 2048 to 4096 is 2: B separates from A once its translation
+  // rounds to the next value, about one unit. Camera-relative hands the shader -100 and -100 - s
+  // instead, whose spacing is 2^-4, and the projection's binary16 rows then decide.
+  const auto mediump_mts = [](const std::string& transform) {
+    const Scene scene =
+        load_scene("", {"frames=20", "world_position=[0,0,3000]",
+                        "pipeline.shader_precision=mediump", "pipeline.transform=" + transform});
+    MtsRow row = mts_rows(scene, Technique::standard, "unorm24", DepthRange::gl, {100.0}).at(0);
+    set_mts_bound(row, scene);
+    INFO(transform << ": mts " << row.mts << ", bound " << row.mts_bound);
+    CHECK(row.mts_bound >= row.mts);  // the bound takes the shader's precision from the pipeline
+    return row.mts;
+  };
+  const double absolute = mediump_mts("absolute"), relative = mediump_mts("camera_relative");
+  CHECK(absolute >= 1.0);
+  CHECK(absolute <= 2.0);
+  CHECK(relative <= absolute / 10);
+  CHECK(relative >= std::ldexp(1.0, -5));
+  // Highp keeps far less of either away: binary32's spacing at 2900 is 2^-12.
+  CHECK(world_mts({"frames=20", "world_position=[0,0,3000]"}, 100) < relative / 10);
+  // Not modelled with relative to eye: refused with the key.
+  CHECK_THROWS_WITH(
+      load_scene("", {"pipeline.shader_precision=mediump", "pipeline.transform=relative_to_eye"}),
+      Catch::Contains("pipeline.shader_precision"));
 }

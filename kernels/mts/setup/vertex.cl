@@ -30,6 +30,48 @@ static inline vec4x16_t relative_to_eye16(__global const float* P, __global cons
 }
 #endif
 
+#include "interface/binary16.h" /* mediump's rounding, shared with the host */
+
+// Row r of m times v in GLSL ES mediump (MTS_F_MEDIUMP): the matrix entry held in binary16, each
+// product and sum rounded to binary16, separate or fused one step at a time
+// (host/model/vertex_stage.cpp mediump_row_dot, the same arithmetic).
+static inline float mediump_row(__global const float* m, const float v[4], int fused) {
+  float s = dp_binary16(dp_binary16(m[0]) * v[0]);
+  for (int c = 1; c < 4; ++c)
+    s = fused ? dp_binary16(fma(dp_binary16(m[c]), v[c], s))
+              : dp_binary16(s + dp_binary16(dp_binary16(m[c]) * v[c]));
+  return s;
+}
+
+// The clip coordinates of 16 object positions, lane by lane, in mediump
+// (host/model/vertex_stage.cpp vertex_clip under VertexStage::mediump, the same steps): M (or P V M
+// premultiplied), the view's translation, P.
+static inline vec4x16_t mediump_vertex16(__global const float* P, __global const float* M,
+                                         vec4x16_t obj, uint forms, int fused) {
+  float ox[16], oy[16], out[4][16];
+  vstore16(obj.x, 0, ox);
+  vstore16(obj.y, 0, oy);
+  for (int k = 0; k < 16; ++k) {
+    const float o[4] = {ox[k], oy[k], 0.0f, 1.0f};
+    float e[4] = {0.0f, 0.0f, 0.0f, 1.0f}, c[4];
+    if (forms & MTS_F_COMPOSE_PREMULT) {
+      for (int r = 0; r < 4; ++r) c[r] = mediump_row(M + 4 * r, o, fused);
+    } else {
+      for (int r = 0; r < 3; ++r) e[r] = mediump_row(M + 4 * r, o, fused);
+      if (forms & MTS_F_VIEW_TRANSLATE)
+        for (int r = 0; r < 3; ++r) e[r] = dp_binary16(e[r] + dp_binary16(P[MTS_C_VIEW_X + r]));
+      for (int r = 0; r < 4; ++r) c[r] = mediump_row(P + 4 * r, e, fused);
+    }
+    for (int r = 0; r < 4; ++r) out[r][k] = c[r];
+  }
+  vec4x16_t clip;
+  clip.x = vload16(0, out[0]);
+  clip.y = vload16(0, out[1]);
+  clip.z = vload16(0, out[2]);
+  clip.w = vload16(0, out[3]);
+  return clip;
+}
+
 // Window x and y as the rasterizer stores them (pipeline.snap, interface/snap.h).
 DP_SNAP_WINDOW_DEFINE(snap_window_bits, fabs, rint)
 
@@ -58,13 +100,17 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
 #if RELATIVE_TO_EYE
   v.clip = mat_vec16(P, relative_to_eye16(P, M, obj), vertex_fma, 0);
 #else
-  v.clip = mat_vec16(M, obj, vertex_fma, 1);
-  if (forms & MTS_F_VIEW_TRANSLATE) { /* the view matrix: no rotation, the camera's translation */
-    v.clip.x = v.clip.x + P[MTS_C_VIEW_X];
-    v.clip.y = v.clip.y + P[MTS_C_VIEW_X + 1];
-    v.clip.z = v.clip.z + P[MTS_C_VIEW_X + 2];
+  if (forms & MTS_F_MEDIUMP) {
+    v.clip = mediump_vertex16(P, M, obj, forms, vertex_fma);
+  } else {
+    v.clip = mat_vec16(M, obj, vertex_fma, 1);
+    if (forms & MTS_F_VIEW_TRANSLATE) { /* the view matrix: no rotation, the camera's translation */
+      v.clip.x = v.clip.x + P[MTS_C_VIEW_X];
+      v.clip.y = v.clip.y + P[MTS_C_VIEW_X + 1];
+      v.clip.z = v.clip.z + P[MTS_C_VIEW_X + 2];
+    }
+    if (!(forms & MTS_F_COMPOSE_PREMULT)) v.clip = mat_vec16(P, v.clip, vertex_fma, 0);
   }
-  if (!(forms & MTS_F_COMPOSE_PREMULT)) v.clip = mat_vec16(P, v.clip, vertex_fma, 0);
 #endif
   const vec4x16_t c = v.clip;
 #if DEPTH_FROM == 1 /* host/model/shader_log.cpp vertex_log_clip_z, the same arithmetic */
