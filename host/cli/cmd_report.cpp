@@ -22,6 +22,7 @@
 #include "host/output/plots.h"
 #include "host/output/read_output.h"
 #include "host/runtime/opencl_runtime.h"
+#include "host/shadow/shadow_options.h"
 
 namespace depthprec::cli {
 
@@ -70,6 +71,16 @@ void run_report(const ReportOptions& o, const GlobalOptions& global) {
   check_writable(o.output);
   std::optional<Scene> scene;
   ReportPage page;
+  // The scene's shadow block (docs/shadow.md): checked before the long run, emulated with it.
+  auto shadow_of = [&page](const Scene& s, OpenClRuntime* rt) {
+    if (!s.json.contains("shadow")) return;
+    const ShadowRequest r =
+        shadow_request(shadow_options_from_json(s.json["shadow"], s.source), rt != nullptr);
+    page.shadow_header = shadow_header(r);
+    page.shadow_records.clear();
+    for (size_t i = 0; i < r.setup.cascades.size(); ++i)
+      page.shadow_records.push_back(shadow_record(rt, r, i));
+  };
   if (!o.from.empty()) {
     const auto j = read_json_output(o.from, "report", "--from file");
     check_rows_output(j, o.from, "report",
@@ -80,9 +91,12 @@ void run_report(const ReportOptions& o, const GlobalOptions& global) {
     if (j.contains("gl_renderer"))
       page.run.rendered = {
           j.value("gl_renderer", ""), j.value("gl_version", ""), j.value("egl_platform", ""), {}};
-    page.run.timing = false;  // the file's times belong to the run that wrote it
+    page.run.timing = false;     // the file's times belong to the run that wrote it
+    shadow_of(*scene, nullptr);  // the proof and the engines' values; no device to emulate on
   } else {
     scene = o.scene.load();
+    if (scene->json.contains("shadow"))
+      shadow_request(shadow_options_from_json(scene->json["shadow"], scene->source), false);
     install_interrupt_handlers();
     OpenClRuntime rt(global.device);
     RunControl control;
@@ -99,6 +113,7 @@ void run_report(const ReportOptions& o, const GlobalOptions& global) {
     page.run.device = rt.description();
     page.run.variants = scene_variants(*scene);
     page.run.timing = !o.no_timing;
+    shadow_of(*scene, &rt);
   }
   sort_rows(*scene, page.rows);
   page.run.fragment_pairs = 0;

@@ -15,7 +15,7 @@
 #include "host/render/gl_context.h"
 #include "host/render/render_shadow.h"
 #include "host/runtime/opencl_runtime.h"
-#include "host/shadow/shadow_run.h"
+#include "host/shadow/shadow_options.h"
 
 namespace depthprec::cli {
 
@@ -23,73 +23,12 @@ namespace {
 
 struct ShadowCliOptions {
   OutputOptions out;
-  std::vector<double> splits, extent, light_near, light_far, world_position{0, 0, 0};
-  double camera_near = 0.1, fov = 60, aspect = 16.0 / 9.0, caster_padding = 0;
-  int resolution = 2048;
-  std::string format = "float32", filter = "pcf3", api = "gl", r_unorm, slope = "max";
-  bool reversed = false;
-  double slope_max = 80, elevation = 52, azimuth = 30;
-  std::vector<std::string> engines;
-  std::string bound_model = "binary32", source = "emulated", gl_device = GlDeviceChoice{}.text;
-  uint32_t planes = 2048, grid = 8;
-  uint64_t seed = 1;
+  ShadowOptions shadow;
+  std::string source = "emulated", gl_device = GlDeviceChoice{}.text;
 };
 
-ShadowRequest request_of(const ShadowCliOptions& o) {
-  ShadowRequest r;
-  ShadowSetup& s = r.setup;
-  const bool explicit_boxes = !o.extent.empty() || !o.light_near.empty() || !o.light_far.empty();
-  if (explicit_boxes && !o.splits.empty())
-    throw InputError(
-        "shadow: give the cascades as camera splits (--splits) or as light boxes (--extent with "
-        "--light-near and --light-far), not both");
-  if (explicit_boxes) {
-    if (o.light_near.size() != o.extent.size() || o.light_far.size() != o.extent.size())
-      throw InputError(fmt::format(
-          "shadow: --extent names {} cascades, --light-near {} and --light-far {}: one value "
-          "each per cascade",
-          o.extent.size(), o.light_near.size(), o.light_far.size()));
-    for (size_t i = 0; i < o.extent.size(); ++i) {
-      ShadowCascade c;
-      c.extent = o.extent[i];
-      c.near = o.light_near[i];
-      c.far = o.light_far[i];
-      s.cascades.push_back(c);
-    }
-  } else {
-    const std::vector<double> splits =
-        o.splits.empty() ? std::vector<double>{10, 40, 150, 600} : o.splits;
-    s.cascades = cascades_from_splits(splits, o.camera_near, o.fov, o.aspect, o.caster_padding);
-  }
-  s.resolution = o.resolution;
-  s.format = StorageFormat::parse(o.format);
-  s.reversed = o.reversed;
-  s.filter = parse_shadow_filter(o.filter);
-  s.raster.api = parse_bias_api(o.api);
-  if (!o.r_unorm.empty()) s.raster.unorm_r = parse_unorm_r(o.r_unorm);
-  s.raster.slope = parse_slope_form(o.slope);
-  validate(s.raster);
-  s.slope_max = o.slope_max;
-  if (o.world_position.size() != 3)
-    throw Error(ExitCode::usage, "shadow: --world-position takes three numbers: X,Y,Z");
-  s.world_position = {o.world_position[0], o.world_position[1], o.world_position[2]};
-  s.light_elevation = o.elevation;
-  s.light_azimuth = o.azimuth;
-  validate(s);
-  for (const std::string& e : o.engines) engine_info(e);  // unknown names fail here
-  r.engines = o.engines;
-  bound_model(o.bound_model);
-  r.bound_model = o.bound_model;
-  if (o.planes < 16 || o.grid < 1 || o.grid > 64)
-    throw InputError(
-        fmt::format("shadow: --planes {} (16 or more) --grid {} (1 to 64)", o.planes, o.grid));
-  r.sampling = {o.planes, o.grid, o.seed};
-  r.emulate = o.source != "bound";
-  return r;
-}
-
 void run_shadow(const ShadowCliOptions& o, const GlobalOptions& g) {
-  const ShadowRequest r = request_of(o);
+  const ShadowRequest r = shadow_request(o.shadow, o.source != "bound");
   check_writable(o.out.output);
   std::unique_ptr<OpenClRuntime> rt;
   if (r.emulate) rt = std::make_unique<OpenClRuntime>(g.device);
@@ -142,47 +81,56 @@ void add_shadow_command(CLI::App& app, GlobalOptions& global) {
               "  depthprec shadow --extent 50 --light-near -100 --light-far 25 --source bound\n"
               "  depthprec shadow --splits 10,40 --source rendered --planes 64\n"
               "      checks the bias on the system's OpenGL: no acne at it, acne 10 % below\n");
-  cmd->add_option("--splits", o->splits,
+  cmd->add_option("--splits", o->shadow.splits,
                   "Camera distances where cascades end, metres (default 10,40,150,600)")
       ->delimiter(',');
-  cmd->add_option("--camera-near", o->camera_near, "Where the first cascade starts, metres");
-  cmd->add_option("--fov", o->fov, "The camera's vertical field of view, degrees (default 60)");
-  cmd->add_option("--aspect", o->aspect, "The camera's aspect, width/height (default 16/9)");
-  cmd->add_option("--caster-padding", o->caster_padding,
+  cmd->add_option("--camera-near", o->shadow.camera_near, "Where the first cascade starts, metres");
+  cmd->add_option("--fov", o->shadow.fov,
+                  "The camera's vertical field of view, degrees (default 60)");
+  cmd->add_option("--aspect", o->shadow.aspect, "The camera's aspect, width/height (default 16/9)");
+  cmd->add_option("--caster-padding", o->shadow.caster_padding,
                   "Metres the light's box reaches beyond each cascade's sphere toward the light "
                   "(default 0: pancaking)");
-  cmd->add_option("--extent", o->extent, "Cascades as light boxes: each square's side, metres")
+  cmd->add_option("--extent", o->shadow.extent,
+                  "Cascades as light boxes: each square's side, metres")
       ->delimiter(',');
-  cmd->add_option("--light-near", o->light_near, "Each box's near side, metres along the light")
+  cmd->add_option("--light-near", o->shadow.light_near,
+                  "Each box's near side, metres along the light")
       ->delimiter(',');
-  cmd->add_option("--light-far", o->light_far, "Each box's far side, metres along the light")
+  cmd->add_option("--light-far", o->shadow.light_far, "Each box's far side, metres along the light")
       ->delimiter(',');
-  cmd->add_option("--resolution", o->resolution, "Texels per side of each cascade (default 2048)");
-  cmd->add_option("--format", o->format, "unorm16, unorm24 or float32 (default float32)");
-  cmd->add_flag("--reversed", o->reversed, "Reversed depth: nearer the light is larger");
-  cmd->add_option("--filter", o->filter,
+  cmd->add_option("--resolution", o->shadow.resolution,
+                  "Texels per side of each cascade (default 2048)");
+  cmd->add_option("--format", o->shadow.format, "unorm16, unorm24 or float32 (default float32)");
+  cmd->add_flag("--reversed", o->shadow.reversed, "Reversed depth: nearer the light is larger");
+  cmd->add_option("--filter", o->shadow.filter,
                   "nearest, pcf2x2, pcfN (N x N hardware comparisons) or tentN (default pcf3)");
-  cmd->add_option("--api", o->api, "gl, d3d or vulkan: whose raster bias rule (default gl)");
-  cmd->add_option("--r-unorm", o->r_unorm, "pow2, step, double_step or double_pow2");
-  cmd->add_option("--slope", o->slope, "The raster slope: max or sqrt (default max)");
-  cmd->add_option("--slope-max", o->slope_max,
+  cmd->add_option("--api", o->shadow.api, "gl, d3d or vulkan: whose raster bias rule (default gl)");
+  cmd->add_option("--r-unorm", o->shadow.r_unorm, "pow2, step, double_step or double_pow2");
+  cmd->add_option("--slope", o->shadow.slope, "The raster slope: max or sqrt (default max)");
+  cmd->add_option("--slope-max", o->shadow.slope_max,
                   "The largest angle between a receiver's normal and the light, degrees (default "
                   "80)");
-  cmd->add_option("--world-position", o->world_position, "The cascades' centre, metres: X,Y,Z")
+  cmd->add_option("--world-position", o->shadow.world_position,
+                  "The cascades' centre, metres: X,Y,Z")
       ->delimiter(',');
-  cmd->add_option("--light-elevation", o->elevation, "The light above the horizon, degrees (52)");
-  cmd->add_option("--light-azimuth", o->azimuth, "The light's azimuth, degrees (default 30)");
-  cmd->add_option("--engines", o->engines, "Engines to convert to (default all): " + engine_names())
+  cmd->add_option("--light-elevation", o->shadow.light_elevation,
+                  "The light above the horizon, degrees (52)");
+  cmd->add_option("--light-azimuth", o->shadow.light_azimuth,
+                  "The light's azimuth, degrees (default 30)");
+  cmd->add_option("--engines", o->shadow.engines,
+                  "Engines to convert to (default all): " + engine_names())
       ->delimiter(',');
-  cmd->add_option("--bound-model", o->bound_model,
+  cmd->add_option("--bound-model", o->shadow.bound_model,
                   "What the proof allows the GPU: " + bound_model_names() + " (default binary32)");
   cmd->add_option("--source", o->source,
                   "bound (the proof alone), emulated (also the emulation's witnessed minimum; "
                   "default) or rendered (also a shadow pass on the system's OpenGL)")
       ->check(CLI::IsMember({"bound", "emulated", "rendered"}));
-  cmd->add_option("--planes", o->planes, "Receiver planes the emulation samples (default 2048)");
-  cmd->add_option("--grid", o->grid, "Receiver points per texel side (default 8)");
-  cmd->add_option("--seed", o->seed, "The sampling's seed (default 1)");
+  cmd->add_option("--planes", o->shadow.planes,
+                  "Receiver planes the emulation samples (default 2048)");
+  cmd->add_option("--grid", o->shadow.grid, "Receiver points per texel side (default 8)");
+  cmd->add_option("--seed", o->shadow.seed, "The sampling's seed (default 1)");
   add_gl_device_option(cmd, o->gl_device);
   o->out.add_to(*cmd);
   cmd->callback([o, &global]() { run_shadow(*o, global); });

@@ -258,6 +258,9 @@ Scene parse_scene(const json& merged, const std::string& source, const std::stri
   read_pipeline(r, s.pipeline);
   read_technique_params(r, s.params);
   read_evaluate(r, s);
+  // The shadow block is `shadow`'s options, read where they are used (`report`: docs/shadow.md).
+  if (merged.contains("shadow") && !merged["shadow"].is_object())
+    r.fail("shadow", "must be an object of shadow's options (docs/shadow.md)");
   s.json = merged;
   s.json["pipeline"]["profile"] = matching_profile(merged["pipeline"]);
   return s;

@@ -9,6 +9,7 @@
 #include "host/base/version.h"
 #include "host/model/frame_setup.h"
 #include "host/output/bound_table.h"
+#include "host/output/shadow_output.h"
 
 namespace depthprec {
 
@@ -238,6 +239,30 @@ std::string lj_section(const std::vector<LjFigure>& lj, const Scene& scene) {
          table({"pair", "buffer", "format", "ae"}, body);
 }
 
+// The scene's shadow block, as `depthprec shadow` prints it: the proven biases per cascade and
+// the engines' settings.
+std::string shadow_section(const ReportPage& page) {
+  if (page.shadow_records.empty()) return "";
+  const ShadowTables t = shadow_tables(page.shadow_header, page.shadow_records, "text");
+  auto rows = [](const Cells& cells) {
+    std::vector<std::string> out;
+    for (const auto& r : cells) {
+      std::string row;
+      for (size_t i = 0; i < r.size(); ++i) row += cell(r[i], i < 2 ? "left" : "num");
+      out.push_back(row);
+    }
+    return out;
+  };
+  auto names = [](const std::vector<Column>& cols) {
+    std::vector<std::string> out;
+    for (const Column& c : cols) out.push_back(c.name);
+    return out;
+  };
+  return "<h2>Shadow-map bias</h2>\n<p>" + html_escape(t.caption) + ".</p>\n" +
+         table(names(t.cascade_cols), rows(t.cascades)) + "<p>" + html_escape(t.engine_caption) +
+         "</p>\n" + table(names(t.engine_cols), rows(t.engines));
+}
+
 // gnuplot's SVG without its XML prolog and doctype, which are not allowed inside HTML.
 std::string inline_svg(const std::string& svg) {
   const size_t start = svg.find("<svg");
@@ -264,6 +289,7 @@ std::string html_report(const ReportPage& page) {
   out += bound_section(scene, page.rows);
   out += attribution_section(scene, page.rows);
   out += lj_section(page.lj, scene);
+  out += shadow_section(page);
   out += "<p class=\"meta\">" + html_escape(footer(page.run)) + "</p>\n</body>\n</html>\n";
   return out;
 }

@@ -3,6 +3,7 @@
 // figures -- with no script, stylesheet, font or image from anywhere else.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct ReportPage {
   std::vector<LjFigure> lj;
   std::string plot_svg;  // gnuplot's SVG document, inlined
   std::string command;   // the command line that made the page
+  // `shadow`'s header and cascade records, when the scene has a "shadow" block (docs/shadow.md)
+  nlohmann::json shadow_header;
+  std::vector<nlohmann::json> shadow_records;
 };
 
 std::string html_report(const ReportPage& page);

@@ -139,13 +139,23 @@ std::string render_shadow_output(const nlohmann::json& header,
     }
     return csv(cols, cells);
   }
-  Cells cascades, engines;
+  const ShadowTables t = shadow_tables(header, records, format);
+  return captioned(t.caption, t.cascade_cols, t.cascades, format) + "\n" +
+         captioned(t.engine_caption, t.engine_cols, t.engines, format);
+}
+
+ShadowTables shadow_tables(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                           const std::string& format) {
+  ShadowTables t;
+  t.caption = caption(header);
+  t.engine_caption = engine_caption(header);
+  t.cascade_cols = cascade_columns();
+  t.engine_cols = engine_columns();
   for (const auto& rec : records) {
-    cascades.push_back(cascade_cells(rec, format));
-    for (const auto& e : rec["engines"]) engines.push_back(engine_cells(rec, e, format));
+    t.cascades.push_back(cascade_cells(rec, format));
+    for (const auto& e : rec["engines"]) t.engines.push_back(engine_cells(rec, e, format));
   }
-  return captioned(caption(header), cascade_columns(), cascades, format) + "\n" +
-         captioned(engine_caption(header), engine_columns(), engines, format);
+  return t;
 }
 
 }  // namespace depthprec

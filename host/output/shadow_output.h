@@ -7,7 +7,19 @@
 #include <string>
 #include <vector>
 
+#include "host/output/text_table.h"
+
 namespace depthprec {
+
+// The two tables as columns and text cells, with what each says above it: the text and Markdown
+// output and the report page's shadow section render the same.
+struct ShadowTables {
+  std::string caption, engine_caption;
+  std::vector<Column> cascade_cols, engine_cols;
+  Cells cascades, engines;
+};
+ShadowTables shadow_tables(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
+                           const std::string& format);
 
 std::string render_shadow_output(const nlohmann::json& header,
                                  const std::vector<nlohmann::json>& records,

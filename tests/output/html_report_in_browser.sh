@@ -9,14 +9,19 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene=(-t standard,reversed,linear -f unorm24,float32 --kernel 24x24 --frames 4 --far 1e5
        --distances 2,64,2048,65536,1e6)
+# A scene that asks for shadows (docs/shadow.md) gets the shadow section.
+shadow=(--set 'shadow={"splits":[10,40],"planes":64,"engines":["bevy","godot"]}')
 
-"$exe" report "${scene[@]}" --no-timing -q -o "$tmp/report.html"
+"$exe" report "${scene[@]}" "${shadow[@]}" --no-timing -q -o "$tmp/report.html"
 page="$tmp/report.html"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 grep -q '<svg' "$page" || fail "no inline SVG plot"
 grep -q 'Attribution' "$page" || fail "no attribution section"
 grep -q 'Lapidous-Jiao' "$page" || fail "no Lapidous-Jiao figures (standard is LJ's z buffer)"
+grep -q 'Shadow-map bias' "$page" || fail "no shadow section though the scene has a shadow block"
+grep -q '<td class="left">10-40</td>' "$page" || fail "the shadow section has no row for cascade 2"
+grep -q '<td class="left">godot</td>' "$page" || fail "the shadow section has no engine rows"
 # Nothing from outside the page: no linked stylesheet, script, image or font; the SVG's own
 # references (href='#gpPt1', url(#gpPat1)) point inside the page.
 outside='<link|<script|<img|<iframe|<object|<embed|@import|url\((?!#)|(src|href)\s*=\s*["'"'"'](?!#)'
