@@ -98,6 +98,52 @@ std::string engine_names() {
   return out;
 }
 
+namespace {
+
+// One engine's conversion in a cascade: its scales, the reach its raster slope leaves uncovered,
+// and the depth offset (metres along the light) a normal offset of k metres still needs.
+struct EngineConversion {
+  Scales sc;
+  double a = 0;              // metres of uncovered reach per unit of tan(theta)
+  double raster_metres = 0;  // what its raster constant covers
+  double error_metres = 0;
+  double theta_max = 0;
+  NormalForm form = NormalForm::full;
+
+  EngineConversion(const EngineInfo& e, const ShadowSetup& s, size_t cascade, const ShadowBound& b)
+      : sc(scales_of(e, s, cascade)), form(e.normal_form) {
+    // The raster slope the engine always sets covers part of the reach: at the worst azimuth
+    // the texels' drop sqrt(2) reach' g against the slope bias's factor g / sqrt(2)
+    // (shadow_bound.cpp).
+    a = std::max(0.0, std::sqrt(2.0) * b.terms.lateral_reach() - e.raster_slope / std::sqrt(2.0)) *
+        b.texel;
+    raster_metres = e.raster_units * shadow_r(s) * b.range;
+    error_metres = b.error_metres;
+    theta_max = radians(s.slope_max);
+  }
+  // The largest uncovered reach over slopes up to the limit, on a grid fine enough for these
+  // smooth functions, plus the errors' constant.
+  double need(double k) const {
+    double worst = 0;
+    const int steps = 4096;
+    for (int i = 0; i <= steps; ++i) {
+      const double th = theta_max * i / steps;
+      worst = std::max(worst, a * std::tan(th) - clearance(form, k, th));
+    }
+    return error_metres + worst;
+  }
+  double setting(double metres) const { return std::max(0.0, metres - raster_metres) / sc.depth; }
+};
+
+}  // namespace
+
+std::optional<double> engine_depth_for_normal(const EngineInfo& e, const ShadowSetup& s,
+                                              size_t cascade, const ShadowBound& b, double normal) {
+  if (!e.public_formula) return std::nullopt;
+  const EngineConversion c(e, s, cascade, b);
+  return c.setting(c.need(normal * c.sc.normal));
+}
+
 std::vector<EngineBias> engine_biases(const ShadowSetup& s, size_t cascade, const ShadowBound& b,
                                       const std::vector<std::string>& engines) {
   std::vector<const EngineInfo*> chosen;
@@ -105,8 +151,6 @@ std::vector<EngineBias> engine_biases(const ShadowSetup& s, size_t cascade, cons
     for (const EngineInfo& e : engine_table()) chosen.push_back(&e);
   else
     for (const std::string& n : engines) chosen.push_back(&engine_info(n));
-
-  const double theta_max = radians(s.slope_max);
   std::vector<EngineBias> out;
   for (const EngineInfo* e : chosen) {
     EngineBias eb;
@@ -115,35 +159,16 @@ std::vector<EngineBias> engine_biases(const ShadowSetup& s, size_t cascade, cons
       out.push_back(eb);
       continue;
     }
-    const Scales sc = scales_of(*e, s, cascade);
-    // The raster slope the engine always sets covers part of the reach: at the worst azimuth the
-    // texels' drop sqrt(2) reach' g against the slope bias's factor g / sqrt(2) (bound.cpp).
-    const double a =
-        std::max(0.0, std::sqrt(2.0) * b.terms.lateral_reach() - e->raster_slope / std::sqrt(2.0)) *
-        b.texel;
-    const double raster_metres = e->raster_units * shadow_r(s) * b.range;
-    // The depth offset (metres along the light) a normal offset of k metres leaves uncovered at
-    // the worst slope up to the limit, on a grid fine enough for these smooth functions, plus the
-    // errors' constant.
-    auto need = [&](double k) {
-      double worst = 0;
-      const int steps = 4096;
-      for (int i = 0; i <= steps; ++i) {
-        const double th = theta_max * i / steps;
-        worst = std::max(worst, a * std::tan(th) - clearance(e->normal_form, k, th));
-      }
-      return b.error_metres + worst;
-    };
-    auto setting = [&](double metres) { return std::max(0.0, metres - raster_metres) / sc.depth; };
-    eb.depth_alone = setting(need(0));
+    const EngineConversion c(*e, s, cascade, b);
+    eb.depth_alone = c.setting(c.need(0));
     if (e->normal_form == NormalForm::full)
-      eb.normal_min = a * std::sin(theta_max) * (1 + kBiasArithmetic) / sc.normal;
+      eb.normal_min = c.a * std::sin(c.theta_max) * (1 + kBiasArithmetic) / c.sc.normal;
     else if (e->normal_form == NormalForm::sine)
-      eb.normal_min = a * (1 + kBiasArithmetic) / sc.normal;
-    if (eb.normal_min) eb.depth_for_normal_min = setting(b.error_metres);
-    const double needed = need(e->default_normal * sc.normal);
-    eb.depth_with_normal_default = setting(needed);
-    eb.default_suffices = e->default_depth * sc.depth + raster_metres >= needed;
+      eb.normal_min = c.a * (1 + kBiasArithmetic) / c.sc.normal;
+    if (eb.normal_min) eb.depth_for_normal_min = c.setting(b.error_metres);
+    const double needed = c.need(e->default_normal * c.sc.normal);
+    eb.depth_with_normal_default = c.setting(needed);
+    eb.default_suffices = e->default_depth * c.sc.depth + c.raster_metres >= needed;
     out.push_back(eb);
   }
   return out;

@@ -44,6 +44,11 @@ struct EngineBias {
   bool default_suffices = false;                    // its defaults leave no acne under the bound
 };
 
+// The depth bias setting engine e needs beside a normal bias setting of `normal` (0 when its
+// raster bias alone covers the rest); unset when its formula is not public.
+std::optional<double> engine_depth_for_normal(const EngineInfo& e, const ShadowSetup& s,
+                                              size_t cascade, const ShadowBound& b, double normal);
+
 // Every engine's settings for the cascade (the engines' names, or all when empty).
 std::vector<EngineBias> engine_biases(const ShadowSetup& s, size_t cascade, const ShadowBound& b,
                                       const std::vector<std::string>& engines);

@@ -170,3 +170,50 @@ TEST_CASE("a published cascade table comes back from its inputs", "[shadow]") {
 }
 
 }  // namespace depthprec
+
+namespace depthprec {
+
+TEST_CASE("Bevy's old and new normal bias come out where its users saw acne and did not",
+          "[shadow]") {
+  // bevy#10188 (before bevy#10346 raised the normal bias from 0.6 to 1.8): in the shadow_biases
+  // example, a ground plane under a sun about 9 degrees high (receivers 81 degrees from the
+  // light), the default filter Castano13 (a 5 x 5 tent in 9 taps: tent5) "shows acne from the
+  // wider PCF offsets" while Hardware2x2 "looks fine"; both at the default depth bias 0.02 m.
+  // Bevy's default cascades then: 4, the first ending at 5 m, the last at 1000 m, exponential
+  // between, 2048^2 each, a 45 degree field of view; the spheres fitted at the camera's 0.1 m.
+  ShadowSetup s;
+  s.cascades = cascades_from_splits({5, 29.24, 171.0, 1000}, 0.1, 45, 16.0 / 9.0, 0);
+  s.light_elevation = 9;
+  s.slope_max = 81;
+  const EngineInfo& bevy = engine_info("bevy");
+  auto depth_needed = [&](const std::string& filter, double normal) {
+    s.filter = parse_shadow_filter(filter);
+    validate(s);
+    const ShadowBound b = shadow_bound(s, 0, bound_model("binary32"));
+    return *engine_depth_for_normal(bevy, s, 0, b, normal);
+  };
+  INFO("tent5 0.6: " << depth_needed("tent5", 0.6)
+                     << ", pcf2x2 0.6: " << depth_needed("pcf2x2", 0.6));
+  CHECK(depth_needed("tent5", 0.6) > 0.02);    // acne, as reported
+  CHECK(depth_needed("pcf2x2", 0.6) <= 0.02);  // none, as reported
+  // The raised normal bias needs less than the old one under the same filter.
+  CHECK(depth_needed("tent5", 1.8) < depth_needed("tent5", 0.6));
+}
+
+TEST_CASE("three.js's zero biases leave acne on any sloped receiver", "[shadow]") {
+  // three-csm#19 and mml-io/3d-web-experience#22: acne on flat ground with bias and normalBias at
+  // their default 0, under the default PCF.
+  ShadowSetup s;
+  s.cascades = cascades_from_splits({335, 703, 2000}, 0.1, 50, 16.0 / 9.0, 200);
+  s.filter = parse_shadow_filter("pcf2x2");
+  s.slope_max = 30;
+  validate(s);
+  for (size_t k = 0; k < s.cascades.size(); ++k) {
+    const ShadowBound b = shadow_bound(s, k, bound_model("binary32"));
+    const EngineBias e = engine_biases(s, k, b, {"threejs"}).at(0);
+    CHECK_FALSE(e.default_suffices);
+    CHECK(*e.depth_with_normal_default < 0);  // a negative bias lifts the receiver
+  }
+}
+
+}  // namespace depthprec
