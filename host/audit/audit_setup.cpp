@@ -294,6 +294,10 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
         "audit: the layered technique splits the depth range per distance; audit its "
         "layers' mapping instead (-t " +
         std::string(info(s.params.layer_mapping).name) + ")");
+  if (pair.technique == Technique::orthographic)
+    throw InputError(
+        "audit: orthographic set-ups take the projection from the scene's camera, and the audit "
+        "takes a perspective glTF camera; audit a perspective technique");
   AuditSetup a;
   a.pair = pair;
   a.pc = probe_constants(s, pair, s.near);

@@ -36,10 +36,13 @@ Mat4d row_major_f64(const Mat<T>& m) {
   return out;
 }
 
+// z: the planes' distance, which an orthographic camera's view takes its size from: the
+// perspective view's at z (half-height z tan(fov / 2)), so a plane covers the same pixels.
 template <class T>
-Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
+Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f, double z) {
   const T half_fov = static_cast<T>(s.fov_y_deg * glm::pi<double>() / 360.0);
-  const T sy = T(1) / std::tan(half_fov);
+  const bool ortho = pair.technique == Technique::orthographic;
+  const T sy = ortho ? T(1) / (static_cast<T>(z) * std::tan(half_fov)) : T(1) / std::tan(half_fov);
   const T aspect = static_cast<T>(s.viewport_w) / static_cast<T>(s.viewport_h);
   const T sx = sy / aspect;
   const Row3<T> row = projection_row3<T>(pair.technique, pair.depth_range, n, f);
@@ -48,7 +51,10 @@ Mat<T> projection(const Scene& s, const EvalPair& pair, T n, T f) {
   P[1][1] = sy;
   P[2][2] = row.a;
   P[3][2] = row.b;
-  P[2][3] = T(-1);
+  if (ortho)
+    P[3][3] = T(1);
+  else
+    P[2][3] = T(-1);
   return P;
 }
 
@@ -132,10 +138,10 @@ ViewMatrix camera_view(const Scene& s, Transform t) {
 }
 
 template <class T>
-ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, double f64) {
+ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, double f64, double z) {
   ProbeConstants pc;
   const T n = static_cast<T>(n64), f = static_cast<T>(f64);
-  const Mat<T> P = projection<T>(s, pair, n, f);
+  const Mat<T> P = projection<T>(s, pair, n, f, z);
   pc.P = to_row_major(P);
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) pc.P_full[r * 4 + c] = static_cast<double>(P[c][r]);
@@ -235,8 +241,8 @@ ProbeConstants probe_constants(const Scene& s, const EvalPair& pair, double z,
     geometry.technique = s.params.layer_mapping;
   }
   ProbeConstants pc = s.pipeline.matrix_precision == MatrixPrecision::single
-                          ? constants<float>(s, geometry, n, f)
-                          : constants<double>(s, geometry, n, f);
+                          ? constants<float>(s, geometry, n, f, z)
+                          : constants<double>(s, geometry, n, f, z);
   pc.z = z;
   const auto it = orientations.at.find(z);
   if (it != orientations.at.end()) pc.orientations = it->second;

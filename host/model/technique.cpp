@@ -87,6 +87,10 @@ const std::vector<TechniqueInfo>& technique_table() {
        "inverse_w", projection_only},
       {Technique::layered, "layered", D::projection, F::none, false, gl, true, M::standard, nullptr,
        "one pass per layer, depth cleared per layer"},
+      // An orthographic camera (CAD viewers, shadow maps of directional lights): depth linear in
+      // the eye z; for the MTS its view at the planes' distance is the perspective one's.
+      {Technique::orthographic, "orthographic", D::projection, F::none, false, gl, true, M::linear,
+       nullptr, projection_only},
   };
   return table;
 }

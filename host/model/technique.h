@@ -62,6 +62,7 @@ enum class Technique {
   w_buffer,
   inverse_w,
   layered,
+  orthographic,
 };
 
 struct TechniqueInfo {
@@ -101,11 +102,12 @@ bool has_far_plane(Technique t);
 // The techniques that need a finite far plane, for error messages: "standard, reversed, ...".
 std::string finite_far_technique_names();
 
-// Third row of P, (P[2][2], P[2][3]), computed term by term in the arithmetic of T as an
-// application writes it (T = float for matrix_precision float, double for double). The
-// techniques whose depth is not the projection's (log_vertex rewrites z_clip, the fragment-depth
-// ones ignore it) get the standard row for their geometry. far = +inf gives NaN entries for
-// standard and reversed: a result the evaluator reports as non_finite.
+// Third row of P, (P[2][2], P[2][3]), computed term by term (orthographic's w row is (0, 0, 0, 1),
+// the perspective techniques' (0, 0, -1, 0): host/model/frame_setup.cpp projection) in the
+// arithmetic of T as an application writes it (T = float for matrix_precision float, double for
+// double). The techniques whose depth is not the projection's (log_vertex rewrites z_clip, the
+// fragment-depth ones ignore it) get the standard row for their geometry. far = +inf gives NaN
+// entries for standard and reversed: a result the evaluator reports as non_finite.
 template <class T>
 struct Row3 {
   T a, b;
@@ -122,6 +124,8 @@ Row3<T> projection_row3(Technique t, DepthRange r, T n, T f) {
     case Technique::reversed_infinite:
     case Technique::inverse_w:  // d = n/w: the same matrix as reversed_infinite
       return {gl ? T(1) : T(0), gl ? T(2) * n : n};
+    case Technique::orthographic:  // z_ndc of the eye z itself, w = 1 (glOrtho, D3D's OrthoRH)
+      return {gl ? T(-2) / (f - n) : T(-1) / (f - n), gl ? -(f + n) / (f - n) : -n / (f - n)};
     default:
       return {gl ? -(f + n) / (f - n) : -f / (f - n),
               gl ? T(-2) * f * n / (f - n) : -f * n / (f - n)};

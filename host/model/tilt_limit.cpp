@@ -54,6 +54,13 @@ double max_tilt_deg(const Scene& s) {
 
 void check_tilt(const Scene& s, double tilt_deg) {
   if (tilt_deg == 0) return;
+  // The tilted planes are fitted to the perspective view's rays (host/model/tilted_plane.h).
+  for (const EvalPair& pair : s.evaluate)
+    if (pair.technique == Technique::orthographic)
+      throw InputError(fmt::format(
+          "--tilt {}: tilted planes are fitted to a perspective view; orthographic takes no tilt "
+          "yet",
+          tilt_deg));
   const double limit = max_tilt_deg(s);
   if (tilt_deg > limit)
     throw InputError(fmt::format(

@@ -46,6 +46,8 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.b = P(2, 3);
   m.P00 = P(0, 0);
   m.P11 = P(1, 1);
+  if (pair.technique == Technique::orthographic)
+    throw InputError("no bound model for the orthographic projection yet (its w is 1)");
   if (P(3, 2) != -1 || P(3, 3) != 0 || P(2, 0) != 0 || P(2, 1) != 0)
     throw InputError("no bound model for a projection whose w row is not (0, 0, -1, 0)");
   // A mediump vertex shader (pipeline.shader_precision) computes in binary16 whatever the model

@@ -1,0 +1,73 @@
+// The orthographic technique (host/model/technique.h): its projection, its MTS where storage
+// decides (one code of its linear map, the same at every distance), and what it does not take
+// yet (a bound model, attribution, a tilt, the audit).
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "host/model/frame_setup.h"
+#include "host/mts/mts_bound.h"
+#include "tests/support/mts_fixture.h"
+#include "tests/support/run_cli.h"
+
+using namespace depthprec;
+using depthprec::test::mts_rows;
+
+TEST_CASE(
+    "orthographic's projection: w is 1, the view at z is the perspective one's, depth is "
+    "linear",
+    "[mts][orthographic]") {
+  const Scene scene = load_scene("", {"far=1000"});
+  for (const DepthRange range : {DepthRange::gl, DepthRange::zero_to_one}) {
+    const EvalPair ortho{Technique::orthographic, "float32", range};
+    const EvalPair persp{Technique::standard, "float32", range};
+    const ProbeConstants o = probe_constants(scene, ortho, 50),
+                         p = probe_constants(scene, persp, 50);
+    // The w row (0, 0, 0, 1); x and y scaled so the view's half-height at z = 50 is the
+    // perspective view's there.
+    CHECK(o.P[12] == 0.0f);
+    CHECK(o.P[14] == 0.0f);
+    CHECK(o.P[15] == 1.0f);
+    CHECK(o.P[5] * 50 == Approx(p.P[5]).epsilon(1e-6));
+    CHECK(o.P[0] * 50 == Approx(p.P[0]).epsilon(1e-6));
+    // The window depth of eye distance w is (w - n) / (f - n) in both ranges.
+    for (const double w : {1.0, 10.0, 500.0, 1000.0}) {
+      const double ndc = o.P_full[10] * -w + o.P_full[11];
+      const double d = range == DepthRange::gl ? 0.5 * ndc + 0.5 : ndc;
+      CHECK(d == Approx((w - 1) / 999).margin(1e-6));
+      CHECK(depth_of_distance(Technique::orthographic, 1, 1000, scene.params, w) ==
+            Approx((w - 1) / 999).margin(1e-12));
+    }
+  }
+}
+
+TEST_CASE("orthographic unorm16 needs one code of its linear map at every distance",
+          "[mts][orthographic]") {
+  // A code of unorm16 over [1, 1000] spans 999 / 65535 = 0.0152 of eye distance, far more than
+  // binary32 moves a depth: storage decides, and a linear map has the same spacing everywhere.
+  const Scene scene = load_scene("", {"far=1000", "frames=12"});
+  const double spacing = 999.0 / 65535;
+  for (const MtsRow& r :
+       mts_rows(scene, Technique::orthographic, "unorm16", DepthRange::gl, {2.0, 100.0, 900.0})) {
+    INFO("z = " << r.z << ": mts " << r.mts);
+    CHECK(r.mts >= spacing);
+    CHECK(r.mts <= 1.05 * spacing);
+    // No bound model for it yet: the row says so rather than giving one.
+    MtsRow bounded = r;
+    set_mts_bound(bounded, scene);
+    CHECK(std::isnan(bounded.mts_bound));
+    CHECK(bounded.bound_note.find("orthographic") != std::string::npos);
+  }
+}
+
+TEST_CASE("orthographic refuses what it does not take yet, naming it", "[mts][orthographic][cli]") {
+  using depthprec::test::run_cli;
+  const auto tilt = run_cli("bias -t orthographic -f unorm24 --distances 10 --tilt 30 -q");
+  CHECK(tilt.exit_code == 3);
+  CHECK(tilt.output.find("orthographic takes no tilt") != std::string::npos);
+  // Attribution leaves its rows unattributed rather than casting perspective rays.
+  const auto attributed = run_cli(
+      "mts -t orthographic -f unorm16 --far 1000 --distances 10 --attribute --kernel 24x24 "
+      "--frames 4 -q --no-timing --format-out json");
+  REQUIRE(attributed.exit_code == 0);
+  CHECK(attributed.output.find("\"storage_mts\"") == std::string::npos);
+}
