@@ -4,7 +4,7 @@
 # the emulation's witnessed share of each (kernels/shadow.cl), acne in the rendered shadow pass on
 # the system's OpenGL at the bound and at 90 % of it, and the gap the constant costs (formula,
 # ray cast, rendered), with each run's wall time. Prints and writes bench/results/shadow_checks.txt
-# (bench/results.sh: OUT=FILE elsewhere). About half a minute on 2 cores.
+# (bench/results.sh: OUT=FILE elsewhere). About 40 seconds on 2 cores.
 # Usage: bench/shadow_checks.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,6 +22,8 @@ setups=(
   "--format unorm16 --filter pcf5 --slope-max 85 --resolution 512"
   "--format unorm24 --filter nearest --world-position 20000,0,15000"
   "--light-elevation 80 --slope-max 45"
+  "--light spot --distances 2,10,45 --light-far 50 --filter tent5"
+  "--light spot --distances 2,10,45 --light-far 50 --filter tent5 --reversed --world-position 5000,0,3000"
 )
 
 measure() {
@@ -29,7 +31,7 @@ measure() {
     "(four cascades split at 10/40/150/600 m, 2048^2, float32, pcf3, slopes to 80 deg unless SETUP says)"
   echo "renderer: $("$bin" shadow --source rendered --splits 10 --planes 16 -q --format-out json | python3 -c 'import json,sys; print(json.load(sys.stdin)["renderer"])')"
   echo
-  echo "| set-up | cascade | texel m | constant r | slope | normal texels | witnessed c/s/n | rendered acne at bound | rendered acne at 90 % c/s/n | gap m | ray cast m | rendered m | wall s |"
+  echo "| set-up | cascade (spot: distance m) | texel m | constant r | slope | normal texels | witnessed c/s/n | rendered acne at bound | rendered acne at 90 % c/s/n | gap m | ray cast m | rendered m | wall s |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for setup in "${setups[@]}"; do
     # shellcheck disable=SC2086
@@ -42,12 +44,12 @@ d = json.load(open(f"{tmp}/out.json"))
 wall = float(open(f"{tmp}/time").read())
 for c in d["cascades"]:
     b, w, r = c["bound"], c["witnessed"], c["rendered"]
-    share = lambda k, bk: f"{100 * w[k] / b[bk]:.0f}%" if b[bk] else "-"
-    at_bound = sum(r[k]["acne_at_bound"] for k in ("constant", "slope", "normal"))
-    below = "/".join(str(r[k]["acne_at_90_percent"]) for k in ("constant", "slope", "normal"))
-    g = r["gap"]
-    print(f"| {setup} | {c['cascade']} | {c['texel']:.4g} | {b['constant_units']:.4g} | "
-          f"{b['slope_factor']:.4g} | {b['normal_texels']:.4g} | "
+    share = lambda k, bk: f"{100 * w[k] / b[bk]:.0f}%" if b.get(bk) and w.get(k) is not None else "-"
+    g = r.get("gap", {"formula": float("nan"), "raycast": float("nan"), "rendered": float("nan")})
+    below = "/".join(str(r[k].get("acne_at_90_percent", "-")) for k in ("constant", "slope", "normal"))
+    at_bound = sum(r[k].get("acne_at_bound", 0) for k in ("constant", "slope", "normal"))
+    print(f"| {setup} | {c.get('distance', c['cascade'])} | {c['texel']:.4g} | {b['constant_units']:.4g} | "
+          f"{b['slope_factor']:.4g} | {b['normal_texels'] if b['normal_texels'] is None else format(b['normal_texels'], '.4g')} | "
           f"{share('constant_units', 'constant_units')}/{share('slope_factor', 'slope_factor')}/"
           f"{share('normal_metres', 'normal_metres')} | {at_bound} | {below} | {g['formula']:.4g} | "
           f"{g['raycast']:.4g} | {g['rendered']:.4g} | {wall:.2f} |")

@@ -18,16 +18,19 @@
 #define SHADOW_F_BASE_U 12
 #define SHADOW_F_BASE_V 13
 #define SHADOW_F_STRIDE 16
-/* Its binary64 record (planes_d): the receiver point at texel position (u, v) is origin + u du +
- * v dv, on the plane through the binary32 vertices, then rounded to binary32 as a varying is. */
+/* Its binary64 record (planes_d): the receiver point at texel position (u, v) is
+ * (origin + u du + v dv) / (c0 + u c1 + v c2) -- a directional light's plane is affine in the map,
+ * c = (1, 0, 0); a spot light's projective -- on the plane through the binary32 vertices, then
+ * rounded to binary32 as a varying is. */
 #define SHADOW_D_ORIGIN 0
 #define SHADOW_D_DU 3
 #define SHADOW_D_DV 6
-#define SHADOW_D_STRIDE 9
+#define SHADOW_D_DENOM 9
+#define SHADOW_D_STRIDE 12
 
-/* The light matrix (light): rows x, y (normalized device coordinates) and z (window depth) of
- * four floats each. */
-#define SHADOW_LIGHT_WORDS 12
+/* The light matrix (light): rows x, y, z and w of four floats each; x / w and y / w are normalized
+ * device coordinates, z / w the window depth (a directional light's w is 1). */
+#define SHADOW_LIGHT_WORDS 16
 
 #define SHADOW_BUFFERS(IN, OUT) \
   IN(float, light) IN(float, planes_f) IN(double, planes_d) OUT(uint, acne)

@@ -22,13 +22,15 @@
 #define SHADOW_ARG_IN(type, name) __global const type *restrict name,
 #define SHADOW_ARG_OUT(type, name) __global type *restrict name,
 
-// x_ndc, y_ndc, window depth of world point p: each row as ((m0 x + m1 y) + m2 z) + m3.
+// x_ndc, y_ndc, window depth of world point p: each row as ((m0 x + m1 y) + m2 z) + m3, then
+// x, y and z divided by w (a directional light's w is 1 exactly, and so is every quotient by it).
 static float3 light_transform(__global const float* m, float3 p) {
-  float3 r;
+  float4 r;
   r.x = ((m[0] * p.x + m[1] * p.y) + m[2] * p.z) + m[3];
   r.y = ((m[4] * p.x + m[5] * p.y) + m[6] * p.z) + m[7];
   r.z = ((m[8] * p.x + m[9] * p.y) + m[10] * p.z) + m[11];
-  return r;
+  r.w = ((m[12] * p.x + m[13] * p.y) + m[14] * p.z) + m[15];
+  return (float3)(r.x / r.w, r.y / r.w, r.z / r.w);
 }
 
 // Window x, y in texels: x_ndc res/2 + res/2.
@@ -109,8 +111,10 @@ __kernel void shadow_acne(SHADOW_BUFFERS(SHADOW_ARG_IN, SHADOW_ARG_OUT) const Sh
     for (uint gx = 0; gx < a.grid; ++gx) {
       const double u = (double)P[SHADOW_F_BASE_U] + (double)gx / (double)a.grid;
       const double v = (double)P[SHADOW_F_BASE_V] + (double)gy / (double)a.grid;
-      const double3 pd = (double3)(D[0], D[1], D[2]) + u * (double3)(D[3], D[4], D[5]) +
-                         v * (double3)(D[6], D[7], D[8]);
+      const double3 pd =
+          ((double3)(D[0], D[1], D[2]) + u * (double3)(D[3], D[4], D[5]) +
+           v * (double3)(D[6], D[7], D[8])) /
+          (D[SHADOW_D_DENOM] + u * D[SHADOW_D_DENOM + 1] + v * D[SHADOW_D_DENOM + 2]);
       const float3 p = convert_float3(pd) + offset;  // the varying, moved along the normal
       const float3 t = light_transform(light, p);
       const float2 w = to_window(t, a.half_res);

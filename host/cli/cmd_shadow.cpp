@@ -79,8 +79,16 @@ void add_shadow_command(CLI::App& app, GlobalOptions& global) {
               "  depthprec shadow --format unorm16 --filter nearest --splits 20,60 --engines "
               "unity,bevy\n"
               "  depthprec shadow --extent 50 --light-near -100 --light-far 25 --source bound\n"
+              "  depthprec shadow --light spot --spot-angle 60 --light-near 0.1 --light-far 50 "
+              "--distances 2,10\n"
               "  depthprec shadow --splits 10,40 --source rendered --planes 64\n"
               "      checks the bias on the system's OpenGL: no acne at it, acne 10 % below\n");
+  cmd->add_option("--light", o->shadow.light,
+                  "directional (cascades; default) or spot (one perspective map)");
+  cmd->add_option("--spot-angle", o->shadow.spot_angle, "A spot light's full cone, degrees (60)");
+  cmd->add_option("--distances", o->shadow.distances,
+                  "A spot light's receiver distances along its axis, metres (default 5,20,50)")
+      ->delimiter(',');
   cmd->add_option("--splits", o->shadow.splits,
                   "Camera distances where cascades end, metres (default 10,40,150,600)")
       ->delimiter(',');

@@ -258,9 +258,11 @@ std::string shadow_section(const ReportPage& page) {
     for (const Column& c : cols) out.push_back(c.name);
     return out;
   };
-  return "<h2>Shadow-map bias</h2>\n<p>" + html_escape(t.caption) + ".</p>\n" +
-         table(names(t.cascade_cols), rows(t.cascades)) + "<p>" + html_escape(t.engine_caption) +
-         "</p>\n" + table(names(t.engine_cols), rows(t.engines));
+  std::string out = "<h2>Shadow-map bias</h2>\n<p>" + html_escape(t.caption) + ".</p>\n" +
+                    table(names(t.cascade_cols), rows(t.cascades));
+  if (t.engines.empty()) return out;
+  return out + "<p>" + html_escape(t.engine_caption) + "</p>\n" +
+         table(names(t.engine_cols), rows(t.engines));
 }
 
 // gnuplot's SVG without its XML prolog and doctype, which are not allowed inside HTML.

@@ -17,18 +17,20 @@ std::string shadow_cell(const nlohmann::json& j, const char* key, const std::str
 // "97 %": a witnessed value as a share of the bound's.
 std::string witnessed_share(const nlohmann::json& rec, const char* witnessed, const char* bound) {
   if (!rec.contains("witnessed")) return "-";
-  const double b = rec["bound"][bound].get<double>();
-  return b > 0 ? fmt::format("{:.0f}%", 100 * rec["witnessed"][witnessed].get<double>() / b) : "-";
+  const nlohmann::json &b = rec["bound"][bound], &w = rec["witnessed"][witnessed];
+  if (!b.is_number() || !w.is_number() || !(b.get<double>() > 0)) return "-";
+  return fmt::format("{:.0f}%", 100 * w.get<double>() / b.get<double>());
 }
 
 std::string camera_cell(const nlohmann::json& rec) {
+  if (rec.contains("distance")) return "d " + human(rec["distance"].get<double>());
   if (!rec.contains("split")) return "-";
   return human(rec["split"][0].get<double>()) + "-" + human(rec["split"][1].get<double>());
 }
 
 std::string caption(const nlohmann::json& h) {
   return fmt::format(
-      "Shadow bias, directional light: {0}x{0} texels per cascade, {1}{2}, filter {3} (reads "
+      "Shadow bias, {10} light: {0}x{0} texels per {11}, {1}{2}, filter {3} (reads "
       "texels up to {4} texels away per axis), receivers up to {5} degrees from the light, light "
       "{6} degrees above the horizon, raster bias under {7} (r = {8}). Proven under bound model "
       "{9}: no receiver up to the slope limit shadows itself. constant: a depth bias alone, in r "
@@ -41,7 +43,12 @@ std::string caption(const nlohmann::json& h) {
       h.value("reversed", false) ? " reversed" : "", h.value("filter", std::string("?")),
       human(h.value("reach_texels", 0.0)), human(h.value("slope_max_deg", 0.0)),
       human(h.value("light_elevation_deg", 0.0)), h.value("api", std::string("?")),
-      human(h.value("r", 0.0)), h.value("bound_model", std::string("?")));
+      h.contains("r") ? human(h.value("r", 0.0)) : std::string("each row's depth's, in the JSON"),
+      h.value("bound_model", std::string("?")), h.value("light", std::string("directional")),
+      h.value("light", std::string()) == "spot"
+          ? fmt::format("map ({} degree cone; a row per receiver distance d, its texel there)",
+                        human(h.value("spot_angle_deg", 0.0)))
+          : std::string("cascade"));
 }
 
 const std::vector<Column>& cascade_columns() {
@@ -130,6 +137,11 @@ std::string render_shadow_output(const nlohmann::json& header,
     Cells cells;
     for (const auto& rec : records) {
       const std::vector<std::string> c = cascade_cells(rec, format);
+      if (rec["engines"].empty()) {
+        std::vector<std::string> row = c;
+        row.resize(cols.size(), "");
+        cells.push_back(row);
+      }
       for (const auto& e : rec["engines"]) {
         std::vector<std::string> row = c;
         const std::vector<std::string> ecells = engine_cells(rec, e, format);
@@ -140,8 +152,9 @@ std::string render_shadow_output(const nlohmann::json& header,
     return csv(cols, cells);
   }
   const ShadowTables t = shadow_tables(header, records, format);
-  return captioned(t.caption, t.cascade_cols, t.cascades, format) + "\n" +
-         captioned(t.engine_caption, t.engine_cols, t.engines, format);
+  const std::string first = captioned(t.caption, t.cascade_cols, t.cascades, format);
+  if (t.engines.empty()) return first;  // a spot light: no engine conversions
+  return first + "\n" + captioned(t.engine_caption, t.engine_cols, t.engines, format);
 }
 
 ShadowTables shadow_tables(const nlohmann::json& header, const std::vector<nlohmann::json>& records,

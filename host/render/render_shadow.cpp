@@ -19,8 +19,18 @@ struct RenderedProbe {
   float factor = 0, units = 0, receiver_offset = 0, normal = 0;
 };
 
+// Texels a normal offset may carry a lookup and still read the window drawn around the caster.
+constexpr double kLargestRenderedOffset = ShadowPass::kWindow / 4;
+
+// Whether the normal recipe is drawn: it has a value, and its lookups stay in the window.
+bool normal_rendered(const nlohmann::json& bound) {
+  return bound["normal_metres"].is_number() &&
+         bound["normal_texels"].get<double>() <= kLargestRenderedOffset;
+}
+
 std::vector<RenderedProbe> probes_of(const nlohmann::json& bound, bool reversed) {
   const float sign = reversed ? -1.0f : 1.0f;
+  const bool normal = normal_rendered(bound);
   std::vector<RenderedProbe> out;
   for (const double level : {1.0, 0.9}) {
     // The constant as a receiver offset: exact in window depth, free of the driver's r.
@@ -31,8 +41,10 @@ std::vector<RenderedProbe> probes_of(const nlohmann::json& bound, bool reversed)
     s.units = sign * static_cast<float>(bound["error_units"].get<double>());
     RenderedProbe n{"normal", level};
     n.receiver_offset = static_cast<float>(bound["error_constant"].get<double>());
+    out.insert(out.end(), {c, s});
+    if (!normal) continue;
     n.normal = static_cast<float>(level * bound["normal_metres"].get<double>());
-    out.insert(out.end(), {c, s, n});
+    out.push_back(n);
   }
   return out;
 }
@@ -78,6 +90,7 @@ nlohmann::json rendered_shadow_check(const ShadowRequest& r, size_t cascade,
     rc.origin = {d[0], d[1], d[2]};
     rc.du = {d[3], d[4], d[5]};
     rc.dv = {d[6], d[7], d[8]};
+    rc.denom = {d[SHADOW_D_DENOM], d[SHADOW_D_DENOM + 1], d[SHADOW_D_DENOM + 2]};
     rc.base = {f[SHADOW_F_BASE_U], f[SHADOW_F_BASE_V]};
     rc.normal = {f[SHADOW_F_NORMAL], f[SHADOW_F_NORMAL + 1], f[SHADOW_F_NORMAL + 2]};
     rc.reach = s.filter.reach;
@@ -97,8 +110,13 @@ nlohmann::json rendered_shadow_check(const ShadowRequest& r, size_t cascade,
     out[probes[p].recipe][key] = acne[p];
     if (probes[p].level == 1.0 && acne[p] != 0) clean = false;
   }
+  if (!normal_rendered(record["bound"]))
+    out["normal"] = {
+        {"not_rendered", "the normal offset, if any, carries lookups beyond the window drawn"}};
   out["clean_at_bound"] = clean;
-  out["gap"] = rendered_shadow_gap(s, cascade, record["bound"]["constant_metres"].get<double>());
+  // The gap's wall and ground under parallel light rays: a directional light's.
+  if (s.light == LightType::directional)
+    out["gap"] = rendered_shadow_gap(s, cascade, record["bound"]["constant_metres"].get<double>());
   return out;
 }
 

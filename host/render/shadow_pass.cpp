@@ -13,8 +13,8 @@ namespace depthprec {
 namespace {
 
 void set_light_rows(GLuint program, const LightMatrix& L) {
-  const char* names[3] = {"light_x", "light_y", "light_z"};
-  for (int r = 0; r < 3; ++r)
+  const char* names[4] = {"light_x", "light_y", "light_z", "light_w"};
+  for (int r = 0; r < 4; ++r)
     glProgramUniform4f(program, glGetUniformLocation(program, names[r]), L.m[r][0], L.m[r][1],
                        L.m[r][2], L.m[r][3]);
 }
@@ -117,6 +117,7 @@ std::vector<float> ShadowPass::receivers(const ShadowReceivers& r) {
   glProgramUniform3d(rp, glGetUniformLocation(rp, "origin"), r.origin[0], r.origin[1], r.origin[2]);
   glProgramUniform3d(rp, glGetUniformLocation(rp, "du"), r.du[0], r.du[1], r.du[2]);
   glProgramUniform3d(rp, glGetUniformLocation(rp, "dv"), r.dv[0], r.dv[1], r.dv[2]);
+  glProgramUniform3d(rp, glGetUniformLocation(rp, "denom"), r.denom[0], r.denom[1], r.denom[2]);
   glProgramUniform2f(rp, glGetUniformLocation(rp, "base"), r.base[0], r.base[1]);
   glProgramUniform3f(rp, glGetUniformLocation(rp, "normal"), r.normal[0], r.normal[1], r.normal[2]);
   glProgramUniform1f(rp, glGetUniformLocation(rp, "normal_offset"), r.normal_offset);

@@ -13,11 +13,12 @@
 
 namespace depthprec {
 
-// Receiver points: point (gx, gy) of the grid lies at origin + u du + v dv with u = base[0] +
+// Receiver points: point (gx, gy) of the grid lies at (origin + u du + v dv) / (denom . (1, u, v))
+// (a spot light's planes are projective in the map) with u = base[0] +
 // gx / grid, v = base[1] + gy / grid (binary64, rounded to binary32 as a varying is), moved by
 // normal_offset along `normal`, its reference depth moved toward the light by receiver_offset.
 struct ShadowReceivers {
-  std::array<double, 3> origin{}, du{}, dv{};
+  std::array<double, 3> origin{}, du{}, dv{}, denom{1, 0, 0};
   std::array<float, 2> base{};
   std::array<float, 3> normal{};
   float normal_offset = 0, receiver_offset = 0;

@@ -22,9 +22,11 @@ struct ShadowTerms {
   double lateral_reach() const { return reach + caster_xy + receiver_xy; }
 };
 
-// The raster bias's r: fixed for unorm, 2^(e - 23) for float32 taken at depths in [1/2, 1) (the
-// largest r, so the fewest units: nearer the light's near side a float buffer needs more).
-double shadow_r(const ShadowSetup& s);
+// The raster bias's r in a cascade: fixed for unorm; for float32 2^(e - 23), e the exponent of
+// the largest depth of the caster's vertices, which is at least the receivers': a directional
+// light's taken at depths in [1/2, 1) (the largest r, so the fewest units: nearer the light's near
+// side a float buffer needs more), a spot light's at its row's depth.
+double shadow_r(const ShadowSetup& s, size_t cascade);
 
 struct ShadowBound {
   ShadowTerms terms;
@@ -50,8 +52,11 @@ constexpr double kBiasArithmetic = 0x1.0p-22;
 ShadowBound shadow_bound(const ShadowSetup& s, size_t cascade, const BoundModel& model);
 
 // The receiver's window-depth gradient at slope theta (radians) per texel along its steepest
-// direction: texel / range * tan(theta).
+// direction: texel / range * tan(theta) for a directional light; for a spot light the largest
+// over its cone at the row's distance (shadow_bound.cpp).
 double depth_per_texel(const ShadowSetup& s, size_t cascade, double theta);
+// Spot: the largest sine of a receiver normal's angle to the light's axis, sin(theta + beta).
+double spot_normal_sine(const ShadowSetup& s, size_t cascade, double theta);
 
 // A gap for a depth offset of `metres` along the light: the ground distance from a wall's foot
 // over which the wall's shadow is lost, metres * cos(elevation).

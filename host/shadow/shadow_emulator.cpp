@@ -36,29 +36,63 @@ constexpr double kTriangle = 12;
 
 }  // namespace
 
+namespace {
+
+Vec cross3(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot3(const Vec& a, const Vec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec unit3(const Vec& a) {
+  return scale(a, 1 / std::sqrt(dot3(a, a)));
+}
+
+}  // namespace
+
 ShadowPlanes shadow_planes(const ShadowSetup& s, size_t cascade, const ShadowSampling& sampling) {
   const ShadowCascade& c = s.cascades[cascade];
   const LightMatrix L = light_matrix(s, cascade);
   const double res = s.resolution, texel = s.texel(cascade), range = c.depth_range();
   const double theta_max = radians(s.slope_max);
+  const bool spot = s.light == LightType::spot;
+  const auto& [right, up, forward] = L.basis;
+  // A spot light's ray through texel position (u, v): its direction with axial component 1, so
+  // that a point at distance w along the axis is position + w ray.
+  const double step = 2 * L.tan_half / res;
+  const Vec r1 = scale(right, step), r2 = scale(up, step);
+  const Vec r0 = add(forward, add(scale(right, -L.tan_half), scale(up, -L.tan_half)));
+  auto ray = [&](double u, double v) { return add(r0, add(scale(r1, u), scale(r2, v))); };
   ShadowPlanes out;
   out.count = sampling.planes;
   Random rnd{sampling.seed};
   for (uint32_t k = 0; k < sampling.planes; ++k) {
     const double theta = k < sampling.planes / 2 ? theta_max : theta_max * rnd.uniform();
     const double phi = radians(k % 4 == 0 ? 45.0 + 90.0 * ((k / 4) % 4) : 360 * rnd.uniform());
-    // The grid's texel somewhere in the middle half of the map, its depth in [0.55, 0.9].
+    // The grid's texel somewhere in the middle half of the map, its depth in [0.55, 0.9] (a spot
+    // light's plane through the point at the row's distance on that texel's ray).
     const double bu = std::floor(res / 4 + res / 2 * rnd.uniform());
     const double bv = std::floor(res / 4 + res / 2 * rnd.uniform());
     const double d0 = 0.55 + 0.35 * rnd.uniform();
     const double z0 = c.near + (s.reversed ? 1 - d0 : d0) * range;
     const double gu = std::tan(theta) * std::cos(phi), gv = std::tan(theta) * std::sin(phi);
+    // Spot: the plane through the point at that distance on the grid texel's ray, its normal
+    // theta from the ray toward the light, turned toward phi about it.
+    const Vec ray0 = ray(bu + 0.5, bv + 0.5), p0 = add(L.position, scale(ray0, c.distance));
+    const Vec rh = unit3(ray0), e1 = unit3(add(right, scale(rh, -dot3(right, rh)))),
+              e2 = cross3(rh, e1);
+    const Vec n0 =
+        add(scale(rh, -std::cos(theta)),
+            scale(add(scale(e1, std::cos(phi)), scale(e2, std::sin(phi))), std::sin(theta)));
     // World point at texel position (u, v) on the intended plane.
     auto world = [&](double u, double v) {
+      if (spot) {
+        const Vec d = ray(u, v);
+        return add(L.position, scale(d, dot3(n0, add(p0, scale(L.position, -1))) / dot3(n0, d)));
+      }
       const double x = (u / res - 0.5) * c.extent, y = (v / res - 0.5) * c.extent;
       const double z = z0 + (gu * (u - bu - 0.5) + gv * (v - bv - 0.5)) * texel;
-      return add(add(add(L.centre, scale(L.basis[0], x)), scale(L.basis[1], y)),
-                 scale(L.basis[2], z));
+      return add(add(add(L.centre, scale(right, x)), scale(up, y)), scale(forward, z));
     };
     const double q0u = bu - kTriangle, q0v = bv - kTriangle, leg = 4 * kTriangle;
     std::array<Vec, 3> v{world(q0u, q0v), world(q0u + leg, q0v), world(q0u, q0v + leg)};
@@ -68,23 +102,40 @@ ShadowPlanes shadow_planes(const ShadowSetup& s, size_t cascade, const ShadowSam
         f[3 * i + j] = static_cast<float>(v[i][j]);
         v[i][j] = f[3 * i + j];  // the plane is the binary32 triangle's
       }
-    // Receiver points lie on that triangle: affine in (u, v) through its vertices.
-    const Vec du = scale(add(v[1], scale(v[0], -1)), 1 / leg);
-    const Vec dv = scale(add(v[2], scale(v[0], -1)), 1 / leg);
-    const Vec origin = add(v[0], add(scale(du, -q0u), scale(dv, -q0v)));
-    // Its normal, toward the light (against the light's direction of travel).
-    Vec n{du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2],
-          du[0] * dv[1] - du[1] * dv[0]};
-    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double toward = n[0] * L.basis[2][0] + n[1] * L.basis[2][1] + n[2] * L.basis[2][2];
-    n = scale(n, (toward > 0 ? -1 : 1) / len);
+    std::array<double, SHADOW_D_STRIDE> d{};
+    Vec n;
+    if (!spot) {
+      // Receiver points lie on that triangle: affine in (u, v) through its vertices.
+      const Vec du = scale(add(v[1], scale(v[0], -1)), 1 / leg);
+      const Vec dv = scale(add(v[2], scale(v[0], -1)), 1 / leg);
+      const Vec origin = add(v[0], add(scale(du, -q0u), scale(dv, -q0v)));
+      n = cross3(du, dv);
+      const double len = std::sqrt(dot3(n, n));
+      n = scale(n, (dot3(n, forward) > 0 ? -1 : 1) / len);  // toward the light
+      std::copy(origin.begin(), origin.end(), d.begin() + SHADOW_D_ORIGIN);
+      std::copy(du.begin(), du.end(), d.begin() + SHADOW_D_DU);
+      std::copy(dv.begin(), dv.end(), d.begin() + SHADOW_D_DV);
+      d[SHADOW_D_DENOM] = 1;
+    } else {
+      // On that triangle's plane n . p = n . v0 along the ray through (u, v): position + l ray
+      // with l = h / (n . ray), h = n . (v0 - position): projective in (u, v).
+      n = unit3(cross3(add(v[1], scale(v[0], -1)), add(v[2], scale(v[0], -1))));
+      if (dot3(n, add(L.position, scale(v[0], -1))) < 0) n = scale(n, -1);  // toward the light
+      const double h = dot3(n, add(v[0], scale(L.position, -1)));
+      const Vec* rows[3] = {&r0, &r1, &r2};
+      for (int i = 0; i < 3; ++i) {
+        const Vec num = add(scale(L.position, dot3(n, *rows[i])), scale(*rows[i], h));
+        std::copy(num.begin(), num.end(), d.begin() + 3 * i);
+        d[SHADOW_D_DENOM + i] = dot3(n, *rows[i]);
+      }
+    }
     for (int j = 0; j < 3; ++j) f[SHADOW_F_NORMAL + j] = static_cast<float>(n[j]);
     // The grid starts within a quarter of its step of the texel's corner: its first column and
     // row reach the texel's edges, where the filter's farthest texels lie.
     f[SHADOW_F_BASE_U] = static_cast<float>(bu + rnd.uniform() / (4.0 * sampling.grid));
     f[SHADOW_F_BASE_V] = static_cast<float>(bv + rnd.uniform() / (4.0 * sampling.grid));
     out.f.insert(out.f.end(), f.begin(), f.end());
-    for (const Vec& w : {origin, du, dv}) out.d.insert(out.d.end(), w.begin(), w.end());
+    out.d.insert(out.d.end(), d.begin(), d.end());
   }
   return out;
 }
@@ -105,7 +156,7 @@ ShadowEmulator::ShadowEmulator(OpenClRuntime& rt, const ShadowSetup& s, size_t c
   const ShadowPlanes planes = shadow_planes(s, cascade, sampling);
   const LightMatrix L = light_matrix(s, cascade);
   std::array<float, SHADOW_LIGHT_WORDS> m{};
-  for (int r = 0; r < 3; ++r)
+  for (int r = 0; r < 4; ++r)
     for (int j = 0; j < 4; ++j) m[4 * r + j] = L.m[r][j];
   cl::Program program =
       rt.program("kernels/shadow.cl", base_build_options(false) + " " + s.format.defines());
@@ -181,9 +232,12 @@ ShadowWitness shadow_witness(ShadowEmulator& e, const ShadowBound& b, bool rever
   w.slope_factor = smallest(b.slope_factor, [&](double f) {
     return ShadowProbe{sign * b.error_units, sign * f, 0};
   });
-  w.normal_metres = smallest(b.normal_metres, [&](double o) {
-    return ShadowProbe{sign * b.error_units, 0, o};
-  });
+  if (!std::isfinite(b.normal_metres)) {  // no normal offset suffices: nothing to witness
+    w.normal_metres = NAN;
+  } else
+    w.normal_metres = smallest(b.normal_metres, [&](double o) {
+      return ShadowProbe{sign * b.error_units, 0, o};
+    });
   w.acne_below = e.acne(ShadowProbe{sign * 0.9 * b.constant_units, 0, 0});
   return w;
 }

@@ -117,7 +117,7 @@ struct EngineConversion {
     // (shadow_bound.cpp).
     a = std::max(0.0, std::sqrt(2.0) * b.terms.lateral_reach() - e.raster_slope / std::sqrt(2.0)) *
         b.texel;
-    raster_metres = e.raster_units * shadow_r(s) * b.range;
+    raster_metres = e.raster_units * shadow_r(s, cascade) * b.range;
     error_metres = b.error_metres;
     theta_max = radians(s.slope_max);
   }

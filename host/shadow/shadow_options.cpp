@@ -17,27 +17,49 @@ const std::vector<double>& default_shadow_splits() {
 ShadowRequest shadow_request(const ShadowOptions& o, bool emulate) {
   ShadowRequest r;
   ShadowSetup& s = r.setup;
+  if (o.light != "directional" && o.light != "spot")
+    throw InputError(fmt::format("unknown light '{}': expected directional or spot", o.light));
+  s.light = o.light == "spot" ? LightType::spot : LightType::directional;
   const bool boxes = !o.extent.empty() || !o.light_near.empty() || !o.light_far.empty();
-  if (boxes && !o.splits.empty())
-    throw InputError(
-        "shadow: give the cascades as camera splits (--splits) or as light boxes (--extent with "
-        "--light-near and --light-far), not both");
-  if (boxes) {
-    if (o.light_near.size() != o.extent.size() || o.light_far.size() != o.extent.size())
-      throw InputError(fmt::format(
-          "shadow: --extent names {} cascades, --light-near {} and --light-far {}: one value "
-          "each per cascade",
-          o.extent.size(), o.light_near.size(), o.light_far.size()));
-    for (size_t i = 0; i < o.extent.size(); ++i) {
-      ShadowCascade c;
-      c.extent = o.extent[i];
-      c.near = o.light_near[i];
-      c.far = o.light_far[i];
-      s.cascades.push_back(c);
-    }
+  if (s.light == LightType::spot) {
+    if (!o.splits.empty() || !o.extent.empty())
+      throw InputError(
+          "shadow: a spot light has one map, measured at receiver distances (--distances): "
+          "--splits and --extent are a directional light's");
+    if (o.light_near.size() > 1 || o.light_far.size() > 1)
+      throw InputError(
+          "shadow: a spot light has one near and one far plane (--light-near N "
+          "--light-far F, metres from the light)");
+    s.spot_angle = o.spot_angle;
+    s.cascades = spot_rows(o.distances.empty() ? std::vector<double>{5, 20, 50} : o.distances,
+                           o.light_near.empty() ? 0.1 : o.light_near[0],
+                           o.light_far.empty() ? 100 : o.light_far[0], o.spot_angle);
   } else {
-    s.cascades = cascades_from_splits(o.splits.empty() ? default_shadow_splits() : o.splits,
-                                      o.camera_near, o.fov, o.aspect, o.caster_padding);
+    if (!o.distances.empty())
+      throw InputError(
+          "shadow: --distances are a spot light's (--light spot); a directional "
+          "light's cascades come from --splits or --extent");
+    if (boxes && !o.splits.empty())
+      throw InputError(
+          "shadow: give the cascades as camera splits (--splits) or as light boxes (--extent "
+          "with --light-near and --light-far), not both");
+    if (boxes) {
+      if (o.light_near.size() != o.extent.size() || o.light_far.size() != o.extent.size())
+        throw InputError(fmt::format(
+            "shadow: --extent names {} cascades, --light-near {} and --light-far {}: one value "
+            "each per cascade",
+            o.extent.size(), o.light_near.size(), o.light_far.size()));
+      for (size_t i = 0; i < o.extent.size(); ++i) {
+        ShadowCascade c;
+        c.extent = o.extent[i];
+        c.near = o.light_near[i];
+        c.far = o.light_far[i];
+        s.cascades.push_back(c);
+      }
+    } else {
+      s.cascades = cascades_from_splits(o.splits.empty() ? default_shadow_splits() : o.splits,
+                                        o.camera_near, o.fov, o.aspect, o.caster_padding);
+    }
   }
   s.resolution = o.resolution;
   s.format = StorageFormat::parse(o.format);
@@ -81,6 +103,9 @@ ShadowOptions shadow_options_from_json(const nlohmann::json& block, const std::s
     return Read([&field](const nlohmann::json& v) { field = v.get<std::vector<double>>(); });
   };
   const std::map<std::string, Read> fields = {
+      {"light", text(o.light)},
+      {"spot_angle", number(o.spot_angle)},
+      {"distances", numbers(o.distances)},
       {"splits", numbers(o.splits)},
       {"extent", numbers(o.extent)},
       {"light_near", numbers(o.light_near)},

@@ -13,7 +13,11 @@
 namespace depthprec {
 
 struct ShadowOptions {
-  // Cascades: camera splits fitted as engines fit them, or light boxes given directly.
+  std::string light = "directional";  // or "spot": one perspective map, rows at `distances`
+  double spot_angle = 60;             // degrees, the spot's full cone
+  std::vector<double> distances;      // spot: receiver distances along its axis, metres
+  // Cascades: camera splits fitted as engines fit them, or light boxes given directly (a spot
+  // light's near and far: one value each, default 0.1 and 100).
   std::vector<double> splits, extent, light_near, light_far;
   double camera_near = 0.1, fov = 60, aspect = 16.0 / 9.0, caster_padding = 0;
   int resolution = 2048;

@@ -13,7 +13,8 @@ nlohmann::json optional_number(const std::optional<double>& v) {
 nlohmann::json shadow_header(const ShadowRequest& r) {
   const ShadowSetup& s = r.setup;
   nlohmann::json h;
-  h["light"] = "directional";
+  h["light"] = to_string(s.light);
+  if (s.light == LightType::spot) h["spot_angle_deg"] = s.spot_angle;
   h["resolution"] = s.resolution;
   h["format"] = s.format.name();
   h["reversed"] = s.reversed;
@@ -25,13 +26,14 @@ nlohmann::json shadow_header(const ShadowRequest& r) {
   h["light_elevation_deg"] = s.light_elevation;
   h["light_azimuth_deg"] = s.light_azimuth;
   h["bound_model"] = r.bound_model;
-  h["r"] = shadow_r(s);
+  if (s.light == LightType::directional) h["r"] = shadow_r(s, 0);
   if (r.emulate) {
     h["sampling"] = {
         {"planes", r.sampling.planes}, {"grid", r.sampling.grid}, {"seed", r.sampling.seed}};
   }
   nlohmann::json engines = nlohmann::json::array();
   for (const EngineInfo& e : engine_table()) {
+    if (s.light != LightType::directional) break;
     if (!r.engines.empty() &&
         std::find(r.engines.begin(), r.engines.end(), std::string(e.name)) == r.engines.end())
       continue;
@@ -54,10 +56,12 @@ nlohmann::json shadow_record(OpenClRuntime* rt, const ShadowRequest& r, size_t c
   nlohmann::json rec;
   rec["cascade"] = cascade + 1;
   if (c.split_far > 0) rec["split"] = {c.split_near, c.split_far};
+  if (s.light == LightType::spot) rec["distance"] = c.distance;
   rec["extent"] = c.extent;
   rec["near"] = c.near;
   rec["far"] = c.far;
   rec["texel"] = b.texel;
+  rec["r"] = shadow_r(s, cascade);
   rec["depth_range"] = b.range;
   const ShadowTerms& t = b.terms;
   rec["terms"] = {{"reach", t.reach},
@@ -91,7 +95,11 @@ nlohmann::json shadow_record(OpenClRuntime* rt, const ShadowRequest& r, size_t c
                         {"launches", e.launches()}};
   }
   nlohmann::json engines = nlohmann::json::array();
-  for (const EngineBias& eb : engine_biases(s, cascade, b, r.engines))
+  // The engines' conversions read their directional lights' formulas.
+  const std::vector<EngineBias> converted = s.light == LightType::directional
+                                                ? engine_biases(s, cascade, b, r.engines)
+                                                : std::vector<EngineBias>{};
+  for (const EngineBias& eb : converted)
     engines.push_back({{"engine", eb.engine},
                        {"depth_alone", optional_number(eb.depth_alone)},
                        {"normal_min", optional_number(eb.normal_min)},

@@ -6,10 +6,56 @@
 
 #include "host/base/errors.h"
 #include "host/model/matrix.h"
+#include "host/model/technique.h"
 
 namespace depthprec {
 
 namespace {}  // namespace
+
+const char* to_string(LightType t) {
+  return t == LightType::spot ? "spot" : "directional";
+}
+
+std::vector<ShadowCascade> spot_rows(const std::vector<double>& distances, double near, double far,
+                                     double angle_deg) {
+  std::vector<ShadowCascade> out;
+  for (double d : distances) {
+    ShadowCascade c;
+    c.distance = d;
+    c.near = near;
+    c.far = far;
+    c.extent = 2 * d * std::tan(radians(angle_deg) / 2);
+    out.push_back(c);
+  }
+  return out;
+}
+
+namespace {
+
+// The spot light's window depth D(w) = A + C / w along its axis (standard or reversed).
+Technique spot_mapping(const ShadowSetup& s) {
+  return s.reversed ? Technique::reversed : Technique::standard;
+}
+
+}  // namespace
+
+double depth_per_metre(const ShadowSetup& s, size_t cascade) {
+  const ShadowCascade& c = s.cascades[cascade];
+  if (s.light == LightType::directional) return 1 / c.depth_range();
+  // |D'(w)| = f n / ((f - n) w^2) for both mappings
+  return c.far * c.near / (c.depth_range() * c.distance * c.distance);
+}
+
+double metres_of_depth(const ShadowSetup& s, size_t cascade, double depth) {
+  const ShadowCascade& c = s.cascades[cascade];
+  if (s.light == LightType::directional) return depth * c.depth_range();
+  const TechniqueParams params;
+  const Technique t = spot_mapping(s);
+  const double d = depth_of_distance(t, c.near, c.far, params, c.distance);
+  // Nearer the light by `depth` in window depth: smaller D for standard, larger for reversed.
+  const double moved = s.reversed ? std::min(1.0, d + depth) : std::max(0.0, d - depth);
+  return c.distance - distance_of_depth<double>(t, c.near, c.far, params, moved);
+}
 
 ShadowFilter parse_shadow_filter(const std::string& s) {
   if (s == "nearest") return {s, 0.5};
@@ -70,7 +116,28 @@ std::vector<ShadowCascade> cascades_from_splits(const std::vector<double>& split
 }
 
 void validate(const ShadowSetup& s) {
-  if (s.cascades.empty()) throw InputError("shadow: no cascade (give --splits or --extent)");
+  if (s.cascades.empty())
+    throw InputError(s.light == LightType::spot ? "shadow: no receiver distance (give --distances)"
+                                                : "shadow: no cascade (give --splits or --extent)");
+  if (s.light == LightType::spot) {
+    if (!(s.spot_angle > 0 && s.spot_angle < 170))
+      throw InputError(fmt::format(
+          "--spot-angle {}: the spot light's full cone in degrees, above 0 and below 170",
+          s.spot_angle));
+    for (size_t i = 0; i < s.cascades.size(); ++i) {
+      const ShadowCascade& c = s.cascades[i];
+      if (!(c.near > 0) || !(c.far > c.near) || !std::isfinite(c.far))
+        throw InputError(fmt::format(
+            "spot light: --light-near {} and --light-far {}: metres from the light, 0 < near < "
+            "far, finite",
+            c.near, c.far));
+      if (!(c.distance > c.near && c.distance < c.far))
+        throw InputError(fmt::format(
+            "--distances: receiver distance {} m lies outside the spot light's near {} and far "
+            "{} m",
+            c.distance, c.near, c.far));
+    }
+  }
   for (size_t i = 0; i < s.cascades.size(); ++i) {
     const ShadowCascade& c = s.cascades[i];
     if (!(c.extent > 0) || !std::isfinite(c.extent))
@@ -106,6 +173,32 @@ void validate(const ShadowSetup& s) {
       throw InputError(fmt::format("--world-position: {} m lies beyond 1e9 m", p));
 }
 
+namespace {
+
+// A spot light at `distance` behind the receivers' centre along its axis: rows x, y scaled by the
+// cone, w the distance along the axis, z the mapping's A w + C (D = z / w = A + C / w).
+void spot_rows_of(const ShadowSetup& s, const ShadowCascade& c, LightMatrix& L) {
+  const auto& [right, up, forward] = L.basis;
+  for (int j = 0; j < 3; ++j) L.position[j] = L.centre[j] - c.distance * forward[j];
+  L.tan_half = std::tan(radians(s.spot_angle) / 2);
+  const double n = c.near, f = c.far;
+  const double A = s.reversed ? -n / (f - n) : f / (f - n);
+  const double C = s.reversed ? f * n / (f - n) : -f * n / (f - n);
+  const std::array<double, 3>* axes[2] = {&right, &up};
+  for (int r = 0; r < 2; ++r) {
+    for (int j = 0; j < 3; ++j) L.m[r][j] = static_cast<float>((*axes[r])[j] / L.tan_half);
+    L.m[r][3] = static_cast<float>(-dot(*axes[r], L.position) / L.tan_half);
+  }
+  for (int j = 0; j < 3; ++j) {
+    L.m[2][j] = static_cast<float>(A * forward[j]);
+    L.m[3][j] = static_cast<float>(forward[j]);
+  }
+  L.m[2][3] = static_cast<float>(-A * dot(forward, L.position) + C);
+  L.m[3][3] = static_cast<float>(-dot(forward, L.position));
+}
+
+}  // namespace
+
 LightMatrix light_matrix(const ShadowSetup& s, size_t cascade) {
   const double el = radians(s.light_elevation), az = radians(s.light_azimuth);
   // World y is up; the light travels down toward the ground.
@@ -119,6 +212,12 @@ LightMatrix light_matrix(const ShadowSetup& s, size_t cascade) {
   LightMatrix L;
   L.basis = {right, up, forward};
   L.centre = s.world_position;
+  L.position = s.world_position;
+  if (s.light == LightType::spot) {
+    spot_rows_of(s, c, L);
+    return L;
+  }
+  L.m[3] = {0.0f, 0.0f, 0.0f, 1.0f};
   const double sx = 2 / c.extent;
   for (int r = 0; r < 2; ++r) {
     const auto& axis = r == 0 ? right : up;

@@ -28,16 +28,27 @@ inline double radians(double degrees) {
   return degrees * 3.14159265358979323846 / 180;
 }
 
+// A directional light (an orthographic map per cascade) or a spot light (one perspective map,
+// measured at receiver distances along its axis).
+enum class LightType { directional, spot };
+const char* to_string(LightType t);
+
+// A directional light's cascade, or a spot light's row: the map at one receiver distance.
 struct ShadowCascade {
-  double extent = 0;  // metres, the square's side seen from the light
+  double extent = 0;  // metres, the square's side seen from the light (spot: at `distance`)
   // Light-space near and far, metres along the light from the box's centre plane (the near side
   // is negative): the depth range is far - near.
   double near = 0, far = 0;
   double split_near = 0, split_far = 0;  // the camera distances it covers (0, 0: given directly)
+  // Spot: the receivers' distance along the light's axis; near and far are the light's planes,
+  // metres from it.
+  double distance = 0;
   double depth_range() const { return far - near; }
 };
 
 struct ShadowSetup {
+  LightType light = LightType::directional;
+  double spot_angle = 60;  // degrees, the spot light's full cone (its map's field of view)
   std::vector<ShadowCascade> cascades;
   int resolution = 2048;
   StorageFormat format = StorageFormat::parse("float32");
@@ -49,6 +60,18 @@ struct ShadowSetup {
   double light_elevation = 52, light_azimuth = 30;  // degrees: the light's direction
   double texel(size_t i) const { return cascades[i].extent / resolution; }
 };
+
+// A spot light's rows: one per receiver distance, each the map's extent there.
+std::vector<ShadowCascade> spot_rows(const std::vector<double>& distances, double near, double far,
+                                     double angle_deg);
+
+// Window depth per metre along the light at a row's receivers: 1 / range for a directional
+// light; the perspective map's slope at the receivers' distance for a spot light.
+double depth_per_metre(const ShadowSetup& s, size_t cascade);
+// The distance along the light a receiver at the row's distance moves for a window-depth
+// offset `depth` toward the light: depth times the range for a directional light, exact for a
+// spot light (its map is not linear).
+double metres_of_depth(const ShadowSetup& s, size_t cascade, double depth);
 
 // Cascades fitted as engines fit stable cascades: each camera slice [split_i-1, split_i] of a
 // perspective frustum (vertical field of view fov_deg, aspect) enclosed in its smallest sphere;
@@ -63,14 +86,17 @@ std::vector<ShadowCascade> cascades_from_splits(const std::vector<double>& split
 // other than unorm16, unorm24 and float32, a light below the horizon.
 void validate(const ShadowSetup& s);
 
-// The light's world-to-window map of one cascade as an application hands it to the GPU, rounded
-// to binary32: rows x and y give normalized device coordinates in [-1, 1] across the extent,
-// row z the window depth in [0, 1] (zero-to-one range; reversed: 1 at the near side). `basis` is
-// the light's right, up and forward (direction of travel) axes in binary64.
+// The light's world-to-clip map of one cascade as an application hands it to the GPU, rounded to
+// binary32: x / w and y / w are normalized device coordinates in [-1, 1] across the map, z / w the
+// window depth in [0, 1] (zero-to-one range; reversed: 1 at the near side). A directional light's
+// w row is (0, 0, 0, 1); a spot light's the distance along its axis. `basis` is the light's right,
+// up and forward (direction of travel) axes in binary64.
 struct LightMatrix {
-  std::array<std::array<float, 4>, 3> m;
+  std::array<std::array<float, 4>, 4> m;
   std::array<std::array<double, 3>, 3> basis;  // right, up, forward
-  std::array<double, 3> centre;                // the box's centre, world metres
+  std::array<double, 3> centre;                // the receivers' centre, world metres
+  std::array<double, 3> position;              // spot: the light's position
+  double tan_half = 0;                         // spot: tan of half the cone
 };
 LightMatrix light_matrix(const ShadowSetup& s, size_t cascade);
 

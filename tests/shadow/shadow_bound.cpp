@@ -217,3 +217,42 @@ TEST_CASE("three.js's zero biases leave acne on any sloped receiver", "[shadow]"
 }
 
 }  // namespace depthprec
+
+namespace depthprec {
+
+TEST_CASE("a spot light's map: the axis at the centre, depth its perspective mapping",
+          "[shadow][spot]") {
+  ShadowSetup s;
+  s.light = LightType::spot;
+  s.spot_angle = 60;
+  s.cascades = spot_rows({2, 10}, 0.1, 50, 60);
+  validate(s);
+  for (const bool reversed : {false, true}) {
+    s.reversed = reversed;
+    for (size_t k = 0; k < s.cascades.size(); ++k) {
+      const double d = s.cascades[k].distance;
+      const LightMatrix L = light_matrix(s, k);
+      // The receivers' centre, d along the axis from the light: the map's centre, at D(d).
+      double r[4];
+      for (int i = 0; i < 4; ++i)
+        r[i] =
+            L.m[i][0] * L.centre[0] + L.m[i][1] * L.centre[1] + L.m[i][2] * L.centre[2] + L.m[i][3];
+      const Technique t = reversed ? Technique::reversed : Technique::standard;
+      CHECK(r[3] == Approx(d).epsilon(1e-6));
+      CHECK(r[0] / r[3] == Approx(0).margin(1e-6));
+      CHECK(r[2] / r[3] == Approx(depth_of_distance(t, 0.1, 50, {}, d)).epsilon(1e-5));
+      // The texel there, and depth per metre: the mapping's slope.
+      CHECK(s.texel(k) == Approx(2 * d * std::tan(radians(30)) / s.resolution));
+      CHECK(depth_per_metre(s, k) == Approx(50 * 0.1 / (49.9 * d * d)));
+      // A window-depth offset toward the light moves a receiver by the mapping's inverse.
+      const double m = metres_of_depth(s, k, 1e-4);
+      const double D = depth_of_distance(t, 0.1, 50, {}, d),
+                   D2 = depth_of_distance(t, 0.1, 50, {}, d - m);
+      CHECK(std::fabs(D - D2) == Approx(1e-4).epsilon(1e-6));
+    }
+  }
+  s.cascades = spot_rows({60}, 0.1, 50, 60);
+  CHECK_THROWS_WITH(validate(s), Catch::Contains("outside the spot light's near"));
+}
+
+}  // namespace depthprec
