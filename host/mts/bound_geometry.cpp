@@ -46,10 +46,12 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.b = P(2, 3);
   m.P00 = P(0, 0);
   m.P11 = P(1, 1);
-  if (pair.technique == Technique::orthographic)
-    throw InputError("no bound model for the orthographic projection yet (its w is 1)");
-  if (P(3, 2) != -1 || P(3, 3) != 0 || P(2, 0) != 0 || P(2, 1) != 0)
-    throw InputError("no bound model for a projection whose w row is not (0, 0, -1, 0)");
+  m.ortho = pair.technique == Technique::orthographic;
+  if (m.ortho ? (P(3, 2) != 0 || P(3, 3) != 1)
+              : (P(3, 2) != -1 || P(3, 3) != 0) || P(2, 0) != 0 || P(2, 1) != 0)
+    throw InputError(
+        "no bound model for a projection whose w row is not (0, 0, -1, 0), or orthographic's "
+        "(0, 0, 0, 1)");
   // A mediump vertex shader (pipeline.shader_precision) computes in binary16 whatever the model
   // allows, within GLSL ES mediump's range, and holds the projection's entries in binary16: the
   // map its depths follow.
@@ -89,10 +91,11 @@ PlaneGeometry plane_geometry(const RowModel& m, double D) {
   g.wv_lo = D - g.side * m.sin_tilt;
   g.wv_hi = D + g.side * m.sin_tilt;
   // The ray through NDC (xn, yn) is w (xn / P00, yn / P11, -1); it meets the plane n.e = -D n_z at
-  // w = D / (1 - (n_x/n_z) xn / P00 - (n_y/n_z) yn / P11).
+  // w = D / (1 - (n_x/n_z) xn / P00 - (n_y/n_z) yn / P11). Orthographic rays are parallel, at
+  // (xn / P00, yn / P11) across the view: w = D - (n_x/n_z) xn / P00 - (n_y/n_z) yn / P11.
   const double U = m.xn_max / m.P00 + m.yn_max / m.P11;
-  g.wp_lo = D / (1 + m.tan_tilt * U);
-  g.wp_hi = D / (1 - m.tan_tilt * U);
+  g.wp_lo = m.ortho ? D - m.tan_tilt * U : D / (1 + m.tan_tilt * U);
+  g.wp_hi = m.ortho ? D + m.tan_tilt * U : D / (1 - m.tan_tilt * U);
   g.lateral = g.side * std::sqrt(0.5);
   return g;
 }
@@ -116,6 +119,7 @@ double exact_depth(const RowModel& m, double w) {
   if (m.vertex_log)
     return m.pc.vertex_log == MTS_VERTEX_LOG_THREEJS ? std::log2(1 + w) * pc.threejs_fc * 0.5
                                                      : std::log1p(pc.log_k * w) / pc.log_L;
+  if (m.ortho) return m.scale * (-m.a * w + m.b) + (1 - m.scale);
   return m.scale * (-m.a + m.b / w) + (1 - m.scale);
 }
 
@@ -153,7 +157,10 @@ double exact_gap(const RowModel& m, double lm1, double w) {
       gap = std::log1p(lm1 * w / ((w - pc.near) + 1)) / M_LN2 * pc.cesium_inv_log2;
       break;
     case FragmentDepth::none:
-      if (!m.vertex_log) {
+      if (m.ortho) {
+        // scale (-a lambda w + a w) = scale (-a) (lambda - 1) w
+        gap = m.scale * -m.a * lm1 * w;
+      } else if (!m.vertex_log) {
         // scale (b / (lambda w) - b / w) = scale b (1 - lambda) / (lambda w)
         gap = m.scale * m.b * (-lm1) / lw;
       } else if (m.pc.vertex_log == MTS_VERTEX_LOG_THREEJS) {

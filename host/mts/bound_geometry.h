@@ -34,6 +34,9 @@ struct RowModel {
   double sign = 1;                                // +1 where plane B must store the larger depth
   VertexPath path = VertexPath::model_then_view;  // which matrices the GPU gets (vertex_stage.h)
   bool premultiplied = false, fragment = false, vertex_log = false;
+  // The orthographic projection: w = 1 exactly, z_ndc = a e_z + b = -a w + b with w the eye
+  // distance (the perspective techniques' z_ndc is (-a w + b) / w).
+  bool ortho = false;
 };
 
 // The row's model; throws InputError where the bound model has none (its message says why).

@@ -197,8 +197,10 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
   const b32::Rounding& R = m.rounding;
   const Scene& s = *m.scene;
   WindowError out;
-  const double eq = b32::reciprocal_error(R, g.wv_lo, c.w, m.model->reciprocal_half_ulps);
-  const double q_max = 1 / (g.wv_lo - c.w);
+  // Orthographic: w is 1 for every vertex (its row (0, 0, 0, 1) rounds nothing).
+  const double w_lo = m.ortho ? 1.0 : g.wv_lo;
+  const double eq = b32::reciprocal_error(R, w_lo, c.w, m.model->reciprocal_half_ulps);
+  const double q_max = 1 / (w_lo - c.w);
   if (m.fragment) {
     out.value = eq;
   } else if (m.vertex_log) {
@@ -211,7 +213,8 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
     const double zc_max =
         std::max(std::fabs(-m.a * g.wv_lo + m.b), std::fabs(-m.a * g.wv_hi + m.b));
     const double zn_max =
-        std::max(std::fabs(-m.a + m.b / g.wv_lo), std::fabs(-m.a + m.b / g.wv_hi));
+        m.ortho ? zc_max
+                : std::max(std::fabs(-m.a + m.b / g.wv_lo), std::fabs(-m.a + m.b / g.wv_hi));
     const double zn = b32::product_error(R, zc_max, c.z, q_max, eq, zn_max);
     const double d_max =
         std::max(std::fabs(exact_depth(m, g.wv_lo)), std::fabs(exact_depth(m, g.wv_hi)));
@@ -234,6 +237,7 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
 // affine in screen space: d = F(w) with w = D / (1 - rx u - ry v), u = x_ndc / P00, so
 // dd/dpx = F'(w) (w^2 / D) rx (2 / (W P00)) = -scale b rx 2 / (W P00 D) for a projection, and
 // rx 2 / (W P00 D) for q: constants over the plane, at most tan_tilt in place of rx.
+// Orthographic: w = D + rx u + ry v and d = scale (-a w + b) + ..., so scale |a| rx 2 / (W P00).
 // log_vertex's per-vertex log is interpolated, not affine: its plane's gradient is bounded by the
 // largest slope of F along w, with half again for the triangle's shape.
 std::array<double, 2> gradient(const RowModel& m, const PlaneGeometry& g) {
@@ -243,7 +247,7 @@ std::array<double, 2> gradient(const RowModel& m, const PlaneGeometry& g) {
   else if (m.vertex_log)
     k = 1.5 * depth_slope(m, g.wv_lo, g.wv_hi) * g.wv_hi * g.wv_hi / g.D;
   else
-    k = m.scale * std::fabs(m.b) / g.D;
+    k = m.ortho ? m.scale * std::fabs(m.a) : m.scale * std::fabs(m.b) / g.D;
   const Scene& s = *m.scene;
   return {k * m.tan_tilt * 2 / (s.viewport_w * m.P00), k * m.tan_tilt * 2 / (s.viewport_h * m.P11)};
 }
@@ -252,6 +256,7 @@ std::array<double, 2> gradient(const RowModel& m, const PlaneGeometry& g) {
 double value_slope(const RowModel& m, const PlaneGeometry& g) {
   if (m.fragment) return 1 / (g.wv_lo * g.wv_lo);
   if (m.vertex_log) return depth_slope(m, g.wv_lo, g.wv_hi);
+  if (m.ortho) return m.scale * std::fabs(m.a);
   return m.scale * std::fabs(m.b) / (g.wv_lo * g.wv_lo);
 }
 
@@ -291,12 +296,14 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   const WindowError own = window_error(m, g, Clip4{});
   const WindowError all = window_error(m, g, c);
   const std::array<double, 2> G = gradient(m, g);
-  const double q_max = 1 / g.wv_lo;
+  const double q_max = m.ortho ? 1.0 : 1 / g.wv_lo;
   const double xn_max = m.P00 * g.lateral * q_max, yn_max = m.P11 * g.lateral * q_max;
   // An eye-space error moves the vertex's window position by (W/2) d(x_ndc) with
-  // x_ndc = P00 e_x / w: P00 / w per unit of e_x, |x_ndc| / w per unit of e_z.
-  const double geo_x = 0.5 * s.viewport_w * (m.P00 * ee[0] + xn_max * ee[2]) * q_max * b32::kMargin;
-  const double geo_y = 0.5 * s.viewport_h * (m.P11 * ee[1] + yn_max * ee[2]) * q_max * b32::kMargin;
+  // x_ndc = P00 e_x / w: P00 / w per unit of e_x, |x_ndc| / w per unit of e_z (orthographic:
+  // x_ndc = P00 e_x, e_z leaves it alone).
+  const double zx = m.ortho ? 0.0 : xn_max, zy = m.ortho ? 0.0 : yn_max;
+  const double geo_x = 0.5 * s.viewport_w * (m.P00 * ee[0] + zx * ee[2]) * q_max * b32::kMargin;
+  const double geo_y = 0.5 * s.viewport_h * (m.P11 * ee[1] + zy * ee[2]) * q_max * b32::kMargin;
   // (5) The plane at a covered pixel p. With lambda~ the computed triangle's barycentrics at p and
   // grad v the exact plane's gradient, the plane through the computed vertices is exactly
   // sum lambda~_i [(v~_i - v_i) - grad v . (x~_i - x_i)] away from the exact plane at p (write

@@ -32,6 +32,7 @@ double storage_width(const RowModel& m, double d_min, double d_max) {
 }
 
 constexpr const char* kBeyondShaderRange = "a vertex coordinate exceeds the shaders' range";
+constexpr const char* kBeyondFar = "plane B lies beyond the far plane at every pixel";
 
 struct BoundCheck {
   bool holds = false;
@@ -47,7 +48,7 @@ BoundCheck check(const RowModel& m, double z, double s) {
     return v;
   }
   const PlaneGeometry gA = bound::plane_geometry(m, DA), gB = bound::plane_geometry(m, DB);
-  if (!(gA.wv_lo > 0) || !(1 - m.tan_tilt * (m.xn_max / m.P00 + m.yn_max / m.P11) > 0)) {
+  if (!(gA.wv_lo > 0) || !(m.ortho || 1 - m.tan_tilt * (m.xn_max / m.P00 + m.yn_max / m.P11) > 0)) {
     v.why = "the plane can pass the eye";
     return v;
   }
@@ -80,6 +81,14 @@ BoundCheck check(const RowModel& m, double z, double s) {
   // The exact gap is monotone in w for every map (its derivative has one sign), so its least value
   // over A's pixels is at an end of their range; log_vertex interpolates per-vertex depths, whose
   // gap is a convex combination of the vertices'.
+  // Orthographic: plane B's fragments all beyond the depth range (its linear depth leaves [0, 1]
+  // at the far plane, where a perspective map's approaches 1): B is clipped at every pixel and
+  // never drawn, so nothing fights.
+  if (m.ortho && b.lo - EB > 1) {
+    v.holds = true;
+    v.why = kBeyondFar;
+    return v;
+  }
   const double lo = m.vertex_log ? gA.wv_lo : gA.wp_lo, hi = m.vertex_log ? gA.wv_hi : gA.wp_hi;
   const double lm1 = (DB - DA) / DA;
   const double gap = std::min(bound::exact_gap(m, lm1, lo), bound::exact_gap(m, lm1, hi));
@@ -178,7 +187,7 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
   // there can be drawn at all.
   for (double t = 2 * hi; t <= cap; t *= 2) {
     const BoundCheck at = check(m, z, t);
-    if (at.why == kBeyondShaderRange) break;
+    if (at.why == kBeyondShaderRange || at.why == kBeyondFar) break;
     if (!at.holds) {
       out.why = "the error bounds fail again at a larger separation";
       return out;

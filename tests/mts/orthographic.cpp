@@ -1,11 +1,13 @@
 // The orthographic technique (host/model/technique.h): its projection, its MTS where storage
-// decides (one code of its linear map, the same at every distance), and what it does not take
-// yet (a bound model, attribution, a tilt, the audit).
+// decides (one code of its linear map, the same at every distance) and its guaranteed MTS, and
+// what it does not take yet (attribution, a tilt, the audit).
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "host/model/frame_setup.h"
+#include "host/model/profile.h"
 #include "host/mts/mts_bound.h"
+#include "host/mts/worst_case.h"
 #include "tests/support/mts_fixture.h"
 #include "tests/support/run_cli.h"
 
@@ -51,12 +53,37 @@ TEST_CASE("orthographic unorm16 needs one code of its linear map at every distan
     INFO("z = " << r.z << ": mts " << r.mts);
     CHECK(r.mts >= spacing);
     CHECK(r.mts <= 1.05 * spacing);
-    // No bound model for it yet: the row says so rather than giving one.
+    // Its guaranteed MTS: storage decides, and the bound is within a few per cent near the camera.
     MtsRow bounded = r;
     set_mts_bound(bounded, scene);
-    CHECK(std::isnan(bounded.mts_bound));
-    CHECK(bounded.bound_note.find("orthographic") != std::string::npos);
+    CHECK(bounded.mts_bound >= r.mts);
+    if (r.z == 2.0) CHECK(bounded.mts_bound <= 1.1 * r.mts);
   }
+}
+
+TEST_CASE("orthographic's guaranteed MTS is at or above its sampled worst case under each profile",
+          "[mts][orthographic][bound]") {
+  int bounded = 0;
+  for (const std::string prof : {"ideal", "llvmpipe", "softpipe"}) {
+    std::vector<std::string> sets = profile(prof).sets;
+    sets.insert(sets.end(), {"far=1000", "kernel=[32,32]", "viewport=[32,32]", "frames=16",
+                             "worst_case.round_size=32", "worst_case.max_rounds=2",
+                             "distances=[1.5,3,40,300,950]"});
+    const Scene s = load_scene("", sets);
+    for (const std::string f : {"float32", "unorm24", "unorm16"}) {
+      const EvalPair pair{Technique::orthographic, f, DepthRange::gl};
+      PairSource<ProbeEvaluator, MtsEvaluator> source(depthprec::test::runtime(), pair);
+      for (const MtsRow& r : search_sampled(source, s, pair, s.distances, {}, {})) {
+        INFO(prof << " " << f << " z = " << r.z << ": mts " << r.mts << ", mts_bound "
+                  << r.mts_bound << " (" << r.bound_note << ")");
+        if (r.verdict() != Verdict::resolved || std::isnan(r.mts_bound)) continue;
+        ++bounded;
+        CHECK(r.mts_bound >= r.mts);
+        CHECK(r.mts_bound >= r.fight_max);
+      }
+    }
+  }
+  CHECK(bounded >= 30);
 }
 
 TEST_CASE("orthographic refuses what it does not take yet, naming it", "[mts][orthographic][cli]") {
