@@ -69,33 +69,64 @@ static uint8 encode8(double8 d, df_format fmt) {
 }
 
 /* One plane's per-row terms: along the row, the ray meets the plane at t = num / (den0 + den1 x),
- * and the in-plane coordinates are t (ua0 + ua1 x) - ca along the a axis, likewise b. */
+ * and the in-plane coordinates are t (ua0 + ua1 x) - ca along the a axis, likewise b. An
+ * orthographic view's rays are parallel, at (X x, Y y) across it (X, Y its half-extents at plane
+ * A's distance, which its plane record carries in a.w, 0 for a perspective view): there
+ * t = (num + num1 x) / den0 and the in-plane coordinate is (ua0 + ua1 x) - t az - ca. */
 typedef struct {
   double num, den0, den1, ua0, ua1, ca, ha, ub0, ub1, cb, hb;
+  double num1, az, bz;
+  int ortho;
 } exact_row_t;
 
 static exact_row_t exact_row(__global const double4* pl, double ndc_y, double sx, double sy) {
   const double3 a = pl[0].xyz, b = pl[1].xyz, nrm = pl[2].xyz, c = pl[3].xyz;
+  const double scale = pl[0].w;
   exact_row_t r;
+  r.ortho = scale > 0.0;
+  r.ca = dot(c, a);
+  r.ha = 0.5 * dot(a, a);
+  r.cb = dot(c, b);
+  r.hb = 0.5 * dot(b, b);
+  if (r.ortho) {
+    const double X = sx * scale, Y = sy * scale;
+    r.num = nrm.y * (ndc_y * Y) - dot(nrm, c);
+    r.num1 = nrm.x * X;
+    r.den0 = nrm.z;
+    r.den1 = 0.0;
+    r.ua0 = a.y * (ndc_y * Y);
+    r.ua1 = a.x * X;
+    r.az = a.z;
+    r.ub0 = b.y * (ndc_y * Y);
+    r.ub1 = b.x * X;
+    r.bz = b.z;
+    return r;
+  }
   r.num = dot(nrm, c);
   r.den0 = ndc_y * sy * nrm.y - nrm.z;
   r.den1 = sx * nrm.x;
   r.ua0 = ndc_y * sy * a.y - a.z;
   r.ua1 = sx * a.x;
-  r.ca = dot(c, a);
-  r.ha = 0.5 * dot(a, a);
   r.ub0 = ndc_y * sy * b.y - b.z;
   r.ub1 = sx * b.x;
-  r.cb = dot(c, b);
-  r.hb = 0.5 * dot(b, b);
+  r.num1 = r.az = r.bz = 0.0;
   return r;
 }
 
 /* w at 8 pixels of the row (ndc_x), and whether the plane's square, its half-sides times
- * shrink (1: the square itself), covers them. */
+ * shrink (1: the square itself), covers them. Along a row each is monotone or convex as computed:
+ * t affine (orthographic) or a constant over an affine function, u and v affine in x and t. */
 static double8 exact_w8(exact_row_t r, double8 ndc_x, double shrink, long8* covered) {
-  const double8 t = r.num / (r.den0 + r.den1 * ndc_x);
-  const double8 u = t * (r.ua0 + r.ua1 * ndc_x) - r.ca, v = t * (r.ub0 + r.ub1 * ndc_x) - r.cb;
+  double8 t, u, v;
+  if (r.ortho) {
+    t = (r.num + r.num1 * ndc_x) / r.den0;
+    u = (r.ua0 + r.ua1 * ndc_x) - t * r.az - r.ca;
+    v = (r.ub0 + r.ub1 * ndc_x) - t * r.bz - r.cb;
+  } else {
+    t = r.num / (r.den0 + r.den1 * ndc_x);
+    u = t * (r.ua0 + r.ua1 * ndc_x) - r.ca;
+    v = t * (r.ub0 + r.ub1 * ndc_x) - r.cb;
+  }
   *covered = (t > 0.0) & (fabs(u) <= r.ha * shrink) & (fabs(v) <= r.hb * shrink);
   return t;
 }
@@ -165,10 +196,11 @@ static void pixels8(exact_row_t ra, exact_row_t rb, uint x0, double ox, double v
  * many codes beyond A's (the descent's probes, far above the MTS) no pixel between can fight.
  * - Along the row ndc_x, den0 + den1 ndc_x (rounding is monotone) and t = num / den are
  *   monotone in x as computed, while den keeps its sign -- it does between two ends where t > 0.
- *   So w, inside (w in [n, f]) and finiteness hold at every pixel between ends where they hold.
- *   The exact u and v are Moebius maps of x, monotone, and their computed values within a few
- *   ulps of them: ends covered by the square shrunk by 2^-36 (kShrink) put every pixel between
- *   inside the square itself.
+ *   Orthographic: num + num1 ndc_x and its quotient by the constant den0 are monotone as
+ *   computed. So w, inside (w in [n, f]) and finiteness hold at every pixel between ends where
+ *   they hold. The exact u and v are Moebius maps of x (orthographic: affine), monotone, and their
+ *   computed values within a few ulps of them: ends covered by the square shrunk by 2^-36
+ *   (kShrink) put every pixel between inside the square itself.
  * - D(w) as computed is the exact, monotone D(w) times (1 + e), |e| a few binary64 ulps (its
  *   quotients and products; log1p within 2 ulp), far below a code's step, so a pixel's code is
  *   within one of the code of the exact D, which is monotone along the row: every code of the

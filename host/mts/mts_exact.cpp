@@ -74,6 +74,8 @@ std::vector<double> ExactEvaluator::plane_records(const std::vector<Probe>& prob
           for (int r = 0; r < 3; ++r)
             dst[c * 4 + r] = M[r * 4 + c];  // columns a, b, normal, centre
         dst[15] = p == 0 ? pc.layer_near : pc.layer_far;
+        // an orthographic view's half-extents scale with plane A's distance (frame_setup's P)
+        dst[3] = pair_.technique == Technique::orthographic ? pr.z : 0.0;
       }
   }
   return planes;

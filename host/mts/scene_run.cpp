@@ -29,9 +29,6 @@ using ArithmeticMts = std::function<std::vector<double>(const EvalPair& raw, con
 void attribute_rows(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                     std::vector<MtsRow>& rows, const ArithmeticMts& arithmetic,
                     const std::function<bool()>& stop) {
-  // The storage-limited pipeline casts perspective rays through the pixels (kernels/mts_exact.cl):
-  // an orthographic pair has no attribution yet, and its rows say so by having none.
-  if (pair.technique == Technique::orthographic) return;
   Scene plain = scene;
   plain.stiffness_probes = 0;
   std::vector<double> zs;

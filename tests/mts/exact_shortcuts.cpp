@@ -32,7 +32,8 @@ TEST_CASE("the storage-limited pipeline's shortcuts change no probe result",
   }
   for (const EvalPair& pair : {EvalPair{Technique::standard, "unorm24", DepthRange::gl},
                                EvalPair{Technique::reversed, "float32", DepthRange::zero_to_one},
-                               EvalPair{Technique::log_fragment, "unorm16", DepthRange::gl}}) {
+                               EvalPair{Technique::log_fragment, "unorm16", DepthRange::gl},
+                               EvalPair{Technique::orthographic, "unorm24", DepthRange::gl}}) {
     ExactEvaluator with(runtime(), scene, pair, sampled),
         without(runtime(), scene, pair, sampled, false);
     const auto b = without.run(probes);

@@ -1,8 +1,9 @@
 // The orthographic technique (host/model/technique.h): its projection, its MTS where storage
 // decides (one code of its linear map, the same at every distance) and its guaranteed MTS, and
-// what it does not take yet (attribution, a tilt, the audit).
+// what it does not take yet (a tilt, the audit); its attribution's storage-limited MTS.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"
@@ -86,15 +87,29 @@ TEST_CASE("orthographic's guaranteed MTS is at or above its sampled worst case u
   CHECK(bounded >= 30);
 }
 
+TEST_CASE("orthographic's storage-limited MTS is one code of its linear map", "[attribution]") {
+  // Attribution's binary64 pipeline with parallel rays: storage alone needs one code, 999 / 65535
+  // in unorm16 and 999 / (2^24 - 1) in unorm24 over [1, 1000], at every distance.
+  const auto r = depthprec::test::run_cli(
+      "mts -t orthographic -f unorm16,unorm24 --far 1000 --distances 2,100,900 --attribute "
+      "--frames 12 -q --no-timing --format-out json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  REQUIRE(j["rows"].size() == 6);
+  for (const auto& row : j["rows"]) {
+    INFO(row["format"] << " z = " << row["z"]);
+    const double code = 999.0 / (row["format"] == "unorm16" ? 65535.0 : 16777215.0);
+    CHECK(row["storage_mts"].get<double>() == Approx(code).epsilon(0.01));
+  }
+}
+
 TEST_CASE("orthographic refuses what it does not take yet, naming it", "[mts][orthographic][cli]") {
   using depthprec::test::run_cli;
   const auto tilt = run_cli("bias -t orthographic -f unorm24 --distances 10 --tilt 30 -q");
   CHECK(tilt.exit_code == 3);
   CHECK(tilt.output.find("orthographic takes no tilt") != std::string::npos);
-  // Attribution leaves its rows unattributed rather than casting perspective rays.
-  const auto attributed = run_cli(
-      "mts -t orthographic -f unorm16 --far 1000 --distances 10 --attribute --kernel 24x24 "
-      "--frames 4 -q --no-timing --format-out json");
-  REQUIRE(attributed.exit_code == 0);
-  CHECK(attributed.output.find("\"storage_mts\"") == std::string::npos);
+  const auto audit = run_cli("audit '" + std::string(DEPTHPREC_SOURCE_DIR) +
+                             "/data/audit/decal_wall.gltf' -t orthographic -q");
+  CHECK(audit.exit_code == 3);
+  CHECK(audit.output.find("perspective") != std::string::npos);
 }
