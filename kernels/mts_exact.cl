@@ -11,7 +11,7 @@
  * + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f
  * - n + 1); host/model/technique.h DepthMap), CLIP_W (1: the technique writes depth in the fragment
  * stage -- clip by the standard volume n <= w <= f and clamp d; 0: clip where d leaves [0, 1]),
- * COMPARE_GREATER, and the format's. */
+ * PARALLEL_RAYS (1: an orthographic view's parallel rays), COMPARE_GREATER, and the format's. */
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define DF_ENABLE_FP64 1
 #include "formats/depth_format.h"
@@ -70,38 +70,32 @@ static uint8 encode8(double8 d, df_format fmt) {
 
 /* One plane's per-row terms: along the row, the ray meets the plane at t = num / (den0 + den1 x),
  * and the in-plane coordinates are t (ua0 + ua1 x) - ca along the a axis, likewise b. An
- * orthographic view's rays are parallel, at (X x, Y y) across it (X, Y its half-extents at plane
- * A's distance, which its plane record carries in a.w, 0 for a perspective view): there
+ * orthographic view's rays (PARALLEL_RAYS) are parallel, at (X x, Y y) across it (X, Y its
+ * half-extents at plane A's distance, which its plane record carries in a.w): there
  * t = (num + num1 x) / den0 and the in-plane coordinate is (ua0 + ua1 x) - t az - ca. */
 typedef struct {
   double num, den0, den1, ua0, ua1, ca, ha, ub0, ub1, cb, hb;
+#if PARALLEL_RAYS
   double num1, az, bz;
-  int ortho;
+#endif
 } exact_row_t;
 
 static exact_row_t exact_row(__global const double4* pl, double ndc_y, double sx, double sy) {
   const double3 a = pl[0].xyz, b = pl[1].xyz, nrm = pl[2].xyz, c = pl[3].xyz;
-  const double scale = pl[0].w;
   exact_row_t r;
-  r.ortho = scale > 0.0;
-  r.ca = dot(c, a);
-  r.ha = 0.5 * dot(a, a);
-  r.cb = dot(c, b);
-  r.hb = 0.5 * dot(b, b);
-  if (r.ortho) {
-    const double X = sx * scale, Y = sy * scale;
-    r.num = nrm.y * (ndc_y * Y) - dot(nrm, c);
-    r.num1 = nrm.x * X;
-    r.den0 = nrm.z;
-    r.den1 = 0.0;
-    r.ua0 = a.y * (ndc_y * Y);
-    r.ua1 = a.x * X;
-    r.az = a.z;
-    r.ub0 = b.y * (ndc_y * Y);
-    r.ub1 = b.x * X;
-    r.bz = b.z;
-    return r;
-  }
+#if PARALLEL_RAYS
+  const double X = sx * pl[0].w, Y = sy * pl[0].w;
+  r.num = nrm.y * (ndc_y * Y) - dot(nrm, c);
+  r.num1 = nrm.x * X;
+  r.den0 = nrm.z;
+  r.den1 = 0.0;
+  r.ua0 = a.y * (ndc_y * Y);
+  r.ua1 = a.x * X;
+  r.az = a.z;
+  r.ub0 = b.y * (ndc_y * Y);
+  r.ub1 = b.x * X;
+  r.bz = b.z;
+#else
   r.num = dot(nrm, c);
   r.den0 = ndc_y * sy * nrm.y - nrm.z;
   r.den1 = sx * nrm.x;
@@ -109,24 +103,25 @@ static exact_row_t exact_row(__global const double4* pl, double ndc_y, double sx
   r.ua1 = sx * a.x;
   r.ub0 = ndc_y * sy * b.y - b.z;
   r.ub1 = sx * b.x;
-  r.num1 = r.az = r.bz = 0.0;
+#endif
+  r.ca = dot(c, a);
+  r.ha = 0.5 * dot(a, a);
+  r.cb = dot(c, b);
+  r.hb = 0.5 * dot(b, b);
   return r;
 }
 
 /* w at 8 pixels of the row (ndc_x), and whether the plane's square, its half-sides times
- * shrink (1: the square itself), covers them. Along a row each is monotone or convex as computed:
- * t affine (orthographic) or a constant over an affine function, u and v affine in x and t. */
+ * shrink (1: the square itself), covers them. */
 static double8 exact_w8(exact_row_t r, double8 ndc_x, double shrink, long8* covered) {
-  double8 t, u, v;
-  if (r.ortho) {
-    t = (r.num + r.num1 * ndc_x) / r.den0;
-    u = (r.ua0 + r.ua1 * ndc_x) - t * r.az - r.ca;
-    v = (r.ub0 + r.ub1 * ndc_x) - t * r.bz - r.cb;
-  } else {
-    t = r.num / (r.den0 + r.den1 * ndc_x);
-    u = t * (r.ua0 + r.ua1 * ndc_x) - r.ca;
-    v = t * (r.ub0 + r.ub1 * ndc_x) - r.cb;
-  }
+#if PARALLEL_RAYS
+  const double8 t = (r.num + r.num1 * ndc_x) / r.den0;
+  const double8 u = (r.ua0 + r.ua1 * ndc_x) - t * r.az - r.ca;
+  const double8 v = (r.ub0 + r.ub1 * ndc_x) - t * r.bz - r.cb;
+#else
+  const double8 t = r.num / (r.den0 + r.den1 * ndc_x);
+  const double8 u = t * (r.ua0 + r.ua1 * ndc_x) - r.ca, v = t * (r.ub0 + r.ub1 * ndc_x) - r.cb;
+#endif
   *covered = (t > 0.0) & (fabs(u) <= r.ha * shrink) & (fabs(v) <= r.hb * shrink);
   return t;
 }

@@ -44,10 +44,11 @@ ExactEvaluator::ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const Eval
     : rt_(rt), scene_(scene), pair_(pair), orientations_(orientations) {
   const Technique t = depth_path(scene, pair.technique);
   const TechniqueInfo& ti = info(t);
-  options_ = fmt::format("{} -DROW_ENDS={} -DDEPTH_MAP={} -DCLIP_W={} -DCOMPARE_GREATER={} {}",
-                         base_build_options(false), shortcuts ? 1 : 0,
-                         static_cast<int>(info(t).map), ti.from == DepthFrom::fragment ? 1 : 0,
-                         ti.greater ? 1 : 0, scene.storage_format(pair).defines());
+  options_ = fmt::format(
+      "{} -DROW_ENDS={} -DDEPTH_MAP={} -DCLIP_W={} -DPARALLEL_RAYS={} -DCOMPARE_GREATER={} {}",
+      base_build_options(false), shortcuts ? 1 : 0, static_cast<int>(info(t).map),
+      ti.from == DepthFrom::fragment ? 1 : 0, t == Technique::orthographic ? 1 : 0,
+      ti.greater ? 1 : 0, scene.storage_format(pair).defines());
   kernel_ =
       cl::Kernel(rt_.program("kernels/mts_exact.cl", options_ + " -DA_CACHED=0"), "mts_exact");
   kw_pad_ = (static_cast<size_t>(scene.kernel_w) + 7) / 8 * 8;
