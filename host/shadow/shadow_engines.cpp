@@ -18,17 +18,11 @@ struct Scales {
 
 Scales scales_of(const EngineInfo& e, const ShadowSetup& s, size_t cascade) {
   const double texel = s.texel(cascade), range = s.cascades[cascade].depth_range();
-  const std::string n = e.name;
-  // Unity's soft shadows (every filter but nearest) multiply both by 2.5, the factor its
-  // per-light "use pipeline settings" falls back to.
-  const double unity_soft = s.filter.name == "nearest" ? 1.0 : 2.5;
-  if (n == "unity") return {texel * unity_soft, texel * unity_soft};
-  if (n == "godot") return {range / 100, texel};  // Hard quality: soft_shadow_scale 1
-  if (n == "bevy") return {1.0, std::sqrt(2.0) * texel};
-  if (n == "threejs") return {-range, 1.0};
-  if (n == "filament") return {1.0, 0.5 * texel};
-  if (n == "babylon") return {range, 1.0};
-  return {0, 0};
+  const double soft = e.soft_scaled && s.filter.name != "nearest" ? 2.5 : 1.0;
+  auto metres = [&](const SettingScale& k) {
+    return (k.per_texel * texel * soft + k.per_range * range + k.per_metre) / k.divisor;
+  };
+  return {metres(e.depth_scale), metres(e.normal_scale)};
 }
 
 double clearance(NormalForm f, double k, double theta) {
@@ -54,34 +48,96 @@ const std::vector<EngineInfo>& engine_table() {
        "Unity URP ShadowUtils.cs GetShadowBias; ShaderLibrary/Shadows.hlsl ApplyShadowBias",
        "texels (x 2.5 with soft shadows), caster moved away along the light",
        "texels (x 2.5 with soft shadows), caster inset along its normal x (1 - N.L)",
-       NormalForm::one_minus_cos, 2.5, 1.0, 1.0, 1.0, true},
+       {1, 0, 0},
+       {1, 0, 0},
+       true,
+       NormalForm::one_minus_cos,
+       2.5,
+       1.0,
+       1.0,
+       1.0,
+       true},
       {"godot",
        "Godot 4 renderer_scene_cull.cpp (bias_scale, shadow_texel_size); light_storage.cpp "
        "update_light_buffers; scene_forward_clustered light_dir_shadow BIAS_FUNC",
        "1/100 of the cascade's depth range (Hard quality), receiver toward the light",
-       "texels, receiver moved along the normal's part across the light", NormalForm::lateral, 0, 0,
-       0.1, 2.0, true},
+       "texels, receiver moved along the normal's part across the light",
+       {0, 0.01, 0},
+       {1, 0, 0},
+       false,
+       NormalForm::lateral,
+       0,
+       0,
+       0.1,
+       2.0,
+       true},
       {"bevy",
        "Bevy shadows.wesl sample_directional_cascade; render/light.rs (normal bias x sqrt 2)",
-       "metres, receiver toward the light", "texels x sqrt(2), receiver along its normal",
-       NormalForm::full, 0, 0, 0.02, 1.8, true},
-      {"threejs", "three.js shadowmap_vertex.glsl.js; shadowmap_pars_fragment.glsl.js getShadow",
+       "metres, receiver toward the light",
+       "texels x sqrt(2), receiver along its normal",
+       {0, 0, 1},
+       {std::sqrt(2.0), 0, 0},
+       false,
+       NormalForm::full,
+       0,
+       0,
+       0.02,
+       1.8,
+       true},
+      {"threejs",
+       "three.js shadowmap_vertex.glsl.js; shadowmap_pars_fragment.glsl.js getShadow",
        "window depth of the shadow camera, added to the receiver (negative lifts it)",
-       "metres, receiver along its normal", NormalForm::full, 0, 0, 0, 0, true},
+       "metres, receiver along its normal",
+       {0, -1, 0},
+       {0, 0, 1},
+       false,
+       NormalForm::full,
+       0,
+       0,
+       0,
+       0,
+       true},
       {"filament",
        "Filament LightManager.h ShadowOptions; ShadowMap.cpp updateDirectional; "
        "ShadowMapManager.cpp; common_shadowing.glsl computeLightSpacePosition",
        "metres, caster moved away along the light",
-       "texels x 1/2, receiver along its normal x sin(theta)", NormalForm::sine, 2.0, 0.5, 0.001,
-       1.0, true},
-      {"babylon", "Babylon.js shadowGenerator.ts; shadowMapVertexMetric, shadowMapVertexNormalBias",
+       "texels x 1/2, receiver along its normal x sin(theta)",
+       {0, 0, 1},
+       {0.5, 0, 0},
+       false,
+       NormalForm::sine,
+       2.0,
+       0.5,
+       0.001,
+       1.0,
+       true},
+      {"babylon",
+       "Babylon.js shadowGenerator.ts; shadowMapVertexMetric, shadowMapVertexNormalBias",
        "window depth of the light's range, added to the caster",
-       "metres, caster inset along its normal x sin(theta)", NormalForm::sine, 0, 0, 0.00005, 0,
+       "metres, caster inset along its normal x sin(theta)",
+       {0, 1, 0},
+       {0, 0, 1},
+       false,
+       NormalForm::sine,
+       0,
+       0,
+       0.00005,
+       0,
        true},
       {"unreal",
        "not public: ShadowBias and r.Shadow.CSMDepthBias are applied in ShadowRendering.cpp, "
        "outside the public sources",
-       "", "", NormalForm::full, 0, 0, 0.5, 0, false},
+       "",
+       "",
+       {},
+       {},
+       false,
+       NormalForm::full,
+       0,
+       0,
+       0.5,
+       0,
+       false},
   };
   return table;
 }

@@ -18,11 +18,21 @@ namespace depthprec {
 // for one scaled by 1 - N.L.
 enum class NormalForm { full, sine, lateral, one_minus_cos };
 
+// Metres (along the light, or along the normal) one unit of a setting stands for in a cascade:
+// per_texel texels plus per_range depth ranges plus per_metre metres, over divisor (Godot's 1/100
+// of the range), the texels times 2.5 under soft shadows where the engine scales by its filter
+// (Unity: every filter but nearest).
+struct SettingScale {
+  double per_texel = 0, per_range = 0, per_metre = 0, divisor = 1;
+};
+
 struct EngineInfo {
   const char* name;
   const char* source;       // the file and function the conversion reads
   const char* depth_unit;   // what one unit of its depth bias setting is
   const char* normal_unit;  // what one unit of its normal bias setting is
+  SettingScale depth_scale, normal_scale;
+  bool soft_scaled;  // both scales times 2.5 unless the filter is nearest
   NormalForm normal_form;
   double raster_slope;  // the slope factor its shadow pass always sets (0: none)
   double raster_units;  // the constant units (r) it always sets
