@@ -49,12 +49,8 @@ std::vector<RenderedProbe> probes_of(const nlohmann::json& bound, bool reversed)
   return out;
 }
 
-Vec3 scale3(const Vec3& v, double k) {
-  return {v[0] * k, v[1] * k, v[2] * k};
-}
-
 Vec3 along(const Vec3& p, const Vec3& d, double t) {
-  return {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]};
+  return add(p, scaled(d, t));
 }
 
 // Where a ray from ground point p toward the light meets the wall (the plane through `foot` facing
@@ -122,7 +118,7 @@ nlohmann::json rendered_shadow_check(const ShadowRequest& r, size_t cascade,
 
 nlohmann::json rendered_shadow_gap(const ShadowSetup& s, size_t cascade, double bias_metres) {
   const LightMatrix L = light_matrix(s, cascade);
-  const Vec3 up{0, 1, 0}, to_light = scale3(L.basis[2], -1);
+  const Vec3 up{0, 1, 0}, to_light = scaled(L.basis[2], -1);
   const Vec3 facing = normalized(Vec3{to_light[0], 0, to_light[2]});  // the wall's normal
   const Vec3 side = cross(up, facing);
   const double texel = s.texel(cascade), range = s.cascades[cascade].depth_range();
@@ -173,8 +169,8 @@ nlohmann::json rendered_shadow_gap(const ShadowSetup& s, size_t cascade, double 
     const double step = reach_out / grid;
     ShadowReceivers rc;
     rc.origin = foot;
-    rc.du = scale3(facing, -step);
-    rc.dv = scale3(facing, -step * grid);
+    rc.du = scaled(facing, -step);
+    rc.dv = scaled(facing, -step * grid);
     rc.normal = {0, 1, 0};
     rc.receiver_offset = static_cast<float>(bias_metres / range);
     rc.reach = 0.5;

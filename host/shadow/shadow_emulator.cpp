@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "host/model/matrix.h"
 #include "host/runtime/opencl_runtime.h"
 #include "interface/bias_formula.h"
 #include "interface/shadow_layout.h"
@@ -22,31 +23,9 @@ struct Random {
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
 };
 
-using Vec = std::array<double, 3>;
-Vec add(Vec a, Vec b) {
-  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-}
-Vec scale(Vec a, double s) {
-  return {a[0] * s, a[1] * s, a[2] * s};
-}
-
 // Half the caster triangle's leg, texels: the triangle holds every texel the filter reads around
 // the receiver grid's texel.
 constexpr double kTriangle = 12;
-
-}  // namespace
-
-namespace {
-
-Vec cross3(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot3(const Vec& a, const Vec& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec unit3(const Vec& a) {
-  return scale(a, 1 / std::sqrt(dot3(a, a)));
-}
 
 }  // namespace
 
@@ -60,9 +39,11 @@ ShadowPlanes shadow_planes(const ShadowSetup& s, size_t cascade, const ShadowSam
   // A spot light's ray through texel position (u, v): its direction with axial component 1, so
   // that a point at distance w along the axis is position + w ray.
   const double step = 2 * L.tan_half / res;
-  const Vec r1 = scale(right, step), r2 = scale(up, step);
-  const Vec r0 = add(forward, add(scale(right, -L.tan_half), scale(up, -L.tan_half)));
-  auto ray = [&](double u, double v) { return add(r0, add(scale(r1, u), scale(r2, v))); };
+  const Vec3 r1 = scaled(right, step), r2 = scaled(up, step);
+  const Vec3 r0 = add(forward, add(scaled(right, -L.tan_half), scaled(up, -L.tan_half)));
+  // a unit vector as a times the reciprocal of its length
+  auto unit = [](const Vec3& a) { return scaled(a, 1 / std::sqrt(dot(a, a))); };
+  auto ray = [&](double u, double v) { return add(r0, add(scaled(r1, u), scaled(r2, v))); };
   ShadowPlanes out;
   out.count = sampling.planes;
   Random rnd{sampling.seed};
@@ -78,24 +59,24 @@ ShadowPlanes shadow_planes(const ShadowSetup& s, size_t cascade, const ShadowSam
     const double gu = std::tan(theta) * std::cos(phi), gv = std::tan(theta) * std::sin(phi);
     // Spot: the plane through the point at that distance on the grid texel's ray, its normal
     // theta from the ray toward the light, turned toward phi about it.
-    const Vec ray0 = ray(bu + 0.5, bv + 0.5), p0 = add(L.position, scale(ray0, c.distance));
-    const Vec rh = unit3(ray0), e1 = unit3(add(right, scale(rh, -dot3(right, rh)))),
-              e2 = cross3(rh, e1);
-    const Vec n0 =
-        add(scale(rh, -std::cos(theta)),
-            scale(add(scale(e1, std::cos(phi)), scale(e2, std::sin(phi))), std::sin(theta)));
+    const Vec3 ray0 = ray(bu + 0.5, bv + 0.5), p0 = add(L.position, scaled(ray0, c.distance));
+    const Vec3 rh = unit(ray0), e1 = unit(add(right, scaled(rh, -dot(right, rh)))),
+               e2 = cross(rh, e1);
+    const Vec3 n0 =
+        add(scaled(rh, -std::cos(theta)),
+            scaled(add(scaled(e1, std::cos(phi)), scaled(e2, std::sin(phi))), std::sin(theta)));
     // World point at texel position (u, v) on the intended plane.
     auto world = [&](double u, double v) {
       if (spot) {
-        const Vec d = ray(u, v);
-        return add(L.position, scale(d, dot3(n0, add(p0, scale(L.position, -1))) / dot3(n0, d)));
+        const Vec3 d = ray(u, v);
+        return add(L.position, scaled(d, dot(n0, add(p0, scaled(L.position, -1))) / dot(n0, d)));
       }
       const double x = (u / res - 0.5) * c.extent, y = (v / res - 0.5) * c.extent;
       const double z = z0 + (gu * (u - bu - 0.5) + gv * (v - bv - 0.5)) * texel;
-      return add(add(add(L.centre, scale(right, x)), scale(up, y)), scale(forward, z));
+      return add(add(add(L.centre, scaled(right, x)), scaled(up, y)), scaled(forward, z));
     };
     const double q0u = bu - kTriangle, q0v = bv - kTriangle, leg = 4 * kTriangle;
-    std::array<Vec, 3> v{world(q0u, q0v), world(q0u + leg, q0v), world(q0u, q0v + leg)};
+    std::array<Vec3, 3> v{world(q0u, q0v), world(q0u + leg, q0v), world(q0u, q0v + leg)};
     std::array<float, SHADOW_F_STRIDE> f{};
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
@@ -103,15 +84,15 @@ ShadowPlanes shadow_planes(const ShadowSetup& s, size_t cascade, const ShadowSam
         v[i][j] = f[3 * i + j];  // the plane is the binary32 triangle's
       }
     std::array<double, SHADOW_D_STRIDE> d{};
-    Vec n;
+    Vec3 n;
     if (!spot) {
       // Receiver points lie on that triangle: affine in (u, v) through its vertices.
-      const Vec du = scale(add(v[1], scale(v[0], -1)), 1 / leg);
-      const Vec dv = scale(add(v[2], scale(v[0], -1)), 1 / leg);
-      const Vec origin = add(v[0], add(scale(du, -q0u), scale(dv, -q0v)));
-      n = cross3(du, dv);
-      const double len = std::sqrt(dot3(n, n));
-      n = scale(n, (dot3(n, forward) > 0 ? -1 : 1) / len);  // toward the light
+      const Vec3 du = scaled(add(v[1], scaled(v[0], -1)), 1 / leg);
+      const Vec3 dv = scaled(add(v[2], scaled(v[0], -1)), 1 / leg);
+      const Vec3 origin = add(v[0], add(scaled(du, -q0u), scaled(dv, -q0v)));
+      n = cross(du, dv);
+      const double len = std::sqrt(dot(n, n));
+      n = scaled(n, (dot(n, forward) > 0 ? -1 : 1) / len);  // toward the light
       std::copy(origin.begin(), origin.end(), d.begin() + SHADOW_D_ORIGIN);
       std::copy(du.begin(), du.end(), d.begin() + SHADOW_D_DU);
       std::copy(dv.begin(), dv.end(), d.begin() + SHADOW_D_DV);
@@ -119,14 +100,14 @@ ShadowPlanes shadow_planes(const ShadowSetup& s, size_t cascade, const ShadowSam
     } else {
       // On that triangle's plane n . p = n . v0 along the ray through (u, v): position + l ray
       // with l = h / (n . ray), h = n . (v0 - position): projective in (u, v).
-      n = unit3(cross3(add(v[1], scale(v[0], -1)), add(v[2], scale(v[0], -1))));
-      if (dot3(n, add(L.position, scale(v[0], -1))) < 0) n = scale(n, -1);  // toward the light
-      const double h = dot3(n, add(v[0], scale(L.position, -1)));
-      const Vec* rows[3] = {&r0, &r1, &r2};
+      n = unit(cross(add(v[1], scaled(v[0], -1)), add(v[2], scaled(v[0], -1))));
+      if (dot(n, add(L.position, scaled(v[0], -1))) < 0) n = scaled(n, -1);  // toward the light
+      const double h = dot(n, add(v[0], scaled(L.position, -1)));
+      const Vec3* rows[3] = {&r0, &r1, &r2};
       for (int i = 0; i < 3; ++i) {
-        const Vec num = add(scale(L.position, dot3(n, *rows[i])), scale(*rows[i], h));
+        const Vec3 num = add(scaled(L.position, dot(n, *rows[i])), scaled(*rows[i], h));
         std::copy(num.begin(), num.end(), d.begin() + 3 * i);
-        d[SHADOW_D_DENOM + i] = dot3(n, *rows[i]);
+        d[SHADOW_D_DENOM + i] = dot(n, *rows[i]);
       }
     }
     for (int j = 0; j < 3; ++j) f[SHADOW_F_NORMAL + j] = static_cast<float>(n[j]);
