@@ -35,12 +35,17 @@ double shadow_r(const ShadowSetup& s, size_t cascade) {
   return rule.r_at(static_cast<float>(d));
 }
 
-double spot_normal_sine(const ShadowSetup& s, size_t cascade, double theta) {
-  (void)cascade;
+namespace {
+
+// Spot: the largest sine of a receiver normal's angle to the light's axis, sin(theta + beta).
+double spot_normal_sine(const ShadowSetup& s, double theta) {
   const double beta = std::atan(std::sqrt(2.0) * std::tan(radians(s.spot_angle) / 2));
   return std::sin(std::min(theta + beta, M_PI / 2));
 }
 
+// The receiver's window-depth gradient per texel at slope theta (radians) along its steepest
+// direction: texel / range tan(theta) for a directional light; a spot light's, the largest over
+// its cone at the row's distance.
 double depth_per_texel(const ShadowSetup& s, size_t cascade, double theta) {
   const ShadowCascade& c = s.cascades[cascade];
   if (s.light == LightType::directional)
@@ -52,8 +57,10 @@ double depth_per_texel(const ShadowSetup& s, size_t cascade, double theta) {
   // largest angle to the axis, atan(sqrt(2) tan(half cone)). A texel is 2 tan(half cone) / res.
   const double C = c.far * c.near / c.depth_range();
   const double step = 2 * std::tan(radians(s.spot_angle) / 2) / s.resolution;
-  return C * spot_normal_sine(s, cascade, theta) * step / (c.distance * std::cos(theta));
+  return C * spot_normal_sine(s, theta) * step / (c.distance * std::cos(theta));
 }
+
+}  // namespace
 
 double gap_of(const ShadowSetup& s, double metres) {
   return metres * std::cos(radians(s.light_elevation));
@@ -152,7 +159,7 @@ ShadowBound shadow_bound(const ShadowSetup& s, size_t cascade, const BoundModel&
   // sqrt(2) g reach'.
   const double rho = t.lateral_reach();
   const double g = depth_per_texel(s, cascade, theta);
-  const double sin_n = spot_normal_sine(s, cascade, theta);
+  const double sin_n = spot_normal_sine(s, theta);
   const double E = t.depth_errors();
   const double r = shadow_r(s, cascade);
   const double grow = (1 + kBiasArithmetic) * kMargin;

@@ -51,13 +51,6 @@ constexpr double kBiasArithmetic = 0x1.0p-22;
 
 ShadowBound shadow_bound(const ShadowSetup& s, size_t cascade, const BoundModel& model);
 
-// The receiver's window-depth gradient at slope theta (radians) per texel along its steepest
-// direction: texel / range * tan(theta) for a directional light; for a spot light the largest
-// over its cone at the row's distance (shadow_bound.cpp).
-double depth_per_texel(const ShadowSetup& s, size_t cascade, double theta);
-// Spot: the largest sine of a receiver normal's angle to the light's axis, sin(theta + beta).
-double spot_normal_sine(const ShadowSetup& s, size_t cascade, double theta);
-
 // A gap for a depth offset of `metres` along the light: the ground distance from a wall's foot
 // over which the wall's shadow is lost, metres * cos(elevation).
 double gap_of(const ShadowSetup& s, double metres);

@@ -30,14 +30,9 @@ std::vector<ShadowCascade> spot_rows(const std::vector<double>& distances, doubl
   return out;
 }
 
-namespace {
-
-// The spot light's window depth D(w) = A + C / w along its axis (standard or reversed).
 Technique spot_mapping(const ShadowSetup& s) {
   return s.reversed ? Technique::reversed : Technique::standard;
 }
-
-}  // namespace
 
 double depth_per_metre(const ShadowSetup& s, size_t cascade) {
   const ShadowCascade& c = s.cascades[cascade];

@@ -11,6 +11,7 @@
 
 #include "host/bias/bias_rule.h"
 #include "host/model/storage_format.h"
+#include "host/model/technique.h"
 
 namespace depthprec {
 
@@ -64,6 +65,10 @@ struct ShadowSetup {
 // A spot light's rows: one per receiver distance, each the map's extent there.
 std::vector<ShadowCascade> spot_rows(const std::vector<double>& distances, double near, double far,
                                      double angle_deg);
+
+// A spot light's window depth D(w) = A + C / w along its axis: the standard mapping, or the
+// reversed one.
+Technique spot_mapping(const ShadowSetup& s);
 
 // Window depth per metre along the light at a row's receivers: 1 / range for a directional
 // light; the perspective map's slope at the receivers' distance for a spot light.
