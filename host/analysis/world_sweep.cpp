@@ -7,6 +7,7 @@
 
 #include "host/analysis/advise.h"
 #include "host/base/errors.h"
+#include "host/model/bound_model.h"
 #include "host/mts/worst_case.h"
 
 namespace depthprec {
@@ -28,9 +29,12 @@ double grid_spacing(double m, int precision) {
   return std::ldexp(1.0, e - precision);
 }
 
-// The vertex shader's significand: binary32's 24 bits, or binary16's 11 under mediump.
+// The vertex shader's significand: binary32's 24 bits, or mediump's (the gles_mediump bound
+// model's, 11) under a mediump shader.
 int shader_bits(const Scene& scene) {
-  return scene.pipeline.shader_precision == ShaderPrecision::mediump ? 11 : 24;
+  return scene.pipeline.shader_precision == ShaderPrecision::mediump
+             ? bound_model("gles_mediump").shader_bits
+             : 24;
 }
 
 // The magnitudes the sweep considers: from below any vertex's reach to above world_position's

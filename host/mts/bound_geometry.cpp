@@ -57,8 +57,9 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   // map its depths follow.
   m.shader_range = m.model->shader_range;
   if (p.shader_precision == ShaderPrecision::mediump) {
-    m.shader_rounding.bits = std::min(m.shader_rounding.bits, 11);
-    m.shader_range = std::min(m.shader_range, 16384.0);
+    const BoundModel& mediump = bound_model("gles_mediump");  // GLSL ES's mediump, once
+    m.shader_rounding.bits = std::min(m.shader_rounding.bits, mediump.shader_bits);
+    m.shader_range = std::min(m.shader_range, mediump.shader_range);
     for (double* e : {&m.a, &m.b, &m.P00, &m.P11}) *e = dp_binary16(static_cast<float>(*e));
   }
   m.scale = m.pc.depth_gl ? 0.5 : 1.0;
