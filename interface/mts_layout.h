@@ -74,12 +74,15 @@
 #define MTS_T_YMAX 22
 #define MTS_T_DXDY 23 /* 3 x dx/dy per edge: a first guess of where a row crosses it */
 #define MTS_T_BIAS 26 /* the triangle's depth bias (kernels/bias.cl only) */
+/* kernels/mts.cl's use of the same word: the direction an envelope's adversary moves the plane's
+ * stored codes (interface/adversary.h): +1 up, -1 down, 0 none; depth bias takes no envelope */
+#define MTS_T_ADVERSARY 26
 /* the largest |window depth| of its vertices (the float rule of depth bias) */
 #define MTS_T_ZMAX 27
 #define MTS_T_BOX 28 /* int4: the kernel pixels the triangle may own (setup.cl pixel_boxes16) */
 
 /* A probe's constants (host/model/frame_setup.h ProbeConstants::packed): P, then these. */
-#define MTS_PROBE_STRIDE 40
+#define MTS_PROBE_STRIDE 44
 #define MTS_C_NEAR 16
 #define MTS_C_FAR 17
 #define MTS_C_RANGE 18
@@ -115,6 +118,14 @@
 #define MTS_C_VIEW_X 31     /* then y, z */
 #define MTS_C_EYE_HIGH_X 34 /* then y, z */
 #define MTS_C_EYE_LOW_X 37  /* then y, z */
+/* An envelope's adversary (pipeline.envelope, interface/adversary.h), read by the set-up alone:
+ * the direction this plane's window depth moves (+1 up, -1 down, 0: no adversary; plane A's
+ * towards the far side of the depth test, plane B's towards the near side), whether its
+ * reciprocal of w takes the faithful rounding in that direction, and the relative interpolation
+ * error it takes in that direction. */
+#define MTS_C_ADV_DEPTH 40
+#define MTS_C_ADV_RECIPROCAL 41
+#define MTS_C_ADV_INTERPOLATION 42
 /* z_clip / w_clip correctly rounded; else z_clip * fl(1 / w_clip) */
 #define MTS_F_DIVIDE_EXACT 1u
 /* the host uploads P * MV, one product per vertex; else P (MV v) */

@@ -27,7 +27,7 @@ AuditPixels audit_device(OpenClRuntime& rt, const Scene& scene, const AuditSetup
   cl::Program program = rt.program("kernels/audit.cl", variant.options);
   cl::Kernel kernel(program, "audit_pixels");
   cl::Context& ctx = rt.context();
-  const auto packed = a.pc.packed();
+  const auto packed = a.pc.packed(0);
   const std::vector<float> probe(packed.begin(), packed.end());
   std::vector<double> planes;
   planes.reserve(a.planes.size() * AUDIT_PLANE_WORDS);

@@ -298,6 +298,11 @@ AuditSetup audit_setup(const Scene& s, const EvalPair& pair, const SceneGeometry
     throw InputError(
         "audit: orthographic set-ups take the projection from the scene's camera, and the audit "
         "takes a perspective glTF camera; audit a perspective technique");
+  if (!s.pipeline.envelope.empty())
+    throw InputError(fmt::format(
+        "audit: pipeline.envelope {} is an adversary between the two planes of the MTS, not "
+        "between a scene's surfaces; audit under its bound instead (--set bound_model={})",
+        s.pipeline.envelope, s.pipeline.envelope));
   AuditSetup a;
   a.pair = pair;
   a.pc = probe_constants(s, pair, s.near);

@@ -24,6 +24,13 @@ constexpr size_t kMaxPlanesPerLaunch = 4096;
 }  // namespace
 
 KernelVariant bias_variant(const Scene& scene, const EvalPair& pair) {
+  // The adversary moves plane A against plane B; depth bias draws one plane over its own overlay.
+  if (!scene.pipeline.envelope.empty())
+    throw InputError(fmt::format(
+        "bias: pipeline.envelope {} is an adversary between two planes of the MTS; depth bias "
+        "overlays a plane on itself (measure bias under the ideal pipeline, or give "
+        "--set bound_model={} for the guaranteed units)",
+        scene.pipeline.envelope, scene.pipeline.envelope));
   KernelVariant v = mts_variant(scene, pair);
   v.program = "kernels/bias.cl";
   v.label = "bias:" + v.label;
@@ -84,7 +91,7 @@ std::vector<ProbeResult> BiasEmulator::run(const std::vector<BiasProbe>& probes)
       for (const size_t i : active) {
         const BiasProbe& p = probes[i];
         const ProbeConstants pc = probe_constants(scene_, pair_, p.z, orientations_);
-        auto packed = pc.packed();
+        auto packed = pc.packed(0);
         packed[MTS_C_BIAS_UNITS] = rule_.units_term(p.units);
         packed[MTS_C_BIAS_FACTOR] = static_cast<float>(p.factor);
         packed[MTS_C_BIAS_CLAMP] = static_cast<float>(options_.clamp);

@@ -51,9 +51,10 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--profile", profile,
                  "Implementation profile: ideal (docs/spec.md 2), llvmpipe (Mesa's fused vertex "
                  "products, log, clip stage, depth-plane set-up, FMA viewport and unorm "
-                 "conversions) or softpipe (llvmpipe's vertex stage, its own quad-stepped planes "
-                 "and truncated unorm codes); sets pipeline.vertex, pipeline.log, pipeline.clip, "
-                 "pipeline.plane, pipeline.viewport, pipeline.conversion and pipeline.snap");
+                 "conversions), softpipe (llvmpipe's vertex stage, its own quad-stepped planes "
+                 "and truncated unorm codes), gles_mediump (a binary16 vertex shader), or an "
+                 "API envelope's adversary: d3d11, vulkan_min (bounded under the envelope's "
+                 "model); `depthprec pipelines` lists them");
 }
 
 namespace {

@@ -70,7 +70,10 @@ const std::vector<BoundModel>& bound_models() {
        {1.2, 1.2, 1.2},
        8,
        8,
-       0},
+       0,
+       24,
+       INFINITY,
+       0.6},
       {"vulkan_min",
        "the least a Vulkan implementation must do: 4 sub-pixel bits, depth interpolated to 1 part "
        "in 10^5, a unorm code either of the two nearest, otherwise as binary32",
@@ -85,7 +88,10 @@ const std::vector<BoundModel>& bound_models() {
        {2.0078125, 3, 4},
        8,
        4,
-       1e-5},
+       1e-5,
+       24,
+       INFINITY,
+       1},
       {"gles_mediump",
        "shaders in GLSL ES mediump (relative precision 2^-10, magnitudes to 2^14: binary16's), "
        "the fixed-function stages in binary32, otherwise as binary32",
@@ -108,6 +114,21 @@ const BoundModel& bound_model(const std::string& name) {
   for (const BoundModel& m : bound_models())
     if (name == m.name) return m;
   throw InputError(fmt::format("unknown bound model '{}': one of {}", name, bound_model_names()));
+}
+
+const BoundModel* envelope_model(const std::string& name) {
+  if (name == "none") return nullptr;
+  std::string names = "none";
+  for (const BoundModel& m : bound_models()) {
+    if (name == m.name && m.has_adversary()) return &m;
+    if (m.has_adversary()) names += std::string(", ") + m.name;
+  }
+  throw InputError(fmt::format("unknown envelope '{}': one of {}", name, names));
+}
+
+double adversary_code_slack(const BoundModel& envelope) {
+  const double t = envelope.adversary_conversion;
+  return t >= 1 ? 0.0 : 1.0 - t + 0x1p-20;
 }
 
 std::string bound_model_names() {

@@ -33,10 +33,24 @@ struct BoundModel {
   // largest magnitude they hold (mediump: 2^14).
   int shader_bits = 24;
   double shader_range = INFINITY;
+  // An envelope's adversarial unorm conversion (pipeline.envelope, interface/adversary.h): a code
+  // within this many codes of d (2^b - 1) on the side that helps the farther plane (D3D 0.6;
+  // Vulkan's "either of the two nearest" 1); 0: the pipeline's own conversion. The envelope's
+  // other freedoms are the fields above: the reciprocal (reciprocal_half_ulps 2: within 1 ulp),
+  // the interpolation error, the snapping (its profile sets pipeline.snap to snap_bits).
+  double adversary_conversion = 0;
+  bool has_adversary() const { return adversary_conversion > 0; }
 };
 
 const std::vector<BoundModel>& bound_models();
 const BoundModel& bound_model(const std::string& name);  // throws InputError naming the models
-std::string bound_model_names();                         // "binary32, ideal, ..."
+// pipeline.envelope's value: "none" (nullptr) or a model with an adversary; throws InputError
+// naming them.
+const BoundModel* envelope_model(const std::string& name);
+// The slack of its adversarial unorm conversion (interface/adversary.h dp_adv_unorm_code): 1 - t
+// for a tolerance of t codes, with a hair (2^-20) more below 1 so binary64 cannot carry a code
+// past t; 0 for either of the two nearest codes (t = 1).
+double adversary_code_slack(const BoundModel& envelope);
+std::string bound_model_names();  // "binary32, ideal, ..."
 
 }  // namespace depthprec

@@ -8,6 +8,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "host/base/errors.h"
+#include "host/model/bound_model.h"
 #include "host/model/tilted_plane.h"
 #include "interface/relative_to_eye.h"
 
@@ -171,6 +172,15 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
              (pipe.vertex == VertexForm::fma ? MTS_F_VERTEX_FMA : 0u) |
              (pipe.shader_precision == ShaderPrecision::mediump ? MTS_F_MEDIUMP : 0u);
   pc.snap_bits = pipe.snap_bits;
+  if (!pipe.envelope.empty()) {
+    const BoundModel& m = bound_model(pipe.envelope);
+    // the depth test the kernel runs: a layered pair's is its layer mapping's
+    const Technique run =
+        pair.technique == Technique::layered ? s.params.layer_mapping : pair.technique;
+    pc.adv_far = info(run).greater ? -1.0f : 1.0f;
+    pc.adv_reciprocal = m.reciprocal_half_ulps > 1 ? 1.0f : 0.0f;
+    pc.adv_interpolation = static_cast<float>(m.interpolation_relative);
+  }
   // The view's translation, applied on the GPU after the model matrix (plane_vertex_stage's view:
   // model_then_view away from the origin); premultiplied, the host folds it into P * V * M.
   const auto& wp = s.world_position;
@@ -188,7 +198,7 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
 
 }  // namespace
 
-std::array<float, MTS_PROBE_STRIDE> ProbeConstants::packed() const {
+std::array<float, MTS_PROBE_STRIDE> ProbeConstants::packed(int plane) const {
   std::array<float, MTS_PROBE_STRIDE> out{};
   for (int i = 0; i < MTS_MAT_STRIDE; ++i) out[i] = P[i];
   out[MTS_C_NEAR] = near;
@@ -208,6 +218,9 @@ std::array<float, MTS_PROBE_STRIDE> ProbeConstants::packed() const {
     out[MTS_C_EYE_HIGH_X + i] = eye_high[i];
     out[MTS_C_EYE_LOW_X + i] = eye_low[i];
   }
+  out[MTS_C_ADV_DEPTH] = adv_far * static_cast<float>(plane);
+  out[MTS_C_ADV_RECIPROCAL] = adv_reciprocal;
+  out[MTS_C_ADV_INTERPOLATION] = adv_interpolation;
   return out;
 }
 

@@ -48,7 +48,14 @@ struct ProbeConstants {
   double z = 0;  // plane A's distance: the frames' orientations are per distance (Orientations)
   // The frames' angle triples at z where they are sampled (Orientations), else empty: the path
   std::vector<Angles> orientations;
-  std::array<float, MTS_PROBE_STRIDE> packed() const;
+  // An envelope's adversary (pipeline.envelope, interface/adversary.h): the direction of the
+  // window depth towards the far side of the pair's depth test (+1, -1 under GEQUAL; 0: no
+  // envelope), whether the reciprocal of w takes its faithful rounding that way, the relative
+  // interpolation error it takes.
+  float adv_far = 0, adv_reciprocal = 0, adv_interpolation = 0;
+  // For the set-up of plane A (towards the far side: +1), plane B (the near side: -1), or of a
+  // plane no adversary moves (0: depth bias, the audit).
+  std::array<float, MTS_PROBE_STRIDE> packed(int plane) const;
 };
 
 // orientations: the frames' sampled ones, where z has them; the paper's path elsewhere.

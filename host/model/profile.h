@@ -3,6 +3,7 @@
 // profile is a list of scene settings, applied as --set would apply them.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,8 +17,9 @@ struct Profile {
   const char* bias_unorm_r;       // `bias`'s r for unorm buffers (--r-unorm); null: not modelled
 };
 
-// A profile's setting "pipeline.plane=origin_fma" as ("plane", "origin_fma").
-std::pair<std::string, std::string> pipeline_setting(const std::string& set);
+// A profile's setting "pipeline.plane=origin_fma" as ("plane", "origin_fma"), its value as the
+// scene's JSON holds it: a whole number ("pipeline.snap=8") as a number, anything else a string.
+std::pair<std::string, nlohmann::json> pipeline_setting(const std::string& set);
 
 const std::vector<Profile>& profiles();
 // Throws InputError listing the profiles.

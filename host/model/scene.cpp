@@ -84,7 +84,7 @@ const std::set<std::string> kPipelineKeys = {
     "depth_range", "matrix_precision", "compose", "divide",   "rounding",
     "denormals",   "contraction",      "plane",   "viewport", "conversion",
     "vertex",      "profile",          "log",     "clip",     "snap",
-    "transform",   "shader_precision"};
+    "transform",   "shader_precision", "envelope"};
 const std::set<std::string> kPairKeys = {"technique", "format", "depth_range"};
 const std::set<std::string> kWorstCaseKeys = {"min_rounds", "max_rounds", "round_size",
                                               "tolerance"};
@@ -217,10 +217,22 @@ void apply_profile(json& merged, const std::vector<const json*>& layers,
           (*layer)["pipeline"][key] != value)
         throw InputError(fmt::format("{} sets pipeline.{} to {}, and {} sets it to {}: give one",
                                      named("pipeline.profile", "pipeline.profile " + name), key,
-                                     value, named("pipeline." + key, where),
+                                     value.is_string() ? value.get<std::string>() : value.dump(),
+                                     named("pipeline." + key, where),
                                      (*layer)["pipeline"][key].dump()));
     merged["pipeline"][key] = value;
   }
+}
+
+// A pipeline with an envelope's adversary is bounded under that envelope's model unless a layer
+// names one (a bound under another model is a comparison the user asked for): the default model
+// does not hold what the adversary does.
+void bound_model_of_envelope(json& merged, const std::vector<const json*>& layers) {
+  const json& envelope = merged["pipeline"]["envelope"];
+  if (!envelope.is_string() || envelope == "none") return;
+  for (const json* layer : layers)
+    if (layer->contains("bound_model")) return;
+  merged["bound_model"] = envelope;
 }
 
 }  // namespace
@@ -260,6 +272,7 @@ Scene load_scene_text(const std::string& text, const std::string& path,
     if (!overrides.empty()) source += " (with --set overrides)";
   }
   apply_profile(merged, {&user, &patch}, blame, path.empty() ? source : path);
+  bound_model_of_envelope(merged, {&user, &patch});
 
   Scene s = parse_scene(merged, source, path.empty() ? source : path, text, blame);
   if (check) check_pairs(s);
@@ -272,6 +285,7 @@ Scene scene_from_json(const json& j, const std::string& source) {
   merged.merge_patch(j);
   if (j.contains("evaluate")) merged["evaluate"] = j["evaluate"];
   apply_profile(merged, {&j}, {}, source);
+  bound_model_of_envelope(merged, {&j});
   Scene s = parse_scene(merged, source, source, "", {});
   check_pairs(s);
   return s;

@@ -82,6 +82,9 @@ struct Pipeline {
   Conversion conversion = Conversion::exact;  // unorm codes: correctly rounded, or llvmpipe's
   Transform transform = Transform::absolute;
   ShaderPrecision shader_precision = ShaderPrecision::highp;
+  // An API envelope whose adversary the emulation takes (interface/adversary.h, a bound model with
+  // one: d3d11, vulkan_min); empty: none.
+  std::string envelope;
 };
 
 struct EvalPair {

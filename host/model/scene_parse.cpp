@@ -195,6 +195,10 @@ void read_pipeline(const Reader& r, Pipeline& p) {
         "shader_precision", v,
         {{"highp", ShaderPrecision::highp}, {"mediump", ShaderPrecision::mediump}});
   });
+  p.envelope = r.choice("pipeline.envelope", [](const std::string& v) {
+    const BoundModel* m = envelope_model(v);
+    return std::string(m ? m->name : "");
+  });
   if (p.shader_precision == ShaderPrecision::mediump && p.transform == Transform::relative_to_eye)
     r.fail("pipeline.shader_precision",
            "mediump is not modelled with transform relative_to_eye: its binary32 high and low "

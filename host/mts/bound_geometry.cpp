@@ -19,6 +19,25 @@ constexpr double kTiltMargin = 0x1.0p-16;
 
 }  // namespace
 
+std::vector<double> fragment_uniforms(const RowModel& m) {
+  const ProbeConstants& pc = m.pc;
+  switch (m.ti.fragment) {
+    case FragmentDepth::linear:
+      return {pc.near, pc.range};
+    case FragmentDepth::w_buffer:
+      return {pc.far};
+    case FragmentDepth::threejs_log:
+      return {pc.threejs_fc};
+    case FragmentDepth::cesium_log:
+      return {pc.near, pc.cesium_inv_log2};
+    case FragmentDepth::log:
+      return {pc.log_k, pc.log_L};
+    case FragmentDepth::none:
+      break;
+  }
+  return {};
+}
+
 RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   RowModel m;
   m.scene = &s;
@@ -72,6 +91,10 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.yn_max = static_cast<double>(s.kernel_h) / s.viewport_h;
   m.sign = m.ti.greater ? -1.0 : 1.0;
   m.fragment = m.ti.from == DepthFrom::fragment;
+  m.fragment_mediump = m.fragment && p.shader_precision == ShaderPrecision::mediump;
+  if (m.fragment_mediump)
+    for (const double u : fragment_uniforms(m))
+      m.fragment_uniform_max = std::max(m.fragment_uniform_max, std::fabs(u));
   m.vertex_log = m.ti.from == DepthFrom::vertex_log;
   return m;
 }

@@ -3,6 +3,8 @@
 // exact depth maps and gaps the error bounds are held against (docs/mts.md "The guaranteed bound").
 #pragma once
 
+#include <vector>
+
 #include "host/base/binary32_error.h"
 #include "host/model/bound_model.h"
 #include "host/model/frame_setup.h"
@@ -34,6 +36,10 @@ struct RowModel {
   double sign = 1;                                // +1 where plane B must store the larger depth
   VertexPath path = VertexPath::model_then_view;  // which matrices the GPU gets (vertex_stage.h)
   bool premultiplied = false, fragment = false, vertex_log = false;
+  // Fragment-stage depth written by a mediump shader (interface/mediump_fragment.h): its varying
+  // q and its uniforms in binary16 too; the largest uniform it holds (the range check's).
+  bool fragment_mediump = false;
+  double fragment_uniform_max = 0;
   // The orthographic projection: w = 1 exactly, z_ndc = a e_z + b = -a w + b with w the eye
   // distance (the perspective techniques' z_ndc is (-a w + b) / w).
   bool ortho = false;
@@ -41,6 +47,10 @@ struct RowModel {
 
 // The row's model; throws InputError where the bound model has none (its message says why).
 RowModel row_model(const Scene& scene, const EvalPair& pair, double z);
+
+// The uniforms a fragment shader that writes depth reads (interface/mediump_fragment.h): near and
+// range (linear), far (w_buffer), k and L (log), FC (three.js), near and 1/log2 (Cesium).
+std::vector<double> fragment_uniforms(const RowModel& m);
 
 // A plane at eye distance D over the cube.
 struct PlaneGeometry {

@@ -177,6 +177,39 @@ double shader_own(const RowModel& m, double lo, double hi) {
          2 * hs(m, f_max);
 }
 
+// (3') A mediump fragment shader's uniforms, each rounded to binary16
+// (interface/mediump_fragment.h): the map it computes is F with the rounded constants, within, to
+// first order in their relative errors (at most 2^-11; 1.01 covers the rest), of F over w in [lo,
+// hi]: a quotient by a constant c moves d by d |dc| / c, k moves ln(k w + 1) by at most w |dk| / (k
+// w + 1) (ln(1 + x) <= x), a near plane subtracted moves d by the map's slope times its rounding.
+double uniform_error(const RowModel& m, double lo, double hi) {
+  const ProbeConstants& pc = m.pc;
+  const double f_max = std::max(std::fabs(exact_depth(m, lo)), std::fabs(exact_depth(m, hi)));
+  const auto rel = [&m](double c) { return hs(m, c) / std::fabs(c); };
+  double e = 0;
+  switch (m.ti.fragment) {
+    case FragmentDepth::linear:
+      e = hs(m, pc.near) / pc.range + f_max * rel(pc.range);
+      break;
+    case FragmentDepth::w_buffer:
+      e = f_max * rel(pc.far);
+      break;
+    case FragmentDepth::threejs_log:
+      e = f_max * rel(pc.threejs_fc);
+      break;
+    case FragmentDepth::cesium_log:
+      e = pc.cesium_inv_log2 * hs(m, pc.near) / ((std::max(lo - pc.near, 0.0) + 1) * M_LN2) +
+          f_max * rel(pc.cesium_inv_log2);
+      break;
+    case FragmentDepth::log:
+      e = hi * hs(m, pc.log_k) / (pc.log_k * lo + 1) / pc.log_L + f_max * rel(pc.log_L);
+      break;
+    case FragmentDepth::none:
+      break;
+  }
+  return 1.01 * e;
+}
+
 // (4) The divide and the viewport transform of one vertex whose clip coordinates carry errors c,
 // as the value the plane interpolates (window depth, or q = 1/w for fragment-stage depth), and
 // window x and y:
@@ -190,16 +223,20 @@ double shader_own(const RowModel& m, double lo, double hi) {
 // - vertex-stage log depth (log_vertex): the shader's depth F(w) from the clip w, its z rewritten
 //   (2 F - 1) w (gl) or F w, which the divide turns back: F's error twice, the rewrite's -1 and
 //   product, the divide's, the viewport's.
+// x and y without snapping, whose half step `snap` is each one's further error.
 struct WindowError {
-  double value = 0, x = 0, y = 0;
+  double value = 0, x = 0, y = 0, snap = 0;
 };
-WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4& c) {
+// reciprocal_half_ulps: the model's, or 1 for the correctly rounded reciprocal the model's
+// kReciprocal term is measured from.
+WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4& c,
+                         double reciprocal_half_ulps) {
   const b32::Rounding& R = m.rounding;
   const Scene& s = *m.scene;
   WindowError out;
   // Orthographic: w is 1 for every vertex (its row (0, 0, 0, 1) rounds nothing).
   const double w_lo = m.ortho ? 1.0 : g.wv_lo;
-  const double eq = b32::reciprocal_error(R, w_lo, c.w, m.model->reciprocal_half_ulps);
+  const double eq = b32::reciprocal_error(R, w_lo, c.w, reciprocal_half_ulps);
   const double q_max = 1 / (w_lo - c.w);
   if (m.fragment) {
     out.value = eq;
@@ -221,11 +258,11 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
     out.value = m.pc.depth_gl ? 0.5 * zn + hu(m, d_max + 0.5 * zn) : zn;
   }
   const int snap_bits = m.model->snap_bits > 0 ? m.model->snap_bits : s.pipeline.snap_bits;
-  const double snap = snap_bits > 0 ? std::ldexp(1.0, -snap_bits - 1) : 0.0;
+  out.snap = snap_bits > 0 ? std::ldexp(1.0, -snap_bits - 1) : 0.0;
   const auto window = [&](double P, double clip_err, int size) {
     const double c_max = P * g.lateral, n_max = c_max * q_max, h = 0.5 * size;
     const double en = b32::product_error(R, c_max, clip_err, q_max, eq, n_max);
-    return h * en + (b32::exact_factor(h) ? 0.0 : hu(m, h * n_max)) + hu(m, h * n_max + h) + snap;
+    return h * en + (b32::exact_factor(h) ? 0.0 : hu(m, h * n_max)) + hu(m, h * n_max + h);
   };
   out.x = window(m.P00, c.x, s.viewport_w);
   out.y = window(m.P11, c.y, s.viewport_h);
@@ -268,8 +305,11 @@ double pixel_value_max(const RowModel& m, const PlaneGeometry& g) {
 }  // namespace
 
 const char* term_name(int t) {
-  static const char* const names[kTermCount] = {"vertex", "clip",          "divide", "position",
-                                                "setup",  "interpolation", "shader", "storage"};
+  static const char* const names[kTermCount] = {
+      "vertex",     "clip",          "divide",
+      "reciprocal", "position",      "snap",
+      "setup",      "interpolation", "interpolation_tolerance",
+      "shader",     "storage"};
   return names[t];
 }
 
@@ -293,8 +333,11 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   const Scene& s = *m.scene;
   const std::array<double, 3> ee = eye_error(m, g);
   const Clip4 c = clip_rounding(m, g);
-  const WindowError own = window_error(m, g, Clip4{});
-  const WindowError all = window_error(m, g, c);
+  const double recip = m.model->reciprocal_half_ulps;
+  const WindowError own = window_error(m, g, Clip4{}, recip);
+  const WindowError all = window_error(m, g, c, recip);
+  // the correctly rounded reciprocal's, where the model allows more (kReciprocal is the rest)
+  const WindowError own_cr = recip > 1 ? window_error(m, g, Clip4{}, 1) : own;
   const std::array<double, 2> G = gradient(m, g);
   const double q_max = m.ortho ? 1.0 : 1 / g.wv_lo;
   const double xn_max = m.P00 * g.lateral * q_max, yn_max = m.P11 * g.lateral * q_max;
@@ -314,8 +357,12 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   auto& v = out.term;
   v[kVertex] = value_slope(m, g) * ee[2] + G[0] * geo_x + G[1] * geo_y;
   v[kClip] = std::max(0.0, all.value - own.value) + G[0] * (all.x - own.x) + G[1] * (all.y - own.y);
-  v[kDivide] = own.value;
-  v[kPosition] = G[0] * own.x + G[1] * own.y;
+  v[kDivide] = own_cr.value;
+  v[kPosition] = G[0] * own_cr.x + G[1] * own_cr.y;
+  if (recip > 1)
+    v[kReciprocal] =
+        (own.value - own_cr.value) + G[0] * (own.x - own_cr.x) + G[1] * (own.y - own_cr.y);
+  v[kSnap] = (G[0] + G[1]) * own.snap;
   for (double& t : v) t *= 1.02;
   // Set-up: the gradients from differences, products, the determinant and a quotient, each
   // rounded: within (6 kappa + 4) u of both gradients' magnitudes, kappa bounding the triangle's
@@ -337,13 +384,15 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   const double reach = G[0] * X + G[1] * Y;
   const BoundModel& bm = *m.model;
   v[kInterpolation] = bm.value_roundings * hu(m, pixel_value_max(m, g) + reach) +
-                      bm.reach_roundings * hu(m, reach) + G[0] * hu(m, X) + G[1] * hu(m, Y) +
-                      bm.interpolation_relative * pixel_value_max(m, g);
+                      bm.reach_roundings * hu(m, reach) + G[0] * hu(m, X) + G[1] * hu(m, Y);
+  v[kInterpolationTolerance] = bm.interpolation_relative * pixel_value_max(m, g);
   if (!m.fragment) return out;
   // (6) Fragment-stage depth: w = fl(1 / q~) with q~ within Eq of q >= 1 / wp_hi, then the
   // shader's depth F(w): the interpolation's error through 1 / q and F's slope, w's rounding and
   // the shader's own arithmetic.
-  const double Eq = out.total();
+  // A mediump shader's varying q arrives rounded to binary16 (interface/mediump_fragment.h).
+  const double q_varying = m.fragment_mediump ? hs(m, 1 / g.wp_lo) : 0.0;
+  const double Eq = out.total() + q_varying;
   const double q_min = 1 / g.wp_hi;
   if (!(Eq < 0.5 * q_min)) {
     for (double& t : v) t = INFINITY;
@@ -353,7 +402,15 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   const double ew = Eq * to_w + hu(m, g.wp_hi + Eq * to_w);
   const double Fp = depth_slope(m, std::max(g.wp_lo - ew, 0.5 * g.wp_lo), g.wp_hi + ew);
   for (int t = 0; t < kShader; ++t) v[t] *= to_w * Fp;
-  v[kShader] = Fp * hu(m, g.wp_hi + Eq * to_w) + shader_own(m, g.wp_lo - ew, g.wp_hi + ew);
+  if (!m.fragment_mediump) {
+    v[kShader] = Fp * hu(m, g.wp_hi + Eq * to_w) + shader_own(m, g.wp_lo - ew, g.wp_hi + ew);
+    return out;
+  }
+  // In mediump: the varying's rounding through 1/q, w's rounding in binary16, the shader's own
+  // roundings (shader_own at the shader's precision), its uniforms'.
+  v[kShader] = Fp * (q_varying * to_w + hs(m, g.wp_hi + Eq * to_w)) +
+               shader_own(m, g.wp_lo - ew, g.wp_hi + ew) +
+               uniform_error(m, g.wp_lo - ew, g.wp_hi + ew);
   return out;
 }
 

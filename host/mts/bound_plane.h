@@ -11,15 +11,21 @@
 
 namespace depthprec::bound {
 
+// The terms name the freedoms a user can ask of a driver or a shader (docs/mts.md): a row's
+// bound_by is the largest. A model's freedom that the default model does not take (a reciprocal
+// within 1 ulp, snapping, an interpolation tolerance) is a term of its own, zero elsewhere.
 enum Term {
-  kVertex,    // the vertex stage's rows (and the matrices' entries) moving a vertex in eye space
-  kClip,      // the clip coordinates' rounding: P's rows, llvmpipe's clip stage
-  kDivide,    // the divide by w and the viewport transform
-  kPosition,  // window x and y errors (and snapping) through the plane's depth gradient
-  kSetup,     // the depth plane's gradients rounded, over the distance to the pixel
-  kInterpolation,  // evaluating (or stepping) the plane at the pixel
-  kShader,         // a fragment shader's own arithmetic and its log
-  kStorage,        // the conversion to the stored code
+  kVertex,      // the vertex stage's rows (and the matrices' entries) moving a vertex in eye space
+  kClip,        // the clip coordinates' rounding: P's rows, llvmpipe's clip stage
+  kDivide,      // the divide by w and the viewport transform, the reciprocal correctly rounded
+  kReciprocal,  // what a reciprocal within 1 ulp (d3d11) adds to them
+  kPosition,    // window x and y errors through the plane's depth gradient
+  kSnap,        // sub-pixel snapping of window x and y through the gradient
+  kSetup,       // the depth plane's gradients rounded, over the distance to the pixel
+  kInterpolation,           // evaluating (or stepping) the plane at the pixel
+  kInterpolationTolerance,  // an API's stated interpolation error (vulkan_min: 10^-5)
+  kShader,                  // a fragment shader's own arithmetic and its log
+  kStorage,                 // the conversion to the stored code
   kTermCount
 };
 const char* term_name(int term);

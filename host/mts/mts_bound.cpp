@@ -31,7 +31,8 @@ double storage_width(const RowModel& m, double d_min, double d_max) {
   return f.spacing_at(d_max);
 }
 
-constexpr const char* kBeyondShaderRange = "a vertex coordinate exceeds the shaders' range";
+constexpr const char* kBeyondShaderRange =
+    "a vertex coordinate or shader value exceeds the shaders' range";
 constexpr const char* kBeyondFar = "plane B lies beyond the far plane at every pixel";
 
 struct BoundCheck {
@@ -59,6 +60,10 @@ BoundCheck check(const RowModel& m, double z, double s) {
   if (m.path == VertexPath::model_then_view)
     for (const double w : m.scene->world_position)
       largest = std::max(largest, std::fabs(w) + gB.wv_hi);
+  // a mediump fragment shader's uniforms, and its log's argument (k w + 1, 1 + w, (w - n) + 1)
+  if (m.fragment_mediump)
+    largest = std::max({largest, m.fragment_uniform_max,
+                        std::max(1.0, static_cast<double>(m.pc.log_k)) * gB.wv_hi + 1});
   if (!(largest < m.shader_range)) {
     v.why = kBeyondShaderRange;
     return v;

@@ -157,7 +157,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     slots[i] = static_cast<cl_uint>(slot);
 
     const ProbeConstants pc = probe_constants(scene_, pair_, z, orientations_);
-    const auto packed = pc.packed();
+    const auto packed = pc.packed(+1);  // plane A
     rt_.queue().enqueueWriteBuffer(a_.consts, CL_TRUE, sizeof(float) * kProbeStride * slot,
                                    sizeof(float) * kProbeStride, packed.data());  // packed is local
     std::vector<float> mats;
@@ -223,7 +223,7 @@ cl::Event MtsEvaluator::setup_plane_b(const std::vector<Probe>& probes,
   for (size_t i = 0; i < active.size(); ++i) {
     const Probe& p = probes[active[i]];
     const ProbeConstants pc = probe_constants(scene_, pair_, p.z, orientations_);
-    const auto packed = pc.packed();
+    const auto packed = pc.packed(-1);  // plane B
     std::copy(packed.begin(), packed.end(), consts.begin() + i * kProbeStride);
     const int start = first_visited[active[i]];
     for (int f = 0; f < frames; ++f)

@@ -67,15 +67,19 @@ CoverageAudit MtsEvaluator::audit_cached(const std::vector<Probe>& probes) {
 
 FrameCodes MtsEvaluator::codes(const Probe& probe, int frame) {
   const ProbeConstants pc = probe_constants(scene_, pair_, probe.z, orientations_);
-  const auto packed = pc.packed();
-  const cl::Buffer probe_buf =
-      buffer_of(rt_.context(), std::vector<float>(packed.begin(), packed.end()));
+  // plane A's constants, then plane B's (they differ in an envelope's adversary alone)
+  std::vector<float> both;
+  for (const int plane : {+1, -1}) {
+    const auto packed = pc.packed(plane);
+    both.insert(both.end(), packed.begin(), packed.end());
+  }
+  const cl::Buffer probe_buf = buffer_of(rt_.context(), both);
   std::vector<float> mats;
   for (const double d : {probe.z, probe.z + probe.s})
     append_plane_words(mats, scene_, pc, d, frame);
   cl::Buffer tris(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * plane_floats_);
   cl::Buffer vflags(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * 2);
-  setup(probe_buf, mats, 2, 0, tris, vflags);
+  setup(probe_buf, mats, 1, 0, tris, vflags);
   const auto kw = static_cast<cl_uint>(scene_.kernel_w), kh = static_cast<cl_uint>(scene_.kernel_h);
   const size_t pixels = static_cast<size_t>(kw) * kh;
   cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(uint32_t) * 4 * pixels);

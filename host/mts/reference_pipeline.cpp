@@ -8,6 +8,7 @@
 #include "host/model/shader_log.h"
 #include "host/mts/triangle_setup.h"
 #include "host/runtime/kernel_variant.h"
+#include "interface/adversary.h"
 #include "interface/bias_formula.h"
 
 namespace depthprec {
@@ -34,9 +35,12 @@ struct Plane {
 // words: what the set-up kernel reads of the plane (append_plane_words): its model-view (or
 // P * MV), or relative to eye its binary64 world matrix; read as the kernel reads them
 // (read_plane_words) into the vertex stage's description, whose clip positions vertex_clip gives.
+// adversary: the plane's side under an envelope (ProbeConstants::packed's plane: +1 plane A, -1
+// plane B, 0 none), as the set-up kernel reads it from MTS_C_ADV_DEPTH.
 Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc,
                   const std::vector<float>& words, bool flip = false,
-                  const BiasTerms* bias = nullptr) {
+                  const BiasTerms* bias = nullptr, int adversary = 0) {
+  const float adv_depth = pc.adv_far * static_cast<float>(adversary);
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   const bool gl = pair.depth_range == DepthRange::gl;
   const int g = s.plane_subdivisions;
@@ -52,8 +56,15 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       vertex_clip(stage, pc.P, obj, s.pipeline.vertex, clip);
       if (ti.from == DepthFrom::vertex_log)
         clip[2] = vertex_log_clip_z(pc, s.pipeline.log, gl, clip[3]);
+      // the reciprocal's rounding that moves the depth the adversary's way (vertex.cl, the same)
+      int reciprocal = 0;
+      if (adv_depth != 0 && pc.adv_reciprocal != 0)
+        reciprocal =
+            (ti.from == DepthFrom::fragment ? adv_depth < 0 : (clip[2] > 0.0f) == (adv_depth > 0))
+                ? 1
+                : -1;
       Vertex& vx = v[j * (g + 1) + i];
-      vx = window_vertex(s, gl, clip, j * (g + 1) + i);
+      vx = window_vertex(s, gl, clip, j * (g + 1) + i, reciprocal);
       if (vertex_non_finite(vx, ti.from != DepthFrom::fragment)) plane.non_finite = true;
     }
   }
@@ -61,6 +72,15 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
   const auto emit = [&](const Vertex* tv[3]) {
     SetupTriangle tri = setup_triangle(s.pipeline, tv);
     const Vertex &v0 = *tv[0], &v1 = *tv[1], &v2 = *tv[2];
+    // the interpolation error the adversary takes (triangles.cl adversary_planes16, the same)
+    tri.adversary = adv_depth;
+    if (adv_depth != 0 && pc.adv_interpolation > 0) {
+      const int sign = adv_depth > 0 ? 1 : -1;
+      if (ti.from == DepthFrom::fragment)
+        tri.q0 = dp_adv_shift_plane(tri.q0, v0.q, v1.q, v2.q, pc.adv_interpolation, -sign);
+      else
+        tri.d0 = dp_adv_shift_plane(tri.d0, v0.d, v1.d, v2.d, pc.adv_interpolation, sign);
+    }
     tri.bias = 0;
     if (bias) {
       tri.bias =
@@ -134,8 +154,8 @@ FrameCodes reference_frame(const Scene& s, const EvalPair& pair, const Probe& pr
   std::vector<float> wa, wb;
   append_plane_words(wa, s, pc, probe.z, frame);
   append_plane_words(wb, s, pc, probe.z + probe.s, frame);
-  const Plane a = setup_plane(s, pair, pc, wa);
-  const Plane b = setup_plane(s, pair, pc, wb);
+  const Plane a = setup_plane(s, pair, pc, wa, false, nullptr, +1);
+  const Plane b = setup_plane(s, pair, pc, wb, false, nullptr, -1);
   const float ox = static_cast<float>((s.viewport_w - s.kernel_w) / 2);
   const float oy = static_cast<float>((s.viewport_h - s.kernel_h) / 2);
   FrameCodes fc;

@@ -93,7 +93,7 @@ std::string SceneRun::computation_key(size_t p, double z) const {
   const EvalPair& pair = scene_.evaluate[p];
   const KernelVariant& v = plan_[p].variant;
   const ProbeConstants pc = probe_constants(scene_, pair, z);
-  const auto packed = pc.packed();
+  const auto packed = pc.packed(1);
   std::string key = v.program + "|" + v.options + "|" +
                     (control_.attribute ? info(pair.technique).name : "") + "|";
   key.append(reinterpret_cast<const char*>(packed.data()), sizeof(float) * packed.size());

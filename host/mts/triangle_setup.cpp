@@ -2,8 +2,11 @@
 
 #include <cmath>
 
+#include "host/model/bound_model.h"
 #include "host/model/shader_log.h"
 #include "host/runtime/kernel_variant.h"
+#include "interface/adversary.h"
+#include "interface/mediump_fragment.h"
 #include "interface/snap.h"
 
 namespace depthprec {
@@ -11,6 +14,7 @@ namespace depthprec {
 namespace {
 
 DP_SNAP_WINDOW_DEFINE(snap_window, std::fabs, std::rint)
+DP_ADV_RECIPROCAL_DEFINE(adv_reciprocal, std::fma, std::nextafter)
 
 // Clip plane k's distance, dot4(c, plane), in draw's order of additions
 // (kernels/mts/setup/clip.cl).
@@ -79,10 +83,11 @@ bool vertex_non_finite(const SetupVertex& v, bool depth_interpolated) {
          (depth_interpolated && !std::isfinite(v.d));
 }
 
-SetupVertex window_vertex(const Scene& s, bool gl, const float clip[4], int id) {
+SetupVertex window_vertex(const Scene& s, bool gl, const float clip[4], int id, int reciprocal) {
   const float hw = 0.5f * static_cast<float>(s.viewport_w);
   const float hh = 0.5f * static_cast<float>(s.viewport_h);
-  const float inv_w = 1.0f / clip[3];
+  float inv_w = 1.0f / clip[3];
+  if (reciprocal != 0) inv_w = adv_reciprocal(clip[3], inv_w, reciprocal > 0);
   float ndc[3];
   for (int r = 0; r < 3; ++r)
     ndc[r] = s.pipeline.divide == Divide::exact ? clip[r] / clip[3] : clip[r] * inv_w;
@@ -206,10 +211,30 @@ bool covers(const SetupTriangle& t, float px, float py) {
 
 namespace {
 
-// The fragment shader's depth at eye distance w (fragment-stage depth), before gl_FragDepth's
-// clamp; from_near_plus_one is Cesium's varying.
-float shader_depth(const Scene& s, const TechniqueInfo& ti, const ProbeConstants& pc, float w,
-                   float from_near_plus_one) {
+float library_log(float x) {
+  return shader_log(LogForm::library, x);
+}
+float library_log2(float x) {
+  return shader_log2(LogForm::library, x);
+}
+float llvmpipe_log(float x) {
+  return shader_log(LogForm::llvmpipe, x);
+}
+float llvmpipe_log2(float x) {
+  return shader_log2(LogForm::llvmpipe, x);
+}
+DP_MEDIUMP_FRAGMENT_DEFINE(mediump_depth_library, library_log, library_log2)
+DP_MEDIUMP_FRAGMENT_DEFINE(mediump_depth_llvmpipe, llvmpipe_log, llvmpipe_log2)
+
+// The fragment shader's depth at eye distance w = 1/q (fragment-stage depth), before
+// gl_FragDepth's clamp; from_near_plus_one is Cesium's varying. In mediump from q itself
+// (interface/mediump_fragment.h).
+float shader_depth(const Scene& s, const TechniqueInfo& ti, const ProbeConstants& pc, float q,
+                   float w, float from_near_plus_one) {
+  if (s.pipeline.shader_precision == ShaderPrecision::mediump)
+    return (s.pipeline.log == LogForm::llvmpipe ? mediump_depth_llvmpipe : mediump_depth_library)(
+        static_cast<int>(ti.fragment), q, pc.near, pc.range, pc.far, pc.log_k, pc.log_L,
+        pc.threejs_fc, pc.cesium_inv_log2);
   switch (ti.fragment) {
     case FragmentDepth::linear:
       return (w - pc.near) / pc.range;
@@ -230,7 +255,7 @@ float depth_of_value(const Scene& s, const EvalPair& pair, const ProbeConstants&
   const TechniqueInfo& ti = info(depth_path(s, pair.technique));
   if (ti.from != DepthFrom::fragment) return v;
   const float w = 1.0f / v;
-  const float d = shader_depth(s, ti, pc, w, (w - pc.near) + 1.0f);
+  const float d = shader_depth(s, ti, pc, v, w, (w - pc.near) + 1.0f);
   return std::fmin(std::fmax(d, 0.0f), 1.0f);
 }
 
@@ -270,7 +295,7 @@ FragmentStatus fragment_code(const Scene& s, const EvalPair& pair, const Storage
     } else if (w < pc.near || w > pc.far) {
       return fragment_clipped;
     }
-    d = shader_depth(s, ti, pc, w, from_near_plus_one);
+    d = shader_depth(s, ti, pc, q, w, from_near_plus_one);
     if (std::isnan(d)) return fragment_non_finite;
     d = std::fmin(std::fmax(d, 0.0f), 1.0f);
   } else {
@@ -281,7 +306,10 @@ FragmentStatus fragment_code(const Scene& s, const EvalPair& pair, const Storage
     if (biased) d = std::fmin(std::fmax(d + t.bias, 0.0f), 1.0f);  // the offset, then the clamp
   }
   if (depth) *depth = d;
-  code = fmt.encode(d);
+  code = t.adversary != 0 && fmt.spec().kind == DF_KIND_UNORM
+             ? dp_adv_unorm_code(d, fmt.spec(), t.adversary > 0,
+                                 adversary_code_slack(bound_model(s.pipeline.envelope)))
+             : fmt.encode(d);
   return fragment_ok;
 }
 

@@ -36,6 +36,9 @@ struct SetupTriangle {
   bool valid = false;
   float x0 = 0, y0 = 0, d0 = 0, dzdx = 0, dzdy = 0, q0 = 0, dqdx = 0, dqdy = 0, ymin = 0, ymax = 0;
   float bias = 0;
+  // The direction an envelope's adversary moves its stored codes (MTS_T_ADVERSARY): +1 up, -1
+  // down, 0 none.
+  float adversary = 0;
 };
 
 // A fragment's fate (interface/mts_layout.h MTS_S_*).
@@ -56,7 +59,10 @@ std::vector<SetupVertex> clip_polygon(std::vector<SetupVertex> poly, unsigned ma
 
 // The vertex stage after the clip position: the divide, the window transform (depth by the depth
 // range) and snapping, as the scene's pipeline says.
-SetupVertex window_vertex(const Scene& scene, bool depth_gl, const float clip[4], int id);
+// reciprocal: an envelope's faithful rounding of 1/w (interface/adversary.h), +1 the one above,
+// -1 the one below, 0 the correctly rounded one.
+SetupVertex window_vertex(const Scene& scene, bool depth_gl, const float clip[4], int id,
+                          int reciprocal = 0);
 
 // The one rule for a vertex the set-up cannot use (kernels/mts/setup/vertex.cl's nonfinite): its
 // window x, y or 1/w is not finite, or its depth where the set-up interpolates depth (every depth

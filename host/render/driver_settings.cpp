@@ -45,6 +45,8 @@ const std::vector<DriverSetting>& driver_settings() {
        differs<&Pipeline::conversion>, to_default<&Pipeline::conversion>},
       {"snap", "the driver snaps vertices to its own sub-pixel precision",
        differs<&Pipeline::snap_bits>, to_default<&Pipeline::snap_bits>},
+      {"envelope", "the driver makes its own choices within its API's envelope",
+       differs<&Pipeline::envelope>, to_default<&Pipeline::envelope>},
       {"shader_precision=mediump",
        "desktop OpenGL runs every shader in binary32 (GLSL 4.5 ignores precision qualifiers)",
        differs<&Pipeline::shader_precision>, nullptr},

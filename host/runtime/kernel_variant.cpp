@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "host/model/bound_model.h"
 #include "host/model/vertex_stage.h"
 #include "host/runtime/opencl_runtime.h"
 
@@ -21,10 +22,15 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   // function of w (three.js's further * 0.5 is exact). In codes that is at most s = ceil(4 ulp /
   // code spacing) + 1 on each side, and a piece decided from its ends needs B's and A's end codes
   // 4 s apart (both planes, both ends).
+  // A mediump fragment shader (FRAG_MEDIUMP) rounds the log's result to binary16, so its error
+  // can reach one binary16 step of d, 2^11 binary32 ulps more.
+  const bool frag_mediump =
+      ti.from == DepthFrom::fragment && p.shader_precision == ShaderPrecision::mediump;
   long long log_slack = 0;
   if (ti.from == DepthFrom::fragment && takes_shader_log(ti)) {
     const df_format& fs = f.spec();
-    const int fine = fs.kind == DF_KIND_UNORM ? static_cast<int>(fs.bits) + 2 : fs.man_bits;
+    const int fine = (fs.kind == DF_KIND_UNORM ? static_cast<int>(fs.bits) + 2 : fs.man_bits) +
+                     (frag_mediump ? 11 : 0);
     const long long s = (fine > 21 ? (1LL << (fine - 21)) : 1LL) + 1;
     log_slack = 4 * s;
   }
@@ -37,13 +43,18 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   const int llvmpipe_log = p.log == LogForm::llvmpipe ? 1 : 0;
   const int rte = vertex_path(p) == VertexPath::relative_to_eye ? 1 : 0;
   const std::string base = base_build_options(p.denormals == Denormals::flush);
+  // An envelope's adversarial unorm conversion (interface/adversary.h dp_adv_unorm_code).
+  const BoundModel* envelope = p.envelope.empty() ? nullptr : &bound_model(p.envelope);
+  const bool adversary_codes = envelope && f.spec().kind == DF_KIND_UNORM;
+  const double slack = adversary_codes ? adversary_code_slack(*envelope) : 0.0;
   v.options = fmt::format(
       "{} -DGRID={} -DDEPTH_FROM={} -DFRAG_DEPTH={} -DCOMPARE_GREATER={} -DCONTRACT={} "
       "-DLOG_CODE_SLACK={}UL -DCACHE_A_CODES={} -DPLANE_FORM={} -DLLVMPIPE_LOG={} "
-      "-DCLIP_SLOTS={} -DRELATIVE_TO_EYE={} {}",
+      "-DCLIP_SLOTS={} -DRELATIVE_TO_EYE={} -DADVERSARY_CODES={} -DADVERSARY_CODE_SLACK={:a} "
+      "-DFRAG_MEDIUMP={} {}",
       base, scene.plane_subdivisions, depth_from, frag, ti.greater ? 1 : 0, p.contraction ? 1 : 0,
       log_slack, v.cache_a_codes ? 1 : 0, plane_form, llvmpipe_log, p.clip_slots(), rte,
-      f.defines());
+      adversary_codes ? 1 : 0, slack, frag_mediump ? 1 : 0, f.defines());
   // The set-up takes a log only for vertex-stage log depth, so elsewhere the log's form is left
   // out of its key.
   v.setup_program = "kernels/mts_setup.cl";
@@ -64,7 +75,7 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
                         to_string(pair.depth_range), f.name(),
                         driver_forms ? "/" + (profile == "custom" ? "custom-forms" : profile) : "",
                         p.snap_bits ? fmt::format("/snap{}", p.snap_bits) : "") +
-            (rte ? "/relative_to_eye" : "");
+            (rte ? "/relative_to_eye" : "") + (envelope ? std::string("/") + envelope->name : "");
   return v;
 }
 

@@ -49,6 +49,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
         l.row_term[k] = l.row_term[0];
         l.dy[k] = l.dy[0];
         l.y[k] = l.y[0];
+        l.up[k] = l.up[0];
         px[k] = px[0];
       }
       const frag16_t f = fragment16(load_lanes(&l), P, vload16(0, px));
@@ -100,7 +101,9 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 // a reference plane R of q; d = h(q) is then a decreasing, convex function of q (frag_gap_clear),
 // and only LEQUAL set-ups use it.
 #if DF_KIND == 0
-#if DF_CONVERT == 0
+#if ADVERSARY_CODES /* A's code in [x - s, x - s + 1), B's in (x + s - 1, x + s], s the slack */
+#define GAP_CODE_WIDTH (2.0 - 2.0 * ADVERSARY_CODE_SLACK)
+#elif DF_CONVERT == 0
 #define GAP_CODE_WIDTH 1.0
 #elif DF_CONVERT == 1
 #define GAP_CODE_WIDTH (DF_BITS == 16 ? 1.0078125 : DF_BITS == 24 ? 1.5 : 3.0)
@@ -111,7 +114,7 @@ static inline code_bounds_t plane_code_bounds(__global const float* T, __global 
 #elif DF_KIND == 1 && DF_E == 8 && DF_M == 23 && DF_IEEE && !DF_FLUSH
 #define GAP_STEP 0.0
 #endif
-#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER) && PLANE_MONOTONE
+#if defined(GAP_STEP) && (DEPTH_FROM != 2 || !COMPARE_GREATER) && PLANE_MONOTONE && !FRAG_MEDIUMP
 #define GAP_CERT 1
 #else
 #define GAP_CERT 0
@@ -339,8 +342,9 @@ static inline uint band_verdict(__global const float* P, __global const float* T
    * (T = df_order_exact_from), every depth of A is at or above T, and the pixel loop can compare
    * depths instead of codes. */
   const uint from = df_order_exact_from(DF_FORMAT_FROM_DEFINES());
-  const int ordered =
-      from <= 0x3f800000u && a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
+  /* an adversary's codes do not compare as the depths do */
+  const int ordered = !ADVERSARY_CODES && from <= 0x3f800000u &&
+                      a[0] >= df_encode(as_float(from), DF_FORMAT_FROM_DEFINES());
   return clean ? MTS_D_CLEAN : ordered ? MTS_D_ORDERED : MTS_D_INSIDE;
 }
 

@@ -28,6 +28,12 @@
  *   LOG_CODE_SLACK     codes a piece's end codes must clear a bound by under the library log's
  *                      error (fragment-stage log depth; 0 elsewhere)
  *   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
+ *   FRAG_MEDIUMP       1: with DEPTH_FROM 2, the fragment shader in mediump
+ *                      (interface/mediump_fragment.h); its log's error then reaches a binary16
+ *                      step, which LOG_CODE_SLACK covers, and the gap certificate is off
+ *   ADVERSARY_CODES    1: unorm codes take an envelope's adversarial conversion
+ *                      (interface/adversary.h), in each record's direction (MTS_T_ADVERSARY)
+ *   ADVERSARY_CODE_SLACK  its slack: how far inside a code's half-interval it may not choose
  *   DF_*               the storage format (formats/depth_format.h; DF_KIND stands for them)
  * The vertex stage's choices are no defines: the depth range, the division, the composition of
  * the matrices, the fused forms of the matrix rows and the viewport, sub-pixel snapping and the
@@ -40,9 +46,10 @@
     "the emulated pipeline needs GRID, DEPTH_FROM, CONTRACT, PLANE_FORM, LLVMPIPE_LOG, CLIP_SLOTS and RELATIVE_TO_EYE (kernels/mts/defines.h)"
 #endif
 #ifndef MTS_SETUP_STAGE
-#if !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || !defined(LOG_CODE_SLACK) || \
-    !defined(CACHE_A_CODES) || !defined(DF_KIND)
+#if !defined(FRAG_DEPTH) || !defined(COMPARE_GREATER) || !defined(LOG_CODE_SLACK) ||          \
+    !defined(CACHE_A_CODES) || !defined(ADVERSARY_CODES) || !defined(ADVERSARY_CODE_SLACK) || \
+    !defined(FRAG_MEDIUMP) || !defined(DF_KIND)
 #error \
-    "the per-pixel pipeline needs FRAG_DEPTH, COMPARE_GREATER, LOG_CODE_SLACK, CACHE_A_CODES and the DF_* format defines (kernels/mts/defines.h)"
+    "the per-pixel pipeline needs FRAG_DEPTH, COMPARE_GREATER, LOG_CODE_SLACK, CACHE_A_CODES, ADVERSARY_CODES, ADVERSARY_CODE_SLACK, FRAG_MEDIUMP and the DF_* format defines (kernels/mts/defines.h)"
 #endif
 #endif

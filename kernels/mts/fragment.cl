@@ -6,8 +6,10 @@
 // coordinates. PLANE_FORM 2 (softpipe): per 2x2 quad from its even corner (qx, qy), z0 = (c0 +
 // slope qx) + row_term, row_term = dy qy, then + slope on odd columns and + dy on odd rows, in
 // that order; y is the pixel's integer row, whose parity says which.
+// up: the direction an envelope's adversary moves the plane's codes (MTS_T_ADVERSARY; under
+// ADVERSARY_CODES only).
 typedef struct {
-  float c0, slope, x0, row_term, dy, y;
+  float c0, slope, x0, row_term, dy, y, up;
 } row_plane_t;
 
 static inline row_plane_t row_plane(__global const float* T, int t, float py) {
@@ -15,6 +17,11 @@ static inline row_plane_t row_plane(__global const float* T, int t, float py) {
   row_plane_t rp;
   rp.x0 = R[MTS_T_X0];
   rp.y = py - R[MTS_T_Y0];
+#if ADVERSARY_CODES
+  rp.up = R[MTS_T_ADVERSARY];
+#else
+  rp.up = 0.0f;
+#endif
 #if DEPTH_FROM == 2
   rp.c0 = R[MTS_T_Q0];
   rp.slope = R[MTS_T_DQDX];
@@ -39,7 +46,7 @@ static inline row_plane_t row_plane(__global const float* T, int t, float py) {
 
 // Row planes of 16 lanes: one triangle broadcast, or one triangle per lane (per piece).
 typedef struct {
-  float16 c0, slope, x0, row_term, dy, y;
+  float16 c0, slope, x0, row_term, dy, y, up;
 } row_plane16_t;
 
 static inline row_plane16_t broadcast16(row_plane_t rp) {
@@ -50,13 +57,14 @@ static inline row_plane16_t broadcast16(row_plane_t rp) {
   r.row_term = (float16)rp.row_term;
   r.dy = (float16)rp.dy;
   r.y = (float16)rp.y;
+  r.up = (float16)rp.up;
   return r;
 }
 
 // Row planes gathered one lane at a time (a piece's or a box corner's each), then taken as
 // vectors.
 typedef struct {
-  float c0[16], slope[16], x0[16], row_term[16], dy[16], y[16];
+  float c0[16], slope[16], x0[16], row_term[16], dy[16], y[16], up[16];
 } row_plane_lanes_t;
 
 static inline void set_lane(row_plane_lanes_t* l, int k, row_plane_t rp) {
@@ -66,6 +74,7 @@ static inline void set_lane(row_plane_lanes_t* l, int k, row_plane_t rp) {
   l->row_term[k] = rp.row_term;
   l->dy[k] = rp.dy;
   l->y[k] = rp.y;
+  l->up[k] = rp.up;
 }
 
 static inline row_plane16_t load_lanes(const row_plane_lanes_t* l) {
@@ -76,6 +85,7 @@ static inline row_plane16_t load_lanes(const row_plane_lanes_t* l) {
   r.row_term = vload16(0, l->row_term);
   r.dy = vload16(0, l->dy);
   r.y = vload16(0, l->y);
+  r.up = vload16(0, l->up);
   return r;
 }
 
@@ -102,6 +112,20 @@ typedef struct {
   int16 nonfinite, clipped;
 } depth16_t;
 
+#if FRAG_MEDIUMP
+// The fragment shader in GLSL ES mediump (interface/mediump_fragment.h), lane by lane.
+DP_MEDIUMP_FRAGMENT_DEFINE(mediump_depth, shader_log, shader_log2)
+static inline float16 mediump_depth16(float16 q, __global const float* P) {
+  float a[16];
+  vstore16(q, 0, a);
+  for (int k = 0; k < 16; ++k)
+    a[k] =
+        mediump_depth(FRAG_DEPTH, a[k], P[MTS_C_NEAR], P[MTS_C_RANGE], P[MTS_C_FAR], P[MTS_C_LOGK],
+                      P[MTS_C_LOGL], P[MTS_C_THREEJS_FC], P[MTS_C_CESIUM_INV_LOG2]);
+  return vload16(0, a);
+}
+#endif
+
 // Depth and status of 16 fragments whose interpolated value (depth, or q = 1/w) is v.
 static inline depth16_t depth_of_value16(float16 v, __global const float* P) {
   depth16_t r;
@@ -117,7 +141,9 @@ static inline depth16_t depth_of_value16(float16 v, __global const float* P) {
 #else
   r.clipped = (w < P[MTS_C_NEAR]) || (w > P[MTS_C_FAR]);
 #endif
-#if FRAG_DEPTH == 1
+#if FRAG_MEDIUMP
+  float16 d = mediump_depth16(q, P);
+#elif FRAG_DEPTH == 1
   float16 d = (w - P[MTS_C_NEAR]) / P[MTS_C_RANGE];
 #elif FRAG_DEPTH == 2
   float16 d = w / P[MTS_C_FAR];
@@ -148,10 +174,29 @@ typedef struct {
   int16 nonfinite, clipped;
 } frag16_t;
 
+#if ADVERSARY_CODES
+// An envelope's adversarial unorm conversion (interface/adversary.h dp_adv_unorm_code), lane by
+// lane: codes up where the plane's adversary moves them up, else down.
+static inline uint16 adversary_codes16(float16 d, float16 up) {
+  float a[16], u[16];
+  uint c[16];
+  vstore16(d, 0, a);
+  vstore16(up, 0, u);
+  for (int k = 0; k < 16; ++k)
+    c[k] = dp_adv_unorm_code(a[k], DF_FORMAT_FROM_DEFINES(), u[k] > 0.0f, ADVERSARY_CODE_SLACK);
+  return vload16(0, c);
+}
+#define STORED_CODES16(D, RP) adversary_codes16((D), (RP).up)
+#define INSIDE_CODES16(D, RP) adversary_codes16((D), (RP).up)
+#else
+#define STORED_CODES16(D, RP) df_encode16((D), DF_FORMAT_FROM_DEFINES())
+#define INSIDE_CODES16(D, RP) df_encode16_unit((D), DF_FORMAT_FROM_DEFINES())
+#endif
+
 static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, float16 px) {
   const depth16_t z = depth16(rp, P, px);
   frag16_t r;
-  r.code = df_encode16(z.d, DF_FORMAT_FROM_DEFINES());
+  r.code = STORED_CODES16(z.d, rp);
   r.nonfinite = z.nonfinite;
   r.clipped = z.clipped;
   return r;
@@ -161,7 +206,7 @@ static inline frag16_t fragment16(row_plane16_t rp, __global const float* P, flo
 // are, or a band whose bounds say so): their depth lies in [-0, 1], the clamped one too, so the
 // encoder needs no checks for values outside it. The same codes fragment16 gives there.
 static inline uint16 inside_code16(row_plane16_t rp, __global const float* P, float16 px) {
-  return df_encode16_unit(depth16(rp, P, px).d, DF_FORMAT_FROM_DEFINES());
+  return INSIDE_CODES16(depth16(rp, P, px).d, rp);
 }
 
 static inline int16 fights16(uint16 code_a, uint16 code_b) {

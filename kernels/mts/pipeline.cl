@@ -12,6 +12,9 @@
 #include "interface/mts_layout.h"     /* buffer layout, shared with the host */
 #include "interface/mts_kernel_args.h" /* kernel arguments, shared with the host */
 #include "interface/llvmpipe_log.h"   /* llvmpipe's log, shared with the host */
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#include "interface/adversary.h"      /* an envelope's adversarial codes, shared with the host */
+#include "interface/mediump_fragment.h" /* a mediump fragment shader, shared with the host */
 #include "kernels/mts/common.cl"    /* layout names at this GRID, mat_vec, any16 */
 #include "kernels/mts/plane_records.cl" /* the coverage certificate, a triangle's pixel box */
 #include "kernels/mts/coverage.cl"  /* row_segments: covering triangles along a row; coverage reuse */

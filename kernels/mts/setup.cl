@@ -1,5 +1,8 @@
 // The set-up of a plane, by stage, each part using the ones above it (included by
 // kernels/mts_setup.cl and kernels/bias.cl).
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#include "interface/adversary.h" /* an envelope's adversary, shared with the host reference */
+DP_ADV_RECIPROCAL_DEFINE(adv_reciprocal, fma, nextafter)
 // clang-format off
 #include "kernels/mts/setup/certificate.cl" /* which kernel pixels the plane provably covers */
 #include "kernels/mts/setup/records.cl"     /* 16 triangle records written at once; pixel boxes */

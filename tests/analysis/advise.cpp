@@ -202,3 +202,38 @@ TEST_CASE(
   CHECK(rec["near_bound"].get<double>() == n);
   CHECK(rec["smallest_near"].get<double>() < n);
 }
+
+// Under Vulkan's minimum (the vulkan_min profile: its adversary, and rows bounded under its
+// envelope), depth interpolated to 1 part in 10^5 decides: the near plane that holds 0.05 at 500
+// is an order of magnitude farther out than the default model's, holds under the envelope's own
+// bound, and the sampled answer (its adversary's worst case) needs a near plane at least as far.
+TEST_CASE(
+    "advise under vulkan_min holds the envelope's bound, at a near plane the default's "
+    "cannot show",
+    "[advise][bound][envelope]") {
+  const Scene vulkan = load_scene("", {"far=5e4", "pipeline.profile=vulkan_min"});
+  const Scene plain = load_scene("", {"far=5e4"});
+  REQUIRE(vulkan.bound_model == "vulkan_min");
+  const EvalPair pair{Technique::standard, "unorm24", DepthRange::gl};
+  AdviseRequest r;
+  r.z_min = r.z_max = 500;
+  r.separation = 0.05;
+  const nlohmann::json j = bound_answer(vulkan, pair, r);
+  REQUIRE(j.contains("near_bound"));
+  const double n = j["near_bound"].get<double>();
+  CHECK(mts_bound(with_near(vulkan, n), pair, 500).s <= r.separation);
+  CHECK(mts_bound(with_near(vulkan, n / 1.1), pair, 500).s > r.separation);
+  const double n_plain = bound_answer(plain, pair, r)["near_bound"].get<double>();
+  CHECK(n > 10 * n_plain);
+  // the default model's near plane does not hold under Vulkan's envelope
+  CHECK(mts_bound(with_near(vulkan, n_plain), pair, 500).s > r.separation);
+  const auto cli = run_cli(
+      "advise --profile vulkan_min --range 500,500 --separation 0.05 -t standard -f unorm24 "
+      "--far 5e4 --set frames=8 --set sampling=paper --format-out json --no-timing");
+  REQUIRE(cli.exit_code == 0);
+  const auto rec = nlohmann::json::parse(cli.output)["records"].at(0);
+  CHECK(rec["near_bound"].get<double>() == n);
+  // the adversary's worst case, sampled, sits below the bound's near plane but not far below
+  CHECK(rec["smallest_near"].get<double>() <= n);
+  CHECK(rec["smallest_near"].get<double>() > n / 2);
+}

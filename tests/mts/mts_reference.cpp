@@ -174,6 +174,36 @@ TEST_CASE("under a mediump vertex shader the kernel follows the reference",
   }
 }
 
+// A fragment shader that writes depth in mediump (interface/mediump_fragment.h): the kernel follows
+// the reference bit for bit where the shader has no log, and within one binary16 step of d where
+// the log's last binary32 bit (the device's and the host's differ by up to 3 ulp) decides which
+// way it rounds, on few pixels. far = 1000 keeps linear's range within mediump's.
+TEST_CASE("under a mediump fragment shader the kernel follows the reference",
+          "[mts][reference][mediump]") {
+  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12", "far=1000",
+                                      "pipeline.shader_precision=mediump"});
+  for (const auto& [t, format] :
+       {std::pair{Technique::linear, "unorm24"}, std::pair{Technique::w_buffer, "float32"},
+        std::pair{Technique::log_fragment, "unorm24"}, std::pair{Technique::log_threejs, "float32"},
+        std::pair{Technique::log_cesium, "float32"}}) {
+    const EvalPair pair{t, format, DepthRange::gl};
+    INFO(pair.label());
+    const bool log = takes_shader_log(info(t));
+    size_t differ = 0, pixels = 0;
+    for (const Probe& p : {Probe{1.5, 1e-3}, Probe{30.0, 0.1}, Probe{700.0, 2.0}}) {
+      const Compared c = compare(scene, pair, p, 4);
+      CHECK(c.status_differ == 0);
+      CHECK(c.largest_difference <= (log ? 8192 : 0));  // one binary16 step of d in [0.5, 1)
+      differ += c.differ;
+      pixels += c.ok_pixels;
+    }
+    CHECK(pixels > 0);
+    CHECK(differ * 50 <= pixels);
+    // a binary16 step that differs can decide a probe: outcomes where the shader has no log
+    if (!log) check_outcomes(scene, pair, {1.5, 30.0, 700.0}, {1e-4, 1e-2, 1e-1});
+  }
+}
+
 }  // namespace
 
 TEST_CASE("snapping moves window coordinates to the 2^-n pixel grid, half to even", "[snap]") {
@@ -276,5 +306,33 @@ TEST_CASE("kernel codes and outcomes equal the reference under llvmpipe's forms"
               scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
               [](size_t) { return 5; }, info(t).from == DepthFrom::vertex_log ? 1 : 0) > 0);
     check_outcomes(scene, pair, {1.005, 7.0, 3000.0, 2e6}, {1e-8, 1e-6, 1e-4, 1e-2, 1.0});
+  }
+}
+
+// The envelopes' adversaries (pipeline.envelope, interface/adversary.h): the kernel follows the
+// reference, codes and probe outcomes, with every freedom each takes (D3D 11.3: the reciprocal's
+// faithful rounding, 0.6-code conversion, 8 sub-pixel bits; Vulkan: 1 part in 10^5 of the
+// interpolated depth or 1/w, either nearest code, 4 bits), on both sides of each depth test and
+// through the fragment stage's 1/w.
+TEST_CASE("under each envelope's adversary the kernel follows the reference",
+          "[mts][reference][envelope]") {
+  for (const std::string envelope : {"d3d11", "vulkan_min"}) {
+    std::vector<std::string> sets = {"kernel=[48,40]", "viewport=[48,40]", "frames=12"};
+    for (const std::string& s : profile(envelope).sets) sets.push_back(s);
+    const Scene scene = load_scene("", sets);
+    for (const auto& [t, format, range] :
+         {std::tuple{Technique::standard, "unorm24", DepthRange::gl},
+          std::tuple{Technique::standard, "unorm16", DepthRange::zero_to_one},
+          std::tuple{Technique::reversed, "unorm24", DepthRange::zero_to_one},
+          std::tuple{Technique::reversed, "float32", DepthRange::zero_to_one},
+          std::tuple{Technique::linear, "unorm24", DepthRange::gl},
+          std::tuple{Technique::log_vertex, "unorm24", DepthRange::gl}}) {
+      const EvalPair pair{t, format, range};
+      INFO(envelope << " " << pair.label());
+      CHECK(check_codes(
+                scene, pair, {{1.005, 3e-7}, {3.0, 1e-3}, {1000.0, 0.05}, {1048576.0, 5000.0}},
+                [](size_t k) { return static_cast<int>(3 * k); }, log_codes(info(t), format)) > 0);
+      check_outcomes(scene, pair, {1.005, 7.0, 3000.0, 2e6}, {1e-8, 1e-6, 1e-4, 1e-2, 1.0});
+    }
   }
 }

@@ -53,7 +53,7 @@ TEST_CASE("an MTS variant without any one of its defines does not build", "[kern
   const Scene scene = load_scene("", {});
   const KernelVariant v = mts_variant(scene, scene.evaluate.front());
   const auto names = checked_defines(false);
-  REQUIRE(names.size() == 12);  // GRID .. RELATIVE_TO_EYE, then FRAG_DEPTH .. DF_KIND
+  REQUIRE(names.size() == 15);  // GRID .. RELATIVE_TO_EYE, then FRAG_DEPTH .. DF_KIND
   for (const std::string& name : names) {
     INFO(name);
     CHECK_THROWS_WITH(test::runtime().program(v.program, options_without(v.options, name)),

@@ -10,6 +10,7 @@ typedef struct {
   int id[3][16];
   int slot[16];
   int n;
+  float adv_depth, adv_tolerance; /* triangles16_t's */
 } pending_triangles_t;
 
 // Sets up the pending triangles, 16 lanes of which the ones past p->n repeat the last (so no lane
@@ -19,6 +20,8 @@ static inline void setup_pending(pending_triangles_t* p, __global float* T, floa
                                  uint* slivers, uint* shapely) {
   if (p->n == 0) return;
   triangles16_t v;
+  v.adv_depth = p->adv_depth;
+  v.adv_tolerance = p->adv_tolerance;
   for (int c = 0; c < 3; ++c) {
     for (int k = p->n; k < 16; ++k) {
       p->x[c][k] = p->x[c][p->n - 1];

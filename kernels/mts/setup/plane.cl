@@ -41,6 +41,8 @@ static inline void setup_plane(__global const float* P, __global const float* M,
     int16 corner[3];
     triangle_vertices16(min(g + LANES, NT0 - 1), flip, &corner[0], &corner[1], &corner[2]);
     triangles16_t tris;
+    tris.adv_depth = P[MTS_C_ADV_DEPTH];
+    tris.adv_tolerance = P[MTS_C_ADV_INTERPOLATION];
     for (int c = 0; c < 3; ++c) {
       const vertices16_t vs = vertex_stage16(P, M, corner[c], half_w, half_h);
       tris.x[c] = vs.x;
@@ -56,6 +58,8 @@ static inline void setup_plane(__global const float* P, __global const float* M,
 #else
   pending_triangles_t pending; /* set up 16 at a time */
   pending.n = 0;
+  pending.adv_depth = P[MTS_C_ADV_DEPTH];
+  pending.adv_tolerance = P[MTS_C_ADV_INTERPOLATION];
   int next = 0; /* the next free record of the current quad row */
   for (int t0 = 0; t0 < NT0; ++t0) {
     const int qj = t0 / (2 * GRID);

@@ -4,7 +4,29 @@
 typedef struct {
   float16 x[3], y[3], d[3], q[3];
   int16 id[3];
+  float adv_depth, adv_tolerance; /* the plane's MTS_C_ADV_DEPTH and MTS_C_ADV_INTERPOLATION */
 } triangles16_t;
+
+// An envelope's interpolation error (interface/adversary.h dp_adv_shift_plane), in the
+// adversary's direction: the interpolated plane's constant moved, lane by lane. Fragment-stage
+// depth interpolates 1/w, which moves against the depth.
+static inline void adversary_planes16(uint16* rec, const triangles16_t* v) {
+#if DEPTH_FROM == 2
+  const int field = MTS_T_Q0, sign = v->adv_depth > 0.0f ? -1 : 1;
+  const float16* val = v->q;
+#else
+  const int field = MTS_T_D0, sign = v->adv_depth > 0.0f ? 1 : -1;
+  const float16* val = v->d;
+#endif
+  float c0[16], a[16], b[16], c[16];
+  vstore16(as_float16(rec[field]), 0, c0);
+  vstore16(val[0], 0, a);
+  vstore16(val[1], 0, b);
+  vstore16(val[2], 0, c);
+  for (int k = 0; k < 16; ++k)
+    c0[k] = dp_adv_shift_plane(c0[k], a[k], b[k], c[k], (double)v->adv_tolerance, sign);
+  rec[field] = as_uint16(vload16(0, c0));
+}
 
 // Triangle records slot[0 .. lanes - 1] of plane T from lanes 0 .. lanes - 1 of v, each as a
 // scalar set-up would make it, 16 at a time: the set-up is a few hundred operations per triangle,
@@ -157,7 +179,9 @@ static inline void setup_triangles16(__global float* T, const int* slot, int lan
   }
   rec[MTS_T_BITS] = as_uint16(bits);
   pixel_boxes16(rec, ex, edx, ymin, ymax, origin_x, origin_y, (int)kernel_w, (int)kernel_h);
-  rec[MTS_T_BIAS] = (uint16)0u; /* kernels/bias.cl's, set after the set-up */
+  /* kernels/bias.cl's bias, set after the set-up; kernels/mts.cl's adversary's code direction */
+  rec[MTS_T_ADVERSARY] = as_uint16((float16)v->adv_depth);
+  if (v->adv_depth != 0.0f && v->adv_tolerance > 0.0f) adversary_planes16(rec, v);
   write_records16(T, slot, lanes, rec);
   write_edges16(T, slot, lanes, edges);
 }

@@ -126,7 +126,22 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
   }
 #endif
   const float16 cz = v.clip.z;
-  const float16 inv_w = 1.0f / c.w;
+  float16 inv_w = 1.0f / c.w;
+  const float adv_depth = P[MTS_C_ADV_DEPTH];
+  if (adv_depth != 0.0f && P[MTS_C_ADV_RECIPROCAL] != 0.0f) {
+    /* an envelope's reciprocal within 1 ulp, rounded the way that moves the window depth in the
+     * adversary's direction: through z/w where the depth is projected (up with z > 0 when the
+     * depth moves up), through w itself where the fragment stage computes it (1/w down when the
+     * depth moves up) */
+    float r[16], w[16], z[16];
+    vstore16(inv_w, 0, r);
+    vstore16(c.w, 0, w);
+    vstore16(cz, 0, z);
+    for (int k = 0; k < 16; ++k)
+      r[k] = adv_reciprocal(
+          w[k], r[k], DEPTH_FROM == 2 ? adv_depth < 0.0f : (z[k] > 0.0f) == (adv_depth > 0.0f));
+    inv_w = vload16(0, r);
+  }
   float16 nx, ny, nz;
   if (forms & MTS_F_DIVIDE_EXACT) {
     nx = c.x / c.w;
