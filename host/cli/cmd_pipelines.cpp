@@ -16,6 +16,7 @@
 #include "host/cli/record_batch.h"
 #include "host/cli/scene_options.h"
 #include "host/mts/mts_run.h"
+#include "host/output/implementations.h"
 #include "host/output/output_guard.h"
 #include "host/output/report.h"
 #include "host/output/text_table.h"
@@ -28,6 +29,7 @@ struct PipelinesOptions {
   SceneOptions scene;
   OutputOptions out;
   BatchOptions batch;
+  bool list = false;
 };
 
 }  // namespace
@@ -119,6 +121,16 @@ namespace {
 
 void run_pipelines(const PipelinesOptions& o, const GlobalOptions& g) {
   check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
+  if (o.list) {  // what the profiles and bound models are, no measurement
+    if (o.scene.any())
+      throw Error(ExitCode::usage,
+                  "pipelines --list takes no scene options: it lists, it measures "
+                  "nothing");
+    check_writable(o.out.output);
+    write_output(o.out.output,
+                 for_terminal(implementations_output(o.out.format_out), o.out.format_out));
+    return;
+  }
   const Scene scene = o.scene.load();
   check_writable(o.out.output);
   run_record_batch(
@@ -143,10 +155,14 @@ void add_pipelines_command(CLI::App& app, GlobalOptions& global) {
       "MTS at every distance relative to float/separate. Four full runs of the scene's pairs.\n"
       "Examples:\n"
       "  depthprec pipelines -t standard,reversed -f float32 --depth-range zero_to_one\n"
-      "  depthprec pipelines --kernel 100x100 --frames 50 --format-out markdown");
+      "  depthprec pipelines --kernel 100x100 --frames 50 --format-out markdown\n"
+      "  depthprec pipelines --list --format-out markdown");
   o->scene.add_to(*cmd, true);
   o->out.add_to(*cmd);
   o->batch.add_to(*cmd, "pairs (k in scene order)");
+  cmd->add_flag("--list", o->list,
+                "List the implementation profiles and the bound models, the API envelopes "
+                "among them (what each allows, and its source), and exit");
   cmd->callback([o, &global]() { run_pipelines(*o, global); });
 }
 

@@ -9,6 +9,7 @@
 #include "host/base/version.h"
 #include "host/model/frame_setup.h"
 #include "host/output/bound_table.h"
+#include "host/output/implementations.h"
 #include "host/output/shadow_output.h"
 
 namespace depthprec {
@@ -206,6 +207,22 @@ std::string bound_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   return out;
 }
 
+// What the profiles and bound models are (host/output/implementations.h), the one this page's
+// bound holds for marked: a reader sees what else the answer could have been asked under.
+std::string implementations_section(const Scene& scene) {
+  std::vector<std::string> body;
+  for (const Implementation& i : implementations()) {
+    const bool used = i.name == scene.bound_model;
+    body.push_back(cell(i.name + (used ? " (this page's bound)" : ""), "left") +
+                   cell(i.kind, "left") + cell(i.what, "left") + cell(i.source, "left"));
+  }
+  return "<h2>Implementations and envelopes</h2>\n<p>The profiles depthprec emulates "
+         "(<code>--profile NAME</code>) and the models its guaranteed MTS holds for "
+         "(<code>bound_model</code>), the API envelopes among them (docs/spec.md 2, "
+         "\"Envelopes\").</p>\n" +
+         table({"name", "kind", "what", "source"}, body);
+}
+
 std::string attribution_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   std::vector<std::string> body;
   for (const auto& r : rows) {
@@ -292,6 +309,7 @@ std::string html_report(const ReportPage& page) {
   out += attribution_section(scene, page.rows);
   out += lj_section(page.lj, scene);
   out += shadow_section(page);
+  out += implementations_section(scene);
   out += "<p class=\"meta\">" + html_escape(footer(page.run)) + "</p>\n</body>\n</html>\n";
   return out;
 }

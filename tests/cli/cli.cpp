@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/run_cli.h"
@@ -171,4 +172,32 @@ TEST_CASE("bias says a slope factor has no slope to scale, not that it is unreso
   const auto t = nlohmann::json::parse(tilted.output).at("records").at(0).at("rows").at(0);
   CHECK(t.at("factor_verdict") == "resolved");
   CHECK(t.at("factor").get<double>() < 0);
+}
+
+// pipelines --list: every profile and every bound model once, the envelopes among them named as
+// both, in each format; it measures nothing, so scene options are refused.
+TEST_CASE("pipelines --list gives every profile and bound model, the envelopes as both",
+          "[cli][envelope]") {
+  const auto r = run_cli("pipelines --list --format-out json");
+  REQUIRE(r.exit_code == 0);
+  const auto list = nlohmann::json::parse(r.output);
+  std::map<std::string, std::string> kind;
+  for (const auto& i : list) {
+    CHECK(kind.count(i["name"]) == 0);
+    kind[i["name"]] = i["kind"];
+    CHECK_FALSE(i["what"].get<std::string>().empty());
+    CHECK_FALSE(i["source"].get<std::string>().empty());
+  }
+  for (const char* both : {"ideal", "llvmpipe", "softpipe", "gles_mediump", "d3d11", "vulkan_min"})
+    CHECK(kind[both] == "profile and bound model");
+  CHECK(kind["binary32"] == "bound model");
+  CHECK(kind.size() == 7);
+  const auto md = run_cli("pipelines --list --format-out markdown");
+  REQUIRE(md.exit_code == 0);
+  CHECK_THAT(md.output,
+             Catch::Matches(R"([\s\S]*\| d3d11 +\| profile and bound model +\|[\s\S]*)"));
+  CHECK_THAT(md.output, Contains("15.16 (8-bit snapping)"));
+  const auto refused = run_cli("pipelines --list -t standard");
+  CHECK(refused.exit_code == 2);
+  CHECK_THAT(refused.output, Contains("takes no scene options"));
 }

@@ -20,6 +20,9 @@ grep -q '<svg' "$page" || fail "no inline SVG plot"
 grep -q 'Attribution' "$page" || fail "no attribution section"
 grep -q 'Lapidous-Jiao' "$page" || fail "no Lapidous-Jiao figures (standard is LJ's z buffer)"
 grep -q 'Shadow-map bias' "$page" || fail "no shadow section though the scene has a shadow block"
+grep -q '<td class="left">binary32 (this page&#39;s bound)</td>' "$page" ||
+  fail "the implementations section does not mark the page's bound model"
+grep -q '<td class="left">vulkan_min</td>' "$page" || fail "the implementations section lists no envelope"
 grep -q '<td class="left">10-40</td>' "$page" || fail "the shadow section has no row for cascade 2"
 grep -q '<td class="left">godot</td>' "$page" || fail "the shadow section has no engine rows"
 # Nothing from outside the page: no linked stylesheet, script, image or font; the SVG's own
