@@ -3,7 +3,8 @@
 
 The audit finds z-fighting pixels in a user's scene; its tests need scenes whose fights are known
 by construction: a decal 1 mm before a wall at 500 m, a strip in a slab's plane, a road 5 cm above
-a terrain, two boxes through each other, and the decal layout 10^6 m from the origin. They are
+a terrain, two boxes through each other, and the decal layout 10^6 m and 2000 m from the origin
+(the second for mediump shaders). They are
 built here from Python's standard library alone (no packages, no downloads), so the test inputs
 can be regenerated from the repository, and the same run writes the same bytes.
 
@@ -249,6 +250,15 @@ def far_from_origin():
     return decal_wall(50, 0.01, site, s)
 
 
+def mobile_site():
+    """The decal layout at 20 m with a 5 cm gap, under a node 2000 m from the origin: a mediump
+    vertex shader holds world coordinates there to a metre or two (binary16's spacing from 1024
+    and from 2048), highp to a tenth of a millimetre."""
+    s = Scene()
+    site = s.node("site", translation=[2000, 0, 2000])
+    return decal_wall(20, 0.05, site, s)
+
+
 def drone_road():
     """An 800 m road 1 cm above the ground, reaching behind a drone camera 60 m up: the ground and
     the road cross the near plane, as ground planes do in almost every game view."""
@@ -300,6 +310,7 @@ def write_test_scenes(out):
     write(terrain_road(64), out / "terrain_road.gltf")
     write(intersecting_boxes(), out / "intersecting_boxes.gltf")
     write(far_from_origin(), out / "far_from_origin.glb")
+    write(mobile_site(), out / "mobile_site.gltf")
     write(drone_road(), out / "drone_road.gltf")
     write(ground_strip(), out / "ground_strip.gltf")
     write(shelf_wall(), out / "shelf_wall.gltf")

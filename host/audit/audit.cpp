@@ -68,6 +68,16 @@ void gather(const AuditSetup& a, const SceneGeometry& g, const AuditPixels& px, 
     }
 }
 
+// The pixel pass of one view, a surface's own seams told apart from fights.
+AuditPixels audit_pixels(OpenClRuntime* rt, const Scene& s, const AuditSetup& a,
+                         const SceneGeometry& g, bool reference) {
+  AuditPixels px = reference ? audit_reference(s, a) : audit_device(*rt, s, a);
+  for (size_t i = 0; i < px.flags.size(); ++i)
+    if ((px.flags[i] & AUDIT_FIGHT) && g.neighbours(px.winner[i], px.front[i]))
+      px.flags[i] = (px.flags[i] & ~AUDIT_FIGHT) | AUDIT_SEAM;
+  return px;
+}
+
 std::vector<FightPair> summarised(std::map<std::pair<int, int>, PairPixels>& pairs, size_t max) {
   std::vector<FightPair> out;
   for (auto& [key, p] : pairs) {
@@ -91,6 +101,7 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
                             const SceneGeometry& g, const AuditRequest& req) {
   SetupAudit out;
   out.pair = pair;
+  out.mediump = scene.pipeline.shader_precision == ShaderPrecision::mediump;
   std::map<std::pair<int, int>, PairPixels> fights, coplanar;
   for (size_t k = 0; k < req.frames.size(); ++k) {
     const Scene s = audit_scene(scene, req.frames[k]);
@@ -98,11 +109,17 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
     const AuditSetup a = audit_setup(s, pair, g, req.frames[k]);
     out.setup_seconds += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
-    AuditPixels px = req.reference ? audit_reference(s, a) : audit_device(*rt, s, a);
+
+    AuditPixels px = audit_pixels(rt, s, a, g, req.reference);
     out.pixel_seconds += seconds_since(t0);
-    for (size_t i = 0; i < px.flags.size(); ++i)  // a surface's own seam is no fight
-      if ((px.flags[i] & AUDIT_FIGHT) && g.neighbours(px.winner[i], px.front[i]))
-        px.flags[i] = (px.flags[i] & ~AUDIT_FIGHT) | AUDIT_SEAM;
+    if (out.mediump) {  // the same view with highp shaders: which fights mediump alone makes
+      Scene highp = s;
+      highp.pipeline.shader_precision = ShaderPrecision::highp;
+      const AuditPixels hp =
+          audit_pixels(rt, highp, audit_setup(highp, pair, g, req.frames[k]), g, req.reference);
+      for (size_t i = 0; i < px.flags.size(); ++i)
+        out.mediump_only_pixels += (px.flags[i] & AUDIT_FIGHT) && !(hp.flags[i] & AUDIT_FIGHT);
+    }
     ++out.frames;
     out.pixels += px.flags.size();
     for (uint32_t f : px.flags) {

@@ -85,6 +85,7 @@ nlohmann::json audit_json(const AuditReport& r, bool timing) {
                {"non_finite_triangles", s.non_finite},
                {"pairs", nlohmann::json::array()},
                {"coplanar_pairs", nlohmann::json::array()}});
+    if (s.mediump) sj["mediump_only_pixels"] = s.mediump_only_pixels;
     for (const FightPair& p : s.pairs) sj["pairs"].push_back(pair_json(*r.geometry, p));
     for (const FightPair& p : s.coplanar_pairs) {
       nlohmann::json c = {{"winner", surface_json(*r.geometry, p.winner_draw, p.winner_triangle)},
@@ -272,7 +273,15 @@ std::string audit_notes(const AuditReport& r, bool timing) {
           label, s.undrawn_pixels);
     if (s.non_finite)
       notes +=
-          fmt::format("{}: {} triangles dropped: a vertex is not finite\n", label, s.non_finite);
+          fmt::format("{}: {} triangles dropped: a vertex is not finite{}\n", label, s.non_finite,
+                      s.mediump ? " (mediump shaders hold magnitudes up to 65504; binary16 "
+                                  "overflows beyond)"
+                                : "");
+    if (s.mediump)
+      notes += fmt::format(
+          "{}: {} of the {} fighting pixels fight only because the shaders run in mediump: the "
+          "same views with highp shaders do not fight there (mediump_only_pixels)\n",
+          label, s.mediump_only_pixels, s.fighting_pixels);
   }
   for (const SetupAudit& s : r.setups)
     for (const FightPair& p : s.pairs)

@@ -237,7 +237,7 @@ TEST_CASE("scripts/make_audit_scenes.py writes data/audit/ byte for byte", "[aud
     CHECK(test::bytes_of(entry.path()) == test::bytes_of(dir / entry.path().filename()));
     ++files;
   }
-  CHECK(files == 10);
+  CHECK(files == 11);
 }
 
 TEST_CASE("audit's CSV has a row per set-up and pair, with the JSON's counts", "[audit][cli]") {

@@ -243,3 +243,32 @@ TEST_CASE("a coplanar pair counts every pixel the surface drawn later in the pla
     CHECK(p.pixels == decal_lost);
   }
 }
+
+// The published mobile case (docs/spec.md 2, "Shader precision"): content about 2000 m from the
+// origin under a mediump vertex shader, where binary16 holds world coordinates to a metre or two.
+// A decal 5 cm before a wall 20 m from the eye fights on every pixel it covers under the absolute
+// transform, and every one of those fights is mediump's alone (highp shaders keep the decal);
+// camera-relative matrices hand the shader small coordinates and nothing fights.
+TEST_CASE("2000 m from the origin a mediump vertex shader makes fights highp does not",
+          "[audit][mediump]") {
+  const SceneGeometry g = load_gltf(kVerdictData + "mobile_site.gltf", 1000);
+  const std::string pair = R"(evaluate=[{"technique":"standard","format":"unorm24"}])";
+  AuditRequest req;
+  req.frames = {test::main_camera(g, 160, 90)};
+  const auto audit = [&](const std::string& precision, const std::string& transform) {
+    const Scene scene =
+        verdict_scene({"near=0.1", "far=1e5", pair, "pipeline.shader_precision=" + precision,
+                       "pipeline.transform=" + transform});
+    return audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);
+  };
+  const SetupAudit mediump = audit("mediump", "absolute");
+  REQUIRE(mediump.mediump);
+  CHECK(mediump.fighting_pixels > mediump.covered_pixels / 10);
+  CHECK(mediump.mediump_only_pixels == mediump.fighting_pixels);
+  const SetupAudit highp = audit("highp", "absolute");
+  CHECK_FALSE(highp.mediump);
+  CHECK(highp.fighting_pixels == 0);
+  const SetupAudit relative = audit("mediump", "camera_relative");
+  CHECK(relative.fighting_pixels == 0);
+  CHECK(relative.mediump_only_pixels == 0);
+}
