@@ -73,7 +73,8 @@ const std::vector<BoundModel>& bound_models() {
        0,
        24,
        INFINITY,
-       0.6},
+       0.6,
+       "unorm16, unorm24, float32"},  // D16_UNORM, D24_UNORM_S8_UINT, D32_FLOAT
       {"vulkan_min",
        "the least a Vulkan implementation must do: 4 sub-pixel bits, depth interpolated to 1 part "
        "in 10^5, a unorm code either of the two nearest, otherwise as binary32",
@@ -91,7 +92,8 @@ const std::vector<BoundModel>& bound_models() {
        1e-5,
        24,
        INFINITY,
-       1},
+       1,
+       "unorm16, unorm24, float32"},  // D16_UNORM, X8_D24_UNORM_PACK32, D32_SFLOAT
       {"gles_mediump",
        "shaders in GLSL ES mediump (relative precision 2^-10, magnitudes to 2^14: binary16's), "
        "the fixed-function stages in binary32, otherwise as binary32",

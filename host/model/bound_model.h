@@ -40,6 +40,9 @@ struct BoundModel {
   // the interpolation error, the snapping (its profile sets pipeline.snap to snap_bits).
   double adversary_conversion = 0;
   bool has_adversary() const { return adversary_conversion > 0; }
+  // The depth formats the API has, "unorm16, unorm24, float32"; null: any. A row of another
+  // format has no bound under the model: its conversion rules say nothing of it.
+  const char* api_formats = nullptr;
 };
 
 const std::vector<BoundModel>& bound_models();

@@ -1,5 +1,7 @@
 #include "host/mts/bound_geometry.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -47,6 +49,12 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.format = s.storage_format(pair);
   m.model = &bound_model(s.bound_model);
   m.shader_rounding = {true, false, m.model->shader_bits};
+  if (const char* formats = m.model->api_formats) {
+    const std::string listed = std::string(", ") + formats + ", ";
+    if (listed.find(", " + m.format.name() + ", ") == std::string::npos)
+      throw InputError(fmt::format("{} has no {} depth format (its: {})", m.model->name,
+                                   m.format.name(), formats));
+  }
   const Pipeline& p = s.pipeline;
   // Binary32 arithmetic rounds to nearest in every profile; flushing subnormal results is allowed
   // (it only matters below 2^-126, where no depth of a resolved row lies).

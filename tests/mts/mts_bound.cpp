@@ -128,6 +128,18 @@ TEST_CASE("a row the bound model cannot bound says why, and its table cell is em
                 {Technique::standard, "unorm24", DepthRange::gl}, 512);
   CHECK(std::isnan(b.s));
   CHECK_THAT(b.why, Catch::Contains("premultiplied"));
+  // an API's envelope bounds the depth formats the API has: llvmpipe's 31-bit unorm32 lies
+  // outside D3D 11's 0.6-ulp rule, and D3D has no such format
+  // (bench/results/envelope_vs_rendered.txt)
+  for (const std::string envelope : {"d3d11", "vulkan_min"}) {
+    const MtsBound u32 = mts_bound(load_scene("", {"bound_model=" + envelope}),
+                                   {Technique::reversed, "unorm32", DepthRange::zero_to_one}, 512);
+    CHECK(std::isnan(u32.s));
+    CHECK_THAT(u32.why, Catch::Contains("has no unorm32 depth format"));
+    CHECK(std::isfinite(mts_bound(load_scene("", {"bound_model=" + envelope}),
+                                  {Technique::reversed, "unorm24", DepthRange::zero_to_one}, 512)
+                            .s));
+  }
   const auto r = run_cli(
       "mts -t standard -f unorm24 --distances 512 --format-out csv --no-timing --set "
       "sampling=paper --set kernel=[16,16] --set viewport=[16,16] --set frames=4 --set "
