@@ -179,7 +179,11 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
         pair.technique == Technique::layered ? s.params.layer_mapping : pair.technique;
     pc.adv_far = info(run).greater ? -1.0f : 1.0f;
     pc.adv_reciprocal = m.reciprocal_half_ulps > 1 ? 1.0f : 0.0f;
-    pc.adv_interpolation = static_cast<float>(m.interpolation_relative);
+    // in binary32, rounded down: the adversary never takes more than the bound allows
+    const double tolerance = s.interpolation_tolerance_or(m.interpolation_relative);
+    pc.adv_interpolation = static_cast<float>(tolerance);
+    if (pc.adv_interpolation > tolerance)
+      pc.adv_interpolation = std::nextafter(pc.adv_interpolation, 0.0f);
   }
   // The view's translation, applied on the GPU after the model matrix (plane_vertex_stage's view:
   // model_then_view away from the origin); premultiplied, the host folds it into P * V * M.

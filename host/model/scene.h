@@ -142,6 +142,13 @@ struct Scene {
   // The guaranteed MTS's bound model (host/model/bound_model.h): binary32, a profile's own, or
   // an API's envelope.
   std::string bound_model = "binary32";
+  // The relative error depth interpolation may make (of the interpolated depth, or 1/w), for the
+  // bound and an envelope's adversary: the model's own where unset (vulkan_min: 10^-5, the
+  // others 0). Vulkan leaves it loosely stated; a user who measured a device sets it.
+  std::optional<double> interpolation_tolerance;
+  double interpolation_tolerance_or(double model_value) const {
+    return interpolation_tolerance.value_or(model_value);
+  }
   WorstCaseSettings worst_case;
   Pipeline pipeline;
   TechniqueParams params;

@@ -157,6 +157,15 @@ void read_search_fields(const Reader& r, Scene& s) {
   s.stiffness_probes = r.integer("stiffness_probes", 0, 8);
   s.sampling = r.choice("sampling", parse_sampling);
   s.bound_model = r.choice("bound_model", [](const std::string& v) { return bound_model(v).name; });
+  const nlohmann::json& tol = r.at("interpolation_tolerance");
+  if (tol != "model") {
+    if (!tol.is_number() || !(tol.get<double>() >= 0 && tol.get<double>() <= 0.01))
+      r.fail("interpolation_tolerance",
+             fmt::format("must be model (the bound model's own) or a relative error 0..0.01 "
+                         "(Vulkan's \"1 part in 10^5\" is 1e-5), not {}",
+                         tol.dump()));
+    s.interpolation_tolerance = tol.get<double>();
+  }
 }
 
 void read_worst_case(const Reader& r, WorstCaseSettings& w) {

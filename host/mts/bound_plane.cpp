@@ -385,7 +385,8 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   const BoundModel& bm = *m.model;
   v[kInterpolation] = bm.value_roundings * hu(m, pixel_value_max(m, g) + reach) +
                       bm.reach_roundings * hu(m, reach) + G[0] * hu(m, X) + G[1] * hu(m, Y);
-  v[kInterpolationTolerance] = bm.interpolation_relative * pixel_value_max(m, g);
+  v[kInterpolationTolerance] =
+      m.scene->interpolation_tolerance_or(bm.interpolation_relative) * pixel_value_max(m, g);
   if (!m.fragment) return out;
   // (6) Fragment-stage depth: w = fl(1 / q~) with q~ within Eq of q >= 1 / wp_hi, then the
   // shader's depth F(w): the interpolation's error through 1 / q and F's slope, w's rounding and

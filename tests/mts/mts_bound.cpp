@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "host/model/frame_setup.h"
@@ -231,4 +232,26 @@ TEST_CASE("random scenes under ideal and llvmpipe: no fight at the guaranteed MT
     CHECK(!any_fight(s, pair, z, b.s, angles));
   }
   CHECK(scenes >= 16);
+}
+
+// Vulkan states its interpolation precision loosely (1 part in 10^5); a user who measured a device
+// sets interpolation_tolerance, and both the envelope's bound and its adversary follow it.
+TEST_CASE("the interpolation tolerance is a setting the bound and the adversary follow",
+          "[mts][bound][envelope]") {
+  std::vector<std::pair<double, double>> at;  // (mts, mts_bound) per tolerance, largest first
+  for (const std::string tolerance : {"model", "1e-6", "0"}) {
+    const auto r = run_cli(
+        "mts --profile vulkan_min -t standard -f unorm24 --distances 100 --set sampling=paper "
+        "--set frames=8 --format-out json --no-timing --set interpolation_tolerance=" +
+        tolerance);
+    REQUIRE(r.exit_code == 0);
+    const auto row = nlohmann::json::parse(r.output)["rows"].at(0);
+    INFO(tolerance << ": " << row.dump());
+    CHECK(row["mts_bound"].get<double>() >= row["mts"].get<double>());
+    at.emplace_back(row["mts"].get<double>(), row["mts_bound"].get<double>());
+  }
+  CHECK(at[0].first > 5 * at[1].first);
+  CHECK(at[1].first > at[2].first);
+  CHECK(at[0].second > 5 * at[1].second);
+  CHECK(at[1].second > at[2].second);
 }
