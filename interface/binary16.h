@@ -32,4 +32,27 @@ static inline float dp_binary16(float x) {
   return df_bits_float(sign | r);
 }
 
+/* The GLSL ES 1.00 highp minimum (pipeline.shader_precision es2_highp): relative precision 2^-16
+ * (17 significant bits) and magnitudes in [2^-62, 2^62] (GLSL ES 1.00 4.5.2), as a device that
+ * offers no more runs it: to nearest, ties to even, 7 bits dropped from binary32's 24; from 2^62
+ * on (after rounding) infinity, below 2^-62 zero. */
+static inline float dp_es2_highp(float x) {
+  const df_u32 u = df_float_bits(x), sign = u & 0x80000000u, a = u & 0x7fffffffu;
+  if (a >= 0x7f800000u) return x;                     /* inf, NaN */
+  if (a < 0x20800000u) return df_bits_float(sign);    /* below 2^-62: zero */
+  const df_u32 r = (a + 0x3fu + ((a >> 7) & 1u)) & 0xffffff80u;
+  return df_bits_float(sign | (r >= 0x5e800000u ? 0x7f800000u : r)); /* from 2^62: infinity */
+}
+
+/* A shader's rounding at its precision (host/model/scene.h ShaderPrecision, the same numbers):
+ * binary32 as it is, mediump's binary16, or the GLSL ES 1.00 highp minimum. */
+#define DP_SHADER_HIGHP 0
+#define DP_SHADER_MEDIUMP 1
+#define DP_SHADER_ES2_HIGHP 2
+static inline float dp_shader_round(float x, int precision) {
+  return precision == DP_SHADER_MEDIUMP     ? dp_binary16(x)
+         : precision == DP_SHADER_ES2_HIGHP ? dp_es2_highp(x)
+                                            : x;
+}
+
 #endif

@@ -134,6 +134,7 @@
 #define MTS_F_VERTEX_FMA 8u      /* matrix rows fused as llvmpipe's shader fuses them (mat_row) */
 #define MTS_F_VIEW_TRANSLATE 16u /* eye = model * v + view translation, in binary32 */
 #define MTS_F_MEDIUMP 32u        /* the vertex shader in binary16 (interface/binary16.h) */
+#define MTS_F_ES2_HIGHP 64u      /* ... at the GLSL ES 1.00 highp minimum (the same header) */
 #define MTS_MAT_STRIDE 16        /* a 4x4 matrix, row-major */
 /* Relative to eye, a plane's binary64 world matrix instead: 16 doubles in 32 floats' place */
 #define MTS_WORLD_MAT_STRIDE 32

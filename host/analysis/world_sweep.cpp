@@ -29,12 +29,12 @@ double grid_spacing(double m, int precision) {
   return std::ldexp(1.0, e - precision);
 }
 
-// The vertex shader's significand: binary32's 24 bits, or mediump's (the gles_mediump bound
-// model's, 11) under a mediump shader.
+// The vertex shader's significand: binary32's 24 bits, or its precision's below it (the
+// gles_mediump bound model's 11, gles2_highp's 17).
 int shader_bits(const Scene& scene) {
-  return scene.pipeline.shader_precision == ShaderPrecision::mediump
-             ? bound_model("gles_mediump").shader_bits
-             : 24;
+  const BoundModel* reduced =
+      shader_precision_model(static_cast<int>(scene.pipeline.shader_precision));
+  return reduced ? reduced->shader_bits : 24;
 }
 
 // The magnitudes the sweep considers: from below any vertex's reach to above world_position's

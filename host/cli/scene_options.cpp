@@ -48,13 +48,15 @@ void SceneOptions::add_to(CLI::App& cmd, bool with_pairs) {
   cmd.add_option("--rounding", rounding, "Storage rounding: nearest_even or truncate");
   cmd.add_option("--denormals", denormals, "keep or flush");
   cmd.add_option("--log-k", log_k, "k of the log techniques");
-  cmd.add_option("--profile", profile,
-                 "Implementation profile: ideal (docs/spec.md 2), llvmpipe (Mesa's fused vertex "
-                 "products, log, clip stage, depth-plane set-up, FMA viewport and unorm "
-                 "conversions), softpipe (llvmpipe's vertex stage, its own quad-stepped planes "
-                 "and truncated unorm codes), gles_mediump (a binary16 vertex shader), or an "
-                 "API envelope's adversary: d3d11, vulkan_min (bounded under the envelope's "
-                 "model); `depthprec pipelines` lists them");
+  cmd.add_option(
+      "--profile", profile,
+      "Implementation profile: ideal (docs/spec.md 2), llvmpipe (Mesa's fused vertex "
+      "products, log, clip stage, depth-plane set-up, FMA viewport and unorm "
+      "conversions), softpipe (llvmpipe's vertex stage, its own quad-stepped planes "
+      "and truncated unorm codes), gles_mediump (binary16 shaders), gles2_highp (the GLSL ES "
+      "1.00 highp minimum), or an "
+      "API envelope's adversary: d3d11, vulkan_min (bounded under the envelope's "
+      "model); `depthprec pipelines` lists them");
 }
 
 namespace {

@@ -108,6 +108,20 @@ const std::vector<BoundModel>& bound_models() {
        0,
        11,
        0x1.0p14},
+      {"gles2_highp",
+       "shaders at the GLSL ES 1.00 highp minimum (relative precision 2^-16, magnitudes to 2^62: "
+       "17 significant bits), the fixed-function stages in binary32, otherwise as binary32",
+       "GLSL ES 1.00 4.5.2 (highp: relative precision 2^-16, range 2^62)",
+       true,
+       5,
+       5,
+       1,
+       {1.0078125, 2, 3},
+       8,
+       0,
+       0,
+       17,
+       0x1.0p62},
   };
   return models;
 }
@@ -126,6 +140,12 @@ const BoundModel* envelope_model(const std::string& name) {
     if (m.has_adversary()) names += std::string(", ") + m.name;
   }
   throw InputError(fmt::format("unknown envelope '{}': one of {}", name, names));
+}
+
+const BoundModel* shader_precision_model(int precision) {
+  if (precision == 1) return &bound_model("gles_mediump");
+  if (precision == 2) return &bound_model("gles2_highp");
+  return nullptr;
 }
 
 double adversary_code_slack(const BoundModel& envelope) {

@@ -50,6 +50,10 @@ const BoundModel& bound_model(const std::string& name);  // throws InputError na
 // pipeline.envelope's value: "none" (nullptr) or a model with an adversary; throws InputError
 // naming them.
 const BoundModel* envelope_model(const std::string& name);
+// The model whose shaders' bits and range a pipeline.shader_precision below binary32 takes
+// (interface/binary16.h's numbers: 1 mediump, gles_mediump; 2 es2_highp, gles2_highp); null for
+// binary32.
+const BoundModel* shader_precision_model(int precision);
 // The slack of its adversarial unorm conversion (interface/adversary.h dp_adv_unorm_code): 1 - t
 // for a tolerance of t codes, with a hair (2^-20) more below 1 so binary64 cannot carry a code
 // past t; 0 for either of the two nearest codes (t = 1).

@@ -170,7 +170,8 @@ ProbeConstants constants(const Scene& s, const EvalPair& pair, double n64, doubl
              (path == VertexPath::premultiplied ? MTS_F_COMPOSE_PREMULT : 0u) |
              (pipe.viewport == ViewportForm::fma ? MTS_F_VIEWPORT_FMA : 0u) |
              (pipe.vertex == VertexForm::fma ? MTS_F_VERTEX_FMA : 0u) |
-             (pipe.shader_precision == ShaderPrecision::mediump ? MTS_F_MEDIUMP : 0u);
+             (pipe.shader_precision == ShaderPrecision::mediump ? MTS_F_MEDIUMP : 0u) |
+             (pipe.shader_precision == ShaderPrecision::es2_highp ? MTS_F_ES2_HIGHP : 0u);
   pc.snap_bits = pipe.snap_bits;
   if (!pipe.envelope.empty()) {
     const BoundModel& m = bound_model(pipe.envelope);
@@ -332,7 +333,9 @@ VertexStage read_plane_words(const Scene& s, const ProbeConstants& pc, const flo
     return st;
   }
   std::copy(words, words + MTS_MAT_STRIDE, st.matrix.begin());
-  st.mediump = (pc.forms & MTS_F_MEDIUMP) != 0;
+  st.precision = (pc.forms & MTS_F_MEDIUMP)     ? ShaderPrecision::mediump
+                 : (pc.forms & MTS_F_ES2_HIGHP) ? ShaderPrecision::es2_highp
+                                                : ShaderPrecision::highp;
   if (pc.forms & MTS_F_VIEW_TRANSLATE) {  // the view: the camera's translation alone
     st.view = VertexStage::View::translation;
     st.view_matrix = rounded(mat_identity());

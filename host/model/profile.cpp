@@ -48,6 +48,15 @@ const std::vector<Profile>& profiles() {
         "pipeline.log=library", "pipeline.clip=none", "pipeline.conversion=exact",
         "pipeline.snap=none", "pipeline.shader_precision=mediump", "pipeline.envelope=none"},
        "step"},
+      // A device that offers the GLSL ES 1.00 highp minimum alone (relative precision 2^-16,
+      // range 2^62; docs/spec.md 2): the ideal pipeline otherwise.
+      {"gles2_highp",
+       "the ideal pipeline with shaders at the GLSL ES 1.00 highp minimum: 17-bit uniforms, "
+       "products and sums (interface/binary16.h)",
+       {"pipeline.plane=vertex", "pipeline.viewport=separate", "pipeline.vertex=separate",
+        "pipeline.log=library", "pipeline.clip=none", "pipeline.conversion=exact",
+        "pipeline.snap=none", "pipeline.shader_precision=es2_highp", "pipeline.envelope=none"},
+       "step"},
       // The API envelopes' adversaries (interface/adversary.h, docs/spec.md 2 "Envelopes"): the
       // ideal pipeline's forms, snapped to the sub-pixel bits the API requires at least, with the
       // adversarial choice at each freedom its specification leaves (host/model/bound_model.cpp);

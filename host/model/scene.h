@@ -52,7 +52,9 @@ enum class ClipForm { none, llvmpipe };
 enum class Transform { absolute, camera_relative, relative_to_eye };
 // The vertex shader's precision (GLSL ES): highp, binary32; mediump, binary16 (relative precision
 // 2^-10, interface/binary16.h), as mobile GPUs run a shader that declares it.
-enum class ShaderPrecision { highp, mediump };
+// The shaders' precision (interface/binary16.h dp_shader_round's numbers): binary32, GLSL ES
+// mediump (binary16), or the GLSL ES 1.00 highp minimum (17 bits).
+enum class ShaderPrecision { highp = 0, mediump = 1, es2_highp = 2 };
 // The bound on world_position's coordinates, 2^40: relative to eye keeps a coordinate's high part
 // (a multiple of 65536) exact in binary32 below it.
 constexpr double kMaxWorldCoordinate = 1099511627776.0;

@@ -200,18 +200,20 @@ void read_pipeline(const Reader& r, Pipeline& p) {
   p.conversion = r.choice("pipeline.conversion", parse_conversion);
   p.transform = r.choice("pipeline.transform", parse_transform);
   p.shader_precision = r.choice("pipeline.shader_precision", [](const std::string& v) {
-    return named_choice<ShaderPrecision>(
-        "shader_precision", v,
-        {{"highp", ShaderPrecision::highp}, {"mediump", ShaderPrecision::mediump}});
+    return named_choice<ShaderPrecision>("shader_precision", v,
+                                         {{"highp", ShaderPrecision::highp},
+                                          {"mediump", ShaderPrecision::mediump},
+                                          {"es2_highp", ShaderPrecision::es2_highp}});
   });
   p.envelope = r.choice("pipeline.envelope", [](const std::string& v) {
     const BoundModel* m = envelope_model(v);
     return std::string(m ? m->name : "");
   });
-  if (p.shader_precision == ShaderPrecision::mediump && p.transform == Transform::relative_to_eye)
+  if (p.shader_precision != ShaderPrecision::highp && p.transform == Transform::relative_to_eye)
     r.fail("pipeline.shader_precision",
-           "mediump is not modelled with transform relative_to_eye: its binary32 high and low "
-           "parts would need a binary16 split of their own (use absolute or camera_relative)");
+           "mediump and es2_highp are not modelled with transform relative_to_eye: its binary32 "
+           "high and low parts would need a split of their own at the shader's precision (use "
+           "absolute or camera_relative)");
 }
 
 void read_technique_params(const Reader& r, TechniqueParams& p) {

@@ -4,6 +4,9 @@
 #include <initializer_list>
 
 #include "interface/binary16.h"
+
+static_assert(static_cast<int>(depthprec::ShaderPrecision::mediump) == DP_SHADER_MEDIUMP &&
+              static_cast<int>(depthprec::ShaderPrecision::es2_highp) == DP_SHADER_ES2_HIGHP);
 #include "interface/relative_to_eye.h"
 
 namespace depthprec {
@@ -70,19 +73,21 @@ Mat4d held_in(MatrixPrecision p, const Mat4d& m) {
   return out;
 }
 
-float mediump_row_dot(const Mat4f& m, int r, const float v[4], VertexForm form) {
+float mediump_row_dot(const Mat4f& m, int r, const float v[4], VertexForm form,
+                      ShaderPrecision precision) {
+  const int p = static_cast<int>(precision);
+  const auto h = [p](float x) { return dp_shader_round(x, p); };
   const float* row = &m[r * 4];
-  float s = dp_binary16(dp_binary16(row[0]) * v[0]);
+  float s = h(h(row[0]) * v[0]);
   for (int c = 1; c < 4; ++c)
-    s = form == VertexForm::fma ? dp_binary16(std::fma(dp_binary16(row[c]), v[c], s))
-                                : dp_binary16(s + dp_binary16(dp_binary16(row[c]) * v[c]));
+    s = form == VertexForm::fma ? h(std::fma(h(row[c]), v[c], s)) : h(s + h(h(row[c]) * v[c]));
   return s;
 }
 
 VertexStage vertex_stage(const Pipeline& pipe, const Mat4d& P, const ApplicationDraw& draw) {
   VertexStage st;
   st.path = vertex_path(pipe);
-  st.mediump = pipe.shader_precision == ShaderPrecision::mediump;
+  st.precision = pipe.shader_precision;
   const Transform t = pipe.transform;
   if (st.path == VertexPath::relative_to_eye) {
     st.world = draw.world();
@@ -112,20 +117,22 @@ VertexStage vertex_stage(const Pipeline& pipe, const Mat4d& P, const Application
 void vertex_clip(const VertexStage& st, const Mat4f& P, const float obj[4], VertexForm form,
                  float clip[4]) {
   float eye[4] = {0, 0, 0, 1.0f};
-  if (st.mediump) {  // kernels/mts/setup/vertex.cl mediump_vertex, the same steps
+  const ShaderPrecision sp = st.precision;
+  if (sp != ShaderPrecision::highp) {  // kernels/mts/setup/vertex.cl mediump_vertex, the same steps
     if (st.path == VertexPath::premultiplied) {
-      for (int r = 0; r < 4; ++r) clip[r] = mediump_row_dot(st.matrix, r, obj, form);
+      for (int r = 0; r < 4; ++r) clip[r] = mediump_row_dot(st.matrix, r, obj, form, sp);
       return;
     }
-    for (int r = 0; r < 3; ++r) eye[r] = mediump_row_dot(st.matrix, r, obj, form);
+    for (int r = 0; r < 3; ++r) eye[r] = mediump_row_dot(st.matrix, r, obj, form, sp);
+    const int p = static_cast<int>(sp);
     if (st.view == VertexStage::View::translation)
       for (int r = 0; r < 3; ++r)
-        eye[r] = dp_binary16(eye[r] + dp_binary16(st.view_matrix[r * 4 + 3]));
+        eye[r] = dp_shader_round(eye[r] + dp_shader_round(st.view_matrix[r * 4 + 3], p), p);
     else if (st.view == VertexStage::View::matrix) {
       const float v[4] = {eye[0], eye[1], eye[2], 1.0f};
-      for (int r = 0; r < 3; ++r) eye[r] = mediump_row_dot(st.view_matrix, r, v, form);
+      for (int r = 0; r < 3; ++r) eye[r] = mediump_row_dot(st.view_matrix, r, v, form, sp);
     }
-    for (int r = 0; r < 4; ++r) clip[r] = mediump_row_dot(P, r, eye, form);
+    for (int r = 0; r < 4; ++r) clip[r] = mediump_row_dot(P, r, eye, form, sp);
     return;
   }
   if (st.path == VertexPath::premultiplied) {

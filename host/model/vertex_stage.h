@@ -27,11 +27,13 @@ inline float mat_row_dot(const Mat4f& m, int r, const float v[4],
   return ((row[0] * v[0] + row[1] * v[1]) + row[2] * v[2]) + row[3] * v[3];
 }
 
-// Row r of m times v in GLSL ES mediump (pipeline.shader_precision, interface/binary16.h): the
-// matrix entries held in binary16, every product and sum rounded to binary16, in mat_row_dot's
+// Row r of m times v at a reduced shader precision (pipeline.shader_precision: mediump's binary16
+// or the GLSL ES 1.00 highp minimum, interface/binary16.h dp_shader_round): the matrix entries
+// held at it, every product and sum rounded to it, in mat_row_dot's
 // order (separate) or fused one step at a time; an object row is not folded here. The same
 // arithmetic as kernels/mts/setup/vertex.cl mediump_row.
-float mediump_row_dot(const Mat4f& m, int r, const float v[4], VertexForm form);
+float mediump_row_dot(const Mat4f& m, int r, const float v[4], VertexForm form,
+                      ShaderPrecision precision);
 
 // Row r of m times an object position (x, y, z, 1) (kernels/mts/common.cl obj_row16 for the
 // planes' z = 0): as mat_row_dot, except that under VertexForm::fma the compiler, which sees the
@@ -105,9 +107,10 @@ struct VertexStage {
   // relative_to_eye: the world matrix, and the eye's high and low parts.
   Mat4d world{};
   std::array<float, 3> eye_high{}, eye_low{};
-  // The vertex shader in GLSL ES mediump (binary16) instead of binary32: its uniforms, products
-  // and sums (pipeline.shader_precision); relative_to_eye is refused with it.
-  bool mediump = false;
+  // The vertex shader's precision (pipeline.shader_precision): below binary32 (mediump's binary16,
+  // or the GLSL ES 1.00 highp minimum) its uniforms, products and sums are rounded to it;
+  // relative_to_eye is refused with it.
+  ShaderPrecision precision = ShaderPrecision::highp;
 };
 
 // The one decision: what the GPU gets for the draw under the pipeline's transform, compose and

@@ -79,15 +79,15 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
     throw InputError(
         "no bound model for a projection whose w row is not (0, 0, -1, 0), or orthographic's "
         "(0, 0, 0, 1)");
-  // A mediump vertex shader (pipeline.shader_precision) computes in binary16 whatever the model
-  // allows, within GLSL ES mediump's range, and holds the projection's entries in binary16: the
-  // map its depths follow.
+  // A vertex shader below binary32 (pipeline.shader_precision: mediump's binary16, the GLSL ES
+  // 1.00 highp minimum) computes at that precision whatever the model allows, within its range,
+  // and holds the projection's entries at it: the map its depths follow.
   m.shader_range = m.model->shader_range;
-  if (p.shader_precision == ShaderPrecision::mediump) {
-    const BoundModel& mediump = bound_model("gles_mediump");  // GLSL ES's mediump, once
-    m.shader_rounding.bits = std::min(m.shader_rounding.bits, mediump.shader_bits);
-    m.shader_range = std::min(m.shader_range, mediump.shader_range);
-    for (double* e : {&m.a, &m.b, &m.P00, &m.P11}) *e = dp_binary16(static_cast<float>(*e));
+  if (const BoundModel* reduced = shader_precision_model(static_cast<int>(p.shader_precision))) {
+    m.shader_rounding.bits = std::min(m.shader_rounding.bits, reduced->shader_bits);
+    m.shader_range = std::min(m.shader_range, reduced->shader_range);
+    for (double* e : {&m.a, &m.b, &m.P00, &m.P11})
+      *e = dp_shader_round(static_cast<float>(*e), static_cast<int>(p.shader_precision));
   }
   m.scale = m.pc.depth_gl ? 0.5 : 1.0;
   const double r = s.rotation_range_deg * M_PI / 180 + kTiltMargin;
@@ -99,7 +99,7 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
   m.yn_max = static_cast<double>(s.kernel_h) / s.viewport_h;
   m.sign = m.ti.greater ? -1.0 : 1.0;
   m.fragment = m.ti.from == DepthFrom::fragment;
-  m.fragment_mediump = m.fragment && p.shader_precision == ShaderPrecision::mediump;
+  m.fragment_mediump = m.fragment && p.shader_precision != ShaderPrecision::highp;
   if (m.fragment_mediump)
     for (const double u : fragment_uniforms(m))
       m.fragment_uniform_max = std::max(m.fragment_uniform_max, std::fabs(u));

@@ -231,10 +231,10 @@ DP_MEDIUMP_FRAGMENT_DEFINE(mediump_depth_llvmpipe, llvmpipe_log, llvmpipe_log2)
 // (interface/mediump_fragment.h).
 float shader_depth(const Scene& s, const TechniqueInfo& ti, const ProbeConstants& pc, float q,
                    float w, float from_near_plus_one) {
-  if (s.pipeline.shader_precision == ShaderPrecision::mediump)
+  if (s.pipeline.shader_precision != ShaderPrecision::highp)
     return (s.pipeline.log == LogForm::llvmpipe ? mediump_depth_llvmpipe : mediump_depth_library)(
         static_cast<int>(ti.fragment), q, pc.near, pc.range, pc.far, pc.log_k, pc.log_L,
-        pc.threejs_fc, pc.cesium_inv_log2);
+        pc.threejs_fc, pc.cesium_inv_log2, static_cast<int>(s.pipeline.shader_precision));
   switch (ti.fragment) {
     case FragmentDepth::linear:
       return (w - pc.near) / pc.range;

@@ -22,15 +22,17 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
   // function of w (three.js's further * 0.5 is exact). In codes that is at most s = ceil(4 ulp /
   // code spacing) + 1 on each side, and a piece decided from its ends needs B's and A's end codes
   // 4 s apart (both planes, both ends).
-  // A mediump fragment shader (FRAG_MEDIUMP) rounds the log's result to binary16, so its error
-  // can reach one binary16 step of d, 2^11 binary32 ulps more.
-  const bool frag_mediump =
-      ti.from == DepthFrom::fragment && p.shader_precision == ShaderPrecision::mediump;
+  // A fragment shader below binary32 (FRAG_MEDIUMP: mediump's binary16, the GLSL ES 1.00 highp
+  // minimum) rounds the log's result to its precision, so its error can reach one step of d
+  // there, 2^(24 - bits) binary32 ulps.
+  const BoundModel* reduced = ti.from == DepthFrom::fragment
+                                  ? shader_precision_model(static_cast<int>(p.shader_precision))
+                                  : nullptr;
   long long log_slack = 0;
   if (ti.from == DepthFrom::fragment && takes_shader_log(ti)) {
     const df_format& fs = f.spec();
     const int fine = (fs.kind == DF_KIND_UNORM ? static_cast<int>(fs.bits) + 2 : fs.man_bits) +
-                     (frag_mediump ? 11 : 0);
+                     (reduced ? 24 - reduced->shader_bits : 0);
     const long long s = (fine > 21 ? (1LL << (fine - 21)) : 1LL) + 1;
     log_slack = 4 * s;
   }
@@ -54,7 +56,8 @@ KernelVariant mts_variant(const Scene& scene, const EvalPair& pair) {
       "-DFRAG_MEDIUMP={} {}",
       base, scene.plane_subdivisions, depth_from, frag, ti.greater ? 1 : 0, p.contraction ? 1 : 0,
       log_slack, v.cache_a_codes ? 1 : 0, plane_form, llvmpipe_log, p.clip_slots(), rte,
-      adversary_codes ? 1 : 0, slack, frag_mediump ? 1 : 0, f.defines());
+      adversary_codes ? 1 : 0, slack, reduced ? static_cast<int>(p.shader_precision) : 0,
+      f.defines());
   // The set-up takes a log only for vertex-stage log depth, so elsewhere the log's form is left
   // out of its key.
   v.setup_program = "kernels/mts_setup.cl";

@@ -28,9 +28,11 @@
  *   LOG_CODE_SLACK     codes a piece's end codes must clear a bound by under the library log's
  *                      error (fragment-stage log depth; 0 elsewhere)
  *   CACHE_A_CODES      1: the pixel loop reads plane A's codes from the plane-A cache
- *   FRAG_MEDIUMP       1: with DEPTH_FROM 2, the fragment shader in mediump
- *                      (interface/mediump_fragment.h); its log's error then reaches a binary16
- *                      step, which LOG_CODE_SLACK covers, and the gap certificate is off
+ *   FRAG_MEDIUMP       with DEPTH_FROM 2, the fragment shader's precision below binary32
+ *                      (interface/binary16.h: 1 mediump, 2 the GLSL ES 1.00 highp minimum; 0
+ *                      binary32; interface/mediump_fragment.h); its log's error then reaches a
+ *                      step at that precision, which LOG_CODE_SLACK covers, and the gap
+ *                      certificate is off
  *   ADVERSARY_CODES    1: unorm codes take an envelope's adversarial conversion
  *                      (interface/adversary.h), in each record's direction (MTS_T_ADVERSARY)
  *   ADVERSARY_CODE_SLACK  its slack: how far inside a code's half-interval it may not choose

@@ -113,7 +113,8 @@ typedef struct {
 } depth16_t;
 
 #if FRAG_MEDIUMP
-// The fragment shader in GLSL ES mediump (interface/mediump_fragment.h), lane by lane.
+// The fragment shader below binary32 (interface/mediump_fragment.h; FRAG_MEDIUMP is its
+// precision), lane by lane.
 DP_MEDIUMP_FRAGMENT_DEFINE(mediump_depth, shader_log, shader_log2)
 static inline float16 mediump_depth16(float16 q, __global const float* P) {
   float a[16];
@@ -121,7 +122,7 @@ static inline float16 mediump_depth16(float16 q, __global const float* P) {
   for (int k = 0; k < 16; ++k)
     a[k] =
         mediump_depth(FRAG_DEPTH, a[k], P[MTS_C_NEAR], P[MTS_C_RANGE], P[MTS_C_FAR], P[MTS_C_LOGK],
-                      P[MTS_C_LOGL], P[MTS_C_THREEJS_FC], P[MTS_C_CESIUM_INV_LOG2]);
+                      P[MTS_C_LOGL], P[MTS_C_THREEJS_FC], P[MTS_C_CESIUM_INV_LOG2], FRAG_MEDIUMP);
   return vload16(0, a);
 }
 #endif

@@ -188,10 +188,11 @@ TEST_CASE("pipelines --list gives every profile and bound model, the envelopes a
     CHECK_FALSE(i["what"].get<std::string>().empty());
     CHECK_FALSE(i["source"].get<std::string>().empty());
   }
-  for (const char* both : {"ideal", "llvmpipe", "softpipe", "gles_mediump", "d3d11", "vulkan_min"})
+  for (const char* both :
+       {"ideal", "llvmpipe", "softpipe", "gles_mediump", "gles2_highp", "d3d11", "vulkan_min"})
     CHECK(kind[both] == "profile and bound model");
   CHECK(kind["binary32"] == "bound model");
-  CHECK(kind.size() == 7);
+  CHECK(kind.size() == 8);
   const auto md = run_cli("pipelines --list --format-out markdown");
   REQUIRE(md.exit_code == 0);
   CHECK_THAT(md.output,

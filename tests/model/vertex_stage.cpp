@@ -202,3 +202,32 @@ TEST_CASE("mediump's rounding is the compiler's binary32-to-binary16 conversion"
   CHECK(dp_binary16(3000.5f) == 3000.0f);  // spacing 2 from 2048 on
   CHECK(std::isinf(dp_binary16(65520.0f)));
 }
+
+TEST_CASE("the GLSL ES 1.00 highp minimum rounds to 17 bits within 2^-62 .. 2^62",
+          "[vertex_stage]") {
+  // interface/binary16.h dp_es2_highp against binary64 arithmetic: the significand scaled to 17
+  // bits and rounded to nearest, ties to even (nearbyint in the default rounding mode), the range
+  // [2^-62, 2^62) kept, zero below, infinity from 2^62 (after rounding) on.
+  size_t compared = 0;
+  for (uint64_t u = 0; u < 0x100000000ull; u += 4099) {
+    const auto bits = static_cast<uint32_t>(u);
+    float x;
+    std::memcpy(&x, &bits, sizeof x);
+    if (std::isnan(x)) continue;
+    double expect = x;
+    if (std::isfinite(x) && x != 0) {
+      int e = 0;
+      const double m = std::frexp(static_cast<double>(x), &e);  // |m| in [0.5, 1)
+      expect = std::ldexp(std::nearbyint(std::ldexp(m, 17)), e - 17);
+      if (std::fabs(expect) >= 0x1.0p62) expect = std::copysign(INFINITY, x);
+      if (std::fabs(static_cast<double>(x)) < 0x1.0p-62) expect = std::copysign(0.0, x);
+    }
+    INFO(std::hex << bits);
+    REQUIRE(vs_same_bits(dp_es2_highp(x), static_cast<float>(expect)));
+    ++compared;
+  }
+  CHECK(compared > 1000000);
+  CHECK(dp_es2_highp(1.0f + 0x1.0p-17f) == 1.0f);  // a tie, to even
+  CHECK(dp_es2_highp(1.0f + 0x1.8p-17f) == 1.0f + 0x1.0p-16f);
+  CHECK(dp_shader_round(1.0f + 0x1.0p-20f, DP_SHADER_HIGHP) == 1.0f + 0x1.0p-20f);
+}

@@ -49,7 +49,7 @@ TEST_CASE("the guaranteed MTS is at or above the sampled worst case on every res
           "[mts][bound]") {
   int resolved = 0, bounded = 0;
   for (const std::string prof :
-       {"ideal", "llvmpipe", "softpipe", "gles_mediump", "d3d11", "vulkan_min"}) {
+       {"ideal", "llvmpipe", "softpipe", "gles_mediump", "gles2_highp", "d3d11", "vulkan_min"}) {
     std::vector<std::string> sets = profile(prof).sets;
     sets.insert(sets.end(),
                 {"kernel=[32,32]", "viewport=[32,32]", "frames=16", "worst_case.round_size=32",
@@ -61,7 +61,8 @@ TEST_CASE("the guaranteed MTS is at or above the sampled worst case on every res
       for (const std::string f : {"float32", "unorm24", "unorm16"}) {
         // mediump's vertex stage is the same for every fragment stage and format: two pairs,
         // and two whose fragment shader writes depth in mediump
-        if (prof == "gles_mediump" && !(t == Technique::standard && f == "float32") &&
+        if ((prof == "gles_mediump" || prof == "gles2_highp") &&
+            !(t == Technique::standard && f == "float32") &&
             !(t == Technique::reversed && f == "unorm24") &&
             !(t == Technique::log_fragment && f == "float32") &&
             !(t == Technique::linear && f == "unorm24"))

@@ -160,18 +160,21 @@ TEST_CASE("away from the world origin the kernel follows the reference under eve
 // transform it combines with and both compositions, with separate and fused rows.
 TEST_CASE("under a mediump vertex shader the kernel follows the reference",
           "[mts][reference][mediump]") {
-  for (const auto& [transform, compose, vertex, world] :
-       {std::tuple{"absolute", "separate", "separate", "[0,0,0]"},
-        std::tuple{"absolute", "separate", "fma", "[1000,-500,3000]"},
-        std::tuple{"absolute", "premultiplied", "separate", "[1000,-500,3000]"},
-        std::tuple{"camera_relative", "separate", "separate", "[1000,-500,3000]"}}) {
-    const Scene scene = load_scene(
-        "", {"kernel=[48,40]", "viewport=[48,40]", "frames=12", "pipeline.shader_precision=mediump",
-             std::string("world_position=") + world, std::string("pipeline.transform=") + transform,
-             std::string("pipeline.compose=") + compose, std::string("pipeline.vertex=") + vertex});
-    INFO(transform << " " << compose << " " << vertex << " " << world);
-    check_three_pairs(scene);
-  }
+  for (const std::string precision : {"mediump", "es2_highp"})
+    for (const auto& [transform, compose, vertex, world] :
+         {std::tuple{"absolute", "separate", "separate", "[0,0,0]"},
+          std::tuple{"absolute", "separate", "fma", "[1000,-500,3000]"},
+          std::tuple{"absolute", "premultiplied", "separate", "[1000,-500,3000]"},
+          std::tuple{"camera_relative", "separate", "separate", "[1000,-500,3000]"}}) {
+      const Scene scene = load_scene(
+          "",
+          {"kernel=[48,40]", "viewport=[48,40]", "frames=12",
+           "pipeline.shader_precision=" + precision, std::string("world_position=") + world,
+           std::string("pipeline.transform=") + transform,
+           std::string("pipeline.compose=") + compose, std::string("pipeline.vertex=") + vertex});
+      INFO(precision << " " << transform << " " << compose << " " << vertex << " " << world);
+      check_three_pairs(scene);
+    }
 }
 
 // A fragment shader that writes depth in mediump (interface/mediump_fragment.h): the kernel follows
@@ -180,27 +183,33 @@ TEST_CASE("under a mediump vertex shader the kernel follows the reference",
 // way it rounds, on few pixels. far = 1000 keeps linear's range within mediump's.
 TEST_CASE("under a mediump fragment shader the kernel follows the reference",
           "[mts][reference][mediump]") {
-  const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12", "far=1000",
-                                      "pipeline.shader_precision=mediump"});
-  for (const auto& [t, format] :
-       {std::pair{Technique::linear, "unorm24"}, std::pair{Technique::w_buffer, "float32"},
-        std::pair{Technique::log_fragment, "unorm24"}, std::pair{Technique::log_threejs, "float32"},
-        std::pair{Technique::log_cesium, "float32"}}) {
-    const EvalPair pair{t, format, DepthRange::gl};
-    INFO(pair.label());
-    const bool log = takes_shader_log(info(t));
-    size_t differ = 0, pixels = 0;
-    for (const Probe& p : {Probe{1.5, 1e-3}, Probe{30.0, 0.1}, Probe{700.0, 2.0}}) {
-      const Compared c = compare(scene, pair, p, 4);
-      CHECK(c.status_differ == 0);
-      CHECK(c.largest_difference <= (log ? 8192 : 0));  // one binary16 step of d in [0.5, 1)
-      differ += c.differ;
-      pixels += c.ok_pixels;
+  for (const std::string precision : {"mediump", "es2_highp"}) {
+    const Scene scene = load_scene("", {"kernel=[48,40]", "viewport=[48,40]", "frames=12",
+                                        "far=1000", "pipeline.shader_precision=" + precision});
+    // one step of d in [0.5, 1) at the precision: 2^13 unorm24 codes or binary32 ulps in binary16,
+    // 2^7 at 17 bits
+    const long long step = precision == "mediump" ? 8192 : 128;
+    for (const auto& [t, format] :
+         {std::pair{Technique::linear, "unorm24"}, std::pair{Technique::w_buffer, "float32"},
+          std::pair{Technique::log_fragment, "unorm24"},
+          std::pair{Technique::log_threejs, "float32"},
+          std::pair{Technique::log_cesium, "float32"}}) {
+      const EvalPair pair{t, format, DepthRange::gl};
+      INFO(precision << " " << pair.label());
+      const bool log = takes_shader_log(info(t));
+      size_t differ = 0, pixels = 0;
+      for (const Probe& p : {Probe{1.5, 1e-3}, Probe{30.0, 0.1}, Probe{700.0, 2.0}}) {
+        const Compared c = compare(scene, pair, p, 4);
+        CHECK(c.status_differ == 0);
+        CHECK(c.largest_difference <= (log ? step : 0));
+        differ += c.differ;
+        pixels += c.ok_pixels;
+      }
+      CHECK(pixels > 0);
+      CHECK(differ * 50 <= pixels);
+      // a binary16 step that differs can decide a probe: outcomes where the shader has no log
+      if (!log) check_outcomes(scene, pair, {1.5, 30.0, 700.0}, {1e-4, 1e-2, 1e-1});
     }
-    CHECK(pixels > 0);
-    CHECK(differ * 50 <= pixels);
-    // a binary16 step that differs can decide a probe: outcomes where the shader has no log
-    if (!log) check_outcomes(scene, pair, {1.5, 30.0, 700.0}, {1e-4, 1e-2, 1e-1});
   }
 }
 

@@ -32,14 +32,16 @@ static inline vec4x16_t relative_to_eye16(__global const float* P, __global cons
 
 #include "interface/binary16.h" /* mediump's rounding, shared with the host */
 
-// Row r of m times v in GLSL ES mediump (MTS_F_MEDIUMP): the matrix entry held in binary16, each
-// product and sum rounded to binary16, separate or fused one step at a time
-// (host/model/vertex_stage.cpp mediump_row_dot, the same arithmetic).
-static inline float mediump_row(__global const float* m, const float v[4], int fused) {
-  float s = dp_binary16(dp_binary16(m[0]) * v[0]);
+// Row r of m times v at a reduced shader precision (MTS_F_MEDIUMP: GLSL ES mediump, binary16;
+// MTS_F_ES2_HIGHP: the GLSL ES 1.00 highp minimum; interface/binary16.h dp_shader_round): the
+// matrix entry held at that precision, each product and sum rounded to it, separate or fused one
+// step at a time (host/model/vertex_stage.cpp mediump_row_dot, the same arithmetic).
+static inline float mediump_row(__global const float* m, const float v[4], int fused, int prec) {
+  float s = dp_shader_round(dp_shader_round(m[0], prec) * v[0], prec);
   for (int c = 1; c < 4; ++c)
-    s = fused ? dp_binary16(fma(dp_binary16(m[c]), v[c], s))
-              : dp_binary16(s + dp_binary16(dp_binary16(m[c]) * v[c]));
+    s = fused
+            ? dp_shader_round(fma(dp_shader_round(m[c], prec), v[c], s), prec)
+            : dp_shader_round(s + dp_shader_round(dp_shader_round(m[c], prec) * v[c], prec), prec);
   return s;
 }
 
@@ -47,7 +49,7 @@ static inline float mediump_row(__global const float* m, const float v[4], int f
 // (host/model/vertex_stage.cpp vertex_clip under VertexStage::mediump, the same steps): M (or P V M
 // premultiplied), the view's translation, P.
 static inline vec4x16_t mediump_vertex16(__global const float* P, __global const float* M,
-                                         vec4x16_t obj, uint forms, int fused) {
+                                         vec4x16_t obj, uint forms, int fused, int prec) {
   float ox[16], oy[16], out[4][16];
   vstore16(obj.x, 0, ox);
   vstore16(obj.y, 0, oy);
@@ -55,12 +57,13 @@ static inline vec4x16_t mediump_vertex16(__global const float* P, __global const
     const float o[4] = {ox[k], oy[k], 0.0f, 1.0f};
     float e[4] = {0.0f, 0.0f, 0.0f, 1.0f}, c[4];
     if (forms & MTS_F_COMPOSE_PREMULT) {
-      for (int r = 0; r < 4; ++r) c[r] = mediump_row(M + 4 * r, o, fused);
+      for (int r = 0; r < 4; ++r) c[r] = mediump_row(M + 4 * r, o, fused, prec);
     } else {
-      for (int r = 0; r < 3; ++r) e[r] = mediump_row(M + 4 * r, o, fused);
+      for (int r = 0; r < 3; ++r) e[r] = mediump_row(M + 4 * r, o, fused, prec);
       if (forms & MTS_F_VIEW_TRANSLATE)
-        for (int r = 0; r < 3; ++r) e[r] = dp_binary16(e[r] + dp_binary16(P[MTS_C_VIEW_X + r]));
-      for (int r = 0; r < 4; ++r) c[r] = mediump_row(P + 4 * r, e, fused);
+        for (int r = 0; r < 3; ++r)
+          e[r] = dp_shader_round(e[r] + dp_shader_round(P[MTS_C_VIEW_X + r], prec), prec);
+      for (int r = 0; r < 4; ++r) c[r] = mediump_row(P + 4 * r, e, fused, prec);
     }
     for (int r = 0; r < 4; ++r) out[r][k] = c[r];
   }
@@ -100,8 +103,11 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
 #if RELATIVE_TO_EYE
   v.clip = mat_vec16(P, relative_to_eye16(P, M, obj), vertex_fma, 0);
 #else
-  if (forms & MTS_F_MEDIUMP) {
-    v.clip = mediump_vertex16(P, M, obj, forms, vertex_fma);
+  const int prec = (forms & MTS_F_MEDIUMP)     ? DP_SHADER_MEDIUMP
+                   : (forms & MTS_F_ES2_HIGHP) ? DP_SHADER_ES2_HIGHP
+                                               : DP_SHADER_HIGHP;
+  if (prec != DP_SHADER_HIGHP) {
+    v.clip = mediump_vertex16(P, M, obj, forms, vertex_fma, prec);
   } else {
     v.clip = mat_vec16(M, obj, vertex_fma, 1);
     if (forms & MTS_F_VIEW_TRANSLATE) { /* the view matrix: no rotation, the camera's translation */
