@@ -225,11 +225,10 @@ void set_up_triangle(const Scene& s, const Draw& d, size_t t, const DrawVertices
   // bound, from the triangle's largest clip coordinates and vertex errors and the planes crossed.
   ClipError carried{};
   std::array<float, 4> largest{};
-  for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 4; ++c) {
-      carried[c] = std::max(carried[c], (*te[k])[c]);
-      largest[c] = std::max(largest[c], std::fabs(tv[k]->c[c]));
-    }
+  for (int k = 0; k < 3; ++k) {
+    for (size_t c = 0; c < carried.size(); ++c) carried[c] = std::max(carried[c], (*te[k])[c]);
+    for (int c = 0; c < 4; ++c) largest[c] = std::max(largest[c], std::fabs(tv[k]->c[c]));
+  }
   int planes_crossed = 0;
   for (int plane = 0; plane < 6; ++plane) planes_crossed += (crossed >> plane) & 1u;
   const int nv = static_cast<int>(d.positions.size());

@@ -70,7 +70,6 @@ WindowError window_error(const Scene& s, const ProbeConstants& pc, bool depth_fr
   WindowError out{};
   const double w = c[3];
   out.w = w;
-  out.ew = ec[3];
   const double aw = std::fabs(w);
   if (!(ec[3] < 0.5 * aw)) {
     out.ex = out.ey = out.ev = INFINITY;
@@ -79,6 +78,30 @@ WindowError window_error(const Scene& s, const ProbeConstants& pc, bool depth_fr
   // q = fl(1 / w): the exact 1/w of a w off by ew is off by at most |q| ew / (|w| - ew) <=
   // 2 |q| ew / |w| (ew < |w| / 2); the reciprocal rounds once more (or a divide x / w once in its
   // place, which the product's rounding below covers).
+  // The eye displacement E (ec[4..6]) through the projection: c_i / w moves by at most
+  // sum_j E_j |N_ij| / (|w| - dw)^2 along the segment, N_ij = P_ij w - c_i P_3j (linear in the
+  // eye point: anywhere on the segment within |P_ij| dw + dc_i |P_3j| of its value here), dw and
+  // dc_i the most w and c_i move (mean value theorem, every factor bounded over the segment); the
+  // computed c lies within the roundings ec[0..3] of the segment's end, which widen dw and dc_i.
+  double dc[4] = {0, 0, 0, 0};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) dc[i] += std::fabs(pc.P[i * 4 + j]) * ec[kEyeError + j];
+  const double dw = dc[3];
+  if (!(ec[3] + dw < 0.5 * aw)) {
+    out.ex = out.ey = out.ev = INFINITY;
+    return out;
+  }
+  const auto moved = [&](int i) {  // the most c_i / w moves under the displacement
+    const double dwi = dw + ec[3], dci = dc[i] + ec[i];
+    double sum = 0;
+    for (int j = 0; j < 3; ++j) {
+      const double N = pc.P[i * 4 + j] * w - c[i] * pc.P[3 * 4 + j];
+      sum += ec[kEyeError + j] *
+             (std::fabs(N) + std::fabs(pc.P[i * 4 + j]) * dwi + dci * std::fabs(pc.P[3 * 4 + j]));
+    }
+    return 1.01 * sum / ((aw - dwi) * (aw - dwi));
+  };
+  out.ew = ec[3] + dw;
   const double q = 1.0 / w, aq = std::fabs(q);
   const double eq = 2 * aq * ec[3] / aw + gamma(1) * aq;
   // x_ndc = fl(x q), then window x = fl(fl(hw x_ndc) + hw) (or one fma): the product carries x's
@@ -90,17 +113,18 @@ WindowError window_error(const Scene& s, const ProbeConstants& pc, bool depth_fr
   const double xn = c[0] * q, yn = c[1] * q, zn = c[2] * q;
   out.x = hw * xn + hw;
   out.y = hh * yn + hh;
-  out.ex = hw * ndc(c[0], ec[0]) + gamma(2) * (std::fabs(hw * xn) + hw) * 1.01 + kSnap;
-  out.ey = hh * ndc(c[1], ec[1]) + gamma(2) * (std::fabs(hh * yn) + hh) * 1.01 + kSnap;
+  out.ex = hw * (ndc(c[0], ec[0]) + moved(0)) + gamma(2) * (std::fabs(hw * xn) + hw) * 1.01 + kSnap;
+  out.ey = hh * (ndc(c[1], ec[1]) + moved(1)) + gamma(2) * (std::fabs(hh * yn) + hh) * 1.01 + kSnap;
   if (depth_from_plane) {
     // depth = fl(fl(scale z_ndc) + offset): 0.5 z_ndc + 0.5 under OpenGL's range (the product by
     // one half is exact, the sum rounds once, or the fma once), z_ndc itself under zero_to_one.
     const double scale = pc.depth_gl ? 0.5 : 1.0, offset = pc.depth_gl ? 0.5 : 0.0;
     out.v = scale * zn + offset;
-    out.ev = scale * ndc(c[2], ec[2]) + (pc.depth_gl ? gamma(1) * 1.01 * std::fabs(out.v) : 0.0);
+    out.ev = scale * (ndc(c[2], ec[2]) + moved(2)) +
+             (pc.depth_gl ? gamma(1) * 1.01 * std::fabs(out.v) : 0.0);
   } else {
     out.v = q;
-    out.ev = eq;
+    out.ev = eq + 1.01 * dw / (aw * (aw - dw));  // 1/w moved by the displacement's dw
   }
   return out;
 }
@@ -198,10 +222,11 @@ ClipError vertex_clip_error(const ProbeConstants& pc, const VertexStage& st,
   const float obj[4] = {p[0], p[1], p[2], 1.0f};
   const double x[4] = {p[0], p[1], p[2], 1.0}, ex[4] = {0, 0, 0, 0};
   double eye[4] = {0, 0, 0, 1}, eeye[4] = {0, 0, 0, 0};
-  if (st.path == VertexPath::premultiplied) {
+  if (st.path == VertexPath::premultiplied) {  // P V M applied at once: its rounding alone
     ClipError out{};
-    double clip[4];
-    row_times(st.matrix, 4, x, ex, clip, out.data());
+    double clip[4], rounding[4];
+    row_times(st.matrix, 4, x, ex, clip, rounding);
+    for (int k = 0; k < 4; ++k) out[k] = rounding[k];
     return out;
   }
   if (st.path == VertexPath::relative_to_eye) {
@@ -223,10 +248,13 @@ ClipError vertex_clip_error(const ProbeConstants& pc, const VertexStage& st,
     row_times(st.view_matrix, 3, v, ev, eye, eeye);
   }
   eye[3] = 1;
-  eeye[3] = 0;
   ClipError out{};
-  double clip[4];
-  row_times(pc.P, 4, eye, eeye, clip, out.data());
+  // P's rows round on their own; the eye displacement is carried apart (window_error)
+  const double none[4] = {0, 0, 0, 0};
+  double clip[4], rounding[4];
+  row_times(pc.P, 4, eye, none, clip, rounding);
+  for (int k = 0; k < 4; ++k) out[k] = rounding[k];
+  for (int k = 0; k < 3; ++k) out[kEyeError + k] = eeye[k];
   return out;
 }
 
@@ -239,7 +267,7 @@ ClipError clipped_vertex_error(const std::array<float, 4>& largest, const ClipEr
   // stage makes is a convex combination of the triangle's). The ends' errors carry through the
   // combination at most as the larger of the two; a later plane interpolates between made vertices,
   // so each plane crossed adds its rounding once more.
-  ClipError out{};
+  ClipError out = carried;  // the eye displacement: the vertex is a combination of the ends'
   for (int k = 0; k < 4; ++k)
     out[k] =
         carried[k] + planes * 1.01 * (2 * kU * std::fabs(largest[k]) + 3 * kU * std::fabs(c[k]));

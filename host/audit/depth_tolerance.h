@@ -19,8 +19,14 @@
 
 namespace depthprec {
 
-// A bound on |computed - exact| of each clip coordinate (x, y, z, w) of a vertex.
-using ClipError = std::array<double, 4>;
+// A vertex's errors, in two parts: [0..3] the clip coordinates' (x, y, z, w) own roundings, each
+// bounded on its own; [4..6] how far the vertex's eye position (x, y, z) may lie from the exact
+// one. An eye displacement moves every clip coordinate together (P times it): z_clip and w move as
+// one, so it reaches the window through the projection's exact derivative (window_error), not as
+// independent clip errors, which far from the near plane would count the depth's error w / n
+// times over.
+using ClipError = std::array<double, 7>;
+constexpr int kEyeError = 4;
 
 // The vertex stage of object position p under the draw's description (VertexStage,
 // host/model/vertex_stage.h), step by step as vertex_clip computes it: each product of a row with a
