@@ -74,6 +74,9 @@ TEST_CASE("where a pixel is not at risk, every profile keeps the front surface",
                                                     {"terrain_road.gltf", "0.1", "5000"},
                                                     {"decal_wall.gltf", "0.1", "1e5"},
                                                     {"mobile_site.gltf", "0.1", "1e5"},
+                                                    {"slab_railing.gltf", "0.1", "1000"},
+                                                    {"intersecting_boxes.gltf", "0.1", "1000"},
+                                                    {"shelf_wall.gltf", "0.1", "100"},
                                                     {"far_from_origin.glb", "0.1", "1e5"}}));
   const std::string pairs = GENERATE(
       std::string(R"([{"technique":"standard","format":"float32","depth_range":"gl"}])"),
