@@ -101,7 +101,9 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
                             const SceneGeometry& g, const AuditRequest& req) {
   SetupAudit out;
   out.pair = pair;
-  out.mediump = scene.pipeline.shader_precision == ShaderPrecision::mediump;
+  const ShaderPrecision precision = scene.pipeline.shader_precision;
+  if (precision != ShaderPrecision::highp)
+    out.reduced_precision = precision == ShaderPrecision::mediump ? "mediump" : "es2_highp";
   std::map<std::pair<int, int>, PairPixels> fights, coplanar;
   for (size_t k = 0; k < req.frames.size(); ++k) {
     const Scene s = audit_scene(scene, req.frames[k]);
@@ -112,13 +114,14 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
 
     AuditPixels px = audit_pixels(rt, s, a, g, req.reference);
     out.pixel_seconds += seconds_since(t0);
-    if (out.mediump) {  // the same view with highp shaders: which fights mediump alone makes
+    if (!out.reduced_precision.empty()) {  // the same view with highp shaders: which fights the
+                                           // reduced precision alone makes
       Scene highp = s;
       highp.pipeline.shader_precision = ShaderPrecision::highp;
       const AuditPixels hp =
           audit_pixels(rt, highp, audit_setup(highp, pair, g, req.frames[k]), g, req.reference);
       for (size_t i = 0; i < px.flags.size(); ++i)
-        out.mediump_only_pixels += (px.flags[i] & AUDIT_FIGHT) && !(hp.flags[i] & AUDIT_FIGHT);
+        out.precision_only_pixels += (px.flags[i] & AUDIT_FIGHT) && !(hp.flags[i] & AUDIT_FIGHT);
     }
     ++out.frames;
     out.pixels += px.flags.size();

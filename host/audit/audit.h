@@ -52,10 +52,11 @@ struct SetupAudit {
   // won by the front surface, but within what another conformant implementation may store
   // (AUDIT_AT_RISK): fights on some implementation or view
   uint64_t at_risk_pixels = 0;
-  // Under mediump shaders (pipeline.shader_precision): whether the pass ran so, and the fighting
-  // pixels the same views with highp shaders do not fight at (the mobile-only fights).
-  bool mediump = false;
-  uint64_t mediump_only_pixels = 0;
+  // Under shaders below binary32 (pipeline.shader_precision mediump or es2_highp): its name (empty
+  // under highp), and the fighting pixels the same views with highp shaders do not fight at (the
+  // fights the device's precision alone makes).
+  std::string reduced_precision;
+  uint64_t precision_only_pixels = 0;
   double fix_seconds = 0;
   uint64_t records = 0, culled = 0, clipped = 0, non_finite = 0;  // frame 0's triangles
   std::vector<FightPair> pairs;                                   // by pixels, most first

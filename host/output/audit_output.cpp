@@ -85,7 +85,8 @@ nlohmann::json audit_json(const AuditReport& r, bool timing) {
                {"non_finite_triangles", s.non_finite},
                {"pairs", nlohmann::json::array()},
                {"coplanar_pairs", nlohmann::json::array()}});
-    if (s.mediump) sj["mediump_only_pixels"] = s.mediump_only_pixels;
+    if (!s.reduced_precision.empty())
+      sj[s.reduced_precision + "_only_pixels"] = s.precision_only_pixels;
     for (const FightPair& p : s.pairs) sj["pairs"].push_back(pair_json(*r.geometry, p));
     for (const FightPair& p : s.coplanar_pairs) {
       nlohmann::json c = {{"winner", surface_json(*r.geometry, p.winner_draw, p.winner_triangle)},
@@ -274,14 +275,16 @@ std::string audit_notes(const AuditReport& r, bool timing) {
     if (s.non_finite)
       notes +=
           fmt::format("{}: {} triangles dropped: a vertex is not finite{}\n", label, s.non_finite,
-                      s.mediump ? " (mediump shaders hold magnitudes up to 65504; binary16 "
-                                  "overflows beyond)"
-                                : "");
-    if (s.mediump)
+                      s.reduced_precision == "mediump"
+                          ? " (mediump shaders hold magnitudes up to 65504; binary16 overflows "
+                            "beyond)"
+                          : "");
+    if (!s.reduced_precision.empty())
       notes += fmt::format(
-          "{}: {} of the {} fighting pixels fight only because the shaders run in mediump: the "
-          "same views with highp shaders do not fight there (mediump_only_pixels)\n",
-          label, s.mediump_only_pixels, s.fighting_pixels);
+          "{}: {} of the {} fighting pixels fight only because the shaders run in {}: the "
+          "same views with highp shaders do not fight there ({}_only_pixels)\n",
+          label, s.precision_only_pixels, s.fighting_pixels, s.reduced_precision,
+          s.reduced_precision);
   }
   for (const SetupAudit& s : r.setups)
     for (const FightPair& p : s.pairs)

@@ -267,11 +267,11 @@ TEST_CASE("2000 m from the origin a mediump vertex shader makes fights highp doe
     return audit_setup_pair(&test::runtime(), scene, scene.evaluate[0], g, req);
   };
   const SetupAudit mediump = audit("mediump", "absolute");
-  REQUIRE(mediump.mediump);
+  REQUIRE(mediump.reduced_precision == "mediump");
   CHECK(mediump.fighting_pixels > mediump.covered_pixels / 10);
-  CHECK(mediump.mediump_only_pixels == mediump.fighting_pixels);
+  CHECK(mediump.precision_only_pixels == mediump.fighting_pixels);
   const SetupAudit highp = audit("highp", "absolute");
-  CHECK_FALSE(highp.mediump);
+  CHECK(highp.reduced_precision.empty());
   CHECK(highp.fighting_pixels == 0);
   // nor at risk: binary32's 2^-13 at 2000 m moves each vertex's eye position, which moves its
   // z_clip and w together, so the depth moves by n / w^2 of it, not by 1 / w as two independent
@@ -279,5 +279,10 @@ TEST_CASE("2000 m from the origin a mediump vertex shader makes fights highp doe
   CHECK(highp.at_risk_pixels == 0);
   const SetupAudit relative = audit("mediump", "camera_relative");
   CHECK(relative.fighting_pixels == 0);
-  CHECK(relative.mediump_only_pixels == 0);
+  CHECK(relative.precision_only_pixels == 0);
+  // the GLSL ES 1.00 highp minimum holds 2000 to 2^-6: the 5 cm stays in front
+  const SetupAudit es2 = audit("es2_highp", "absolute");
+  CHECK(es2.reduced_precision == "es2_highp");
+  CHECK(es2.fighting_pixels == 0);
+  CHECK(es2.precision_only_pixels == 0);
 }
