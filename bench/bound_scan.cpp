@@ -48,6 +48,11 @@ int main(int argc, char** argv) {
     uint64_t seed = 1;
     for (const auto& [pair, z] : rows) {
       const MtsBound b = mts_bound(s, pair, z);
+      if (!std::isfinite(b.s)) {  // no separation clears the bounds: the bound claims nothing
+        fmt::print("{:<9} {:<36} z = {:<9g} mts_bound {:<11.4g} no finite bound: nothing to scan\n",
+                   prof, pair.label(), z, b.s);
+        continue;
+      }
       std::mt19937_64 rng(seed++);
       std::uniform_real_distribution<double> u(-r, r);
       std::vector<Angles> fighting;  // the chunk that fought
