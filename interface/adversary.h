@@ -21,15 +21,27 @@
  * fma, says on which side of 1/w it lies: r < 1/w exactly when e and w have the same sign. The
  * neighbour beyond r then lies on 1/w's other side, within one ulp of it. Non-finite or exact
  * quotients are left as they are. */
-#define DP_ADV_RECIPROCAL_DEFINE(NAME, FMA, NEXTAFTER)                        \
-  static inline float NAME(float w, float r, int up) {                        \
-    const float e = FMA(-w, r, 1.0f);                                         \
-    if (!(e > 0.0f || e < 0.0f)) return r; /* exact, or w 0, inf or NaN */    \
-    const int below = (e > 0.0f) == (w > 0.0f);                               \
-    if (up && below) return NEXTAFTER(r, (float)INFINITY);                    \
-    if (!up && !below) return NEXTAFTER(r, -(float)INFINITY);                 \
-    return r;                                                                 \
+#define DP_ADV_RECIPROCAL_DEFINE(NAME, FMA, NEXTAFTER)                     \
+  static inline float NAME(float w, float r, int up) {                     \
+    const float e = FMA(-w, r, 1.0f);                                      \
+    if (!(e > 0.0f || e < 0.0f)) return r; /* exact, or w 0, inf or NaN */ \
+    const int below = (e > 0.0f) == (w > 0.0f);                            \
+    if (up && below) return NEXTAFTER(r, (float)INFINITY);                 \
+    if (!up && !below) return NEXTAFTER(r, -(float)INFINITY);              \
+    return r;                                                              \
   }
+
+/* Which way the adversary moves what it moves, for a plane whose window depth moves in direction
+ * adv_depth (MTS_C_ADV_DEPTH: +1 up, -1 down): the interpolated value (the depth, or 1/w where
+ * the fragment stage computes the depth, which every fragment form makes increase with w, so 1/w
+ * moves against it), and the reciprocal of w, which moves the depth through z_clip / w where the
+ * depth is projected (the same way as 1/w where z_clip > 0) and through w itself otherwise. */
+static inline int dp_adv_value_sign(int depth_from_fragment, float adv_depth) {
+  return (adv_depth > 0.0f) != (depth_from_fragment != 0) ? 1 : -1;
+}
+static inline int dp_adv_reciprocal_up(int depth_from_fragment, float z_clip, float adv_depth) {
+  return depth_from_fragment ? adv_depth < 0.0f : (z_clip > 0.0f) == (adv_depth > 0.0f);
+}
 
 /* A triangle's interpolated value (depth, or 1/w where the fragment stage computes depth) moved
  * by `sign` times `tolerance` times the smallest magnitude at its vertices, the most an

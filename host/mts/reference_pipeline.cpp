@@ -60,9 +60,7 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
       int reciprocal = 0;
       if (adv_depth != 0 && pc.adv_reciprocal != 0)
         reciprocal =
-            (ti.from == DepthFrom::fragment ? adv_depth < 0 : (clip[2] > 0.0f) == (adv_depth > 0))
-                ? 1
-                : -1;
+            dp_adv_reciprocal_up(ti.from == DepthFrom::fragment, clip[2], adv_depth) ? 1 : -1;
       Vertex& vx = v[j * (g + 1) + i];
       vx = window_vertex(s, gl, clip, j * (g + 1) + i, reciprocal);
       if (vertex_non_finite(vx, ti.from != DepthFrom::fragment)) plane.non_finite = true;
@@ -75,9 +73,10 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
     // the interpolation error the adversary takes (triangles.cl adversary_planes16, the same)
     tri.adversary = adv_depth;
     if (adv_depth != 0 && pc.adv_interpolation > 0) {
-      const int sign = adv_depth > 0 ? 1 : -1;
-      if (ti.from == DepthFrom::fragment)
-        tri.q0 = dp_adv_shift_plane(tri.q0, v0.q, v1.q, v2.q, pc.adv_interpolation, -sign);
+      const bool fragment = ti.from == DepthFrom::fragment;
+      const int sign = dp_adv_value_sign(fragment, adv_depth);
+      if (fragment)
+        tri.q0 = dp_adv_shift_plane(tri.q0, v0.q, v1.q, v2.q, pc.adv_interpolation, sign);
       else
         tri.d0 = dp_adv_shift_plane(tri.d0, v0.d, v1.d, v2.d, pc.adv_interpolation, sign);
     }

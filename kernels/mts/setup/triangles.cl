@@ -8,14 +8,15 @@ typedef struct {
 } triangles16_t;
 
 // An envelope's interpolation error (interface/adversary.h dp_adv_shift_plane), in the
-// adversary's direction: the interpolated plane's constant moved, lane by lane. Fragment-stage
-// depth interpolates 1/w, which moves against the depth.
+// adversary's direction (dp_adv_value_sign): the interpolated plane's constant moved, lane by
+// lane.
 static inline void adversary_planes16(uint16* rec, const triangles16_t* v) {
+  const int sign = dp_adv_value_sign(DEPTH_FROM == 2, v->adv_depth);
 #if DEPTH_FROM == 2
-  const int field = MTS_T_Q0, sign = v->adv_depth > 0.0f ? -1 : 1;
+  const int field = MTS_T_Q0;
   const float16* val = v->q;
 #else
-  const int field = MTS_T_D0, sign = v->adv_depth > 0.0f ? 1 : -1;
+  const int field = MTS_T_D0;
   const float16* val = v->d;
 #endif
   float c0[16], a[16], b[16], c[16];

@@ -144,8 +144,7 @@ static inline vertices16_t vertex_stage16(__global const float* P, __global cons
     vstore16(c.w, 0, w);
     vstore16(cz, 0, z);
     for (int k = 0; k < 16; ++k)
-      r[k] = adv_reciprocal(
-          w[k], r[k], DEPTH_FROM == 2 ? adv_depth < 0.0f : (z[k] > 0.0f) == (adv_depth > 0.0f));
+      r[k] = adv_reciprocal(w[k], r[k], dp_adv_reciprocal_up(DEPTH_FROM == 2, z[k], adv_depth));
     inv_w = vload16(0, r);
   }
   float16 nx, ny, nz;
