@@ -101,9 +101,8 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
                             const SceneGeometry& g, const AuditRequest& req) {
   SetupAudit out;
   out.pair = pair;
-  const ShaderPrecision precision = scene.pipeline.shader_precision;
-  if (precision != ShaderPrecision::highp)
-    out.reduced_precision = precision == ShaderPrecision::mediump ? "mediump" : "es2_highp";
+  if (scene.pipeline.shader_precision != ShaderPrecision::highp)
+    out.reduced_precision = to_string(scene.pipeline.shader_precision);
   std::map<std::pair<int, int>, PairPixels> fights, coplanar;
   for (size_t k = 0; k < req.frames.size(); ++k) {
     const Scene s = audit_scene(scene, req.frames[k]);
@@ -111,9 +110,7 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
     const AuditSetup a = audit_setup(s, pair, g, req.frames[k]);
     out.setup_seconds += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
-
     AuditPixels px = audit_pixels(rt, s, a, g, req.reference);
-    out.pixel_seconds += seconds_since(t0);
     if (!out.reduced_precision.empty()) {  // the same view with highp shaders: which fights the
                                            // reduced precision alone makes
       Scene highp = s;
@@ -123,6 +120,7 @@ SetupAudit audit_setup_pair(OpenClRuntime* rt, const Scene& scene, const EvalPai
       for (size_t i = 0; i < px.flags.size(); ++i)
         out.precision_only_pixels += (px.flags[i] & AUDIT_FIGHT) && !(hp.flags[i] & AUDIT_FIGHT);
     }
+    out.pixel_seconds += seconds_since(t0);  // the highp pass's too
     ++out.frames;
     out.pixels += px.flags.size();
     for (uint32_t f : px.flags) {

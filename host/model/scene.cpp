@@ -41,6 +41,25 @@ Transform parse_transform(const std::string& s) {
                                   {"relative_to_eye", Transform::relative_to_eye}});
 }
 
+const char* to_string(ShaderPrecision p) {
+  switch (p) {
+    case ShaderPrecision::highp:
+      return "highp";
+    case ShaderPrecision::mediump:
+      return "mediump";
+    case ShaderPrecision::es2_highp:
+      return "es2_highp";
+  }
+  return "?";
+}
+
+ShaderPrecision parse_shader_precision(const std::string& s) {
+  return named_choice<ShaderPrecision>("shader_precision", s,
+                                       {{"highp", ShaderPrecision::highp},
+                                        {"mediump", ShaderPrecision::mediump},
+                                        {"es2_highp", ShaderPrecision::es2_highp}});
+}
+
 int Pipeline::clip_slots() const {
   return clip == ClipForm::llvmpipe ? MTS_CLIP_SLOTS : 1;
 }

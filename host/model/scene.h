@@ -55,6 +55,8 @@ enum class Transform { absolute, camera_relative, relative_to_eye };
 // The shaders' precision (interface/binary16.h dp_shader_round's numbers): binary32, GLSL ES
 // mediump (binary16), or the GLSL ES 1.00 highp minimum (17 bits).
 enum class ShaderPrecision { highp = 0, mediump = 1, es2_highp = 2 };
+const char* to_string(ShaderPrecision p);  // "highp", "mediump", "es2_highp"
+ShaderPrecision parse_shader_precision(const std::string& s);
 // The bound on world_position's coordinates, 2^40: relative to eye keeps a coordinate's high part
 // (a multiple of 65536) exact in binary32 below it.
 constexpr double kMaxWorldCoordinate = 1099511627776.0;

@@ -199,12 +199,7 @@ void read_pipeline(const Reader& r, Pipeline& p) {
   p.snap_bits = r.none_or_integer("pipeline.snap", 1, 16);
   p.conversion = r.choice("pipeline.conversion", parse_conversion);
   p.transform = r.choice("pipeline.transform", parse_transform);
-  p.shader_precision = r.choice("pipeline.shader_precision", [](const std::string& v) {
-    return named_choice<ShaderPrecision>("shader_precision", v,
-                                         {{"highp", ShaderPrecision::highp},
-                                          {"mediump", ShaderPrecision::mediump},
-                                          {"es2_highp", ShaderPrecision::es2_highp}});
-  });
+  p.shader_precision = r.choice("pipeline.shader_precision", parse_shader_precision);
   p.envelope = r.choice("pipeline.envelope", [](const std::string& v) {
     const BoundModel* m = envelope_model(v);
     return std::string(m ? m->name : "");
