@@ -1,8 +1,11 @@
 #include "host/runtime/cache_manifest.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <ctime>
 #include <fstream>
 #include <sstream>
 
@@ -15,19 +18,73 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kManifestMagic = "depthprec-pocl-manifest 1";
+// Version 2 lines: size checksum inode mtime_ns ctime_ns path. Version 1 (size checksum path) is
+// read with no stamps, so its files are read once more and stamped.
+constexpr const char* kManifestMagic = "depthprec-pocl-manifest 2";
+constexpr const char* kManifestMagicV1 = "depthprec-pocl-manifest 1";
 
-// The whole file in one read (the check reads every kernel file at each start: no per-byte
-// stream iteration).
-bool read_bytes(const fs::path& p, std::string& out) {
-  std::ifstream in(p, std::ios::binary | std::ios::ate);
-  if (!in) return false;
-  const std::streamoff size = in.tellg();
-  if (size < 0) return false;
-  out.resize(static_cast<size_t>(size));
-  in.seekg(0);
-  in.read(out.data(), size);
-  return in.gcount() == size;
+// A stamp is kept only for a file whose last change is this much older than the check: a change
+// within the same clock tick as the one before it could leave both times as they were.
+constexpr std::int64_t kRacyNs = 2'000'000'000;
+
+std::uint64_t ns_of(const struct timespec& t) {
+  return static_cast<std::uint64_t>(t.tv_sec) * 1'000'000'000u +
+         static_cast<std::uint64_t>(t.tv_nsec);
+}
+
+struct Stat {
+  std::uint64_t size = 0;
+  FileStamp stamp;
+};
+
+Stat stat_of(const struct stat& st) {
+  return {static_cast<std::uint64_t>(st.st_size),
+          {static_cast<std::uint64_t>(st.st_ino), ns_of(st.st_mtim), ns_of(st.st_ctim)}};
+}
+
+std::uint64_t now_ns() {
+  struct timespec t {};
+  ::clock_gettime(CLOCK_REALTIME, &t);
+  return ns_of(t);
+}
+
+// The whole file in one read, and the stamp of the bytes read: stat's before and after the read
+// on the same descriptor, none when they differ (changed while read) or when the last change is
+// too recent to vouch for (kRacyNs).
+bool read_bytes(const fs::path& p, std::string& out, FileStamp& stamp) {
+  stamp = {};
+  const int fd = ::open(p.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat before {
+  }, after{};
+  bool ok = ::fstat(fd, &before) == 0 && before.st_size >= 0;
+  if (ok) {
+    out.resize(static_cast<size_t>(before.st_size));
+    size_t done = 0;
+    while (ok && done < out.size()) {
+      const ssize_t n = ::read(fd, out.data() + done, out.size() - done);
+      if (n <= 0) ok = false;
+      done += n > 0 ? static_cast<size_t>(n) : 0;
+    }
+    char extra;
+    ok = ok && ::read(fd, &extra, 1) == 0 && ::fstat(fd, &after) == 0;  // not grown meanwhile
+  }
+  ::close(fd);
+  if (!ok) return false;
+  const Stat b = stat_of(before), a = stat_of(after);
+  if (b.stamp == a.stamp && b.size == a.size &&
+      static_cast<std::int64_t>(now_ns() - a.stamp.ctime_ns) > kRacyNs)
+    stamp = a.stamp;
+  return true;
+}
+
+// Whether stat finds the file as its entry's stamp recorded it.
+bool unchanged(const fs::path& p, const ManifestEntry& e) {
+  if (!e.stamp.known()) return false;
+  struct stat st {};
+  if (::stat(p.c_str(), &st) != 0) return false;
+  const Stat s = stat_of(st);
+  return s.size == e.size && s.stamp == e.stamp;
 }
 
 // Removes a damaged file; one that is already gone (another run removed it first) is fine.
@@ -43,7 +100,9 @@ Manifest read_manifest(const fs::path& dir, std::string* problem) {
   std::ifstream in(dir / kManifestName);
   if (!in) return m;
   std::string line;
-  if (!std::getline(in, line) || line != kManifestMagic) {
+  const bool has_header = static_cast<bool>(std::getline(in, line));
+  const bool stamped = has_header && line == kManifestMagic;
+  if (!stamped && !(has_header && line == kManifestMagicV1)) {
     if (problem)
       *problem = fmt::format("{} does not start with '{}'", kManifestName, kManifestMagic);
     return {};
@@ -54,9 +113,11 @@ Manifest read_manifest(const fs::path& dir, std::string* problem) {
     std::istringstream fields(line);
     ManifestEntry e;
     std::string path;
-    const bool parsed = (fields >> e.size >> std::hex >> e.checksum) &&
-                        std::getline(fields >> std::ws, path) && !path.empty() &&
-                        path.find("..") == std::string::npos;
+    bool parsed = static_cast<bool>(fields >> e.size >> std::hex >> e.checksum >> std::dec);
+    if (stamped)
+      parsed = parsed && (fields >> e.stamp.inode >> e.stamp.mtime_ns >> e.stamp.ctime_ns);
+    parsed = parsed && std::getline(fields >> std::ws, path) && !path.empty() &&
+             path.find("..") == std::string::npos;
     if (!parsed) {
       if (problem) *problem = fmt::format("{} line {} is malformed", kManifestName, number);
       return {};
@@ -73,7 +134,8 @@ void write_manifest(const fs::path& dir, const Manifest& manifest) {
     std::ofstream out(tmp, std::ios::trunc);
     out << kManifestMagic << '\n';
     for (const auto& [file, e] : manifest)
-      out << e.size << ' ' << fmt::format("{:016x}", e.checksum) << ' ' << file << '\n';
+      out << fmt::format("{} {:016x} {} {} {} {}\n", e.size, e.checksum, e.stamp.inode,
+                         e.stamp.mtime_ns, e.stamp.ctime_ns, file);
     out.flush();
     if (!out) {
       std::error_code ec;
@@ -89,18 +151,26 @@ void write_manifest(const fs::path& dir, const Manifest& manifest) {
   }
 }
 
-std::vector<DamagedFile> remove_damaged_files(const fs::path& dir, Manifest& manifest) {
+std::vector<DamagedFile> remove_damaged_files(const fs::path& dir, Manifest& manifest,
+                                              bool* stamped) {
   std::vector<DamagedFile> damaged;
   for (const std::string& file : pocl_code_files(dir)) {
-    std::string bytes;
-    if (!read_bytes(dir / file, bytes)) continue;  // gone meanwhile, or unreadable: PoCL's concern
-    std::string why;
     const auto listed = manifest.find(file);
+    if (listed != manifest.end() && unchanged(dir / file, listed->second)) continue;
+    std::string bytes;
+    FileStamp stamp;
+    // gone meanwhile, or unreadable: PoCL's concern
+    if (!read_bytes(dir / file, bytes, stamp)) continue;
+    std::string why;
     if (listed != manifest.end()) {
       if (bytes.size() != listed->second.size)
         why = fmt::format("{} bytes where {} were written", bytes.size(), listed->second.size);
       else if (file_checksum(bytes) != listed->second.checksum)
         why = "its bytes changed after it was written";
+      else if (stamp.known()) {
+        listed->second.stamp = stamp;
+        if (stamped) *stamped = true;
+      }
     } else {
       why = pocl_file_structure_problem(file, bytes);
     }
@@ -123,14 +193,15 @@ std::vector<DamagedFile> add_new_files(const fs::path& dir, Manifest& manifest) 
       continue;
     }
     std::string bytes;
-    if (!read_bytes(dir / file, bytes)) continue;
+    FileStamp stamp;
+    if (!read_bytes(dir / file, bytes, stamp)) continue;
     const std::string why = pocl_file_structure_problem(file, bytes);
     if (!why.empty()) {
       remove_file(dir / file);
       damaged.push_back({file, why});
       continue;
     }
-    kept[file] = {bytes.size(), file_checksum(bytes)};
+    kept[file] = {bytes.size(), file_checksum(bytes), stamp};
   }
   manifest = std::move(kept);
   return damaged;

@@ -127,9 +127,10 @@ void open_driver_cache() {
       if (!problem.empty())
         note(fmt::format("PoCL's kernel cache {}: {}; its files' structure is checked instead",
                          dir.path.string(), problem));
-      const auto damaged = remove_damaged_files(dir.path, manifest);
+      bool stamped = false;
+      const auto damaged = remove_damaged_files(dir.path, manifest, &stamped);
       note_damage(dir.path, damaged);
-      if (!damaged.empty() || !problem.empty()) {
+      if (!damaged.empty() || !problem.empty() || stamped) {
         try {
           write_manifest(dir.path, manifest);
         } catch (const Error& e) {

@@ -126,7 +126,9 @@ std::vector<std::string> pocl_code_files(const fs::path& dir) {
     }
     if (is_temporary(name) || !(ends_with(name, ".so") || ends_with(name, ".bc"))) continue;
     if (!it->is_regular_file(ec)) continue;
-    out.push_back(fs::relative(it->path(), dir, ec).generic_string());
+    // lexical: the iterator's paths start with dir (fs::relative would resolve every component
+    // of every path through readlink, most of the check's cost)
+    out.push_back(it->path().lexically_relative(dir).generic_string());
   }
   std::sort(out.begin(), out.end());
   return out;

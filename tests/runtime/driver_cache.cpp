@@ -279,7 +279,8 @@ TEST_CASE("the structure checks find cut-short kernels and bitcode, and pass who
   CHECK_FALSE(is_pocl_cache_entry("ZZ"));
 
   // the manifest reads back what was written; a damaged one is empty, with the reason
-  Manifest m = {{"AB/CDE/program.bc", {1234, 0x0123456789abcdefull}}, {"x y/k.so", {1, 2}}};
+  Manifest m = {{"AB/CDE/program.bc", {1234, 0x0123456789abcdefull, {17, 1000, 2000}}},
+                {"x y/k.so", {1, 2, {}}}};
   write_manifest(pocl, m);
   std::string problem;
   CHECK(read_manifest(pocl, &problem) == m);
