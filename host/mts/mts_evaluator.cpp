@@ -98,6 +98,44 @@ cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>
   return done;
 }
 
+cl::Buffer MtsEvaluator::reuse_or_make(cl::Buffer& spare, size_t bytes) {
+  // a larger buffer serves too: the kernels index the cache by its slots, never by its size
+  if (spare() != nullptr && spare.getInfo<CL_MEM_SIZE>() >= bytes) return std::move(spare);
+  return cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, bytes);
+}
+
+MtsEvaluator::PlaneABytes MtsEvaluator::plane_a_bytes() const {
+  const size_t n = a_.capacity, frames = static_cast<size_t>(scene_.frames);
+  const size_t kh = static_cast<size_t>(scene_.kernel_h);
+  return {sizeof(float) * kProbeStride * n,
+          sizeof(float) * n * frames * plane_floats_,
+          sizeof(uint32_t) * n * frames,
+          sizeof(uint32_t) * n * frames * kh * row_words_,
+          sizeof(uint32_t) * n * frames * bands() * band_words_,
+          sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1),
+          sizeof(float) * frames * plane_floats_,
+          sizeof(uint32_t) * frames * kh * row_words_};
+}
+
+size_t MtsEvaluator::PlaneABuffers::bytes() const {
+  size_t out = 0;
+  for (const cl::Buffer* b : {&consts, &tris, &vflags, &rows, &bands, &codes, &ref_tris, &ref_rows})
+    if ((*b)() != nullptr) out += b->getInfo<CL_MEM_SIZE>();
+  return out;
+}
+
+MtsEvaluator::PlaneABuffers MtsEvaluator::release_plane_a_buffers() {
+  rt_.queue().finish();  // no launch of this evaluator still reads or writes them
+  if (a_.tris() == nullptr) return {};  // never filled
+  PlaneABuffers out{std::move(a_.consts), std::move(a_.tris), std::move(a_.vflags),
+                    std::move(a_.rows),   std::move(a_.bands), std::move(a_.codes),
+                    std::move(a_.ref_tris), std::move(a_.ref_rows)};
+  a_.consts = a_.tris = a_.vflags = a_.rows = a_.bands = a_.codes = a_.ref_tris = a_.ref_rows = {};
+  std::fill(a_.z.begin(), a_.z.end(), NAN);
+  a_.has_ref = false;
+  return out;
+}
+
 std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probes,
                                                  const std::vector<size_t>& active,
                                                  double& kernel_seconds,
@@ -105,22 +143,16 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
   const auto kh = static_cast<cl_uint>(scene_.kernel_h);
   const auto frames = static_cast<cl_uint>(scene_.frames);
   if (a_.tris() == nullptr) {
-    const size_t n = a_.capacity;
-    a_.consts = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * kProbeStride * n);
-    a_.tris =
-        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * n * frames * plane_floats_);
-    a_.vflags = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * n * frames);
-    a_.rows = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
-                         sizeof(uint32_t) * n * frames * kh * row_words_);
-    a_.bands = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
-                          sizeof(uint32_t) * n * frames * bands() * band_words_);
-    a_.codes =
-        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE,
-                   sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1));
-    a_.ref_tris =
-        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(float) * frames * plane_floats_);
-    a_.ref_rows =
-        cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, sizeof(uint32_t) * frames * kh * row_words_);
+    const PlaneABytes b = plane_a_bytes();
+    a_.consts = reuse_or_make(spare_.consts, b[0]);
+    a_.tris = reuse_or_make(spare_.tris, b[1]);
+    a_.vflags = reuse_or_make(spare_.vflags, b[2]);
+    a_.rows = reuse_or_make(spare_.rows, b[3]);
+    a_.bands = reuse_or_make(spare_.bands, b[4]);
+    a_.codes = reuse_or_make(spare_.codes, b[5]);
+    a_.ref_tris = reuse_or_make(spare_.ref_tris, b[6]);
+    a_.ref_rows = reuse_or_make(spare_.ref_rows, b[7]);
+    spare_ = {};
     a_.has_ref = false;
   }
   ++a_.clock;

@@ -126,6 +126,20 @@ class MtsEvaluator : public ProbeEvaluator {
                                       int evaluators);
   void prime_launches(const LaunchWidths& widths, LaunchPrimer& primer);
 
+  // The plane-A cache's buffers, handed from a finished evaluator to the next of its pair (the
+  // worst case's chunks, each an evaluator of the same size): its row records are tens of MB that
+  // the kernels otherwise fault in page by page, zeroed, for every chunk. The contents are never
+  // read before this evaluator writes them (cache_plane_a fills a slot before any launch reads it,
+  // and the reference is marked absent).
+  struct PlaneABuffers {
+    cl::Buffer consts, tris, vflags, rows, bands, codes, ref_tris, ref_rows;
+    size_t bytes() const;  // in all (0: none)
+  };
+  // This evaluator's, once it has run (none if it never cached plane A).
+  PlaneABuffers release_plane_a_buffers();
+  // Kept for the first fill of the cache, which takes each buffer at least as large as it needs.
+  void adopt_plane_a_buffers(PlaneABuffers&& spare) { spare_ = std::move(spare); }
+
  private:
   // Enqueues mts_setup for planes given by their matrices (16 floats each, in mats), written to
   // tris and vflags from first_plane on; plane k uses the probe constants (consts) of
@@ -209,6 +223,11 @@ class MtsEvaluator : public ProbeEvaluator {
     cl::Buffer ref_tris, ref_rows;
     bool has_ref = false;
   } a_;
+  PlaneABuffers spare_;
+  using PlaneABytes = std::array<size_t, 8>;  // PlaneABuffers' sizes, in its order
+  PlaneABytes plane_a_bytes() const;
+  // spare, when it holds at least bytes, else a new buffer of bytes.
+  cl::Buffer reuse_or_make(cl::Buffer& spare, size_t bytes);
   bool shortcuts_ = true;
   // Frame order: a probe visits the frames cyclically from the one that decided the last fighting
   // probe of its distance (0 before there is one). Below the MTS a distance fights in few frames,

@@ -211,12 +211,18 @@ std::unique_ptr<ProbeEvaluator> SceneRun::RunSource::make(const Scene& s, const 
   auto ev = std::make_unique<MtsEvaluator>(run_.rt_, s, pair_, o);
   ev->share_plane_a_budget(run_.jobs_);
   if (run_.jobs_ > 1) ev->prime_launches(run_.prime_widths_, run_.primer_);
+  ev->adopt_plane_a_buffers(std::move(spare_));
+  spare_ = {};
   return ev;
 }
 
 void SceneRun::RunSource::retire(ProbeEvaluator& ev) {
-  if (stats_of_ != kNoStats)
-    run_.add_stats(stats_of_, static_cast<const MtsEvaluator&>(ev));  // as make built it
+  auto& mts = static_cast<MtsEvaluator&>(ev);  // as make built it
+  if (stats_of_ != kNoStats) run_.add_stats(stats_of_, mts);
+  // An orientation searched alone retires between its chunk's evaluators: the chunks' larger
+  // buffers are the ones worth keeping.
+  MtsEvaluator::PlaneABuffers left = mts.release_plane_a_buffers();
+  if (left.bytes() >= spare_.bytes()) spare_ = std::move(left);
 }
 
 // The arithmetic-limited MTS of pair p's distances zs: the MTS of raw, its float32 pair, where

@@ -86,6 +86,8 @@ class SceneRun {
     SceneRun& run_;
     const EvalPair& pair_;
     size_t stats_of_;
+    // The largest plane-A buffers a retired evaluator left, for the next one of the same size.
+    MtsEvaluator::PlaneABuffers spare_;
   };
   void add_stats(size_t p, const MtsEvaluator& ev);
   void take_over_identical_rows(size_t p);
