@@ -99,8 +99,12 @@ cl::Event MtsEvaluator::setup(const cl::Buffer& consts, const std::vector<float>
 }
 
 cl::Buffer MtsEvaluator::reuse_or_make(cl::Buffer& spare, size_t bytes) {
-  // a larger buffer serves too: the kernels index the cache by its slots, never by its size
-  if (spare() != nullptr && spare.getInfo<CL_MEM_SIZE>() >= bytes) return std::move(spare);
+  // A larger buffer serves too (the kernels index the cache by its slots, never by its size),
+  // but not a much larger one: the pages the last evaluator touched stay resident.
+  if (spare() != nullptr) {
+    const size_t have = spare.getInfo<CL_MEM_SIZE>();
+    if (have >= bytes && have <= bytes + bytes / 2) return std::move(spare);
+  }
   return cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, bytes);
 }
 

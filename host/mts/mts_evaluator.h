@@ -137,7 +137,8 @@ class MtsEvaluator : public ProbeEvaluator {
   };
   // This evaluator's, once it has run (none if it never cached plane A).
   PlaneABuffers release_plane_a_buffers();
-  // Kept for the first fill of the cache, which takes each buffer at least as large as it needs.
+  // Kept for the first fill of the cache, which takes each buffer at least as large as it needs
+  // and at most half as large again.
   void adopt_plane_a_buffers(PlaneABuffers&& spare) { spare_ = std::move(spare); }
 
  private:
@@ -226,7 +227,7 @@ class MtsEvaluator : public ProbeEvaluator {
   PlaneABuffers spare_;
   using PlaneABytes = std::array<size_t, 8>;  // PlaneABuffers' sizes, in its order
   PlaneABytes plane_a_bytes() const;
-  // spare, when it holds at least bytes, else a new buffer of bytes.
+  // spare, when it holds at least bytes and at most half as much again, else a new buffer.
   cl::Buffer reuse_or_make(cl::Buffer& spare, size_t bytes);
   bool shortcuts_ = true;
   // Frame order: a probe visits the frames cyclically from the one that decided the last fighting

@@ -277,8 +277,11 @@ void SceneRun::compute(size_t p, const std::vector<double>& zs) {
   if (!control_.attribute) on_row = [this](const MtsRow& r) { pass_on(r); };
   // The run's evaluators: the plane-A budget shared between the jobs, launches primed, and
   // their statistics the pair's.
-  RunSource source(*this, pair, p);
-  std::vector<MtsRow> rows = search_sampled(source, scene_, pair, zs, on_row, stop);
+  std::vector<MtsRow> rows;
+  {  // the source, and the plane-A buffers it keeps between evaluators, end with the search
+    RunSource source(*this, pair, p);
+    rows = search_sampled(source, scene_, pair, zs, on_row, stop);
+  }
   if (control_.attribute) {
     const ArithmeticMts arithmetic = [&](const EvalPair& raw, const Scene& plain,
                                          const std::vector<double>& want) {
