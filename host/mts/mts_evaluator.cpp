@@ -129,10 +129,10 @@ size_t MtsEvaluator::PlaneABuffers::bytes() const {
 }
 
 MtsEvaluator::PlaneABuffers MtsEvaluator::release_plane_a_buffers() {
-  rt_.queue().finish();  // no launch of this evaluator still reads or writes them
+  rt_.queue().finish();                 // no launch of this evaluator still reads or writes them
   if (a_.tris() == nullptr) return {};  // never filled
-  PlaneABuffers out{std::move(a_.consts), std::move(a_.tris), std::move(a_.vflags),
-                    std::move(a_.rows),   std::move(a_.bands), std::move(a_.codes),
+  PlaneABuffers out{std::move(a_.consts),   std::move(a_.tris),    std::move(a_.vflags),
+                    std::move(a_.rows),     std::move(a_.bands),   std::move(a_.codes),
                     std::move(a_.ref_tris), std::move(a_.ref_rows)};
   a_.consts = a_.tris = a_.vflags = a_.rows = a_.bands = a_.codes = a_.ref_tris = a_.ref_rows = {};
   std::fill(a_.z.begin(), a_.z.end(), NAN);
