@@ -108,19 +108,6 @@ cl::Buffer MtsEvaluator::reuse_or_make(cl::Buffer& spare, size_t bytes) {
   return cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, bytes);
 }
 
-MtsEvaluator::PlaneABytes MtsEvaluator::plane_a_bytes() const {
-  const size_t n = a_.capacity, frames = static_cast<size_t>(scene_.frames);
-  const size_t kh = static_cast<size_t>(scene_.kernel_h);
-  return {sizeof(float) * kProbeStride * n,
-          sizeof(float) * n * frames * plane_floats_,
-          sizeof(uint32_t) * n * frames,
-          sizeof(uint32_t) * n * frames * kh * row_words_,
-          sizeof(uint32_t) * n * frames * bands() * band_words_,
-          sizeof(uint32_t) * std::max<size_t>(n * frames * kh * code_row_words(), 1),
-          sizeof(float) * frames * plane_floats_,
-          sizeof(uint32_t) * frames * kh * row_words_};
-}
-
 size_t MtsEvaluator::PlaneABuffers::bytes() const {
   size_t out = 0;
   for (const cl::Buffer* b : {&consts, &tris, &vflags, &rows, &bands, &codes, &ref_tris, &ref_rows})
@@ -147,13 +134,14 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
   const auto kh = static_cast<cl_uint>(scene_.kernel_h);
   const auto frames = static_cast<cl_uint>(scene_.frames);
   if (a_.tris() == nullptr) {
-    const PlaneABytes b = plane_a_bytes();
+    const std::array<size_t, 8> b =
+        plane_a_buffer_bytes(scene_, variant_.cache_a_codes, a_.capacity);
     a_.consts = reuse_or_make(spare_.consts, b[0]);
     a_.tris = reuse_or_make(spare_.tris, b[1]);
     a_.vflags = reuse_or_make(spare_.vflags, b[2]);
     a_.rows = reuse_or_make(spare_.rows, b[3]);
     a_.bands = reuse_or_make(spare_.bands, b[4]);
-    a_.codes = reuse_or_make(spare_.codes, b[5]);
+    a_.codes = reuse_or_make(spare_.codes, std::max<size_t>(b[5], 1));  // never empty
     a_.ref_tris = reuse_or_make(spare_.ref_tris, b[6]);
     a_.ref_rows = reuse_or_make(spare_.ref_rows, b[7]);
     spare_ = {};

@@ -127,10 +127,11 @@ class MtsEvaluator : public ProbeEvaluator {
   void prime_launches(const LaunchWidths& widths, LaunchPrimer& primer);
 
   // The plane-A cache's buffers, handed from a finished evaluator to the next of its pair (the
-  // worst case's chunks, each an evaluator of the same size): its row records are tens of MB that
-  // the kernels otherwise fault in page by page, zeroed, for every chunk. The contents are never
-  // read before this evaluator writes them (cache_plane_a fills a slot before any launch reads it,
-  // and the reference is marked absent).
+  // worst case's chunks, each an evaluator of its own, with as many slots as distances are still
+  // open, up to the budget's): its row records are tens of MB that the kernels otherwise fault in
+  // page by page, zeroed, for every chunk. The contents are never read before this evaluator
+  // writes them (cache_plane_a fills a slot before any launch reads it, and the reference is
+  // marked absent).
   struct PlaneABuffers {
     cl::Buffer consts, tris, vflags, rows, bands, codes, ref_tris, ref_rows;
     size_t bytes() const;  // in all (0: none)
@@ -225,8 +226,6 @@ class MtsEvaluator : public ProbeEvaluator {
     bool has_ref = false;
   } a_;
   PlaneABuffers spare_;
-  using PlaneABytes = std::array<size_t, 8>;  // PlaneABuffers' sizes, in its order
-  PlaneABytes plane_a_bytes() const;
   // spare, when it holds at least bytes and at most half as much again, else a new buffer.
   cl::Buffer reuse_or_make(cl::Buffer& spare, size_t bytes);
   bool shortcuts_ = true;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -30,8 +31,9 @@ static_assert(kBandRows <= 32,
 // its share of this (all frames of each; the pairs a run evaluates side by side share it) and at
 // most kMaxSlots. The search keeps no more distances in flight than that (distances_at_once), so
 // none is evicted while it is still probed: memory stays within the budget whatever the frames
-// or distances. A small window costs no speed: the default table took 12.0 s with one job at 64
-// MiB and at 192 MiB, 11.1 s with two jobs at 64 MiB each (docs/performance.md).
+// or distances (a buffer an earlier evaluator handed on may be up to half as large again as its
+// share: MtsEvaluator::reuse_or_make). A small window costs no speed: the default table took 12.0 s
+// with one job at 64 MiB and at 192 MiB, 11.1 s with two jobs at 64 MiB each (docs/performance.md).
 constexpr size_t kPlaneACacheBytes = size_t{128} << 20;
 constexpr size_t kMaxSlots = 64;
 
@@ -55,13 +57,28 @@ inline size_t code_row_words(const Scene& scene, bool cache_codes) {
   return cache_codes ? static_cast<size_t>(scene.kernel_w) + MTS_CODE_ROW_PAD : 0;
 }
 
-// Bytes of one plane-A cache slot: one distance, every frame (MtsEvaluator::cache_plane_a).
-inline size_t plane_a_slot_bytes(const Scene& scene, bool cache_codes) {
+// Bytes of each of the plane-A cache's buffers for `slots` distances, every frame of each, in
+// MtsEvaluator::PlaneABuffers' order: probe constants, plane records, vertex flags, row records,
+// band records, codes (0 when not cached), then the reference's plane and row records, which
+// are one distance's whatever the slots.
+inline std::array<size_t, 8> plane_a_buffer_bytes(const Scene& scene, bool cache_codes,
+                                                  size_t slots) {
   const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h);
-  return sizeof(float) * (kProbeStride + f * plane_record_floats(scene)) +
-         sizeof(uint32_t) * f *
-             (1 + kh * (MTS_ROW_WORDS + code_row_words(scene, cache_codes)) +
-              MTS_BAND_WORDS * band_count(scene));
+  const size_t planes = slots * f;
+  return {sizeof(float) * kProbeStride * slots,
+          sizeof(float) * planes * plane_record_floats(scene),
+          sizeof(uint32_t) * planes,
+          sizeof(uint32_t) * planes * kh * MTS_ROW_WORDS,
+          sizeof(uint32_t) * planes * band_count(scene) * MTS_BAND_WORDS,
+          sizeof(uint32_t) * planes * kh * code_row_words(scene, cache_codes),
+          sizeof(float) * f * plane_record_floats(scene),
+          sizeof(uint32_t) * f * kh * MTS_ROW_WORDS};
+}
+
+// Bytes of one plane-A cache slot: one distance, every frame (the buffers but the reference's).
+inline size_t plane_a_slot_bytes(const Scene& scene, bool cache_codes) {
+  const std::array<size_t, 8> b = plane_a_buffer_bytes(scene, cache_codes, 1);
+  return b[0] + b[1] + b[2] + b[3] + b[4] + b[5];
 }
 
 // Distances the plane-A cache holds at once with its budget shared by `evaluators`.

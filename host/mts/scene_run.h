@@ -86,7 +86,8 @@ class SceneRun {
     SceneRun& run_;
     const EvalPair& pair_;
     size_t stats_of_;
-    // The largest plane-A buffers a retired evaluator left, for the next one of the same size.
+    // The largest plane-A buffers a retired evaluator left, for the next evaluator, which takes
+    // those at least as large as it needs and at most half as large again.
     MtsEvaluator::PlaneABuffers spare_;
   };
   void add_stats(size_t p, const MtsEvaluator& ev);

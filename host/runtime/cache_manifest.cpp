@@ -18,10 +18,30 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Version 2 lines: size checksum inode mtime_ns ctime_ns path. Version 1 (size checksum path) is
-// read with no stamps, so its files are read once more and stamped.
+// Version 2: the header names the boot that wrote it ("depthprec-pocl-manifest 2 boot ID"), then
+// lines of size checksum inode mtime_ns ctime_ns path. Version 1 (size checksum path), or a
+// manifest of another boot, is read with no stamps, so its files are read once more and stamped.
 constexpr const char* kManifestMagic = "depthprec-pocl-manifest 2";
 constexpr const char* kManifestMagicV1 = "depthprec-pocl-manifest 1";
+
+// This boot's id from the kernel ("" where there is none: then no stamp is kept). Stamps vouch
+// for the boot that recorded them only: a power loss can leave a file's size and times on a file
+// system that journals metadata alone while its data never reached the disk, so the first run
+// after a boot reads every file again.
+const std::string& boot_id() {
+  static const std::string id = [] {
+    std::ifstream in("/proc/sys/kernel/random/boot_id");
+    std::string line;
+    std::getline(in, line);
+    return line;
+  }();
+  return id;
+}
+
+std::string header() {
+  const std::string& boot = boot_id();
+  return boot.empty() ? kManifestMagic : fmt::format("{} boot {}", kManifestMagic, boot);
+}
 
 // A stamp is kept only for a file whose last change is this much older than the check: a change
 // within the same clock tick as the one before it could leave both times as they were.
@@ -72,7 +92,7 @@ bool read_bytes(const fs::path& p, std::string& out, FileStamp& stamp) {
   ::close(fd);
   if (!ok) return false;
   const Stat b = stat_of(before), a = stat_of(after);
-  if (b.stamp == a.stamp && b.size == a.size &&
+  if (!boot_id().empty() && b.stamp == a.stamp && b.size == a.size &&
       static_cast<std::int64_t>(now_ns() - a.stamp.ctime_ns) > kRacyNs)
     stamp = a.stamp;
   return true;
@@ -101,12 +121,16 @@ Manifest read_manifest(const fs::path& dir, std::string* problem) {
   if (!in) return m;
   std::string line;
   const bool has_header = static_cast<bool>(std::getline(in, line));
-  const bool stamped = has_header && line == kManifestMagic;
-  if (!stamped && !(has_header && line == kManifestMagicV1)) {
+  const std::string v2_magic = kManifestMagic;
+  const bool v2 = has_header && line.compare(0, v2_magic.size(), v2_magic) == 0 &&
+                  (line.size() == v2_magic.size() || line[v2_magic.size()] == ' ');
+  if (!v2 && !(has_header && line == kManifestMagicV1)) {
     if (problem)
-      *problem = fmt::format("{} does not start with '{}'", kManifestName, kManifestMagic);
+      *problem = fmt::format("{} does not start with '{}' or '{}'", kManifestName, kManifestMagic,
+                             kManifestMagicV1);
     return {};
   }
+  const bool this_boot = v2 && !boot_id().empty() && line == header();
   int number = 1;
   while (std::getline(in, line)) {
     ++number;
@@ -114,14 +138,14 @@ Manifest read_manifest(const fs::path& dir, std::string* problem) {
     ManifestEntry e;
     std::string path;
     bool parsed = static_cast<bool>(fields >> e.size >> std::hex >> e.checksum >> std::dec);
-    if (stamped)
-      parsed = parsed && (fields >> e.stamp.inode >> e.stamp.mtime_ns >> e.stamp.ctime_ns);
+    if (v2) parsed = parsed && (fields >> e.stamp.inode >> e.stamp.mtime_ns >> e.stamp.ctime_ns);
     parsed = parsed && std::getline(fields >> std::ws, path) && !path.empty() &&
              path.find("..") == std::string::npos;
     if (!parsed) {
       if (problem) *problem = fmt::format("{} line {} is malformed", kManifestName, number);
       return {};
     }
+    if (!this_boot) e.stamp = {};
     m[path] = e;
   }
   return m;
@@ -132,7 +156,7 @@ void write_manifest(const fs::path& dir, const Manifest& manifest) {
   const fs::path tmp = dir / fmt::format("{}.{}.tmp", kManifestName, ::getpid());
   {
     std::ofstream out(tmp, std::ios::trunc);
-    out << kManifestMagic << '\n';
+    out << header() << '\n';
     for (const auto& [file, e] : manifest)
       out << fmt::format("{} {:016x} {} {} {} {}\n", e.size, e.checksum, e.stamp.inode,
                          e.stamp.mtime_ns, e.stamp.ctime_ns, file);
@@ -152,7 +176,7 @@ void write_manifest(const fs::path& dir, const Manifest& manifest) {
 }
 
 std::vector<DamagedFile> remove_damaged_files(const fs::path& dir, Manifest& manifest,
-                                              bool* stamped) {
+                                              bool* restamped) {
   std::vector<DamagedFile> damaged;
   for (const std::string& file : pocl_code_files(dir)) {
     const auto listed = manifest.find(file);
@@ -169,7 +193,7 @@ std::vector<DamagedFile> remove_damaged_files(const fs::path& dir, Manifest& man
         why = "its bytes changed after it was written";
       else if (stamp.known()) {
         listed->second.stamp = stamp;
-        if (stamped) *stamped = true;
+        if (restamped) *restamped = true;
       }
     } else {
       why = pocl_file_structure_problem(file, bytes);

@@ -20,7 +20,8 @@ namespace depthprec {
 // which no call a program makes can set back. A file changed within the same clock tick as its
 // last change could keep both times, so a stamp is only kept for a file whose last change is
 // some seconds older than the check (as git's index treats "racy" entries); until then every
-// start reads it. Zero: not stamped, read and checksum the file.
+// start reads it. A stamp holds for the boot that recorded it only (cache_manifest.cpp, boot_id).
+// Zero: not stamped, read and checksum the file.
 struct FileStamp {
   std::uint64_t inode = 0, mtime_ns = 0, ctime_ns = 0;
   bool known() const { return inode != 0; }
@@ -56,10 +57,10 @@ struct DamagedFile {
 // Checks every file PoCL executes in dir: one in the manifest must have its size and checksum
 // (read only when its stamp differs from stat's), one not (written by a run that did not end, or
 // by another program) a sound structure. Removes each damaged file, and its entry, so PoCL
-// compiles it again; returns them. *stamped is set when a listed file's bytes were read, found
+// compiles it again; returns them. *restamped is set when a listed file's bytes were read, found
 // whole and stamped: the manifest changed and is worth writing.
 std::vector<DamagedFile> remove_damaged_files(const std::filesystem::path& dir, Manifest& manifest,
-                                              bool* stamped = nullptr);
+                                              bool* restamped = nullptr);
 
 // Adds the files PoCL wrote since the manifest was read (those with a sound structure; any other
 // is removed and returned) and drops the entries of files no longer there. A listed file is not

@@ -77,5 +77,16 @@ TEST_CASE("a listed kernel file is read until its stamp vouches for it, then onl
   CHECK(v1.at(kStampedFile).size == 5000);
   CHECK(v1.at(kStampedFile).checksum == 0xff);
   CHECK_FALSE(v1.at(kStampedFile).stamp.known());
+
+  // Stamps vouch for the boot that wrote them only: another boot's are dropped on reading.
+  write_bytes(dir / kManifestName,
+              "depthprec-pocl-manifest 2 boot not-this-boot\n5000 "
+              "00000000000000ff 7 8 9 " +
+                  kStampedFile + "\n");
+  const Manifest other_boot = read_manifest(dir, &problem);
+  CHECK(problem.empty());
+  REQUIRE(other_boot.size() == 1);
+  CHECK(other_boot.at(kStampedFile).checksum == 0xff);
+  CHECK_FALSE(other_boot.at(kStampedFile).stamp.known());
   fs::remove_all(dir);
 }
