@@ -319,6 +319,10 @@ double DepthError::total() const {
   return out * b32::kMargin;
 }
 
+std::array<double, 2> window_gradient(const RowModel& m, const PlaneGeometry& g) {
+  return gradient(m, g);
+}
+
 PixelDepths pixel_depths(const RowModel& m, const PlaneGeometry& g) {
   const double a = exact_depth(m, g.wp_lo), b = exact_depth(m, g.wp_hi);
   return {std::min(a, b), std::max(a, b)};

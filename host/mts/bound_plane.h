@@ -46,4 +46,8 @@ struct PixelDepths {
 };
 PixelDepths pixel_depths(const RowModel& m, const PlaneGeometry& g);
 
+// The largest |d value / d pixel| of the plane's interpolated value (window depth, or 1/w for
+// fragment-stage depth) along x and along y, over the cube.
+std::array<double, 2> window_gradient(const RowModel& m, const PlaneGeometry& g);
+
 }  // namespace depthprec::bound

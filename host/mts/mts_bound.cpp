@@ -31,6 +31,21 @@ double storage_width(const RowModel& m, double d_min, double d_max) {
   return f.spacing_at(d_max);
 }
 
+// softpipe's 16-bit fast path (BoundModel::unorm16_step_pixels; Mesa's sp_quad_depth_test_tmp.h):
+// a quad dx pixels into a run stores its first quad's code, trunc(fl(z0 N)), plus
+// dx trunc(fl(dz/dx N)), where the conversion would give trunc(fl(z N)) with z = z0 + dx dz/dx.
+// trunc(g) lies within min(1, |g|) of g (towards zero), and fl(g) within |g| 2^-24 of g, so the
+// code drifts from the conversion's interval by at most dx (min(1, |g|) + |g| 2^-23), g = dz/dx N;
+// the plane's evaluation at z0 is the interpolation term's. Only a plane whose depth comes from
+// the rasterizer takes the path (a fragment shader writing depth does not). In depth units, per
+// plane.
+double stepped_codes(const RowModel& m, const PlaneGeometry& g) {
+  const int steps = m.model->unorm16_step_pixels;
+  if (steps == 0 || m.fragment || !m.format.is_unorm() || m.format.bits() > 16) return 0;
+  const double n = m.format.max_code();
+  return stepped_code_drift(bound::window_gradient(m, g)[0] * n, steps) / n;
+}
+
 constexpr const char* kBeyondShaderRange =
     "a vertex coordinate or shader value exceeds the shaders' range";
 constexpr const char* kBeyondFar = "plane B lies beyond the far plane at every pixel";
@@ -100,7 +115,8 @@ BoundCheck check(const RowModel& m, double z, double s) {
   const double d_max = std::max(a_hi, b.magnitude() + EB);
   const double d_min = std::max(0.0, std::min(a_lo, b.lo - EB));
   for (int t = 0; t < bound::kTermCount; ++t) v.terms[t] = eA.term[t] + eB.term[t];
-  v.terms[bound::kStorage] = storage_width(m, d_min, d_max);
+  v.terms[bound::kStorage] =
+      storage_width(m, d_min, d_max) + stepped_codes(m, gA) + stepped_codes(m, gB);
   double need = 0;
   for (const double t : v.terms) need += t;
   v.holds = gap > need * binary32_error::kMargin;
@@ -117,6 +133,11 @@ std::string dominant_term(const BoundCheck& v) {
 
 }  // namespace
 
+double stepped_code_drift(double codes_per_pixel, int pixels) {
+  const double g = std::fabs(codes_per_pixel);
+  return pixels * (std::min(1.0, g) + g * 0x1.0p-23);
+}
+
 CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double z) {
   CoplanarSpread out;
   RowModel m;
@@ -131,7 +152,9 @@ CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double 
   out.depth_min = std::max(0.0, d.lo - E);
   out.depth_max = d.hi + E;
   if (std::isfinite(E))
-    out.spread = (2 * E + storage_width(m, out.depth_min, out.depth_max)) * binary32_error::kMargin;
+    out.spread =
+        (2 * E + storage_width(m, out.depth_min, out.depth_max) + 2 * stepped_codes(m, g)) *
+        binary32_error::kMargin;
   return out;
 }
 

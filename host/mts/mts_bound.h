@@ -42,6 +42,11 @@ CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double 
 // bound_note (the dominant term, or why there is none); left NaN on a row without an MTS.
 void set_mts_bound(MtsRow& row, const Scene& scene);
 
+// How many codes softpipe's 16-bit fast path can store away from the conversion's own interval
+// at a pixel `pixels` into its run of quads, for a plane of codes_per_pixel codes per pixel
+// along the run (BoundModel::unorm16_step_pixels; mts_bound.cpp gives the proof).
+double stepped_code_drift(double codes_per_pixel, int pixels);
+
 // Whether the model proves that no pixel fights at requested separation s (for tests and the
 // dense scan): the exact gap exceeds both planes' error bounds and the conversion's width.
 bool bound_holds(const Scene& scene, const EvalPair& pair, double z, double s);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "host/base/errors.h"
 #include "host/shadow/shadow_engines.h"
 
 namespace depthprec {
