@@ -1,22 +1,46 @@
 #!/usr/bin/env python3
 """Rendered MTS rows against their mts_bound: one table line per resolved row and a summary per
-driver. Usage: bench/bound_vs_rendered.py NAME=RENDERED.json [NAME=RENDERED.json ...]
-(the JSON of `depthprec render --format-out json`; bench/bound_vs_rendered.sh runs it)."""
+driver. Usage: bench/bound_vs_rendered.py [--bounds MTS.json] NAME=RENDERED [NAME=RENDERED ...]
+RENDERED is the JSON of `depthprec render --format-out json`, or an unfinished run's journal
+(OUTPUT.rows.jsonl); files given the same NAME are one driver's rows. --bounds takes each row's
+mts_bound from the JSON of `depthprec mts SCENE --format-out json` (the row of the same pair and
+z) instead of the rendering's own, for renderings made by an older build
+(bench/bound_vs_rendered.sh runs it on fresh renderings)."""
 import json
 import statistics
 import sys
 
-runs = [(a.split("=", 1)[0], json.load(open(a.split("=", 1)[1]))) for a in sys.argv[1:]]
+
+def rows_of(path):
+    if path.endswith(".jsonl"):
+        rows = [json.loads(line) for line in open(path) if line.strip()]
+        return [r for r in rows if "journal_of" not in r]
+    return json.load(open(path))["rows"]
+
+
+def key(r):
+    return (r["technique"], r["format"], r["depth_range"], r["z"])
+
+
+args = sys.argv[1:]
+bounds = None
+if args[:1] == ["--bounds"]:
+    bounds = {key(r): r.get("mts_bound") for r in rows_of(args[1])}
+    args = args[2:]
+runs = {}
+for a in args:
+    name, path = a.split("=", 1)
+    runs.setdefault(name, []).extend(rows_of(path))
 print("| driver | pair | z | rendered mts | mts_bound | bound / rendered |")
 print("|---|---|---|---|---|---|")
 summary = []
-for name, run in runs:
+for name, rows_in in runs.items():
     below, rows, ratios, unbounded = 0, 0, [], 0
-    for r in run["rows"]:
+    for r in rows_in:
         if r["verdict"] != "resolved":
             continue
         rows += 1
-        b = r.get("mts_bound")
+        b = bounds.get(key(r)) if bounds is not None else r.get("mts_bound")
         if not isinstance(b, (int, float)):
             unbounded += 1
             continue
