@@ -13,7 +13,12 @@ import sys
 
 def rows_of(path):
     if path.endswith(".jsonl"):
-        rows = [json.loads(line) for line in open(path) if line.strip()]
+        rows = []
+        for line in open(path):
+            try:
+                rows.append(json.loads(line))
+            except json.JSONDecodeError:  # a live journal's last line, still being written
+                continue
         return [r for r in rows if "journal_of" not in r]
     return json.load(open(path))["rows"]
 
@@ -35,12 +40,15 @@ print("| driver | pair | z | rendered mts | mts_bound | bound / rendered |")
 print("|---|---|---|---|---|---|")
 summary = []
 for name, rows_in in runs.items():
-    below, rows, ratios, unbounded = 0, 0, [], 0
+    below, rows, ratios, unbounded, unmatched = 0, 0, [], 0, 0
     for r in rows_in:
         if r["verdict"] != "resolved":
             continue
         rows += 1
-        b = bounds.get(key(r)) if bounds is not None else r.get("mts_bound")
+        if bounds is not None and key(r) not in bounds:
+            unmatched += 1
+            continue
+        b = bounds[key(r)] if bounds is not None else r.get("mts_bound")
         if not isinstance(b, (int, float)):
             unbounded += 1
             continue
@@ -51,6 +59,7 @@ for name, rows_in in runs.items():
     summary.append(
         f"{name}: {rows} resolved rows, {len(ratios)} with a finite bound, {unbounded} without; "
         f"bound below the rendered MTS on {below}; bound / rendered: min {min(ratios):.3g}, "
-        f"median {statistics.median(ratios):.3g}, max {max(ratios):.3g}")
+        f"median {statistics.median(ratios):.3g}, max {max(ratios):.3g}"
+        + (f"; {unmatched} with no row in --bounds" if unmatched else ""))
 print()
 print("\n".join(summary))

@@ -117,7 +117,10 @@ const std::vector<BoundModel>& bound_models() {
        0,
        0,
        11,
-       0x1.0p14},
+       0x1.0p14,
+       0,
+       nullptr,
+       14},
       {"gles2_highp",
        "shaders at the GLSL ES 1.00 highp minimum (relative precision 2^-16, magnitudes to 2^62: "
        "17 significant bits), the fixed-function stages in binary32, otherwise as binary32",
@@ -131,7 +134,10 @@ const std::vector<BoundModel>& bound_models() {
        0,
        0,
        17,
-       0x1.0p62},
+       0x1.0p62,
+       0,
+       nullptr,
+       14},
   };
   return models;
 }

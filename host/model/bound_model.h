@@ -46,7 +46,8 @@ struct BoundModel {
   // softpipe's 16-bit fast path (Mesa's sp_quad_depth_test_tmp.h, for depth from the rasterizer):
   // a run of quads takes its first quad's codes and steps them by trunc(dz/dx N) per pixel, up to
   // this many pixels (flush_spans hands on quads of one 16-pixel chunk: 14), so a code drifts
-  // from its conversion by up to that many times min(1, |dz/dx| N) (mts_bound.cpp). 0: none.
+  // from its conversion by up to that many times min(1, |dz/dx| N) and a hair
+  // (mts_bound.cpp, stepped_code_drift). 0: none.
   int unorm16_step_pixels = 0;
 };
 

@@ -32,18 +32,24 @@ double storage_width(const RowModel& m, double d_min, double d_max) {
 }
 
 // softpipe's 16-bit fast path (BoundModel::unorm16_step_pixels; Mesa's sp_quad_depth_test_tmp.h):
-// a quad dx pixels into a run stores its first quad's code, trunc(fl(z0 N)), plus
-// dx trunc(fl(dz/dx N)), where the conversion would give trunc(fl(z N)) with z = z0 + dx dz/dx.
-// trunc(g) lies within min(1, |g|) of g (towards zero), and fl(g) within |g| 2^-24 of g, so the
-// code drifts from the conversion's interval by at most dx (min(1, |g|) + |g| 2^-23), g = dz/dx N;
-// the plane's evaluation at z0 is the interpolation term's. Only a plane whose depth comes from
-// the rasterizer takes the path (a fragment shader writing depth does not). In depth units, per
-// plane.
+// a quad dx pixels into a run (one row of quads, dx <= 14) stores its first quad's codes,
+// trunc(fl(z0 N)) for each of its pixels (each from its own binary32 value, as the conversion
+// would), plus dx trunc(fl(G)), G = N dz/dx as the set-up computed it; the computed plane itself
+// would be z0 + dx dz/dx there. trunc(G) lies within min(1, |G|) of G (towards zero), and fl(G)
+// within |G| 2^-24 of G, so the code drifts from the conversion's interval by at most
+// dx (min(1, |G|) + |G| 2^-23); |G| exceeds the exact plane's gradient bound g by the set-up's
+// relative error, (6 kappa + 4) u < 2^-14 (bound_plane.cpp). The plane's evaluation at z0 is the
+// interpolation term's. The codes are 16-bit sums: intermediate wraps cancel, and the stored code
+// lies between the run's first code and the conversion's, so it stays in range when the run's
+// first pixel's depth does (assumed: a run starts at most 15 pixels left of a kernel pixel, whose
+// depth the check keeps inside the range). Only a plane whose depth comes from the rasterizer takes
+// the path (a fragment shader writing depth does not). In depth units, per plane.
 double stepped_codes(const RowModel& m, const PlaneGeometry& g) {
   const int steps = m.model->unorm16_step_pixels;
   if (steps == 0 || m.fragment || !m.format.is_unorm() || m.format.bits() > 16) return 0;
   const double n = m.format.max_code();
-  return stepped_code_drift(bound::window_gradient(m, g)[0] * n, steps) / n;
+  const double computed = bound::window_gradient(m, g)[0] * n * (1 + 0x1.0p-14);
+  return stepped_code_drift(computed, steps) / n;
 }
 
 constexpr const char* kBeyondShaderRange =
