@@ -121,7 +121,7 @@ MtsEvaluator::PlaneABuffers MtsEvaluator::release_plane_a_buffers() {
   PlaneABuffers out{std::move(a_.consts),   std::move(a_.tris),    std::move(a_.vflags),
                     std::move(a_.rows),     std::move(a_.bands),   std::move(a_.codes),
                     std::move(a_.ref_tris), std::move(a_.ref_rows)};
-  a_.consts = a_.tris = a_.vflags = a_.rows = a_.bands = a_.codes = a_.ref_tris = a_.ref_rows = {};
+  // the moved-from buffers are null, so a later run fills the cache anew: no slot is held
   std::fill(a_.z.begin(), a_.z.end(), NAN);
   a_.has_ref = false;
   return out;

@@ -211,8 +211,7 @@ std::unique_ptr<ProbeEvaluator> SceneRun::RunSource::make(const Scene& s, const 
   auto ev = std::make_unique<MtsEvaluator>(run_.rt_, s, pair_, o);
   ev->share_plane_a_budget(run_.jobs_);
   if (run_.jobs_ > 1) ev->prime_launches(run_.prime_widths_, run_.primer_);
-  ev->adopt_plane_a_buffers(std::move(spare_));
-  spare_ = {};
+  ev->adopt_plane_a_buffers(std::move(spare_));  // leaves spare_'s buffers null
   return ev;
 }
 
