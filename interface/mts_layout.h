@@ -154,6 +154,7 @@
 #define MTS_R_UNCOVERED 8u
 #define MTS_R_BOUNDS 16u /* the row's band was decided clean from code bounds, not rasterised */
 #define MTS_R_REUSED 32u /* plane B's coverage of the row was plane A's (coverage_margin) */
+#define MTS_R_CHORDS 64u /* mts_exact: pixels decided clean from plane B's chords (CHORDS) */
 #define MTS_R_COUNT_SHIFT 8
 
 /* Plane A does not depend on the separation, so the host sets it up once per (distance, frame)

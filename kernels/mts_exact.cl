@@ -6,8 +6,9 @@
  *
  * Defines: A_CACHED (1: plane A's codes and status at every pixel come from mts_exact_a's cache,
  * filled once per distance and frame for the probes that follow), ROW_ENDS (1: decide a row from
- * its end pixels where that is certain, below; 0: every pixel, to check that the shortcut changes
- * nothing), DEPTH_MAP (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1
+ * its end pixels where that is certain, and with A_CACHED its pixels from plane B's chords against
+ * A's codes (CHORDS), below; 0: every pixel, to check that the shortcuts change nothing), DEPTH_MAP
+ * (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1
  * + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f
  * - n + 1); host/model/technique.h DepthMap), CLIP_W (1: the technique writes depth in the fragment
  * stage -- clip by the standard volume n <= w <= f and clamp d; 0: clip where d leaves [0, 1]),
@@ -240,6 +241,8 @@ static long4 stretches_clean(ends8_t e) {
 }
 #endif
 
+#include "kernels/exact/chords.cl" /* CHORDS: pixels decided from plane B's chords */
+
 #if A_CACHED
 /* Plane A's codes and status bits at every pixel of one kernel row of a (distance, frame), for
  * the probes at that distance that follow: one work item per (frame, kernel row) of `planes`
@@ -313,6 +316,30 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
     out[item] = MTS_R_BOUNDS | ((uint)min(kw, 0xffffffu) << MTS_R_COUNT_SHIFT);
     return;
   }
+#if CHORDS
+  if (row.ok.s0 && row.ok.s1 && kw >= 2) {
+    const chord_row_t ch = chord_row(rb, ox, vw, kw, n, f, k);
+    if (ch.usable) {
+      /* knots every CHORD_SEGMENT pixels and at the last: four segments' ends at once */
+      for (uint s0 = 0; s0 < kw; s0 += 4 * CHORD_SEGMENT) {
+        double xk[8], d[8];
+        chord_knots(rb, s0, kw, ox, vw, n, f, k, xk, d);
+        for (uint x0 = s0; x0 < kw && x0 < s0 + 4 * CHORD_SEGMENT; x0 += 8) {
+          double margin;
+          const double8 chord = chord8(ch, xk, d, (x0 - s0) / CHORD_SEGMENT, x0, &margin);
+          if (chord_clean8(chord, margin, x0, kw, a_code, fmt)) {
+            pairs += min(8u, kw - x0);
+            flags |= MTS_R_CHORDS;
+          } else {
+            pixels8(ra, rb, x0, ox, vw, kw, n, f, k, fmt, a_code, a_bits, &pairs, &flags);
+          }
+        }
+      }
+      out[item] = flags | ((uint)min(pairs, (ulong)0xffffff) << MTS_R_COUNT_SHIFT);
+      return;
+    }
+  }
+#endif
   const long gap = min(row.ahead.s0 - row.behind.s0, row.ahead.s1 - row.behind.s1);
   const long spread = abs(row.ahead.s1 - row.ahead.s0) + abs(row.behind.s1 - row.behind.s0);
   if (row.ok.s0 && row.ok.s1 && gap >= ENDS_MARGIN + 2 * (spread * 8 / (long)kw + 1)) {

@@ -136,6 +136,27 @@ std::vector<size_t> ExactEvaluator::cache_slots(const std::vector<Probe>& probes
   return out;
 }
 
+std::vector<double> ExactEvaluator::chord_audit(const std::vector<Probe>& probes) {
+  cl::Kernel k(rt_.program("kernels/mts_exact.cl", options_ + " -DA_CACHED=1 -DCHORD_AUDIT=1"),
+               "mts_exact_chord_audit");
+  std::vector<size_t> all(probes.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const cl::Buffer plane_buf =
+      buffer_of(rt_.context(), plane_records(probes, all, 0, scene_.frames));
+  const size_t per_probe =
+      static_cast<size_t>(scene_.frames) * static_cast<size_t>(scene_.kernel_h);
+  const size_t items = probes.size() * per_probe;
+  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(float) * items);
+  bind_exact(k, scene_, plane_buf, items, out);
+  launch(k, items);
+  std::vector<float> rows(items);
+  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(float) * items, rows.data());
+  std::vector<double> worst(probes.size(), -1.0);
+  for (size_t i = 0; i < items; ++i)
+    worst[i / per_probe] = std::max(worst[i / per_probe], static_cast<double>(rows[i]));
+  return worst;
+}
+
 std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
   std::vector<ProbeResult> results(probes.size());
   std::vector<bool> decided(probes.size(), false);
@@ -172,7 +193,10 @@ std::vector<ProbeResult> ExactEvaluator::run(const std::vector<Probe>& probes) {
     rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(uint32_t) * items, rows.data());
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    for (const uint32_t w : rows) rows_from_ends_ += (w & MTS_R_BOUNDS) != 0;
+    for (const uint32_t w : rows) {
+      rows_from_ends_ += (w & MTS_R_BOUNDS) != 0;
+      rows_from_chords_ += (w & MTS_R_CHORDS) != 0;
+    }
     uint64_t after_decision = 0;  // work the -v breakdown counts for the emulated pipeline only
     fold_launch(rows, active, done, frames, kh, results, decided, after_decision);
     for (const size_t i : active)

@@ -18,7 +18,8 @@ class ExactEvaluator : public ProbeEvaluator {
  public:
   // orientations: the frames' sampled ones where a distance has them (worst-case sampling).
   // shortcuts: rows decided clean from their end pixels where that is certain
-  // (kernels/mts_exact.cl, ROW_ENDS) and plane A's cache (below); off only to check that they
+  // (kernels/mts_exact.cl, ROW_ENDS), plane A's cache (below) and, with it, pixels decided clean
+  // from plane B's chords (CHORDS); off only to check that they
   // never change a result.
   ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                  const Orientations& orientations = {}, bool shortcuts = true);
@@ -31,6 +32,13 @@ class ExactEvaluator : public ProbeEvaluator {
   // Kernel rows (of every probe and frame run) whose pixels were, some or all, decided clean
   // from end pixels.
   uint64_t rows_decided_from_ends() const { return rows_from_ends_; }
+  // Kernel rows whose pixels were, some or all, decided clean from plane B's chords against plane
+  // A's cached codes (kernels/mts_exact.cl, CHORDS).
+  uint64_t rows_decided_from_chords() const { return rows_from_chords_; }
+  // Test only: per probe, the largest |D_c - chord| / margin over its frames' kernel rows where
+  // the chords apply (kernels/mts_exact.cl, CHORD_AUDIT: D_c plane B's depth as the pixel loop
+  // computes it); -1 where none do. Needs the shortcuts.
+  std::vector<double> chord_audit(const std::vector<Probe>& probes);
   // Distances whose plane A was filled into the cache (each time it was).
   uint64_t cache_fills() const { return cache_fills_; }
 
@@ -40,7 +48,7 @@ class ExactEvaluator : public ProbeEvaluator {
   EvalPair pair_;
   Orientations orientations_;
   cl::Kernel kernel_;
-  uint64_t rows_from_ends_ = 0, cache_fills_ = 0;
+  uint64_t rows_from_ends_ = 0, rows_from_chords_ = 0, cache_fills_ = 0;
 
   // Plane A's cache: slots of a distance's frames x kernel rows x kw_pad_ pixels, a code and a
   // status byte each; which distance each slot holds, and how often each distance ran.

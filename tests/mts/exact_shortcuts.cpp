@@ -1,10 +1,12 @@
 // The storage-limited pipeline's shortcuts (kernels/mts_exact.cl) change no probe result: rows and
-// stretches of 8 pixels decided clean from their end pixels (ROW_ENDS), and plane A read from the
-// cache the evaluator fills for a distance's second run on (A_CACHED). Probes run from s = z down
-// past the storage-limited MTS over a round's orientations (the cube's corners first, where the
-// planes are steepest), with and without the shortcut, at distances where the codes' spread along
-// a row is wide and narrow, for a less- and a greater-compare, a unorm and a float format, a
-// vertex-stage and a fragment-stage mapping.
+// stretches of 8 pixels decided clean from their end pixels (ROW_ENDS), plane A read from the
+// cache the evaluator fills for a distance's second run on (A_CACHED), and with the cache pixels
+// decided clean from plane B's chords (CHORDS). Probes run from s = z down past the
+// storage-limited MTS over a round's orientations (the cube's corners first, where the planes are
+// steepest), with and without the shortcuts, at distances where the codes' spread along a row is
+// wide and narrow, for a less- and a greater-compare, a unorm and a float format, a vertex-stage
+// and a fragment-stage mapping, maps affine in screen space (standard, reversed) and curved ones
+// (log, linear), and parallel rays (orthographic, which the chords leave out).
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
@@ -33,6 +35,7 @@ TEST_CASE("the storage-limited pipeline's shortcuts change no probe result",
   for (const EvalPair& pair : {EvalPair{Technique::standard, "unorm24", DepthRange::gl},
                                EvalPair{Technique::reversed, "float32", DepthRange::zero_to_one},
                                EvalPair{Technique::log_fragment, "unorm16", DepthRange::gl},
+                               EvalPair{Technique::linear, "float32", DepthRange::gl},
                                EvalPair{Technique::orthographic, "unorm24", DepthRange::gl}}) {
     ExactEvaluator with(runtime(), scene, pair, sampled),
         without(runtime(), scene, pair, sampled, false);
@@ -55,8 +58,14 @@ TEST_CASE("the storage-limited pipeline's shortcuts change no probe result",
         fights += a[k].outcome == Outcome::fight;
         clean += a[k].outcome == Outcome::clean;
       }
-    CHECK(with.rows_decided_from_ends() > 0);  // the shortcut was taken
+    CHECK(with.rows_decided_from_ends() > 0);  // the shortcuts were taken
     CHECK(without.rows_decided_from_ends() == 0);
+    // the chords decide pixels near the MTS, where the ends leave them (not for parallel rays)
+    if (pair.technique == Technique::orthographic)
+      CHECK(with.rows_decided_from_chords() == 0);
+    else
+      CHECK(with.rows_decided_from_chords() > 0);
+    CHECK(without.rows_decided_from_chords() == 0);
     CHECK(fights > 0);  // the descent reaches separations that fight
     CHECK(clean > 0);
   }
