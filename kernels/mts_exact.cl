@@ -6,9 +6,9 @@
  *
  * Defines: A_CACHED (1: plane A's codes and status at every pixel come from mts_exact_a's cache,
  * filled once per distance and frame for the probes that follow), ROW_ENDS (1: decide a row from
- * its end pixels where that is certain, and with A_CACHED its pixels from plane B's chords against
- * A's codes (CHORDS), below; 0: every pixel, to check that the shortcuts change nothing), DEPTH_MAP
- * (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1
+ * its end pixels where that is certain, and its pixels from plane B's chords against A's cached
+ * codes or A's chords (CHORDS), below; 0: every pixel, to check that the shortcuts change nothing),
+ * DEPTH_MAP (0 standard, 1 infinite, 2 reversed, 3 n/w, 4 log, 5 linear, 6 w/f, 7 log2(1
  * + w) / log2(1 + f), 8 log2(w - n + 1) / log2(f
  * - n + 1); host/model/technique.h DepthMap), CLIP_W (1: the technique writes depth in the fragment
  * stage -- clip by the standard volume n <= w <= f and clamp d; 0: clip where d leaves [0, 1]),
@@ -241,7 +241,7 @@ static long4 stretches_clean(ends8_t e) {
 }
 #endif
 
-#include "kernels/exact/chords.cl" /* CHORDS: pixels decided from plane B's chords */
+#include "kernels/exact/chords.cl" /* CHORDS: pixels decided from the planes' chords */
 
 #if A_CACHED
 /* Plane A's codes and status bits at every pixel of one kernel row of a (distance, frame), for
@@ -319,15 +319,31 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
 #if CHORDS
   if (row.ok.s0 && row.ok.s1 && kw >= 2) {
     const chord_row_t ch = chord_row(rb, ox, vw, kw, n, f, k);
+#if A_CACHED
     if (ch.usable) {
+#else
+    const chord_row_t cha = chord_row(ra, ox, vw, kw, n, f, k);
+    if (ch.usable && cha.usable) {
+#endif
       /* knots every CHORD_SEGMENT pixels and at the last: four segments' ends at once */
       for (uint s0 = 0; s0 < kw; s0 += 4 * CHORD_SEGMENT) {
         double xk[8], d[8];
         chord_knots(rb, s0, kw, ox, vw, n, f, k, xk, d);
+#if !A_CACHED
+        double da[8];
+        chord_knots(ra, s0, kw, ox, vw, n, f, k, xk, da);
+#endif
         for (uint x0 = s0; x0 < kw && x0 < s0 + 4 * CHORD_SEGMENT; x0 += 8) {
           double margin;
-          const double8 chord = chord8(ch, xk, d, (x0 - s0) / CHORD_SEGMENT, x0, &margin);
+          const uint j = (x0 - s0) / CHORD_SEGMENT;
+          const double8 chord = chord8(ch, xk, d, j, x0, &margin);
+#if A_CACHED
           if (chord_clean8(chord, margin, x0, kw, a_code, fmt)) {
+#else
+          double margin_a;
+          const double8 chord_a = chord8(cha, xk, da, j, x0, &margin_a);
+          if (chords_clean8(chord_a, margin_a, chord, margin, x0, kw, fmt)) {
+#endif
             pairs += min(8u, kw - x0);
             flags |= MTS_R_CHORDS;
           } else {

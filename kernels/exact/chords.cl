@@ -1,17 +1,17 @@
 /* Part of kernels/mts_exact.cl (included after its rows, depths, codes and end pixels): pixels
- * decided clean from plane B's chords against plane A's cached codes, and the test-only audit of
- * the chords' margin. */
-#if ROW_ENDS && A_CACHED && !PARALLEL_RAYS
+ * decided clean from plane B's chords against plane A's cached codes, or against A's own chords,
+ * and the test-only audit of the chords' margin. */
+#if ROW_ENDS && !PARALLEL_RAYS
 /* Pixels decided clean from plane B's depth at knots of the row and plane A's cached codes
- * (CHORDS). With every pixel of the row covered, finite and inside (its ends' `ok`, ROW_ENDS), a
- * pixel is clean where the depth the pixel loop would compute, D_c, stores a code beyond A's. B's
- * exact depth along the row, G(x) = F(num / den(x)) with den affine in x, is smooth: on a segment
- * of Ls pixels between knots it lies within (Ls^2 / 8) max |G''| of its chord, and for the maps
- * D = p + q/w (standard, infinite, reversed, n/w) it is affine (1/w is), G'' = 0. D_c lies within
- * `margin` of the chord through the knots' computed depths, so a chord value beyond A's code's
- * rounding boundary by more than the margin decides the pixel without computing B there. With
- * u = 2^-53, each bound for the values as computed from the row's binary64 terms (num, den0,
- * den1, n, f, k):
+ * (CHORDS; without A's cache, from A's chords as well: below, chords_clean8). With every pixel of
+ * the row covered, finite and inside (its ends' `ok`, ROW_ENDS), a pixel is clean where the depth
+ * the pixel loop would compute, D_c, stores a code beyond A's. B's exact depth along the row, G(x)
+ * = F(num / den(x)) with den affine in x, is smooth: on a segment of Ls pixels between knots it
+ * lies within (Ls^2 / 8) max |G''| of its chord, and for the maps D = p + q/w (standard, infinite,
+ * reversed, n/w) it is affine (1/w is), G'' = 0. D_c lies within `margin` of the chord through the
+ * knots' computed depths, so a chord value beyond A's code's rounding boundary by more than the
+ * margin decides the pixel without computing B there. With u = 2^-53, each bound for the values as
+ * computed from the row's binary64 terms (num, den0, den1, n, f, k):
  * - ndc_x = (2(ox + x + 0.5))/vw - 1 is within 3u of its exact value (|ndc_x| <= 1);
  * - den = den0 + den1 ndc_x (a sum and a product, or one fma): within
  *   Delta = u (2|den0| + 5|den1|) <= 2^-50 (|den0| + |den1|) of the exact den;
@@ -126,6 +126,7 @@ static double8 chord8(chord_row_t ch, const double* xk, const double* d, uint j,
 
 /* Whether the 8 pixels from x0 (those of the row) are certainly clean: the chord beyond the
  * rounding boundary of A's cached code by more than the margin. */
+#if A_CACHED
 static int chord_clean8(double8 chord, double margin, uint x0, uint kw, __global const uint* a_code,
                         df_format fmt) {
   const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
@@ -159,6 +160,35 @@ static int chord_clean8(double8 chord, double margin, uint x0, uint kw, __global
 #endif
   return !any(active & ~certain);
 }
+#else
+/* The code of a depth as the pixel loop stores it (plane8: clamped first under CLIP_W). */
+static uint8 stored8(double8 d, df_format fmt) {
+#if CLIP_W
+  d = clamp(d, 0.0, 1.0);
+#endif
+  return encode8(d, fmt);
+}
+
+/* Without A's cache: whether the 8 pixels from x0 (those of the row) are certainly clean from
+ * both planes' chords. A stored code is monotone in the depth (encode8 rounds, CLIP_W clamps
+ * first), and each plane's computed depth lies within its margin of its chord (above), so A's
+ * code is at most the code of its chord plus its margin and B's at least the code of its chord
+ * less its margin (GEQUAL: the other way round); where those codes are in order the pixel is
+ * clean. */
+static int chords_clean8(double8 chord_a, double margin_a, double8 chord_b, double margin_b,
+                         uint x0, uint kw, df_format fmt) {
+  const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
+  const long8 active = xs < (double)kw;
+#if COMPARE_GREATER
+  const long8 certain = convert_long8(stored8(chord_b + margin_b, fmt)) <
+                        convert_long8(stored8(chord_a - margin_a, fmt));
+#else
+  const long8 certain = convert_long8(stored8(chord_b - margin_b, fmt)) >
+                        convert_long8(stored8(chord_a + margin_a, fmt));
+#endif
+  return !any(active & ~certain);
+}
+#endif
 #define CHORDS 1
 #else
 #define CHORDS 0
@@ -166,8 +196,9 @@ static int chord_clean8(double8 chord, double margin, uint x0, uint kw, __global
 
 #if CHORDS && CHORD_AUDIT
 /* Test only (tests/mts/chord_margin.cpp): per (probe, frame, kernel row) of mts_exact's items,
- * the largest |D_c - chord| / margin over the row's pixels, D_c plane B's depth as the pixel loop
- * computes it before clamping and encoding (plane8); -1 where the chords do not apply. */
+ * the largest |D_c - chord| / margin over the row's pixels of both planes, D_c a plane's depth as
+ * the pixel loop computes it before clamping and encoding (plane8); -1 where the chords do not
+ * apply. */
 __kernel void mts_exact_chord_audit(__global const double4* planes, const uint kw, const uint kh,
                                     const double ox, const double oy, const double vw,
                                     const double vh, const double sx, const double sy,
@@ -186,22 +217,25 @@ __kernel void mts_exact_chord_audit(__global const double4* planes, const uint k
   const ends8_t row =
       ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox, vw, n, f, k, fmt);
   if (!(row.ok.s0 && row.ok.s1 && kw >= 2)) return;
-  const chord_row_t ch = chord_row(rb, ox, vw, kw, n, f, k);
-  if (!ch.usable) return;
   double worst = 0.0;
-  for (uint s0 = 0; s0 < kw; s0 += 4 * CHORD_SEGMENT) {
-    double xk[8], d[8];
-    chord_knots(rb, s0, kw, ox, vw, n, f, k, xk, d);
-    for (uint x0 = s0; x0 < kw && x0 < s0 + 4 * CHORD_SEGMENT; x0 += 8) {
-      double margin;
-      const double8 chord = chord8(ch, xk, d, (x0 - s0) / CHORD_SEGMENT, x0, &margin);
-      const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
-      const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
-      long8 covered;
-      const double8 dc = exact_depth8(exact_w8(rb, ndc_x, 1.0, &covered), n, f, k);
-      const double8 r = select((double8)0.0, fabs(dc - chord) / margin, xs < (double)kw);
-      worst = max(
-          worst, max(max(max(r.s0, r.s1), max(r.s2, r.s3)), max(max(r.s4, r.s5), max(r.s6, r.s7))));
+  for (int p = 0; p < 2; ++p) {
+    const exact_row_t r = p == 0 ? ra : rb;
+    const chord_row_t ch = chord_row(r, ox, vw, kw, n, f, k);
+    if (!ch.usable) return;
+    for (uint s0 = 0; s0 < kw; s0 += 4 * CHORD_SEGMENT) {
+      double xk[8], d[8];
+      chord_knots(r, s0, kw, ox, vw, n, f, k, xk, d);
+      for (uint x0 = s0; x0 < kw && x0 < s0 + 4 * CHORD_SEGMENT; x0 += 8) {
+        double margin;
+        const double8 chord = chord8(ch, xk, d, (x0 - s0) / CHORD_SEGMENT, x0, &margin);
+        const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
+        const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
+        long8 covered;
+        const double8 dc = exact_depth8(exact_w8(r, ndc_x, 1.0, &covered), n, f, k);
+        const double8 q = select((double8)0.0, fabs(dc - chord) / margin, xs < (double)kw);
+        worst = max(worst, max(max(max(q.s0, q.s1), max(q.s2, q.s3)),
+                               max(max(q.s4, q.s5), max(q.s6, q.s7))));
+      }
     }
   }
   out[item] = (float)worst;
