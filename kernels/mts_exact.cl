@@ -194,14 +194,16 @@ static void pixels8(exact_row_t ra, exact_row_t rb, uint x0, double ox, double v
  *   monotone in x as computed, while den keeps its sign -- it does between two ends where t > 0.
  *   Orthographic: num + num1 ndc_x and its quotient by the constant den0 are monotone as
  *   computed. So w, inside (w in [n, f]) and finiteness hold at every pixel between ends where
- *   they hold. The exact u and v are Moebius maps of x (orthographic: affine), monotone, and their
- *   computed values within a few ulps of them: ends covered by the square shrunk by 2^-36
- *   (kShrink) put every pixel between inside the square itself.
+ *   they hold. The exact u and v are Moebius maps of x (orthographic: affine), monotone, and
+ *   their computed values within ha 2^-37 (hb 2^-37) of them where row_trusted says so: ends
+ *   covered by the square shrunk by 2^-36 (kShrink) then put every pixel between inside the
+ *   square itself.
  * - D(w) as computed is the exact, monotone D(w) times (1 + e), |e| a few binary64 ulps (its
- *   quotients and products; log1p within 2 ulp), far below a code's step, so a pixel's code is
- *   within one of the code of the exact D, which is monotone along the row: every code of the
- *   stretch lies within 2 of the range its ends span. A stretch whose plane-B codes lie 5 or
- *   more beyond its plane-A codes at both ends is clean at every pixel (ENDS_MARGIN, 6).
+ *   quotients and products; log1p within 2 ulp), at the computed w, which is monotone along the
+ * row, far below a code's step, so a pixel's code is within one of the code of the exact D, which
+ * is monotone along the row: every code of the stretch lies within 2 of the range its ends span. A
+ * stretch whose plane-B codes lie 5 or more beyond its plane-A codes at both ends is clean at every
+ * pixel (ENDS_MARGIN, 6).
  * - !CLIP_W: D inside [0, 1] is checked at the ends with a margin of 2^-46 below 1 (its sign is
  *   exact), so no pixel between leaves it by D's own rounding. */
 #define ENDS_MARGIN 6
@@ -232,6 +234,51 @@ static ends8_t ends8(exact_row_t ra, exact_row_t rb, double8 xs, double ox, doub
   e.behind = ca;
 #endif
   return e;
+}
+
+/* Whether a plane's computed u and v lie within ha 2^-37 and hb 2^-37 of their exact values at
+ * every pixel of the row (the covered argument above): t = num / den (parallel rays: (num + num1
+ * ndc_x) / den0) has a relative error rho from the rounding of its varying part, at most
+ * delta = 2^-50 (the magnitudes of its terms) (ndc_x within 3u, a sum and a product), against
+ * that part's least magnitude over the row, which is at an end (it is affine and keeps its sign:
+ * t > 0 at the ends), plus the quotient's own rounding; u = t (ua0 + ua1 ndc_x) - ca (parallel:
+ * (ua0 + ua1 ndc_x) - t az - ca) then errs by at most (rho + 2^-50) times the magnitudes of its
+ * terms (t's error, and each sum's and product's rounding, 2^-53 of a magnitude each). Where t's
+ * varying part nearly vanishes (a ray grazing the plane) this can fail, and the row takes the
+ * pixel loop. */
+static int row_trusted(exact_row_t r, double ox, double vw, uint kw) {
+  const double last = (double)(kw - 1);
+  const double ndc0 = 2.0 * (ox + 0.5) / vw - 1.0, ndc1 = 2.0 * (ox + last + 0.5) / vw - 1.0;
+#if PARALLEL_RAYS
+  const double e0 = r.num + r.num1 * ndc0, e1 = r.num + r.num1 * ndc1;
+  const double delta = 0x1.0p-50 * (fabs(r.num) + fabs(r.num1));
+  const double tmax = (max(fabs(e0), fabs(e1)) + 2.0 * delta) / fabs(r.den0) * (1.0 + 0x1.0p-50);
+  const double ua = fabs(r.ua0) + fabs(r.ua1) + tmax * fabs(r.az),
+               ub = fabs(r.ub0) + fabs(r.ub1) + tmax * fabs(r.bz);
+#else
+  const double e0 = r.den0 + r.den1 * ndc0, e1 = r.den0 + r.den1 * ndc1;
+  const double delta = 0x1.0p-50 * (fabs(r.den0) + fabs(r.den1));
+#endif
+  const double emin = min(fabs(e0), fabs(e1)) - 2.0 * delta;
+  if (!(emin > 0.0)) return 0;
+  const double rho = 1.01 * delta / emin + 0x1.0p-52;
+#if !PARALLEL_RAYS
+  const double tmax = fabs(r.num) / emin * (1.0 + 0x1.0p-50);
+  const double ua = tmax * (fabs(r.ua0) + fabs(r.ua1)), ub = tmax * (fabs(r.ub0) + fabs(r.ub1));
+#endif
+  const double eu = (rho + 0x1.0p-50) * (ua + fabs(r.ca)),
+               ev = (rho + 0x1.0p-50) * (ub + fabs(r.cb));
+  return eu < r.ha * 0x1.0p-37 && ev < r.hb * 0x1.0p-37;
+}
+
+/* The row's two end pixels (lanes 0 and 1), `ok` only where both planes' rows are trusted. */
+static ends8_t row_ends8(exact_row_t ra, exact_row_t rb, uint kw, double ox, double vw, double n,
+                         double f, double k, df_format fmt) {
+  const double last = (double)(kw - 1);
+  ends8_t row =
+      ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox, vw, n, f, k, fmt);
+  if (!(row_trusted(ra, ox, vw, kw) && row_trusted(rb, ox, vw, kw))) row.ok = (long8)0;
+  return row;
 }
 
 /* Which of four stretches, the ends of stretch j in lanes 2j and 2j + 1, are clean throughout. */
@@ -310,8 +357,7 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   /* The whole row first; where its ends leave room for stretches of 8 pixels (the codes' gap
    * beyond the margin and twice a stretch's share of the row's spread), stretches of 8. */
   const double last = (double)(kw - 1);
-  const ends8_t row =
-      ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox, vw, n, f, k, fmt);
+  const ends8_t row = row_ends8(ra, rb, kw, ox, vw, n, f, k, fmt);
   if (stretches_clean(row).s0) {
     out[item] = MTS_R_BOUNDS | ((uint)min(kw, 0xffffffu) << MTS_R_COUNT_SHIFT);
     return;
@@ -320,7 +366,7 @@ __kernel void mts_exact(__global const double4* planes, const uint kw, const uin
   if (row.ok.s0 && row.ok.s1 && kw >= 2) {
     const chord_row_t ch = chord_row(rb, ox, vw, kw, n, f, k);
 #if A_CACHED
-    if (ch.usable) {
+    if (ch.usable && chord_codes(fmt)) {
 #else
     const chord_row_t cha = chord_row(ra, ox, vw, kw, n, f, k);
     if (ch.usable && cha.usable) {

@@ -146,14 +146,13 @@ std::vector<double> ExactEvaluator::chord_audit(const std::vector<Probe>& probes
   const size_t per_probe =
       static_cast<size_t>(scene_.frames) * static_cast<size_t>(scene_.kernel_h);
   const size_t items = probes.size() * per_probe;
-  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(float) * items);
+  cl::Buffer out(rt_.context(), CL_MEM_WRITE_ONLY, sizeof(double) * items);
   bind_exact(k, scene_, plane_buf, items, out);
   launch(k, items);
-  std::vector<float> rows(items);
-  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(float) * items, rows.data());
+  std::vector<double> rows(items);
+  rt_.queue().enqueueReadBuffer(out, CL_TRUE, 0, sizeof(double) * items, rows.data());
   std::vector<double> worst(probes.size(), -1.0);
-  for (size_t i = 0; i < items; ++i)
-    worst[i / per_probe] = std::max(worst[i / per_probe], static_cast<double>(rows[i]));
+  for (size_t i = 0; i < items; ++i) worst[i / per_probe] = std::max(worst[i / per_probe], rows[i]);
   return worst;
 }
 

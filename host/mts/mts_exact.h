@@ -35,9 +35,9 @@ class ExactEvaluator : public ProbeEvaluator {
   // Kernel rows whose pixels were, some or all, decided clean from plane B's chords against plane
   // A's cached codes (kernels/mts_exact.cl, CHORDS).
   uint64_t rows_decided_from_chords() const { return rows_from_chords_; }
-  // Test only: per probe, the largest |D_c - chord| / margin over its frames' kernel rows where
-  // the chords apply (kernels/mts_exact.cl, CHORD_AUDIT: D_c plane B's depth as the pixel loop
-  // computes it); -1 where none do. Needs the shortcuts.
+  // Test only: per probe, the largest (|D_c - chord| + 8u) / margin over its frames' kernel rows
+  // where the chords apply (kernels/exact/chords.cl, CHORD_AUDIT: D_c either plane's depth as the
+  // pixel loop computes it); -1 where none do. Needs the shortcuts.
   std::vector<double> chord_audit(const std::vector<Probe>& probes);
   // Distances whose plane A was filled into the cache (each time it was).
   uint64_t cache_fills() const { return cache_fills_; }

@@ -21,9 +21,10 @@
  *   so a factor 1.01 covers the higher orders); w is monotone along the row, so every exact w of
  *   the row lies in [wl, wh], the ends' computed w widened by 2 rho;
  * - a computed w moves F(w) by at most |F'(w)| w |e_w| 1.01 <= fw rho 1.01, fw a bound on
- *   |F'(w)| w over [wl, wh] (chord_row); the map's own operations (at most five products,
- *   quotients and differences of the computed w and constants, and log1p within 2 ulp) add at
- *   most 16u |D| <= 16u (inside: 0 <= D <= 1);
+ *   |F'(w)| w over [wl, wh] (chord_row); the map's own operations (at most five correctly
+ *   rounded products, quotients and differences of the computed w and constants; for the logs
+ *   k w, two log1p within 2 ulp, 4u of their values, and a quotient: at most 11u) add at most
+ *   16u |D| <= 16u (inside: 0 <= D <= 1);
  *   so D_c is within E = 16u + 1.01 fw rho of the exact depth, at every pixel and at the knots;
  * - G'' = F''(w) w'^2 + F'(w) w'' with w' = -w b/den, w'' = 2 w (b/den)^2 (b = den1 2/vw, den's
  *   step per pixel): |G''| <= (b/dmin)^2 C, C a bound on |F''| w^2 + 2|F'| w over [wl, wh];
@@ -127,6 +128,20 @@ static double8 chord8(chord_row_t ch, const double* xk, const double* d, uint j,
 /* Whether the 8 pixels from x0 (those of the row) are certainly clean: the chord beyond the
  * rounding boundary of A's cached code by more than the margin. */
 #if A_CACHED
+/* Whether chord_clean8's comparisons describe the format's codes (encode8's vector forms: unorm
+ * rounded to nearest even, binary32 to nearest even keeping denormals); the other formats leave
+ * the row to the end pixels' stretches. */
+static int chord_codes(df_format fmt) {
+#if DF_KIND == 0
+  return fmt.rounding == DF_ROUND_NEAREST_EVEN;
+#elif DF_E == 8 && DF_M == 23 && DF_IEEE == 1
+  return fmt.rounding == DF_ROUND_NEAREST_EVEN && !fmt.flush;
+#else
+  (void)fmt;
+  return 0;
+#endif
+}
+
 static int chord_clean8(double8 chord, double margin, uint x0, uint kw, __global const uint* a_code,
                         df_format fmt) {
   const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
@@ -196,13 +211,13 @@ static int chords_clean8(double8 chord_a, double margin_a, double8 chord_b, doub
 
 #if CHORDS && CHORD_AUDIT
 /* Test only (tests/mts/chord_margin.cpp): per (probe, frame, kernel row) of mts_exact's items,
- * the largest |D_c - chord| / margin over the row's pixels of both planes, D_c a plane's depth as
- * the pixel loop computes it before clamping and encoding (plane8); -1 where the chords do not
- * apply. */
+ * the largest (|D_c - chord| + 8u) / margin over the row's pixels of both planes (the margin keeps
+ * 8u for the comparisons' roundings), D_c a plane's depth as the pixel loop computes it before
+ * clamping and encoding (plane8); -1 where the chords do not apply. */
 __kernel void mts_exact_chord_audit(__global const double4* planes, const uint kw, const uint kh,
                                     const double ox, const double oy, const double vw,
                                     const double vh, const double sx, const double sy,
-                                    const double k, const uint items, __global float* out) {
+                                    const double k, const uint items, __global double* out) {
   const uint item = get_global_id(0);
   if (item >= items) return;
   const uint y = item % kh, pf = item / kh;
@@ -212,10 +227,8 @@ __kernel void mts_exact_chord_audit(__global const double4* planes, const uint k
   const df_format fmt = DF_FORMAT_FROM_DEFINES();
   const double ndc_y = 2.0 * (oy + (double)y + 0.5) / vh - 1.0;
   const exact_row_t ra = exact_row(A, ndc_y, sx, sy), rb = exact_row(B, ndc_y, sx, sy);
-  out[item] = -1.0f;
-  const double last = (double)(kw - 1);
-  const ends8_t row =
-      ends8(ra, rb, (double8)(0.0, last, 0.0, last, 0.0, last, 0.0, last), ox, vw, n, f, k, fmt);
+  out[item] = -1.0;
+  const ends8_t row = row_ends8(ra, rb, kw, ox, vw, n, f, k, fmt);
   if (!(row.ok.s0 && row.ok.s1 && kw >= 2)) return;
   double worst = 0.0;
   for (int p = 0; p < 2; ++p) {
@@ -232,12 +245,13 @@ __kernel void mts_exact_chord_audit(__global const double4* planes, const uint k
         const double8 ndc_x = 2.0 * (ox + xs + 0.5) / vw - 1.0;
         long8 covered;
         const double8 dc = exact_depth8(exact_w8(r, ndc_x, 1.0, &covered), n, f, k);
-        const double8 q = select((double8)0.0, fabs(dc - chord) / margin, xs < (double)kw);
+        const double8 q =
+            select((double8)0.0, (fabs(dc - chord) + 8.0 * 0x1.0p-53) / margin, xs < (double)kw);
         worst = max(worst, max(max(max(q.s0, q.s1), max(q.s2, q.s3)),
                                max(max(q.s4, q.s5), max(q.s6, q.s7))));
       }
     }
   }
-  out[item] = (float)worst;
+  out[item] = worst;
 }
 #endif

@@ -4,9 +4,10 @@
 // decided clean from plane B's chords (CHORDS). Probes run from s = z down past the
 // storage-limited MTS over a round's orientations (the cube's corners first, where the planes are
 // steepest), with and without the shortcuts, at distances where the codes' spread along a row is
-// wide and narrow, for a less- and a greater-compare, a unorm and a float format, a vertex-stage
-// and a fragment-stage mapping, maps affine in screen space (standard, reversed) and curved ones
-// (log, linear), and parallel rays (orthographic, which the chords leave out).
+// wide and narrow, for a less- and a greater-compare, unorm and float formats (float16 through the
+// one-code-at-a-time encoder), a vertex-stage and a fragment-stage mapping, maps affine in screen
+// space (standard, reversed) and curved ones (log, linear), and parallel rays (orthographic, which
+// the chords leave out).
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
@@ -20,10 +21,16 @@ using namespace depthprec;
 
 TEST_CASE("the storage-limited pipeline's shortcuts change no probe result",
           "[attribution][bounds]") {
-  // 48 pixels a row: whole stretches of 8; 41: a last stretch of 1, and cache rows padded to 48
-  const std::string kernel = GENERATE(as<std::string>{}, "[48,48]", "[41,39]");
-  INFO("kernel " << kernel);
-  Scene scene = load_scene("", {"kernel=" + kernel, "viewport=" + kernel});
+  // 48 pixels a row: whole stretches of 8; 41: a last stretch of 1, and cache rows padded to 48;
+  // 33: a last chord segment of no length; 133: a second block of chord knots (a few rows across
+  // a square viewport, which the planes cover)
+  const auto [kernel, viewport] =
+      GENERATE(table<std::string, std::string>({{"[48,48]", "[48,48]"},
+                                                {"[41,39]", "[41,39]"},
+                                                {"[33,9]", "[33,33]"},
+                                                {"[133,6]", "[133,133]"}}));
+  INFO("kernel " << kernel << " in viewport " << viewport);
+  Scene scene = load_scene("", {"kernel=" + kernel, "viewport=" + viewport});
   const std::vector<Angles> chunk = round_orientations(scene, 1);
   scene.frames = 24;
   Orientations sampled;
@@ -36,6 +43,10 @@ TEST_CASE("the storage-limited pipeline's shortcuts change no probe result",
                                EvalPair{Technique::reversed, "float32", DepthRange::zero_to_one},
                                EvalPair{Technique::log_fragment, "unorm16", DepthRange::gl},
                                EvalPair{Technique::linear, "float32", DepthRange::gl},
+                               // a unorm under a greater-compare; a format encode8 takes one code
+                               // at a time (the chords against A's cache leave it to the ends)
+                               EvalPair{Technique::reversed, "unorm24", DepthRange::zero_to_one},
+                               EvalPair{Technique::standard, "float16", DepthRange::gl},
                                EvalPair{Technique::orthographic, "unorm24", DepthRange::gl}}) {
     ExactEvaluator with(runtime(), scene, pair, sampled),
         without(runtime(), scene, pair, sampled, false);
