@@ -236,38 +236,54 @@ static ends8_t ends8(exact_row_t ra, exact_row_t rb, double8 xs, double ox, doub
   return e;
 }
 
-/* Whether a plane's computed u and v lie within ha 2^-37 and hb 2^-37 of their exact values at
- * every pixel of the row (the covered argument above): t = num / den (parallel rays: (num + num1
- * ndc_x) / den0) has a relative error rho from the rounding of its varying part, at most
- * delta = 2^-50 (the magnitudes of its terms) (ndc_x within 3u, a sum and a product), against
- * that part's least magnitude over the row, which is at an end (it is affine and keeps its sign:
- * t > 0 at the ends), plus the quotient's own rounding; u = t (ua0 + ua1 ndc_x) - ca (parallel:
- * (ua0 + ua1 ndc_x) - t az - ca) then errs by at most (rho + 2^-50) times the magnitudes of its
- * terms (t's error, and each sum's and product's rounding, 2^-53 of a magnitude each). Where t's
- * varying part nearly vanishes (a ray grazing the plane) this can fail, and the row takes the
- * pixel loop. */
-static int row_trusted(exact_row_t r, double ox, double vw, uint kw) {
+/* How well a plane's ray parameter t = num / den (parallel rays: (num + num1 ndc_x) / den0) is
+ * conditioned along the row: its varying part at the end pixels, e0 and e1, each within
+ * delta = 2^-50 (the magnitudes of its terms) of its exact value (ndc_x within 3u, a sum and a
+ * product, or one fma); that part is affine in x and keeps its sign (t > 0 at the ends), so its
+ * least exact magnitude over the row is emin = min(|e0|, |e1|) - 2 delta (2: the ends' own
+ * rounding), and t as computed is t (1 + e), |e| <= rho = 1.01 delta / emin + 2u (the quotient's
+ * own rounding; 1.01 covers the higher orders where rho < 2^-20, the most either user allows). */
+typedef struct {
+  double e0, e1, delta, emin, rho;
+} t_error_t;
+
+static t_error_t t_error(exact_row_t r, double ox, double vw, uint kw) {
   const double last = (double)(kw - 1);
   const double ndc0 = 2.0 * (ox + 0.5) / vw - 1.0, ndc1 = 2.0 * (ox + last + 0.5) / vw - 1.0;
+  t_error_t t;
 #if PARALLEL_RAYS
-  const double e0 = r.num + r.num1 * ndc0, e1 = r.num + r.num1 * ndc1;
-  const double delta = 0x1.0p-50 * (fabs(r.num) + fabs(r.num1));
-  const double tmax = (max(fabs(e0), fabs(e1)) + 2.0 * delta) / fabs(r.den0) * (1.0 + 0x1.0p-50);
+  t.e0 = r.num + r.num1 * ndc0;
+  t.e1 = r.num + r.num1 * ndc1;
+  t.delta = 0x1.0p-50 * (fabs(r.num) + fabs(r.num1));
+#else
+  t.e0 = r.den0 + r.den1 * ndc0;
+  t.e1 = r.den0 + r.den1 * ndc1;
+  t.delta = 0x1.0p-50 * (fabs(r.den0) + fabs(r.den1));
+#endif
+  t.emin = min(fabs(t.e0), fabs(t.e1)) - 2.0 * t.delta;
+  t.rho = 1.01 * t.delta / t.emin + 0x1.0p-52;
+  return t;
+}
+
+/* Whether a plane's computed u and v lie within ha 2^-37 and hb 2^-37 of their exact values at
+ * every pixel of the row (the covered argument above): u = t (ua0 + ua1 ndc_x) - ca (parallel:
+ * (ua0 + ua1 ndc_x) - t az - ca) errs by at most (rho + 2^-50) times the magnitudes of its terms
+ * (t's error, t_error, and each sum's and product's rounding, 2^-53 of a magnitude each). Where t
+ * is ill-conditioned (a ray grazing the plane) this can fail, and the row takes the pixel loop. */
+static int row_trusted(exact_row_t r, double ox, double vw, uint kw) {
+  const t_error_t t = t_error(r, ox, vw, kw);
+  if (!(t.emin > 0.0) || !(t.rho < 0x1.0p-20)) return 0;
+#if PARALLEL_RAYS
+  const double tmax =
+      (max(fabs(t.e0), fabs(t.e1)) + 2.0 * t.delta) / fabs(r.den0) * (1.0 + 0x1.0p-50);
   const double ua = fabs(r.ua0) + fabs(r.ua1) + tmax * fabs(r.az),
                ub = fabs(r.ub0) + fabs(r.ub1) + tmax * fabs(r.bz);
 #else
-  const double e0 = r.den0 + r.den1 * ndc0, e1 = r.den0 + r.den1 * ndc1;
-  const double delta = 0x1.0p-50 * (fabs(r.den0) + fabs(r.den1));
-#endif
-  const double emin = min(fabs(e0), fabs(e1)) - 2.0 * delta;
-  if (!(emin > 0.0)) return 0;
-  const double rho = 1.01 * delta / emin + 0x1.0p-52;
-#if !PARALLEL_RAYS
-  const double tmax = fabs(r.num) / emin * (1.0 + 0x1.0p-50);
+  const double tmax = fabs(r.num) / t.emin * (1.0 + 0x1.0p-50);
   const double ua = tmax * (fabs(r.ua0) + fabs(r.ua1)), ub = tmax * (fabs(r.ub0) + fabs(r.ub1));
 #endif
-  const double eu = (rho + 0x1.0p-50) * (ua + fabs(r.ca)),
-               ev = (rho + 0x1.0p-50) * (ub + fabs(r.cb));
+  const double eu = (t.rho + 0x1.0p-50) * (ua + fabs(r.ca)),
+               ev = (t.rho + 0x1.0p-50) * (ub + fabs(r.cb));
   return eu < r.ha * 0x1.0p-37 && ev < r.hb * 0x1.0p-37;
 }
 

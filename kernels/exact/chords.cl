@@ -12,14 +12,10 @@
  * knots' computed depths, so a chord value beyond A's code's rounding boundary by more than the
  * margin decides the pixel without computing B there. With u = 2^-53, each bound for the values as
  * computed from the row's binary64 terms (num, den0, den1, n, f, k):
- * - ndc_x = (2(ox + x + 0.5))/vw - 1 is within 3u of its exact value (|ndc_x| <= 1);
- * - den = den0 + den1 ndc_x (a sum and a product, or one fma): within
- *   Delta = u (2|den0| + 5|den1|) <= 2^-50 (|den0| + |den1|) of the exact den;
- * - den is affine and keeps its sign along the row (its ends' t > 0): the least |den| is at an
- *   end, at least dmin = (the ends' computed |den|) - 2 Delta; w = num / den as computed is
- *   w (1 + e_w), |e_w| <= rho = Delta / dmin + u to first order (used only where rho < 2^-20,
- *   so a factor 1.01 covers the higher orders); w is monotone along the row, so every exact w of
- *   the row lies in [wl, wh], the ends' computed w widened by 2 rho;
+ * - den = den0 + den1 ndc_x is within Delta of its exact value, its least exact magnitude over the
+ *   row is dmin, and w = num / den as computed is w (1 + e_w), |e_w| <= rho (t_error, used only
+ *   where rho < 2^-20); w is monotone along the row, so every exact w of the row lies in
+ *   [wl, wh], the ends' computed w widened by 2 rho;
  * - a computed w moves F(w) by at most |F'(w)| w |e_w| 1.01 <= fw rho 1.01, fw a bound on
  *   |F'(w)| w over [wl, wh] (chord_row); the map's own operations (at most five correctly
  *   rounded products, quotients and differences of the computed w and constants; for the logs
@@ -48,14 +44,10 @@ static chord_row_t chord_row(exact_row_t rb, double ox, double vw, uint kw, doub
                              double k) {
   chord_row_t c;
   c.usable = 0;
-  const double last = (double)(kw - 1);
-  const double ndc0 = 2.0 * (ox + 0.5) / vw - 1.0, ndc1 = 2.0 * (ox + last + 0.5) / vw - 1.0;
-  const double den_a = rb.den0 + rb.den1 * ndc0, den_b = rb.den0 + rb.den1 * ndc1;
-  const double delta = 0x1.0p-50 * (fabs(rb.den0) + fabs(rb.den1));
-  const double dmin = min(fabs(den_a), fabs(den_b)) - 2.0 * delta;
-  const double rho = delta / dmin + 0x1.0p-53;
+  const t_error_t t = t_error(rb, ox, vw, kw);
+  const double dmin = t.emin, rho = t.rho;
   if (!(dmin > 0.0) || !(rho < 0x1.0p-20)) return c;
-  const double w_a = rb.num / den_a, w_b = rb.num / den_b;
+  const double w_a = rb.num / t.e0, w_b = rb.num / t.e1;
   const double wl = min(w_a, w_b) * (1.0 - 2.0 * rho), wh = max(w_a, w_b) * (1.0 + 2.0 * rho);
   if (!(wl > 0.0)) return c;
   /* fw >= |F'(w)| w and C >= |F''(w)| w^2 + 2 |F'(w)| w over [wl, wh], each computed bound
@@ -125,8 +117,6 @@ static double8 chord8(chord_row_t ch, const double* xk, const double* d, uint j,
   return d[2 * j] + slope * (xs - xa);
 }
 
-/* Whether the 8 pixels from x0 (those of the row) are certainly clean: the chord beyond the
- * rounding boundary of A's cached code by more than the margin. */
 #if A_CACHED
 /* Whether chord_clean8's comparisons describe the format's codes (encode8's vector forms: unorm
  * rounded to nearest even, binary32 to nearest even keeping denormals); the other formats leave
@@ -142,13 +132,14 @@ static int chord_codes(df_format fmt) {
 #endif
 }
 
+/* Whether the 8 pixels from x0 (those of the row) are certainly clean: the chord beyond the
+ * rounding boundary of A's cached code by more than the margin (a format chord_codes accepts). */
 static int chord_clean8(double8 chord, double margin, uint x0, uint kw, __global const uint* a_code,
                         df_format fmt) {
   const double8 xs = (double8)((double)x0) + (double8)(0, 1, 2, 3, 4, 5, 6, 7);
   const long8 active = xs < (double)kw;
   const uint8 ca = vload8(0, a_code + x0);
 #if DF_KIND == 0
-  if (fmt.rounding != DF_ROUND_NEAREST_EVEN) return 0;
   const double M = (double)fmt.max_code;
   const double8 c = convert_double8(ca);
 #if COMPARE_GREATER
@@ -157,7 +148,6 @@ static int chord_clean8(double8 chord, double margin, uint x0, uint kw, __global
   const long8 certain = ((chord - margin) * M > c + 0.5) & (c < M);
 #endif
 #elif DF_E == 8 && DF_M == 23 && DF_IEEE == 1
-  if (fmt.rounding != DF_ROUND_NEAREST_EVEN || fmt.flush) return 0;
   const double8 here = convert_double8(as_float8(ca));
 #if COMPARE_GREATER
   const double8 mid = 0.5 * (convert_double8(as_float8(ca - (uint8)1)) + here);
