@@ -198,12 +198,12 @@ static void pixels8(exact_row_t ra, exact_row_t rb, uint x0, double ox, double v
  *   their computed values within ha 2^-37 (hb 2^-37) of them where row_trusted says so: ends
  *   covered by the square shrunk by 2^-36 (kShrink) then put every pixel between inside the
  *   square itself.
- * - D(w) as computed is the exact, monotone D(w) times (1 + e), |e| a few binary64 ulps (its
- *   quotients and products; log1p within 2 ulp), at the computed w, which is monotone along the
- * row, far below a code's step, so a pixel's code is within one of the code of the exact D, which
- * is monotone along the row: every code of the stretch lies within 2 of the range its ends span. A
- * stretch whose plane-B codes lie 5 or more beyond its plane-A codes at both ends is clean at every
- * pixel (ENDS_MARGIN, 6).
+ * - D(w) as computed, at the computed w (monotone along the row), is the exact, monotone D(w)
+ *   times (1 + e), |e| a few binary64 ulps (its quotients and products; log1p within 2 ulp), far
+ *   below a code's step, so a pixel's code is within one of the code of the exact D, which is
+ *   monotone along the row: every code of the stretch lies within 2 of the range its ends span.
+ *   A stretch whose plane-B codes lie 5 or more beyond its plane-A codes at both ends is clean at
+ *   every pixel (ENDS_MARGIN, 6).
  * - !CLIP_W: D inside [0, 1] is checked at the ends with a margin of 2^-46 below 1 (its sign is
  *   exact), so no pixel between leaves it by D's own rounding. */
 #define ENDS_MARGIN 6
