@@ -39,6 +39,8 @@ typedef struct {
 typedef struct {
   MtsKernelArea area;
   df_u32 first_plane, per_probe, items, use_ref;
+  df_u32 fill_codes; /* CACHE_A_CODES: 1 to fill the codes cache, 0 to leave it (plane A
+                        probed once: mts_raster then computes A's codes where it needs them) */
 } MtsARowsArgs;
 
 /* mts_a_bands (kernels/mts/bounds.cl): plane A's code bounds per band, `items` bands in all. */
@@ -66,12 +68,14 @@ typedef struct {
   IN(float, probes)                                                                         \
   IN(float, tris)                                                                           \
   IN(uint, vflags)                                                                          \
-  IN(float, a_tris) IN(uint, a_vflags) IN(uint, a_rows) IN(uint, a_slots) IN(uint, a_codes) \
-      IN(uint, decided) OUT(uint, result)
+  IN(float, a_tris)                                                                         \
+  IN(uint, a_vflags) IN(uint, a_rows) IN(uint, a_slots) IN(uint, a_codes) IN(uint, decided) \
+      OUT(uint, result)
 typedef struct {
   MtsKernelArea area;
   df_u32 first_frame, frames_total, frames;
-  df_u32 shortcuts; /* 0: rasterise every band, whatever mts_frame_bounds decided */
+  df_u32 shortcuts;      /* 0: rasterise every band, whatever mts_frame_bounds decided */
+  df_u32 a_codes_filled; /* CACHE_A_CODES: whether mts_a_rows filled a_codes (fill_codes) */
 } MtsRasterArgs;
 
 /* bias_setup (kernels/bias.cl): planes in pairs per (probe, visit), A then B with its bias. */

@@ -26,6 +26,10 @@ inline float grid_coordinate(int g, int i) {
 // takes the paper's path (frame_angles).
 struct Orientations {
   std::map<double, std::vector<Angles>> at;
+  // A round's chunk (host/mts/refinement.h): each distance is probed once, at its answer, and
+  // again only after one of the orientations fought there, so caches an evaluator keeps per
+  // distance for later probes do not pay for themselves.
+  bool chunk = false;
 };
 
 // Per-probe constants, packed as the kernels read them (interface/mts_layout.h: MTS_PROBE_STRIDE

@@ -22,7 +22,8 @@ MtsEvaluator::MtsEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair
       pair_(pair),
       orientations_(orientations),
       variant_(mts_variant(scene, pair)),
-      shortcuts_(shortcuts) {
+      shortcuts_(shortcuts),
+      fill_a_codes_(variant_.cache_a_codes && !orientations.chunk) {
   program_ = rt_.program(variant_.program, variant_.options);
   // The test kernels come from a program of their own; every other kernel from the production one,
   // so a test shares the kernels PoCL compiled for a run of the same variant, and the reverse.
@@ -204,6 +205,7 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     rows_args.per_probe = frames;
     rows_args.items = static_cast<cl_uint>(frames * kh);
     rows_args.use_ref = static_cast<cl_uint>(a_.has_ref);
+    rows_args.fill_codes = static_cast<cl_uint>(fill_a_codes_);
     bind(a_rows_, rows_in, rows_args);
     cl::Event rows_done, bands_done;
     launch(a_rows_, primed_.a_rows, padded(frames * kh), cl::NDRange(kLocal), &rows_done);
@@ -423,6 +425,7 @@ void MtsEvaluator::run_group(const std::vector<Probe>& probes, const std::vector
     ra.frames_total = static_cast<cl_uint>(scene_.frames);
     ra.frames = static_cast<cl_uint>(frames);
     ra.shortcuts = static_cast<cl_uint>(shortcuts_);
+    ra.a_codes_filled = static_cast<cl_uint>(fill_a_codes_);
     bind(raster_, rb, ra);
     cl::Event raster_done;
     launch(raster_, primed_.raster,

@@ -229,6 +229,10 @@ class MtsEvaluator : public ProbeEvaluator {
   // spare, when it holds at least bytes and at most half as much again, else a new buffer.
   cl::Buffer reuse_or_make(cl::Buffer& spare, size_t bytes);
   bool shortcuts_ = true;
+  // Whether mts_a_rows fills the plane-A cache's codes (CACHE_A_CODES variants): they pay for
+  // themselves over a search's many probes of a distance, not in a chunk's one (Orientations::
+  // chunk), where mts_raster computes A's codes only in the bands it rasterises.
+  bool fill_a_codes_ = true;
   // Frame order: a probe visits the frames cyclically from the one that decided the last fighting
   // probe of its distance (0 before there is one). Below the MTS a distance fights in few frames,
   // mostly the same ones probe after probe, so a fighting probe is decided in its first launch

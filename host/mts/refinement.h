@@ -143,6 +143,7 @@ void refine_rounds(Refinement<Evaluator>& m, EvaluatorSource<Evaluator>& source,
         Scene chunk = scene;
         chunk.frames = static_cast<int>(part.size());
         Orientations sampled;
+        sampled.chunk = true;
         for (const size_t s : slots) sampled.at[m.z(s)] = part;
         const std::unique_ptr<Evaluator> ev = source.make(chunk, sampled);
         // Slots in windows the evaluator's per-distance cache holds at once: a distance's plane

@@ -67,7 +67,8 @@ __kernel void mts_a_rows(MTS_A_ROWS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsAR
 #if CACHE_A_CODES
   __global const float* P = probes + (plane / per_probe) * MTS_PROBE_STRIDE;
   __global uint* c = codes + ((size_t)plane * kernel_h + row) * (kernel_w + MTS_CODE_ROW_PAD);
-  for (int k = 0; k < n; ++k) {
+  /* a chunk's distance is probed once: mts_raster computes A's codes where it needs them */
+  for (int k = 0; k < n && args.fill_codes; ++k) {
     if (seg_t[k] < 0) continue;
     const row_plane16_t rp = broadcast16(row_plane(T, seg_t[k], py));
     for (int i0 = seg_x[k]; i0 < seg_x[k + 1]; i0 += 16)

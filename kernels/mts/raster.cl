@@ -98,7 +98,9 @@ __kernel void mts_raster(MTS_RASTER_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsRa
     const int ordered = band_verdict == MTS_D_ORDERED;
 #if CACHE_A_CODES
     __global const uint* ca =
-        cached ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + MTS_CODE_ROW_PAD) : 0;
+        cached && args.a_codes_filled
+            ? a_codes + ((size_t)ap * kernel_h + row) * (kernel_w + MTS_CODE_ROW_PAD)
+            : 0;
 #else
     __global const uint* ca = 0;
 #endif

@@ -175,7 +175,7 @@ TEST_CASE("the evaluator's shortcuts change no probe result over a round's orien
   // A chunk is an ordinary scene whose frames take the round's orientations (the cube's corners
   // first, where the planes are steepest): probes from s = z down past the MTS decide the same
   // with the certified shortcuts (code bounds, B's coverage from A's, the gap certificate) and
-  // without them.
+  // without them, and with plane A's codes cached and without.
   Scene scene = worst_case_scene({"kernel=[48,48]", "viewport=[48,48]", "rotation_range_deg=5"});
   const std::vector<Angles> chunk = round_orientations(scene, 1);
   scene.frames = static_cast<int>(chunk.size());
@@ -188,16 +188,23 @@ TEST_CASE("the evaluator's shortcuts change no probe result over a round's orien
   for (const EvalPair& pair : {EvalPair{Technique::standard, "unorm24", DepthRange::gl},
                                EvalPair{Technique::reversed, "float32", DepthRange::zero_to_one},
                                EvalPair{Technique::log_fragment, "unorm24", DepthRange::gl}}) {
+    // and as a round's chunk, which leaves plane A's codes to mts_raster (log_fragment caches
+    // them otherwise): the same probes, the same results
+    Orientations as_chunk = sampled;
+    as_chunk.chunk = true;
     MtsEvaluator with(runtime(), scene, pair, sampled),
-        without(runtime(), scene, pair, sampled, false);
-    const auto a = with.run(probes), b = without.run(probes);
+        without(runtime(), scene, pair, sampled, false), chunk(runtime(), scene, pair, as_chunk);
+    const auto a = with.run(probes), b = without.run(probes), c = chunk.run(probes);
     int fights = 0;
     for (size_t k = 0; k < probes.size(); ++k) {
       INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
-      CHECK(to_string(a[k].outcome) == std::string(to_string(b[k].outcome)));
-      CHECK(a[k].frames == b[k].frames);
-      CHECK(a[k].deciding_frame == b[k].deciding_frame);
-      CHECK(a[k].any_uncovered == b[k].any_uncovered);
+      for (const auto* other : {&b, &c}) {
+        CHECK(to_string(a[k].outcome) == std::string(to_string((*other)[k].outcome)));
+        CHECK(a[k].frames == (*other)[k].frames);
+        CHECK(a[k].deciding_frame == (*other)[k].deciding_frame);
+        CHECK(a[k].any_uncovered == (*other)[k].any_uncovered);
+      }
+      CHECK(a[k].fragment_pairs == c[k].fragment_pairs);
       fights += a[k].outcome == Outcome::fight;
     }
     INFO(pair.label());
