@@ -167,6 +167,9 @@
 #define MTS_RW_X 2
 #define MTS_RW_T (MTS_RW_X + MTS_MAXC + 1)
 #define MTS_ROW_WORDS (MTS_RW_T + MTS_MAXC)
+/* kernel rows of one plane per work-item of mts_a_rows: consecutive rows meet the same triangle
+ * records, whose comparison with the reference distance's a work-item then makes once */
+#define MTS_A_ROWS_PER_ITEM 8
 /* Per band of cached plane A (mts_a_bands): code bounds lo, hi, bad, then the gap range */
 #define MTS_BW_GAP_LO 3
 #define MTS_BW_GAP_HI 4

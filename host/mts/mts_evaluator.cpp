@@ -203,12 +203,13 @@ std::vector<cl_uint> MtsEvaluator::cache_plane_a(const std::vector<Probe>& probe
     rows_args.area = area();
     rows_args.first_plane = first_plane;
     rows_args.per_probe = frames;
-    rows_args.items = static_cast<cl_uint>(frames * kh);
+    rows_args.items = static_cast<cl_uint>(frames * a_row_groups(scene_));
     rows_args.use_ref = static_cast<cl_uint>(a_.has_ref);
     rows_args.fill_codes = static_cast<cl_uint>(fill_a_codes_);
     bind(a_rows_, rows_in, rows_args);
     cl::Event rows_done, bands_done;
-    launch(a_rows_, primed_.a_rows, padded(frames * kh), cl::NDRange(kLocal), &rows_done);
+    launch(a_rows_, primed_.a_rows, padded(frames * a_row_groups(scene_)), cl::NDRange(kLocal),
+           &rows_done);
     if (!a_.has_ref) {  // this distance is the reference for the distances filled after it
       const size_t tri_bytes = sizeof(float) * frames * plane_floats_;
       const size_t row_bytes = sizeof(uint32_t) * frames * kh * row_words_;

@@ -46,6 +46,11 @@ inline cl_uint band_count(const Scene& scene) {
   return (static_cast<cl_uint>(scene.kernel_h) + kBandRows - 1) / kBandRows;
 }
 
+// mts_a_rows' work-items per plane: its kernel rows in groups of MTS_A_ROWS_PER_ITEM.
+inline cl_uint a_row_groups(const Scene& scene) {
+  return (static_cast<cl_uint>(scene.kernel_h) + MTS_A_ROWS_PER_ITEM - 1) / MTS_A_ROWS_PER_ITEM;
+}
+
 // Floats per plane record (interface/mts_layout.h, the buffer layout the kernels include too).
 inline size_t plane_record_floats(const Scene& scene) {
   return MTS_PLANE_STRIDE(static_cast<size_t>(scene.plane_subdivisions),

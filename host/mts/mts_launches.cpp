@@ -37,8 +37,7 @@ MtsEvaluator::LaunchWidths& MtsEvaluator::LaunchWidths::operator|=(const LaunchW
 MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene,
                                                          const KernelVariant& variant,
                                                          int evaluators) {
-  const size_t f = static_cast<size_t>(scene.frames), kh = static_cast<size_t>(scene.kernel_h),
-               bands = band_count(scene);
+  const size_t f = static_cast<size_t>(scene.frames), bands = band_count(scene);
   // A launch of run() takes the probes of at most distances_at_once() distances (search_pair's
   // window), one bisection probe or the stiffness probes of each, over at most kMaxBatchFrames
   // frames; the plane-A cache's launches take every frame of one distance.
@@ -47,7 +46,7 @@ MtsEvaluator::LaunchWidths MtsEvaluator::widest_launches(const Scene& scene,
   const size_t frames = std::min<size_t>(f, kMaxBatchFrames), planes = probes * frames;
   LaunchWidths w;
   w.setup = padded_size(std::max(f, planes));
-  w.a_rows = padded_size(f * kh);
+  w.a_rows = padded_size(f * a_row_groups(scene));
   w.a_bands = padded_size(f * bands);
   w.bounds = padded_size(planes * bands);
   w.raster = std::max({padded_size(bands), frames, probes});  // (bands, frames, probes)
