@@ -54,3 +54,32 @@ result_header() {
   echo "# $*"
   echo "# commit $(result_commit); $(result_machine); $(date -u +%F); CPU target $(result_target)"
 }
+
+# table_run DIR NAME BINARY [OPTIONS...]  BINARY's table (--format-out csv --no-timing -q, OPTIONS)
+#                        into DIR/NAME.csv under GNU time, appending "NAME seconds MB" to DIR/runs
+# runs_median DIR NAME   the median wall time of NAME's runs in DIR/runs
+# runs_summary DIR NAME...  per NAME: its median and fastest wall time and largest peak RSS
+table_run() {
+  local dir=$1 name=$2 bin=$3
+  shift 3
+  /usr/bin/time -f '%e %M' -o "$dir/time" \
+    "$bin" table --format-out csv --no-timing -q -o "$dir/$name.csv" "$@"
+  read -r secs kb < "$dir/time"
+  echo "$name $secs $((kb / 1024))" >> "$dir/runs"
+}
+
+runs_median() {
+  awk -v n="$2" '$1 == n { print $2 }' "$1/runs" | sort -g |
+    awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
+}
+
+runs_summary() {
+  local dir=$1 name
+  shift
+  for name in "$@"; do
+    awk -v n="$name" '$1 == n { print $2, $3 }' "$dir/runs" | sort -g | awk -v n="$name" '
+      { t[NR] = $1; if ($2 > m) m = $2 }
+      END { printf "%-15s wall median %.2f s (of %d runs, fastest %.2f s), peak RSS %d MB\n", n,
+            (NR % 2) ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2, NR, t[1], m }'
+  done
+}

@@ -20,18 +20,8 @@ out=$(mktemp -d)
 result=$(result_path sampling_figures txt)
 trap 'rm -rf "$out" "$result.tmp"' EXIT
 
-run() {  # name, then table options; appends "name seconds MB" to runs
-  local name=$1
-  shift
-  /usr/bin/time -f '%e %M' -o "$out/time" \
-    "$bin" table --format-out csv --no-timing -q -o "$out/$name.csv" "$@"
-  read -r secs kb < "$out/time"
-  echo "$name $secs $((kb / 1024))" >> "$out/runs"
-}
-
-median_wall() {  # of the runs named $1
-  awk -v n="$1" '$1 == n { print $2 }' "$out/runs" | sort -g |
-    awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
+run() {  # name, then table options
+  table_run "$out" "$1" "$bin" "${@:2}"
 }
 
 measure() {
@@ -41,13 +31,8 @@ measure() {
     run paper --set sampling=paper "$@"
     run worst_case "$@"
   done
-  for name in paper worst_case; do
-    awk -v n="$name" '$1 == n { print $2, $3 }' "$out/runs" | sort -g | awk -v n="$name" '
-      { t[NR] = $1; if ($2 > m) m = $2 }
-      END { printf "%-11s wall median %.2f s (of %d runs, fastest %.2f s), peak RSS %d MB\n", n,
-            (NR % 2) ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2, NR, t[1], m }'
-  done
-  awk -v w="$(median_wall worst_case)" -v p="$(median_wall paper)" \
+  runs_summary "$out" paper worst_case
+  awk -v w="$(runs_median "$out" worst_case)" -v p="$(runs_median "$out" paper)" \
     'BEGIN { printf "worst case / paper, wall medians: %.2fx\n", w / p }'
   python3 bench/table_ratios.py "$out/paper.csv" "$out/worst_case.csv" "worst case / paper"
   run paper_1000 --set sampling=paper --set frames=1000 "$@"

@@ -29,18 +29,8 @@ cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build "$work/build" -j "$(nproc)" --target depthprec > /dev/null
 old=$work/build/depthprec
 
-run() {  # name, binary, then table options; appends "name seconds MB" to runs
-  local name=$1 bin=$2
-  shift 2
-  POCL_CACHE_DIR="$work/pocl-$name" /usr/bin/time -f '%e %M' -o "$work/time" \
-    "$bin" table --format-out csv --no-timing -q -o "$work/$name.csv" "$@"
-  read -r secs kb < "$work/time"
-  echo "$name $secs $((kb / 1024))" >> "$work/runs"
-}
-
-median_wall() {  # of the runs named $1
-  awk -v n="$1" '$1 == n { print $2 }' "$work/runs" | sort -g |
-    awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
+run() {  # name, binary, then table options: table_run with the binary's own PoCL cache
+  POCL_CACHE_DIR="$work/pocl-$1" table_run "$work" "$@"
 }
 
 measure() {
@@ -56,13 +46,8 @@ measure() {
     run baseline_paper "$old" --set sampling=paper
     run default "$new"
   done
-  for name in baseline_paper default; do
-    awk -v n="$name" '$1 == n { print $2, $3 }' "$work/runs" | sort -g | awk -v n="$name" '
-      { t[NR] = $1; if ($2 > m) m = $2 }
-      END { printf "%-15s wall median %.2f s (of %d runs, fastest %.2f s), peak RSS %d MB\n", n,
-            (NR % 2) ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2, NR, t[1], m }'
-  done
-  awk -v d="$(median_wall default)" -v p="$(median_wall baseline_paper)" -v b="$base" \
+  runs_summary "$work" baseline_paper default
+  awk -v d="$(runs_median "$work" default)" -v p="$(runs_median "$work" baseline_paper)" -v b="$base" \
     'BEGIN { printf "default table / %s paper table, wall medians: %.2fx\n", b, d / p }'
   python3 bench/table_ratios.py "$work/baseline_worst_case.csv" "$work/default.csv" \
     "default table's mts / $base's worst case"
