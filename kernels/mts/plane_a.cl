@@ -1,5 +1,13 @@
 // The plane-A cache's row records.
 
+// What row_from_reference found for the records a row meets, kept for the next rows of a
+// work-item, which meet the same records while they stay in the same quad rows.
+typedef struct {
+  int first, end; /* the records (first > end: nothing kept yet) */
+  int keeps;      /* b_keeps_a_edges */
+  float moved;    /* b_moved_from_a */
+} ref_records_t;
+
 // Plane A projects to the same window triangles at every distance in exact arithmetic (it is
 // scaled with its distance), so a row's coverage at one distance is, most of the time, its
 // coverage at the first distance the cache filled (the reference, ref_*: every frame of it). The
@@ -9,15 +17,7 @@
 // then takes the reference's segments, and its margin for plane B is what is left of the
 // reference's: a B within it of this plane lies within the reference's margin of the reference (the
 // movements add), so B's coverage is the reference's too. Else the row is computed as at the
-// reference.
-// What row_from_reference found for the records a row meets, kept for the next rows of a
-// work-item, which meet the same records while they stay in the same quad rows.
-typedef struct {
-  int first, end; /* the records (first > end: nothing kept yet) */
-  int keeps;      /* b_keeps_a_edges */
-  float moved;    /* b_moved_from_a */
-} ref_records_t;
-
+// reference. kept: the comparison of the records the work-item's previous row met.
 static inline int row_from_reference(__global const float* T, uint vf, __global const float* R,
                                      __global const uint* ref_rec, int row, uint band_rows,
                                      float py, ref_records_t* kept, int* seg_x, int* seg_t,
