@@ -193,8 +193,8 @@ TEST_CASE("the evaluator's shortcuts change no probe result over a round's orien
     Orientations as_chunk = sampled;
     as_chunk.chunk = true;
     MtsEvaluator with(runtime(), scene, pair, sampled),
-        without(runtime(), scene, pair, sampled, false), chunk(runtime(), scene, pair, as_chunk);
-    const auto a = with.run(probes), b = without.run(probes), c = chunk.run(probes);
+        without(runtime(), scene, pair, sampled, false), chunked(runtime(), scene, pair, as_chunk);
+    const auto a = with.run(probes), b = without.run(probes), c = chunked.run(probes);
     int fights = 0;
     for (size_t k = 0; k < probes.size(); ++k) {
       INFO(pair.label() << " z = " << probes[k].z << " s = " << probes[k].s);
