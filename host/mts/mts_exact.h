@@ -18,9 +18,9 @@ class ExactEvaluator : public ProbeEvaluator {
  public:
   // orientations: the frames' sampled ones where a distance has them (worst-case sampling).
   // shortcuts: rows decided clean from their end pixels where that is certain
-  // (kernels/mts_exact.cl, ROW_ENDS), plane A's cache (below) and, with it, pixels decided clean
-  // from plane B's chords (CHORDS); off only to check that they
-  // never change a result.
+  // (kernels/mts_exact.cl, ROW_ENDS), plane A's cache (below) and pixels decided clean from the
+  // planes' chords (CHORDS: B's against A's cached codes, or against A's chords before the cache
+  // is filled); off only to check that they never change a result.
   ExactEvaluator(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
                  const Orientations& orientations = {}, bool shortcuts = true);
   std::vector<ProbeResult> run(const std::vector<Probe>& probes) override;
@@ -32,8 +32,8 @@ class ExactEvaluator : public ProbeEvaluator {
   // Kernel rows (of every probe and frame run) whose pixels were, some or all, decided clean
   // from end pixels.
   uint64_t rows_decided_from_ends() const { return rows_from_ends_; }
-  // Kernel rows whose pixels were, some or all, decided clean from plane B's chords against plane
-  // A's cached codes (kernels/mts_exact.cl, CHORDS).
+  // Kernel rows whose pixels were, some or all, decided clean from the planes' chords
+  // (kernels/mts_exact.cl, CHORDS), with plane A's cache or without.
   uint64_t rows_decided_from_chords() const { return rows_from_chords_; }
   // Test only: per probe, the largest (|D_c - chord| + 8u) / margin over its frames' kernel rows
   // where the chords apply (kernels/exact/chords.cl, CHORD_AUDIT: D_c either plane's depth as the
