@@ -15,11 +15,8 @@ out=$(mktemp -d)
 result=$(result_path bound_cost txt)
 trap 'rm -rf "$out" "$result.tmp"' EXIT
 
-run() {  # name, binary: appends "name seconds MB"
-  /usr/bin/time -f '%e %M' -o "$out/time" "$2" table --format-out csv --no-timing -q \
-    -o "$out/$1.csv"
-  read -r secs kb < "$out/time"
-  echo "$1 $secs $((kb / 1024))" >> "$out/runs"
+run() {  # name, binary: appends "name seconds MB" (bench/results.sh table_run)
+  table_run "$out" "$1" "$2"
 }
 
 measure() {
