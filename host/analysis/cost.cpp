@@ -24,12 +24,15 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
   one.evaluate = {pair};
   const MtsRun mts = run_scene(rt, one);
   std::vector<double> ratio;
+  std::vector<Probe> at_mts;  // clean probes where every pixel is evaluated: equal work per pair
   int unresolved = 0;
   for (const auto& r : mts.rows) {
-    if (r.unresolvable)
+    if (r.unresolvable) {
       ++unresolved;
-    else
+    } else {
       ratio.push_back(r.mts / r.vertex_bound);
+      if (r.verdict() == Verdict::resolved) at_mts.push_back({r.z, r.mts * kAtMtsFactor});
+    }
   }
   std::sort(ratio.begin(), ratio.end());
   const double median = ratio.empty() ? INFINITY : ratio[ratio.size() / 2];
@@ -40,7 +43,7 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
   if (const auto c = lj_config_for(pair.technique, scene.near, scene.far))
     j["lj_ae"] = json_number(lj_average_error_device(rt, *c, scene.storage_format(pair)).ae);
   if (timing)
-    j["ns_per_fragment_pair"] = time_depth_path(rt, scene, pair, TimingRegime::near).ns_per_pair();
+    j["ns_per_fragment_pair"] = time_probes(rt, scene, pair, at_mts).ns_per_pair();
   return j;
 }
 

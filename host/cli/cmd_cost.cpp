@@ -62,6 +62,17 @@ void run_cost(const CostOptions& o, const GlobalOptions& g) {
   plot_cost(points, o.plot);
 }
 
+// inf in the lj ae column is LJ's own answer, not a failure: say what it means.
+std::string lj_note(const std::vector<nlohmann::json>& records, const std::string& format_out) {
+  if (format_out != "text") return "";
+  for (const auto& r : records)
+    if (r.contains("lj_ae") && !std::isfinite(number_from_json(r["lj_ae"], "lj_ae")))
+      return "lj ae inf: the buffer has no finite average error over [near, far]: past its Z pole "
+             "the stored code no longer separates distances (depthprec lj says for how many "
+             "samples)\n";
+  return "";
+}
+
 }  // namespace
 
 std::string render_cost_output(const nlohmann::json& header,
@@ -99,10 +110,12 @@ std::string render_cost_output(const nlohmann::json& header,
                   "across the scene's distances, Lapidous-Jiao ae where the technique is one of "
                   "its buffers",
                   header.value("scene_name", std::string("?")),
-                  timing ? "ns per fragment pair of the kernel's depth path (timing pass, "
-                           "near-MTS probes), "
+                  timing ? "ns per fragment pair of the kernel's depth path (timing pass: one "
+                           "clean probe 2 % above each resolved distance's MTS, where every pixel "
+                           "is evaluated), "
                          : ""),
-      cols, cells, out.format_out);
+      cols, cells, out.format_out) +
+         lj_note(records, out.format_out);
 }
 
 void add_cost_command(CLI::App& app, GlobalOptions& global) {

@@ -15,22 +15,9 @@ const char* to_string(TimingRegime r) {
   return r == TimingRegime::far ? "far" : r == TimingRegime::near ? "near" : "at_mts";
 }
 
-Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
-                           TimingRegime regime, int repeats) {
-  std::vector<Probe> probes;
-  for (int i = 1; i <= 16; ++i) {
-    const double z = std::ldexp(1.0, i);
-    probes.push_back({z, regime == TimingRegime::far ? z / 8 : 16 * vertex_bound(z)});
-  }
-  MtsEvaluator ev(rt, scene, pair);
-  if (regime == TimingRegime::at_mts) {  // the search runs before the counters are read: untimed
-    std::vector<double> zs;
-    for (const Probe& p : probes) zs.push_back(p.z);
-    probes.clear();
-    for (const MtsRow& row : search_pair(ev, scene, pair, zs, nullptr, nullptr))
-      if (row.verdict() == Verdict::resolved) probes.push_back({row.z, row.mts * 1.02});
-    if (probes.empty()) return {};
-  }
+namespace {
+
+Throughput time_evaluator(MtsEvaluator& ev, const std::vector<Probe>& probes, int repeats) {
   ev.run({probes.front()});  // warm-up: builds the program and PoCL's work-group function
   Throughput best;
   for (int k = 0; k < std::max(1, repeats); ++k) {
@@ -48,6 +35,34 @@ Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair
     if (k == 0 || t.kernel_seconds < best.kernel_seconds) best = t;
   }
   return best;
+}
+
+}  // namespace
+
+Throughput time_depth_path(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                           TimingRegime regime, int repeats) {
+  std::vector<Probe> probes;
+  for (int i = 1; i <= 16; ++i) {
+    const double z = std::ldexp(1.0, i);
+    probes.push_back({z, regime == TimingRegime::far ? z / 8 : 16 * vertex_bound(z)});
+  }
+  MtsEvaluator ev(rt, scene, pair);
+  if (regime == TimingRegime::at_mts) {  // the search runs before the counters are read: untimed
+    std::vector<double> zs;
+    for (const Probe& p : probes) zs.push_back(p.z);
+    probes.clear();
+    for (const MtsRow& row : search_pair(ev, scene, pair, zs, nullptr, nullptr))
+      if (row.verdict() == Verdict::resolved) probes.push_back({row.z, row.mts * kAtMtsFactor});
+    if (probes.empty()) return {};
+  }
+  return time_evaluator(ev, probes, repeats);
+}
+
+Throughput time_probes(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                       const std::vector<Probe>& probes, int repeats) {
+  if (probes.empty()) return {};
+  MtsEvaluator ev(rt, scene, pair);
+  return time_evaluator(ev, probes, repeats);
 }
 
 Throughput time_host_reference(const Scene& scene, const EvalPair& pair, int frames) {

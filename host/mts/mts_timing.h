@@ -8,14 +8,18 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "host/model/scene.h"
+#include "host/mts/probe.h"
 
 namespace depthprec {
 
 class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
 enum class TimingRegime { far, near, at_mts };
+// Where an "at_mts" probe sits: this factor above the MTS, clean in every frame the search saw.
+constexpr double kAtMtsFactor = 1.02;
 const char* to_string(TimingRegime r);
 
 struct Throughput {
@@ -27,6 +31,11 @@ struct Throughput {
   double pairs_per_second() const { return wall_seconds > 0 ? fragment_pairs / wall_seconds : 0; }
   double ns_per_pair() const { return fragment_pairs ? 1e9 * kernel_seconds / fragment_pairs : 0; }
 };
+
+// The probes, timed after a warm-up launch (the program build excluded). repeats > 1: the timed
+// batch runs that many times and the fastest run counts.
+Throughput time_probes(OpenClRuntime& rt, const Scene& scene, const EvalPair& pair,
+                       const std::vector<Probe>& probes, int repeats = 1);
 
 // repeats > 1: the timed batch runs that many times and the fastest run counts (this VM's
 // timings vary by 10-20 % from run to run; the minimum is the stable figure).
