@@ -106,15 +106,16 @@ std::string render_cost_output(const nlohmann::json& header,
   for (const char* c : {"median mts/vb", "unresolvable", "lj ae"}) cols.push_back({c});
   cols.push_back({"structural cost on a GPU", true});
   return captioned(
-      fmt::format("Cost and precision per technique (scene {}): {}median MTS over the vertex bound "
-                  "across the scene's distances, Lapidous-Jiao ae where the technique is one of "
-                  "its buffers",
-                  header.value("scene_name", std::string("?")),
-                  timing ? "ns per fragment pair of the kernel's depth path (timing pass: one "
-                           "clean probe 2 % above each resolved distance's MTS, where every pixel "
-                           "is evaluated), "
-                         : ""),
-      cols, cells, out.format_out) +
+             fmt::format(
+                 "Cost and precision per technique (scene {}): {}median MTS over the vertex bound "
+                 "across the scene's distances, Lapidous-Jiao ae where the technique is one of "
+                 "its buffers",
+                 header.value("scene_name", std::string("?")),
+                 timing ? "ns per fragment pair of the kernel's depth path (timing pass: one "
+                          "clean probe 2 % above each resolved distance's MTS, where every pixel "
+                          "is evaluated), "
+                        : ""),
+             cols, cells, out.format_out) +
          lj_note(records, out.format_out);
 }
 

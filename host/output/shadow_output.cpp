@@ -53,9 +53,9 @@ std::string caption(const nlohmann::json& h) {
 
 const std::vector<Column>& cascade_columns() {
   static const std::vector<Column> cols = {
-      {"cascade", true}, {"camera m", true}, {"texel m"}, {"range m"},  {"constant r"},
-      {"constant m"},    {"gap m"},          {"slope"},   {"err r"},    {"gap m"},
-      {"normal texels"}, {"normal m"},       {"gap m"},   {"witnessed"}};
+      {"cascade", true}, {"camera m", true}, {"texel m"},      {"range m"},  {"constant r"},
+      {"constant m"},    {"constant gap m"}, {"slope"},        {"err r"},    {"slope gap m"},
+      {"normal texels"}, {"normal m"},       {"normal gap m"}, {"witnessed"}};
   return cols;
 }
 
@@ -120,6 +120,49 @@ std::string engine_caption(const nlohmann::json& h) {
          units;
 }
 
+const std::vector<Column>& rendered_columns() {
+  static const std::vector<Column> cols = {
+      {"cascade", true},       {"camera m", true},    {"points"},
+      {"acne at bound c/s/n"}, {"acne at 90% c/s/n"}, {"clean at bound", true},
+      {"gap formula m"},       {"gap ray cast m"},    {"gap rendered m"}};
+  return cols;
+}
+
+// "0/0/0": acne counts of the three recipes at one level ('-': a recipe not rendered).
+std::string acne_counts(const nlohmann::json& r, const char* level) {
+  std::string out;
+  for (const char* recipe : {"constant", "slope", "normal"}) {
+    if (!out.empty()) out += "/";
+    const bool has = r.contains(recipe) && r[recipe].contains(level);
+    out += has ? std::to_string(r[recipe][level].get<uint64_t>()) : "-";
+  }
+  return out;
+}
+
+std::vector<std::string> rendered_cells(const nlohmann::json& rec, const std::string& f) {
+  const nlohmann::json& r = rec["rendered"];
+  const nlohmann::json gap = r.value("gap", nlohmann::json::object());
+  return {std::to_string(rec.value("cascade", 0)),
+          camera_cell(rec),
+          std::to_string(r.value("points", uint64_t{0})),
+          acne_counts(r, "acne_at_bound"),
+          acne_counts(r, "acne_at_90_percent"),
+          r.value("clean_at_bound", false) ? "yes" : "NO",
+          shadow_cell(gap, "formula", f),
+          shadow_cell(gap, "raycast", f),
+          shadow_cell(gap, "rendered", f)};
+}
+
+std::string rendered_caption(const nlohmann::json& h) {
+  return fmt::format(
+      "Rendered on {}: receiver points looked up through a shadow pass drawn with each proven "
+      "bias (constant/slope/normal; '-': the normal offset carries lookups beyond the window "
+      "drawn), acne at it and at 90 % of it (the bias is tight where acne appears there), and the "
+      "gap a wall's shadow loses at its foot: the formula's, a ray cast's, the rendered edge's "
+      "(directional light only)",
+      h.value("renderer", std::string("the system's OpenGL")));
+}
+
 }  // namespace
 
 std::string render_shadow_output(const nlohmann::json& header,
@@ -132,11 +175,23 @@ std::string render_shadow_output(const nlohmann::json& header,
   }
   if (format == "csv") {
     std::vector<Column> cols = cascade_columns();
+    bool rendered = false;
+    for (const auto& rec : records) rendered |= rec.contains("rendered");
+    const std::vector<Column>& rc = rendered_columns();
+    if (rendered) cols.insert(cols.end(), rc.begin() + 2, rc.end());
     const std::vector<Column>& ec = engine_columns();
     cols.insert(cols.end(), ec.begin() + 1, ec.end());
     Cells cells;
     for (const auto& rec : records) {
-      const std::vector<std::string> c = cascade_cells(rec, format);
+      std::vector<std::string> c = cascade_cells(rec, format);
+      if (rendered) {
+        std::vector<std::string> r(rc.size() - 2, "");
+        if (rec.contains("rendered")) {
+          const std::vector<std::string> all = rendered_cells(rec, format);
+          r.assign(all.begin() + 2, all.end());
+        }
+        c.insert(c.end(), r.begin(), r.end());
+      }
       if (rec["engines"].empty()) {
         std::vector<std::string> row = c;
         row.resize(cols.size(), "");
@@ -152,9 +207,12 @@ std::string render_shadow_output(const nlohmann::json& header,
     return csv(cols, cells);
   }
   const ShadowTables t = shadow_tables(header, records, format);
-  const std::string first = captioned(t.caption, t.cascade_cols, t.cascades, format);
-  if (t.engines.empty()) return first;  // a spot light: no engine conversions
-  return first + "\n" + captioned(t.engine_caption, t.engine_cols, t.engines, format);
+  std::string out = captioned(t.caption, t.cascade_cols, t.cascades, format);
+  if (!t.rendered.empty())
+    out += "\n" + captioned(t.rendered_caption, t.rendered_cols, t.rendered, format);
+  if (!t.engines.empty())  // a spot light has no engine conversions
+    out += "\n" + captioned(t.engine_caption, t.engine_cols, t.engines, format);
+  return out;
 }
 
 ShadowTables shadow_tables(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
@@ -164,8 +222,11 @@ ShadowTables shadow_tables(const nlohmann::json& header, const std::vector<nlohm
   t.engine_caption = engine_caption(header);
   t.cascade_cols = cascade_columns();
   t.engine_cols = engine_columns();
+  t.rendered_caption = rendered_caption(header);
+  t.rendered_cols = rendered_columns();
   for (const auto& rec : records) {
     t.cascades.push_back(cascade_cells(rec, format));
+    if (rec.contains("rendered")) t.rendered.push_back(rendered_cells(rec, format));
     for (const auto& e : rec["engines"]) t.engines.push_back(engine_cells(rec, e, format));
   }
   return t;

@@ -14,9 +14,9 @@ namespace depthprec {
 // The two tables as columns and text cells, with what each says above it: the text and Markdown
 // output and the report page's shadow section render the same.
 struct ShadowTables {
-  std::string caption, engine_caption;
-  std::vector<Column> cascade_cols, engine_cols;
-  Cells cascades, engines;
+  std::string caption, engine_caption, rendered_caption;
+  std::vector<Column> cascade_cols, engine_cols, rendered_cols;
+  Cells cascades, engines, rendered;  // rendered: cascades checked on OpenGL (--source rendered)
 };
 ShadowTables shadow_tables(const nlohmann::json& header, const std::vector<nlohmann::json>& records,
                            const std::string& format);

@@ -58,6 +58,19 @@ TEST_CASE("a shadow pass on the system's OpenGL has no acne at the proven biases
   CHECK(gap["formula"].get<double>() == Approx(raycast).epsilon(1e-9));
   CHECK(gap["rendered"].get<double>() == Approx(raycast).epsilon(0.05));
   CHECK(raycast > 3 * j["cascades"][0]["texel"].get<double>());
+
+  // The text output shows the same check: counts per recipe at the bound and at 90 % of it.
+  const CliResult text = run_cli(
+      "shadow -q --no-timing --source rendered --splits 10 --planes 64 --format unorm24 "
+      "--filter pcf2x2");
+  INFO(text.output);
+  REQUIRE(text.exit_code == 0);
+  CHECK_THAT(text.output, Catch::Contains("Rendered on " + j["renderer"].get<std::string>()));
+  CHECK_THAT(text.output, Catch::Contains("acne at bound c/s/n"));
+  const std::string at_90 = std::to_string(r["constant"]["acne_at_90_percent"].get<uint64_t>()) +
+                            "/" + std::to_string(r["slope"]["acne_at_90_percent"].get<uint64_t>()) +
+                            "/" + std::to_string(r["normal"]["acne_at_90_percent"].get<uint64_t>());
+  CHECK_THAT(text.output, Catch::Contains("0/0/0") && Catch::Contains(at_90));
 }
 
 TEST_CASE("a spot light's proven biases hold in the emulation and on OpenGL", "[shadow][spot]") {
