@@ -19,6 +19,16 @@
 
 namespace {
 
+// An option takes one value per occurrence (a list is comma-separated, or the option repeated):
+// CLI11's lists otherwise take every word after them, so in `mts -t reversed scene.json` the
+// scene was read as a technique. Positionals (merge's files) keep taking several.
+void one_value_per_option(CLI::App& app) {
+  for (CLI::Option* o : app.get_options())
+    if (o->nonpositional()) o->allow_extra_args(false);
+  for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    one_value_per_option(*sub);
+}
+
 // Runs the command line; returns the exit code.
 int run(int argc, char** argv) {
   using namespace depthprec;
@@ -59,6 +69,7 @@ int run(int argc, char** argv) {
   cli::add_bias_command(app, global);
   cli::add_shadow_command(app, global);
   cli::add_cache_command(app);
+  one_value_per_option(app);
   global.command_line = "depthprec";
   for (int i = 1; i < argc; ++i) global.command_line += std::string(" ") + argv[i];
   try {

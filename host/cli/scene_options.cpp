@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -270,7 +271,17 @@ Scene SceneOptions::load() const {
   add_implied(*this, named);
   check_set_once(sets, named.origins);
   named.all.insert(named.all.end(), sets.begin(), sets.end());
-  Scene scene = load_scene(scene_file, named.all, false, named.origins);
+  Scene scene;
+  try {
+    scene = load_scene(scene_file, named.all, false, named.origins);
+  } catch (const InputError& e) {
+    // A second word after an option lands here (each option takes one value).
+    const bool path_like = scene_file.find_first_of("./") != std::string::npos;
+    if (scene_file.empty() || path_like || std::ifstream(scene_file).good()) throw;
+    throw InputError(std::string(e.what()) +
+                     " (the scene positional; each option takes one value: list several with "
+                     "commas, e.g. -t standard,reversed, or repeat the option)");
+  }
   if (!techniques.empty() || !formats.empty() || !depth_ranges.empty()) replace_pairs(*this, scene);
   check_pairs(scene);
   check_planes_cover_kernel(scene);
