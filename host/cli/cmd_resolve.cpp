@@ -1,6 +1,7 @@
 // resolve: code <-> eye distance queries on the exact mappings (host/model/resolve.h).
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "host/base/errors.h"
@@ -51,7 +52,12 @@ void run_resolve(const ResolveOptions& o) {
   check_writable(o.out.output);
   std::string text;
   const auto digits = [&o](double v) { return number_cell(v, o.out.format_out, "{:.10g}"); };
-  const auto gap = [&o](double v) { return number_cell(v, o.out.format_out); };
+  // A code's missing neighbour (the first or last code): '-' and JSON null, not a gap of 0.
+  const auto gap = [&o](double v) {
+    if (std::isnan(v)) return std::string(o.out.format_out == "csv" ? "" : "-");
+    return number_cell(v, o.out.format_out);
+  };
+  const auto gap_json = [](double v) { return std::isnan(v) ? nlohmann::json() : json_number(v); };
   // JSON: the set-up and the rows with every value a JSON number (json_number).
   nlohmann::json j = output_header("resolve", "");
   j.update({{"technique", o.technique},
@@ -86,8 +92,8 @@ void run_resolve(const ResolveOptions& o) {
       j["rows"].push_back({{"distance", json_number(r.distance)},
                            {"depth", json_number(r.depth)},
                            {"code", r.code},
-                           {"gap_below", json_number(r.gap_below)},
-                           {"gap_above", json_number(r.gap_above)},
+                           {"gap_below", gap_json(r.gap_below)},
+                           {"gap_above", gap_json(r.gap_above)},
                            {"resolution", json_number(r.resolution)}});
     for (const auto& r : rows)
       cells.push_back({digits(r.distance), digits(r.depth), std::to_string(r.code),

@@ -44,7 +44,14 @@ ResolveSetup mapping_at(Technique t, double near, double far, const TechniquePar
 }
 
 double distance_gap(const ResolveSetup& s, double a, double b) {
-  const quad d = distance_q(s, a) - distance_q(s, b);
+  quad d = distance_q(s, a) - distance_q(s, b);
+  if (d == 0 && a != b) {
+    // Depths this close can map to distances binary128 does not tell apart (a reversed float
+    // buffer's last code at the far plane: 1.4e-45 of depth is about 1e-36 of distance at 1e4):
+    // the mapping's slope over a step of 2^-40 of depth toward b, times their difference.
+    const double h = std::ldexp(b > a ? 1.0 : -1.0, -40);
+    d = (distance_q(s, a + h) - distance_q(s, a)) / static_cast<quad>(h) * static_cast<quad>(b - a);
+  }
   return static_cast<double>(d < 0 ? -d : d);
 }
 
@@ -104,9 +111,10 @@ DistanceResolution resolve_distance(const ResolveSetup& s, const StorageFormat& 
   }
   r.code = c;
   const double v = f.decode(c);
-  r.gap_below = c > 0 ? distance_gap(s, v, f.decode(c - 1)) : 0.0;
-  r.gap_above = c < f.max_code() ? distance_gap(s, v, f.decode(c + 1)) : 0.0;
-  r.resolution = std::max(r.gap_below, r.gap_above);
+  // The first and last codes have one neighbour: the other gap is none (NaN), not zero.
+  r.gap_below = c > 0 ? distance_gap(s, v, f.decode(c - 1)) : NAN;
+  r.gap_above = c < f.max_code() ? distance_gap(s, v, f.decode(c + 1)) : NAN;
+  r.resolution = std::fmax(r.gap_below, r.gap_above);
   return r;
 }
 

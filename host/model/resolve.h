@@ -30,8 +30,8 @@ struct CodeInterval {
 struct DistanceResolution {
   double distance = 0, depth = 0;
   uint32_t code = 0;
-  double gap_below = 0;   // eye distance to the neighbouring code on the near side
-  double gap_above = 0;   // ... and on the far side
+  double gap_below = 0;   // eye distance to the next code down (NaN: the first code has none)
+  double gap_above = 0;   // ... and to the next code up (NaN: the last code has none)
   double resolution = 0;  // max of the two: the smallest step the buffer can resolve here
 };
 

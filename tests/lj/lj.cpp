@@ -234,6 +234,26 @@ TEST_CASE("OpenGL wiki: 16-bit Z, n = 0.01, f = 1000, codes 1 and 65534", "[lj][
   CHECK(std::round(resolve_code(s, f, 65534).distance * 1e5) == 39590054.0);  // 395.90054
 }
 
+TEST_CASE("a code at the end of the range has one neighbour, and its gap is not rounded to zero",
+          "[lj][resolve]") {
+  // Reversed float32 at the far plane: depth 0, code 0. Code 1 (2^-149 of depth) lies
+  // f (f - n) / n 2^-149 nearer: 1.4e-36, far below binary128's resolution at 1e4.
+  const ResolveSetup s{Technique::reversed, 0.1, 1e4, {}};
+  const DistanceResolution at_far = resolve_distance(s, StorageFormat::parse("float32"), 1e4);
+  CHECK(at_far.code == 0u);
+  CHECK(std::isnan(at_far.gap_below));
+  const double slope = 1e4 * (1e4 - 0.1) / 0.1;
+  CHECK(at_far.gap_above == Approx(slope * std::ldexp(1.0, -149)).epsilon(1e-6));
+  CHECK(at_far.resolution == at_far.gap_above);
+  // Standard unorm16 at the far plane: its last code, whose only neighbour is below.
+  const ResolveSetup st{Technique::standard, 0.1, 1e4, {}};
+  const DistanceResolution last = resolve_distance(st, StorageFormat::parse("unorm16"), 1e4);
+  CHECK(last.code == 65535u);
+  CHECK(std::isnan(last.gap_above));
+  CHECK(last.gap_below > 1000);
+  CHECK(last.resolution == last.gap_below);
+}
+
 TEST_CASE("Quantitative analysis: reversed float32 Z, n = 0.1, f = 1e4", "[lj][resolve]") {
   const ResolveSetup s{Technique::reversed, 0.1, 1e4, {}};
   const auto f = StorageFormat::parse("float32");
