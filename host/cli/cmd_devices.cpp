@@ -17,11 +17,11 @@ namespace {
 void run_devices(const GlobalOptions& global, const OutputOptions& out) {
   check_writable(out.output);
   const auto devices = list_devices();
-  std::string chosen;
+  std::string chosen, not_chosen;
   try {
     chosen = OpenClRuntime(global.device).description();
-  } catch (const std::exception&) {
-    chosen.clear();  // listing still works when the selector matches nothing
+  } catch (const std::exception& e) {
+    not_chosen = e.what();  // the list is still printed, then the selector's error
   }
   const bool csv_out = out.format_out == "csv";
   nlohmann::json j = output_header("devices", chosen);
@@ -32,9 +32,8 @@ void run_devices(const GlobalOptions& global, const OutputOptions& out) {
         fmt::format("{} / {} ({})", d.platform_name, d.device_name, d.opencl_c_version);
     const double gib = static_cast<double>(d.global_mem_bytes) / (1024.0 * 1024.0 * 1024.0);
     const std::string pd = fmt::format("{}:{}", d.platform_index, d.device_index);
-    cells.push_back({csv_out ? pd : (desc == chosen ? "*" : " ") + pd, d.device_type,
-                     csv_out ? d.device_name : d.device_name.substr(0, 42), d.opencl_c_version,
-                     std::to_string(d.compute_units), d.fp64 ? "yes" : "no",
+    cells.push_back({csv_out ? pd : (desc == chosen ? "*" : " ") + pd, d.device_type, d.device_name,
+                     d.opencl_c_version, std::to_string(d.compute_units), d.fp64 ? "yes" : "no",
                      d.fp32_denormals ? "yes" : "no",
                      csv_out ? exact(gib) : fmt::format("{:.1f}", gib), d.platform_name,
                      d.platform_version, desc == chosen ? "yes" : ""});
@@ -87,6 +86,9 @@ void run_devices(const GlobalOptions& global, const OutputOptions& out) {
                {{"--gl-device", true}, {"usable", true}, {"renders on", true}}, gl, out.format_out);
   }
   write_output(out.output, for_terminal(text, out.format_out));
+  // A selector that matches nothing is what the user came to check: the list shows what there
+  // is, and the exit code says the choice failed.
+  if (!not_chosen.empty()) throw Error(ExitCode::runtime, not_chosen);
 }
 
 }  // namespace

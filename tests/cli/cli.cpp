@@ -34,6 +34,15 @@ TEST_CASE("devices lists the PoCL CPU device with its capabilities", "[cli]") {
   CHECK_THAT(r.output, Contains("OpenCL C"));
 }
 
+TEST_CASE("devices with a selector that matches nothing lists the devices and fails",
+          "[cli][errors]") {
+  const auto r = run_cli("devices --device 9:9");
+  CHECK(r.exit_code == 4);
+  CHECK_THAT(r.output, Contains("0:0  CPU"));  // the list, no device marked
+  CHECK_THAT(r.output, !Contains("*0:0"));
+  CHECK_THAT(r.output, Contains("no OpenCL device matches '9:9'"));
+}
+
 TEST_CASE("an unknown device selector is a runtime error listing devices", "[cli][errors]") {
   const auto r = run_cli("formats --value 0.5 --on-device", "DEPTHPREC_DEVICE=no-such-gpu");
   CHECK(r.exit_code == 4);
