@@ -66,6 +66,11 @@ struct MtsRow {
   // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
   // upper MTS (every clean answer lies above it). 0 / +inf when there is none.
   double fight_max = 0, clean_min = std::numeric_limits<double>::infinity();
+  // Why a row is non_monotone: in one search, over one set of frames, a clean probe at
+  // monotone_clean below one that fought at monotone_fight (NaN: none seen). Kept from the search
+  // that first saw it, when later searches (the worst case's) replace the bracket.
+  double monotone_clean = std::numeric_limits<double>::quiet_NaN(),
+         monotone_fight = std::numeric_limits<double>::quiet_NaN();
   // Worst-case sampling (docs/mts.md, "The worst case"): the MTS over the scene's frames alone
   // (the paper's; equal to mts under sampling paper), how many orientations the answer rests on,
   // and the relative rise of the MTS in the last refinement (0 when it found nothing higher).

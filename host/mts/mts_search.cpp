@@ -205,6 +205,10 @@ void finish_row(const Scene& scene, const EvalPair& pair, const Bisection& b,
     for (const auto& [s, o] : b.history()) note(s, o);
     for (const auto& [s, o] : extra) note(s, o);
     row.non_monotone = b.non_monotone() || row.fight_max > row.clean_min;
+    if (row.fight_max > row.clean_min) {
+      row.monotone_clean = row.clean_min;
+      row.monotone_fight = row.fight_max;
+    }
     row.orientations = static_cast<uint64_t>(scene.frames);
   } else {
     row.unresolvable = true;

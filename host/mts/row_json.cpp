@@ -74,6 +74,10 @@ json row_to_json(const MtsRow& r, bool timing) {
             {"flags", r.flags()},
             {"verdict", to_string(r.verdict())}});
   if (!std::isnan(r.mts_bound)) j["mts_bound"] = number(r.mts_bound);  // left out where none
+  if (!std::isnan(r.monotone_fight)) {
+    j["monotone_clean"] = number(r.monotone_clean);
+    j["monotone_fight"] = number(r.monotone_fight);
+  }
   if (r.below_one_code) j["code_width"] = number(r.code_width);
   if (r.attributed()) {
     j["storage_mts"] = number(r.storage_mts);
@@ -147,6 +151,10 @@ MtsRow row_from_json(const json& j) {
     r.dominant = j.value("dominant", "");
   }
   r.clean_min = read_number(j, "clean_min");
+  if (j.contains("monotone_fight")) {
+    r.monotone_clean = read_number(j, "monotone_clean");
+    r.monotone_fight = read_number(j, "monotone_fight");
+  }
   if (r.below_one_code) r.code_width = read_number(j, "code_width");
   if (j.contains("seconds")) r.seconds = read_number(j, "seconds");
   if (j.contains("kernel_seconds")) r.kernel_seconds = read_number(j, "kernel_seconds");

@@ -42,6 +42,10 @@ void take_search(MtsRow& row, const MtsRow& found) {
   // Below its bracket, where it is clean again, the orientation alone fights no more and the
   // earlier ones already did not: fights are not monotone there, for the row as for it.
   row.non_monotone |= found.non_monotone;
+  if (std::isnan(row.monotone_fight)) {
+    row.monotone_clean = found.monotone_clean;
+    row.monotone_fight = found.monotone_fight;
+  }
   row.lo = found.lo;
   row.hi = row.mts = found.hi;
   row.mts_seen = found.mts_seen;

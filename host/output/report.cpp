@@ -102,6 +102,16 @@ std::string footer(const RunInfo& run) {
 namespace {
 
 // A worst-case row's convergence: the last refinement's relative rise of the MTS.
+// The row's flags, and on the text page why it is non_monotone (JSON and CSV carry the numbers:
+// monotone_clean, monotone_fight).
+std::string flags_cell(const MtsRow& r, bool full) {
+  std::string f = r.flags();
+  if (!full && r.non_monotone && !std::isnan(r.monotone_fight))
+    f += fmt::format(" (clean at {} below a fight at {})", human(r.monotone_clean),
+                     human(r.monotone_fight));
+  return f;
+}
+
 std::string convergence_cell(const MtsRow& r, bool full) {
   return full ? exact(r.convergence) : fmt::format("{:.2g}", r.convergence);
 }
@@ -213,7 +223,7 @@ std::string render_rows(const Scene& scene, const std::vector<MtsRow>& rows, con
     }
     if (full) c.push_back(r.bound_model);
     c.push_back(r.bound_note);
-    c.push_back(r.flags());
+    c.push_back(flags_cell(r, full));
     cells.push_back(c);
   }
   if (format == "csv") return csv(cols, cells);
@@ -326,7 +336,8 @@ std::string flagged_cells(const std::vector<const MtsRow*>& marked, bool md) {
   std::string out = "\n";
   out += "* flagged: the cells and their flags (docs/mts.md says what each means)\n\n";
   Cells fcells;
-  for (const MtsRow* r : marked) fcells.push_back({r->pair.label(), human(r->z), r->flags()});
+  for (const MtsRow* r : marked)
+    fcells.push_back({r->pair.label(), human(r->z), flags_cell(*r, false)});
   return out + grid({{"pair", true}, {"z"}, {"flags", true}}, fcells, md);
 }
 

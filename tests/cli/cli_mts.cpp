@@ -341,3 +341,21 @@ TEST_CASE("text measures UTF-8 in characters: a cut name's '…' is one column",
       depthprec::grid({{"name", true}, {"n"}}, {{"a\u2026b", "1"}, {"abcd", "22"}}, false);
   CHECK(t == "name   n\na\u2026b    1\nabcd  22\n");
 }
+
+TEST_CASE("a non_monotone row says why, and the witness survives the worst case", "[cli][mts]") {
+  // standard/unorm24 at 4096 in gl: a search over one set of frames met a clean separation below
+  // a fighting one, and the worst case then raised the MTS above both.
+  const auto r = run_cli("mts -t standard -f unorm24 --distances 4096 --no-timing -q");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Contains("non_monotone (clean at "));
+  const auto j = run_cli(
+      "mts -t standard -f unorm24 --distances 4096 --no-timing -q "
+      "--format-out json");
+  REQUIRE(j.exit_code == 0);
+  const auto row = nlohmann::json::parse(j.output)["rows"][0];
+  REQUIRE(row["flags"] == "non_monotone");
+  const double clean = row["monotone_clean"].get<double>(),
+               fight = row["monotone_fight"].get<double>();
+  CHECK(clean < fight);
+  CHECK(fight <= row["mts"].get<double>());  // the row's MTS lies above every fight it saw
+}

@@ -44,10 +44,14 @@ TEST_CASE("a non-monotone row's bracket holds real outcomes on both sides", "[st
     if (!r.non_monotone) {
       CHECK(r.fight_max == r.lo);  // monotone: the boundary the probes found is the bracket
       CHECK(r.clean_min == r.mts);
+      CHECK(std::isnan(r.monotone_fight));
       continue;
     }
     ++flagged;
     CHECK(r.fight_max > r.clean_min);
+    // One search: the witness the row's flags print is its own bracket's contradiction.
+    CHECK(r.monotone_clean == r.clean_min);
+    CHECK(r.monotone_fight == r.fight_max);
     CHECK(probe(runtime(), s, pair, r.z, r.fight_max) == Outcome::fight);  // the upper MTS fights
     CHECK(probe(runtime(), s, pair, r.z, r.clean_min) ==
           Outcome::clean);  // and the lowest clean is clean
