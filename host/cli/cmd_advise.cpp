@@ -189,12 +189,16 @@ void add_advise_command(CLI::App& app, GlobalOptions& global) {
       "come: for every pair of the scene (technique x format x depth range), a bisection over\n"
       "the near plane in which a near value holds when two planes the needed separation apart\n"
       "never fight on the emulated pipeline at any distance checked (the range's nearest z,\n"
-      "doubling up to its farthest). Ranked by the smallest near plane that holds.\n"
+      "doubling up to its farthest). Ranked by the smallest near plane under the guaranteed\n"
+      "MTS, then by the smallest under the sampled one.\n"
       "Examples:\n"
       "  depthprec advise --range 1,10000 --separation 0.01\n"
       "  depthprec advise --range 10,1e5 --relative 1e-4 -t reversed,standard,log_fragment -f "
       "float32,unorm24");
   o->scene.add_to(*cmd, true);
+  // advise finds the near plane and checks the distances of --range: run_advise refuses both
+  // with what to do instead; --help leaves them out (an empty group hides an option).
+  for (const char* name : {"--near", "--distances"}) cmd->get_option(name)->group("");
   cmd->add_option("--range", o->range,
                   "Nearest and farthest distance the content is at: A,B (scene units)")
       ->delimiter(',')

@@ -116,6 +116,11 @@ void add_readback_command(CLI::App& app) {
       "1,100,1e4,1e6\n"
       "  depthprec readback --distances 2,1024,1048576 --format-out csv -o readback.csv");
   o->scene.add_to(*cmd, true);
+  refuse_unused(*cmd,
+                {"--kernel", "--frames", "--rel-precision", "--profile", "--fov",
+                 "--matrix-precision", "--compose", "--divide", "--denormals"},
+                "readback maps depths exactly on the host (no kernel, frames, search or "
+                "emulated pipeline)");
   o->out.add_to(*cmd);
   cmd->callback([o]() { run_readback(*o); });
 }

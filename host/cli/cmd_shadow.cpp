@@ -141,7 +141,10 @@ void add_shadow_command(CLI::App& app, GlobalOptions& global) {
   cmd->add_option("--seed", o->shadow.seed, "The sampling's seed (default 1)");
   add_gl_device_option(cmd, o->gl_device);
   o->out.add_to(*cmd);
-  cmd->callback([o, &global]() { run_shadow(*o, global); });
+  cmd->callback([o, &global, cmd]() {
+    o->shadow.spot_angle_given = cmd->count("--spot-angle") > 0;
+    run_shadow(*o, global);
+  });
 }
 
 }  // namespace depthprec::cli

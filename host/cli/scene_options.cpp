@@ -262,6 +262,17 @@ std::string far_option(const std::vector<std::string>& sets,
 
 }  // namespace
 
+void refuse_unused(CLI::App& cmd, const std::vector<std::string>& names, const std::string& why) {
+  for (const std::string& name : names) {
+    CLI::Option* o = cmd.get_option(name);
+    o->group("");  // CLI11: an empty group hides the option from --help
+    o->check([name, why, &cmd](const std::string&) -> std::string {
+      throw Error(ExitCode::usage,
+                  fmt::format("{}: {} has no effect: {}; drop it", cmd.get_name(), name, why));
+    });
+  }
+}
+
 Scene SceneOptions::load() const {
   // Every named option is a --set in disguise; `origins` lets the scene's errors name the option
   // the user typed, and a key set twice (--near 0.1 --set near=5) is refused rather than one

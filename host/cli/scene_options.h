@@ -30,6 +30,10 @@ struct SceneOptions {
   Scene load() const;
 };
 
+// Options a command's scene options add that it does not use: hidden from its --help, and refused
+// when given (a usage error naming them and why), rather than accepted and ignored.
+void refuse_unused(CLI::App& cmd, const std::vector<std::string>& names, const std::string& why);
+
 // The output format a file name asks for by its extension (.json, .csv, .md, .txt); "" for none.
 std::string format_of_extension(const std::string& path);
 

@@ -39,6 +39,10 @@ ShadowRequest shadow_request(const ShadowOptions& o, bool emulate) {
       throw InputError(
           "shadow: --distances are a spot light's (--light spot); a directional "
           "light's cascades come from --splits or --extent");
+    if (o.spot_angle_given)
+      throw InputError(
+          "shadow: --spot-angle is a spot light's cone (--light spot); a directional light's "
+          "maps cover its cascades (--splits or --extent)");
     if (boxes && !o.splits.empty())
       throw InputError(
           "shadow: give the cascades as camera splits (--splits) or as light boxes (--extent "

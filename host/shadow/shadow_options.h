@@ -15,6 +15,7 @@ namespace depthprec {
 struct ShadowOptions {
   std::string light = "directional";  // or "spot": one perspective map, rows at `distances`
   double spot_angle = 60;             // degrees, the spot's full cone
+  bool spot_angle_given = false;      // named on the command line (refused for a directional light)
   std::vector<double> distances;      // spot: receiver distances along its axis, metres
   // Cascades: camera splits fitted as engines fit them, or light boxes given directly (a spot
   // light's near and far: one value each, default 0.1 and 100).

@@ -123,6 +123,7 @@ TEST_CASE("shadow refuses bad input with exit 3 and says what is allowed", "[sha
       {"--light spot --distances 60 --light-far 50", "outside the spot light's near"},
       {"--light spot --spot-angle 180", "--spot-angle 180"},
       {"--distances 5", "--distances are a spot light's"},
+      {"--spot-angle 30", "--spot-angle is a spot light's cone"},
   };
   for (const auto& [args, message] : cases) {
     INFO(args);
