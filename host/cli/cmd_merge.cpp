@@ -85,7 +85,9 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
     const nlohmann::json& j = docs[k];
     if (!j.contains("rows") || !j.contains("scene"))
       throw InputError(
-          fmt::format("merge: '{}' is not a JSON output of mts or table (--format-out json)", f));
+          fmt::format("merge: '{}' is no JSON output merge joins (--format-out json of mts, table, "
+                      "render, compare, lj-table, tradeoff, cost, pipelines, advise or bias)",
+                      f));
     if (scene_json.is_null()) {
       scene_json = j["scene"];
       kind = j.value("kind", "mts");

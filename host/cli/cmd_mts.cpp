@@ -277,7 +277,9 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
       "  depthprec mts -t standard -f unorm24 --distances 512 --set bound_model=d3d11\n"
       "  depthprec mts -t linear -f float32 --distances 16384 --set sampling=paper\n"
       "  depthprec mts -t standard,linear -f unorm24 --kernel 50x50 --frames 20\n"
-      "  depthprec mts my_scene.json --set pipeline.divide=exact --format-out csv");
+      "  depthprec mts data/gilg2021.json -t standard --distances 512 --set pipeline.divide=exact "
+      "--format-out csv\n"
+      "      (a scene file: the default's own, installed in /usr/share/depthprec/scenes)");
   mts->scene.add_to(*cmd, true);
   mts->out.add_to(*cmd);
   mts->batch.add_to(*cmd, kMtsUnits);
@@ -291,12 +293,12 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
       "table",
       "The batch precision table: every pair of the scene (default: Gilg et al.'s 7 techniques\n"
       "x float32, unorm24), one row per distance, one column per pair, the vertex bound\n"
-      "alongside. inf = unresolvable; * = flagged (details with --format-out json).\n"
+      "alongside. inf = unresolvable; * = flagged (the flags are listed under the table).\n"
       "Finished rows survive Ctrl-C: with -o FILE they are journaled to FILE.rows.jsonl, and\n"
       "--resume continues; --shard i/N splits a batch over machines, `merge` joins the parts.\n"
       "Examples:\n"
       "  depthprec table\n"
-      "  depthprec table --format-out markdown -o docs/gilg2021-table.md\n"
+      "  depthprec table --set sampling=paper --no-timing --format-out markdown -o paper.md\n"
       "  depthprec table --shard 1/4 --format-out json -o part1.json   (then merge part*.json)");
   table->scene.add_to(*tcmd, true);
   table->out.add_to(*tcmd);

@@ -136,11 +136,11 @@ void add_report_command(CLI::App& app, GlobalOptions& global) {
       "of each cell, the plot with the vertex bound (inline SVG), the attribution and the\n"
       "Lapidous-Jiao figures where they apply. No network, no other files: attach it to a\n"
       "review or open it in any browser. Runs the scene as `table --attribute` (the default\n"
-      "scene: about 2 minutes on 2 cores; --no-attribute: the table alone, seconds), or reads\n"
+      "scene: about a minute on 2 cores; --no-attribute: the table alone, seconds), or reads\n"
       "the JSON output of a whole mts/table/render/merge run with --from (not one shard).\n"
       "Examples:\n"
       "  depthprec report -o report.html\n"
-      "  depthprec report my_scene.json -t reversed,standard -f float32 -o decals.html\n"
+      "  depthprec report data/gilg2021.json -t reversed,standard -f float32 -o decals.html\n"
       "  depthprec report --from table.json -o table.html");
   o->scene.add_to(*cmd, true);
   CLI::Option* output =

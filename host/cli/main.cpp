@@ -75,20 +75,31 @@ int run(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // A mistyped command would otherwise read "A subcommand is required": name it and the closest.
-    std::vector<std::string> names;
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
-      names.push_back(sub->get_name());
+    // A mistyped command (or a command's subcommand: cache) would otherwise read "A subcommand is
+    // required": name it and the closest.
+    const CLI::App* at = &app;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "--device") ++i;
       if (a.empty() || a[0] == '-') continue;
-      if (std::find(names.begin(), names.end(), a) != names.end()) break;
+      std::vector<std::string> names;
+      const CLI::App* next = nullptr;
+      for (const CLI::App* sub : at->get_subcommands([](const CLI::App*) { return true; })) {
+        names.push_back(sub->get_name());
+        if (sub->get_name() == a) next = sub;
+      }
+      if (names.empty()) break;  // a command's own positionals
+      if (next) {
+        at = next;
+        continue;
+      }
       const std::string near = closest_name(a, names);
-      std::fprintf(stderr,
-                   "depthprec: unknown command '%s'%s; the commands are %s (depthprec --help)\n",
-                   a.c_str(), near.empty() ? "" : (" (did you mean " + near + "?)").c_str(),
-                   fmt::format("{}", fmt::join(names, ", ")).c_str());
+      const std::string what = at == &app ? "command" : at->get_name() + " subcommand";
+      std::fprintf(stderr, "depthprec: unknown %s '%s'%s; the %ss are %s (depthprec %s--help)\n",
+                   what.c_str(), a.c_str(),
+                   near.empty() ? "" : (" (did you mean " + near + "?)").c_str(), what.c_str(),
+                   fmt::format("{}", fmt::join(names, ", ")).c_str(),
+                   at == &app ? "" : (at->get_name() + " ").c_str());
       return static_cast<int>(ExitCode::usage);
     }
     // --help and --version through write_output, so a failed write names its reason.

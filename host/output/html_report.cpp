@@ -199,7 +199,7 @@ std::string bound_section(const Scene& scene, const std::vector<MtsRow>& rows) {
       "orientation within the rotation cube, under any implementation of the bound model "
       "<code>{}</code> (docs/mts.md, \"The guaranteed bound\"). A fight was seen just below the "
       "MTS above, none can happen at this: what an implementation of the model needs lies "
-      "between the two. -: no MTS to bound.</p>\n",
+      "between the two. -: no finite bound (why: under the grid) or no MTS to bound.</p>\n",
       html_escape(model));
   out += table(head, body);
   for (const std::string& line : rows_without_bound(scene, rows))

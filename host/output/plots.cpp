@@ -15,11 +15,12 @@ namespace depthprec {
 
 namespace {
 
-// One colour per series from a list of distinct hues, point shapes changing every 12 series.
+// One colour per series from a list of distinct hues; every 12 series the point shape and the
+// dash change, so a colour used twice is still told apart.
 const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
                                 "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#aec7e8"};
 std::string series_style(size_t i) {
-  return fmt::format("lc rgb '{}' pt {}", kColours[i % 12], 4 + 2 * (i / 12));
+  return fmt::format("lc rgb '{}' pt {} dt {}", kColours[i % 12], 4 + 2 * (i / 12), 1 + i / 12);
 }
 
 // The first lines of every plot's script: the terminal the output's name asks for, and the file
@@ -68,8 +69,8 @@ void plot_mts(const std::vector<MtsRow>& rows, const std::string& title,
   script += "set logscale x 2\nset format x '2^{%L}'\n";
   script += kLogTenY;
   script +=
-      "set key outside right\nset grid\nset xlabel 'distance z of the front plane'\n"
-      "set ylabel 'minimum triangle separation'\n";
+      "set key outside right\nset grid\nset xlabel 'distance z of the front plane (scene units)'\n"
+      "set ylabel 'minimum triangle separation (scene units)'\n";
   script += fmt::format("set yrange [{:.6g}:{:.6g}]\n", floor, top * 3);
   script += fmt::format("set title {} noenhanced\n", gnuplot_quote(title));
   script += "$bound << EOD\n";
@@ -229,7 +230,8 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
   script +=
       "set multiplot layout 2,1\nset lmargin 12\nset rmargin at screen 0.62\n"
       "set logscale x 2\nset format x '2^{%L}'\nset grid\nset key outside right top\n"
-      "set logscale y 10\nset format y '10^{%L}'\nset ylabel 'minimum triangle separation'\n"
+      "set logscale y 10\nset format y '10^{%L}'\nset ylabel 'minimum triangle separation (scene "
+      "units)'\n"
       "set title 'MTS: emulated (solid) and rendered (dashed)' noenhanced\nplot ";
   for (size_t i = 0; i < order.size(); ++i)
     script += fmt::format(
@@ -238,7 +240,8 @@ void plot_compare(const std::vector<nlohmann::json>& records, const std::string&
         i, style(i), gnuplot_quote(order[i]), i + 1 < order.size() ? ", " : "\n");
   script += fmt::format(
       "set title 'emulated / rendered (below 1: the emulation is optimistic)' noenhanced\n"
-      "set ylabel 'ratio'\nset format y '%g'\nset xlabel 'distance z of the front plane'\n"
+      "set ylabel 'ratio'\nset format y '%g'\nset xlabel 'distance z of the front plane (scene "
+      "units)'\n"
       "set key off\nset yrange [{:.6g}:{:.6g}]\n"
       "plot 1 with lines lc rgb '#000000' lw 1 notitle, ",
       lo / 1.25, hi * 1.25);
@@ -281,8 +284,8 @@ void plot_profiles(const std::vector<nlohmann::json>& records,
   script += "set logscale x 2\nset format x '2^{%L}'\n";
   script += kLogTenY;
   script += fmt::format(
-      "set key outside right\nset grid\nset xlabel 'distance z of the front plane'\n"
-      "set ylabel 'minimum triangle separation'\nset title {} noenhanced\nplot ",
+      "set key outside right\nset grid\nset xlabel 'distance z of the front plane (scene units)'\n"
+      "set ylabel 'minimum triangle separation (scene units)'\nset title {} noenhanced\nplot ",
       gnuplot_quote(title));
   for (size_t i = 0; i < records.size(); ++i) {
     script += fmt::format(

@@ -324,7 +324,7 @@ std::vector<std::string> wide_row(const WideTable& t, double z, TableMarks& mark
 
 std::string wide_caption(const Scene& scene) {
   return fmt::format(
-      "MTS by eye distance z (scene {}, near {}, far {}, kernel {}x{}, {}, "
+      "MTS by eye distance z, both in scene units (scene {}, near {}, far {}, kernel {}x{}, {}, "
       "rel. precision {}); inf = unresolvable, non-finite / clipped / uncovered / beyond far / "
       "before near / <vb (below the vertex bound) = the verdict where there is no MTS\n\n",
       scene.name, human(scene.near), human(scene.far), scene.kernel_w, scene.kernel_h,

@@ -129,6 +129,10 @@ TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
   const auto cmd = run_cli("mst");
   CHECK(cmd.exit_code == 2);
   CHECK_THAT(cmd.output, Contains("unknown command 'mst' (did you mean mts?)"));
+  const auto sub = run_cli("cache shwo");
+  CHECK(sub.exit_code == 2);
+  CHECK_THAT(sub.output, Contains("unknown cache subcommand 'shwo' (did you mean show?)"));
+  CHECK_THAT(sub.output, Contains("the cache subcommands are show, clear"));
 }
 
 TEST_CASE("the output file's extension chooses the format", "[cli]") {
