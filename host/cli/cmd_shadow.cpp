@@ -66,23 +66,19 @@ void run_shadow(const ShadowCliOptions& o, const GlobalOptions& g) {
 
 void add_shadow_command(CLI::App& app, GlobalOptions& global) {
   auto o = std::make_shared<ShadowCliOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("shadow",
-                         "The smallest shadow-map biases per cascade (constant, slope, normal "
-                         "offset) that leave no "
-                         "acne, the gap each costs, and each engine's settings")
-          ->footer(
-              "\nExamples:\n"
-              "  depthprec shadow\n"
-              "      four cascades split at 10/40/150/600 m, 2048^2 float32, 3x3 PCF, slopes to 80 "
-              "deg\n"
-              "  depthprec shadow --format unorm16 --filter nearest --splits 20,60 --engines "
-              "unity,bevy\n"
-              "  depthprec shadow --extent 50 --light-near -100 --light-far 25 --source bound\n"
-              "  depthprec shadow --light spot --spot-angle 60 --light-near 0.1 --light-far 50 "
-              "--distances 2,10\n"
-              "  depthprec shadow --splits 10,40 --source rendered --planes 64\n"
-              "      checks the bias on the system's OpenGL: no acne at it, acne 10 % below\n");
+  CLI::App* cmd = app.add_subcommand(
+      "shadow",
+      "The smallest shadow-map biases per cascade (constant, slope, normal offset) that leave\n"
+      "no acne, the gap each costs, and each engine's settings (docs/shadow.md).\n"
+      "Examples:\n"
+      "  depthprec shadow\n"
+      "      four cascades split at 10/40/150/600 m, 2048^2 float32, 3x3 PCF, slopes to 80 deg\n"
+      "  depthprec shadow --format unorm16 --filter nearest --splits 20,60 --engines unity,bevy\n"
+      "  depthprec shadow --extent 50 --light-near -100 --light-far 25 --source bound\n"
+      "  depthprec shadow --light spot --spot-angle 60 --light-near 0.1 --light-far 50 "
+      "--distances 2,10\n"
+      "  depthprec shadow --splits 10,40 --source rendered --planes 64\n"
+      "      checks the bias on the system's OpenGL: no acne at it, acne at 90 % of it");
   cmd->add_option("--light", o->shadow.light,
                   "directional (cascades; default) or spot (one perspective map)");
   cmd->add_option("--spot-angle", o->shadow.spot_angle, "A spot light's full cone, degrees (60)");

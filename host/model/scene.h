@@ -4,6 +4,7 @@
 // --set override only says what differs from it.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -132,7 +133,13 @@ struct Scene {
   double delta_a = 0;
   double rotation_range_deg = 0;
   std::array<double, 3> rotation_step{}, rotation_offset{};
-  std::vector<double> distances;
+  std::vector<double> distances;  // in the order given (rows are searched and journaled so)
+  // The distances nearest first: the rows of a table by z.
+  std::vector<double> distances_ascending() const {
+    std::vector<double> d = distances;
+    std::sort(d.begin(), d.end());
+    return d;
+  }
   // Where the camera and the planes sit in the world (binary64): the camera still looks down its
   // -z axis at the planes z away; pipeline.transform says how the GPU gets there.
   std::array<double, 3> world_position{};

@@ -38,7 +38,7 @@ std::vector<std::string> rows_without_bound(const Scene& scene, const std::vecto
   const std::vector<std::string> labels = pair_labels(scene);
   const auto at = rows_at(rows);
   std::map<std::string, std::vector<std::string>> without;  // why -> "pair at z", by z
-  for (double z : scene.distances)
+  for (double z : scene.distances_ascending())
     for (const auto& l : labels) {
       const auto it = at.find({z, l});
       if (it != at.end() && it->second->verdict() == Verdict::resolved &&
@@ -58,7 +58,7 @@ std::string bound_grid(const Scene& scene, const std::vector<MtsRow>& rows, bool
   std::vector<Column> cols = {{"z"}};
   for (const auto& l : labels) cols.push_back({l});
   Cells cells;
-  for (double z : scene.distances) {
+  for (double z : scene.distances_ascending()) {
     std::vector<std::string> c = {human(z)};
     for (const auto& l : labels) {
       const auto it = at.find({z, l});

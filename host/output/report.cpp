@@ -392,7 +392,7 @@ std::string render_table(const Scene& scene, const std::vector<MtsRow>& rows, co
   const WideTable t = wide_table(scene, rows, format == "csv");
   std::vector<std::vector<std::string>> cells;
   TableMarks marks;
-  for (double z : scene.distances) cells.push_back(wide_row(t, z, marks));
+  for (double z : scene.distances_ascending()) cells.push_back(wide_row(t, z, marks));
   if (format == "csv") return csv(wide_columns(t), cells);
   const bool md = format == "markdown";
   std::string out = wide_caption(scene);

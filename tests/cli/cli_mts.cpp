@@ -82,6 +82,15 @@ TEST_CASE("table in every output format", "[cli][table]") {
   CHECK(j["fragment_pairs"].get<long long>() > 0);
   CHECK(j["scene"]["kernel"][0] == 24);
   CHECK_FALSE(j.contains("wall_seconds"));
+  // Distances given in any order: the table's rows (and the bound's grid) run nearest first.
+  const auto unsorted = run_cli(
+      "table -t linear -f unorm16 --no-timing --distances 64,2 --kernel 24x24 --frames 6 "
+      "--format-out csv");
+  REQUIRE(unsorted.exit_code == 0);
+  const size_t row2 = unsorted.output.find("\n2,"), row64 = unsorted.output.find("\n64,");
+  REQUIRE(row2 != std::string::npos);
+  REQUIRE(row64 != std::string::npos);
+  CHECK(row2 < row64);
 }
 
 TEST_CASE("output option writes the file and an unwritable path fails before the run",

@@ -80,7 +80,9 @@ COMMANDS = [
     ("lj-table --samples 1000 -q --no-timing", "lj-table", False, ["f/d", "bits", "ae"], None),
     ("resolve -t standard -f unorm24 --near 1 --far 1000 --curve", "resolve", False,
      ["distance", "depth", "code", "gap_below", "resolution"], ("rows", "depth", "depth")),
-    (f"readback {SCENE}", "readback", True,
+    # readback maps depths on the host: the scene's pairs and distances, not its kernel or frames
+    ("readback -t standard,reversed -f unorm24 --distances 2,1000 --no-timing -q", "readback",
+     True,
      ["z", "code", "read", "error", "rel_error", "storage_error", "arithmetic_error", "code_gap"],
      ("rows", "read", "read")),
     ("formats --value 0.5", "formats", False, ["value", "code", "stored", "rel. error"],
