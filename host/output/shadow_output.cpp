@@ -23,7 +23,7 @@ std::string witnessed_share(const nlohmann::json& rec, const char* witnessed, co
 }
 
 std::string camera_cell(const nlohmann::json& rec) {
-  if (rec.contains("distance")) return "d " + human(rec["distance"].get<double>());
+  if (rec.contains("distance")) return human(rec["distance"].get<double>());
   if (!rec.contains("split")) return "-";
   return human(rec["split"][0].get<double>()) + "-" + human(rec["split"][1].get<double>());
 }
@@ -49,6 +49,16 @@ std::string caption(const nlohmann::json& h) {
           ? fmt::format("map ({} degree cone; a row per receiver distance d, its texel there)",
                         human(h.value("spot_angle_deg", 0.0)))
           : std::string("cascade"));
+}
+
+// The two columns that name a row: a cascade and its camera split, or (a spot light's one map) a
+// row per receiver distance d along its axis.
+std::vector<Column> named_by_light(std::vector<Column> cols, const nlohmann::json& header) {
+  if (header.value("light", std::string()) == "spot") {
+    cols[0] = {"row", true};
+    cols[1] = {"receiver d m", true};
+  }
+  return cols;
 }
 
 const std::vector<Column>& cascade_columns() {
@@ -174,7 +184,7 @@ std::string render_shadow_output(const nlohmann::json& header,
     return out.dump(2) + "\n";
   }
   if (format == "csv") {
-    std::vector<Column> cols = cascade_columns();
+    std::vector<Column> cols = named_by_light(cascade_columns(), header);
     bool rendered = false;
     for (const auto& rec : records) rendered |= rec.contains("rendered");
     const std::vector<Column>& rc = rendered_columns();
@@ -220,10 +230,10 @@ ShadowTables shadow_tables(const nlohmann::json& header, const std::vector<nlohm
   ShadowTables t;
   t.caption = caption(header);
   t.engine_caption = engine_caption(header);
-  t.cascade_cols = cascade_columns();
+  t.cascade_cols = named_by_light(cascade_columns(), header);
   t.engine_cols = engine_columns();
   t.rendered_caption = rendered_caption(header);
-  t.rendered_cols = rendered_columns();
+  t.rendered_cols = named_by_light(rendered_columns(), header);
   for (const auto& rec : records) {
     t.cascades.push_back(cascade_cells(rec, format));
     if (rec.contains("rendered")) t.rendered.push_back(rendered_cells(rec, format));

@@ -106,6 +106,12 @@ TEST_CASE("shadow writes its cascades as text, CSV and JSON", "[shadow][cli]") {
   CHECK(j["cascades"].size() == 4);
   CHECK_FALSE(j["cascades"][0].contains("witnessed"));
   CHECK(j["cascades"][3]["engines"].size() == 2);
+  // A spot light's rows are receiver distances, and the columns say so.
+  const CliResult spot = run_cli(
+      "shadow -q --source bound --light spot --light-near 0.1 --light-far 50 --distances 2,10");
+  REQUIRE(spot.exit_code == 0);
+  CHECK(spot.output.find("row  receiver d m") != std::string::npos);
+  CHECK(spot.output.find("camera m") == std::string::npos);
 }
 
 TEST_CASE("shadow refuses bad input with exit 3 and says what is allowed", "[shadow][cli]") {
