@@ -15,12 +15,16 @@ namespace depthprec {
 
 namespace {
 
-// One colour per series from a list of distinct hues; every 12 series the point shape and the
-// dash change, so a colour used twice is still told apart.
+// One colour per series from a list of distinct hues, point shapes changing every 12 series.
+// Plots that draw one series per line may also change the dash (series_dash); the ones that dash
+// their own lines (compare's, the profiles') must not get two.
 const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
                                 "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#aec7e8"};
 std::string series_style(size_t i) {
-  return fmt::format("lc rgb '{}' pt {} dt {}", kColours[i % 12], 4 + 2 * (i / 12), 1 + i / 12);
+  return fmt::format("lc rgb '{}' pt {}", kColours[i % 12], 4 + 2 * (i / 12));
+}
+std::string series_dash(size_t i) {
+  return fmt::format("dt {}", 1 + i / 12);
 }
 
 // The first lines of every plot's script: the terminal the output's name asks for, and the file
@@ -95,8 +99,8 @@ void plot_mts(const std::vector<MtsRow>& rows, const std::string& title,
         ", {:.6g} with lines dt 3 lc rgb '#888888' title 'x: no MTS at this z (see the table)'",
         top);
   for (size_t i = 0; i < order.size(); ++i) {
-    script += fmt::format(", $s{} using 1:2 with linespoints lw 1.5 {} title {} noenhanced", i,
-                          series_style(i), gnuplot_quote(order[i]));
+    script += fmt::format(", $s{} using 1:2 with linespoints lw 1.5 {} {} title {} noenhanced", i,
+                          series_style(i), series_dash(i), gnuplot_quote(order[i]));
     if (!series[order[i]].none.empty())
       script += fmt::format(", $n{} using 1:2 with points pt 2 ps 1.2 lc rgb '{}' notitle", i,
                             kColours[i % 12]);

@@ -173,6 +173,22 @@ TEST_CASE("plot renders an MTS JSON output through gnuplot", "[cli][plot]") {
   CHECK_THAT(bad.output, Contains(".png or .svg"));
   const auto notjson = run_cli("plot /etc/hostname");
   CHECK(notjson.exit_code == 3);
+  // The plots that dash their own lines: a --profiles output's and compare's.
+  const std::string profiles = fresh("/tmp/depthprec_test_plot_profiles.json"),
+                    profiles_png = fresh("/tmp/depthprec_test_plot_profiles.png"),
+                    compare_png = fresh("/tmp/depthprec_test_plot_compare.png");
+  REQUIRE(run_cli("mts --profiles ideal,llvmpipe -t standard -f unorm24 --format-out json -o " +
+                  profiles + " " + kSmallOptions)
+              .exit_code == 0);
+  const auto by_profile = run_cli("plot " + profiles + " -o " + profiles_png);
+  INFO(by_profile.output);
+  CHECK(by_profile.exit_code == 0);
+  CHECK(slurp(profiles_png).substr(1, 3) == "PNG");
+  const auto compared = run_cli("compare -q -t standard -f unorm24 " + kSmallOptions +
+                                "--no-timing --plot " + compare_png);
+  INFO(compared.output);
+  CHECK(compared.exit_code == 0);
+  CHECK(slurp(compare_png).substr(1, 3) == "PNG");
 }
 
 TEST_CASE("the MTS plot names the user's scene and marks distances without an MTS", "[cli][plot]") {
