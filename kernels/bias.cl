@@ -48,7 +48,10 @@ __kernel void bias_setup(BIAS_SETUP_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const BiasS
   for (int t = 0; t < NT; ++t) {
     __global float* R = T + t * MTS_TRI_STRIDE;
     float o = 0.0f;
-    if (is_b) {
+    /* A record that covers no pixel (an empty slot, or a degenerate triangle of the clip stage's
+     * fans: its gradients are 0/0) has no bias to apply; a plane facing the camera exactly makes
+     * such fans under llvmpipe's clip stage. */
+    if (is_b && (as_uint(R[MTS_T_BITS]) & MTS_BIT_VALID)) {
       /* the float rule reads the largest |depth| of the triangle's vertices (MTS_T_ZMAX) */
       o = depth_bias(P[MTS_C_BIAS_UNITS], float_rule, P[MTS_C_BIAS_FACTOR], P[MTS_C_BIAS_CLAMP],
                      depth_bias_slope(R[MTS_T_DZDX], R[MTS_T_DZDY], slope_form), R[MTS_T_ZMAX],

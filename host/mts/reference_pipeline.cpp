@@ -81,7 +81,9 @@ Plane setup_plane(const Scene& s, const EvalPair& pair, const ProbeConstants& pc
         tri.d0 = dp_adv_shift_plane(tri.d0, v0.d, v1.d, v2.d, pc.adv_interpolation, sign);
     }
     tri.bias = 0;
-    if (bias) {
+    // A triangle that covers no pixel (a degenerate fan triangle of the clip stage: gradients
+    // 0/0) has no bias to apply, as kernels/bias.cl skips it.
+    if (bias && tri.valid) {
       tri.bias =
           depth_bias(bias->units_term, bias->float_rule, bias->factor, bias->clamp,
                      depth_bias_slope(tri.dzdx, tri.dzdy, bias->slope_form), v0.d, v1.d, v2.d);
