@@ -81,7 +81,15 @@ BiasOptions bias_options_of(const BiasCliOptions& o) {
   if (!o.r_unorm.empty())
     b.unorm_r = parse_unorm_r(o.r_unorm);
   else if (!o.scene.profile.empty() && o.source == "emulated") {  // the profile's choice of r
-    const char* r = profile(o.scene.profile).bias_unorm_r;
+    const Profile& p = profile(o.scene.profile);
+    const char* r = p.bias_unorm_r;
+    for (const std::string& set : p.sets)
+      if (set.rfind("pipeline.envelope=", 0) == 0)
+        throw InputError(fmt::format(
+            "--profile {0}: an API envelope's adversary moves one plane against another, and a "
+            "bias overlay lies on its own plane: bias has no {0} emulation (measure under ideal, "
+            "llvmpipe or softpipe; --set bound_model={0} gives the units guaranteed under {0})",
+            o.scene.profile));
     if (!r)
       throw InputError(fmt::format(
           "--profile {}: its depth bias is not modelled (no rule of --r-unorm is the driver's); "

@@ -200,6 +200,9 @@ void add_world_command(CLI::App& app, GlobalOptions& global) {
       "  depthprec world -t standard -f unorm24 --far 1e5 --distance 500 --relative 1e-4 "
       "--transforms absolute,camera_relative,relative_to_eye");
   o->scene.add_to(*cmd, true);
+  refuse_unused(*cmd, {"--distances"},
+                "world measures content at one eye distance, --distance (the world distance is "
+                "what it searches)");
   cmd->add_option("--distance", o->distance, "The content's eye distance z (scene units)")
       ->capture_default_str();
   cmd->add_option("--separation", o->separation,

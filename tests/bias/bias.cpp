@@ -224,6 +224,11 @@ TEST_CASE("bias refuses what has no bias rule and says why", "[bias][cli][errors
   CHECK(run_cli(base + "-t standard -f unorm24 --vulkan-representation float").exit_code == 3);
   CHECK(run_cli(base + "-t standard -f unorm24 --api metal").exit_code == 3);
   CHECK(run_cli(base + "-t standard -f unorm24 --set-factor -1").exit_code == 3);
+  // an envelope's adversary: no advice that leads to a second refusal
+  const auto envelope = run_cli(base + "-t standard -f unorm24 --profile d3d11");
+  CHECK(envelope.exit_code == 3);
+  CHECK_THAT(envelope.output, Contains("bias has no d3d11 emulation") &&
+                                  Contains("--set bound_model=d3d11") && !Contains("--r-unorm"));
   // a technique whose fragment stage writes depth gets a row saying so, not a number
   const auto frag = run_cli(base + "-t log_fragment,standard -f unorm24 --format-out json");
   REQUIRE(frag.exit_code == 0);

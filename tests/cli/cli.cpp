@@ -110,6 +110,7 @@ TEST_CASE("bad input gets a specific message and the documented exit code", "[cl
       {"readback --distances 0", 3, "'distances' must hold finite eye distances > 0, not 0"},
       {"readback --kernel 8x8", 2, "readback: --kernel has no effect: readback maps depths"},
       {"readback --profile llvmpipe", 2, "readback: --profile has no effect"},
+      {"world --distances 5,10", 2, "world: --distances has no effect"},
       {"mts -t reversed standard", 3, "each option takes one value: list several with commas"},
       {"select --bits 40", 3, "--bits must be 2..32"},
       {"mts --bogus", 2, "--bogus"},
