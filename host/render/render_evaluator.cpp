@@ -321,6 +321,7 @@ std::vector<ProbeResult> RenderEvaluator::run_rounds(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       seconds_ += secs;
       frames_ += n;
+      ++read_backs_;
       for (size_t k = 0; k < n; ++k) {
         ProbeResult& r = results[jobs[c + k].probe];
         r.seconds += secs / static_cast<double>(n);

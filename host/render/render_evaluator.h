@@ -49,6 +49,7 @@ class RenderEvaluator : public ProbeEvaluator {
 
   const GlDepthFormat& depth_format() const { return depth_; }
   uint64_t frames_rendered() const { return frames_; }
+  uint64_t read_backs() const { return read_backs_; }  // rounds of frames drawn and read back
   double seconds() const { return seconds_; }
 
  private:
@@ -96,7 +97,7 @@ class RenderEvaluator : public ProbeEvaluator {
       loc_eye_low_ = -1;
   std::vector<Target> targets_;
   std::map<double, int> last_fight_frame_;  // frame order as in the emulator (MtsEvaluator)
-  uint64_t frames_ = 0;
+  uint64_t frames_ = 0, read_backs_ = 0;
   double seconds_ = 0;
 };
 

@@ -26,9 +26,10 @@ class RenderSource : public EvaluatorSource<ProbeEvaluator> {
   void retire(ProbeEvaluator& ev) override {
     const auto& r = static_cast<const RenderEvaluator&>(ev);  // as make built it
     frames += r.frames_rendered();
+    read_backs += r.read_backs();
     seconds += r.seconds();
   }
-  uint64_t frames = 0;  // over every evaluator
+  uint64_t frames = 0, read_backs = 0;  // over every evaluator
   double seconds = 0;
 
  private:
@@ -96,6 +97,9 @@ MtsRun render_scene(GlContext& gl, const Scene& scene,
           source.seconds > 0 ? static_cast<double>(source.frames) / source.seconds : 0.0,
           gl_depth_format(pair.format).given()));
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
+    // The run's own counters, as the rows' (docs/cli.md): read-back rounds and the driver's time.
+    run.info.launches += source.read_backs;
+    run.info.kernel_seconds += source.seconds;
   }
   sort_rows(scene, run.rows);
   run.info.wall_seconds =

@@ -265,11 +265,20 @@ TEST_CASE("render: output header and rows say what rendered them", "[render][cli
   CHECK_THAT(j.at("gl_version").get<std::string>(), Contains("4.5"));
   CHECK(j.at("depth_buffers").at("float32") == "32-bit float (GL_DEPTH_COMPONENT32F)");
   REQUIRE(j.at("rows").size() == 2);
+  uint64_t row_launches = 0, most = 0;
   for (const auto& row : j.at("rows")) {
     CHECK(row.at("source") == "rendered");
     CHECK(row.at("frames_per_second").get<double>() > 0);
     CHECK(row.at("depth_range") == "zero_to_one");
+    row_launches += row.at("kernel_launches").get<uint64_t>();
+    most = std::max(most, row.at("kernel_launches").get<uint64_t>());
   }
+  // The header counts the run's read-back rounds, which rows share: at least the busiest row's,
+  // at most all of theirs; and the driver's time.
+  const uint64_t launches = j.at("kernel_launches").get<uint64_t>();
+  CHECK(launches >= most);
+  CHECK(launches <= row_launches);
+  CHECK(j.at("kernel_seconds").get<double>() > 0);
 }
 
 TEST_CASE("render refuses what the driver or the rendering cannot do", "[render][cli]") {
