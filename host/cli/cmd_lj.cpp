@@ -395,7 +395,7 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
       "per\n"
       "exponent width and the best one; and the 32-bit comparisons (LJ99 fig. 11).\n"
       "Example:\n"
-      "  depthprec lj-table --format-out markdown -o docs/lapidous-jiao-tables.md");
+      "  depthprec lj-table --format-out markdown -o lj-tables.md");
   tcmd->add_option("--samples", tab->samples, "N samples per evaluation")->capture_default_str();
   tab->out.add_to(*tcmd);
   tcmd->add_option("--plot", tab->plot,

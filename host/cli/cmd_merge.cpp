@@ -84,10 +84,10 @@ void merge_rows(const MergeOptions& o, const std::vector<nlohmann::json>& docs) 
     const std::string& f = o.files[k];
     const nlohmann::json& j = docs[k];
     if (!j.contains("rows") || !j.contains("scene"))
-      throw InputError(
-          fmt::format("merge: '{}' is no JSON output merge joins (--format-out json of mts, table, "
-                      "render, compare, lj-table, tradeoff, cost, pipelines, advise or bias)",
-                      f));
+      throw InputError(fmt::format(
+          "merge: '{}' is no JSON output merge joins (--format-out json of mts, table, "
+          "render, compare, lj-table, tradeoff, cost, pipelines, advise, world or bias)",
+          f));
     if (scene_json.is_null()) {
       scene_json = j["scene"];
       kind = j.value("kind", "mts");
@@ -231,8 +231,8 @@ void add_merge_command(CLI::App& app) {
       "merge",
       "Join the JSON outputs of the shards of a batch (--shard i/N --format-out json) into the\n"
       "output one whole run would write, in any --format-out: the shards of `mts`, `table`,\n"
-      "`render`, `compare`, `lj-table`, `tradeoff`, `cost`, `pipelines`, `advise`, `bias`, and\n"
-      "of `mts --profiles` and `table --profiles`.\n"
+      "`render`, `compare`, `lj-table`, `tradeoff`, `cost`, `pipelines`, `advise`, `world`,\n"
+      "`bias`, and of `mts --profiles` and `table --profiles`.\n"
       "Example:\n"
       "  depthprec merge part1.json part2.json part3.json part4.json --format-out markdown");
   mcmd->add_option("files", merge->files, "JSON outputs of the shards")->required();

@@ -239,8 +239,9 @@ std::string audit_caption(const AuditReport& r) {
       "those the front surface wins by less than another conformant implementation may store "
       "(at_risk_pixels), those where two surfaces share a plane (coplanar_pixels), and per "
       "fighting pair (winner "
-      "drawn over front) its pixels, the front's median eye depth, the median separation along "
-      "the ray, the set-up's MTS there, the offset that MTS asks for, and the fixes checked on "
+      "drawn over front) its pixels, the front's median eye depth, the smallest separation along "
+      "the ray, the set-up's MTS there, the offset the guaranteed MTS (mts_bound in JSON) asks "
+      "for beyond that separation, and the fixes checked on "
       "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
       "units), other set-ups",
       h.value("file", ""), g.triangles, g.draws.size(), g.draws.size() == 1 ? "draw" : "draws",
