@@ -208,6 +208,16 @@ TEST_CASE("lj and select write their errors as JSON numbers, as mts does", "[cli
   REQUIRE(ranking.size() == 9);
   CHECK(ranking[0].at("ae").is_number());
   CHECK(ranking[0].at("ae").get<double>() <= ranking[8].at("ae").get<double>());
+  CHECK(j.at("rounding") == "nearest_even");
+  // Where no format has a finite error, select says so, and ranks no ratio of infinities.
+  const auto none = run_cli("select --buffer z --bits 16 --far 1e6 --samples 1000");
+  REQUIRE(none.exit_code == 0);
+  CHECK_THAT(none.output, Contains("No 16-bit format gives the z buffer a finite average error"));
+  CHECK_THAT(none.output, !Contains("nan"));
+  const auto none_json =
+      run_cli("select --buffer z --bits 16 --far 1e6 --samples 1000 --format-out json");
+  REQUIRE(none_json.exit_code == 0);
+  CHECK(nlohmann::json::parse(none_json.output).at("ranking")[0].at("x_best").is_null());
 }
 
 TEST_CASE("resolve writes JSON when asked, with the OpenGL wiki's figure as a number", "[cli]") {
