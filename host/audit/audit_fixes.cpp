@@ -195,7 +195,9 @@ void add_bias_fix(const Scene& scene, const EvalPair& pair, const PairCheck& che
     fp.bias_note = not_applicable;
     return;
   }
-  const BiasRule rule = bias_rule(BiasOptions{}, scene.storage_format(pair));
+  BiasOptions options;  // OpenGL's rule, with the r of the scene's profile (llvmpipe: 2 steps)
+  options.unorm_r = scene_unorm_r(scene);
+  const BiasRule rule = bias_rule(options, scene.storage_format(pair));
   const int sign = bias_sign(scene, pair);
   const double span = std::isnan(fp.mts) ? 0.0 : 2 * fp.mts;
   const auto fights = [&](double units) {

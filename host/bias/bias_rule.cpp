@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "host/base/errors.h"
+#include "host/model/profile.h"
 #include "host/runtime/kernel_variant.h"
 #include "interface/bias_formula.h"
 
@@ -83,6 +84,14 @@ VulkanRepresentation parse_vulkan_representation(const std::string& s) {
 }
 SlopeForm parse_slope_form(const std::string& s) {
   return parse_named<SlopeForm, 2>(s, "--slope", {SlopeForm::max, SlopeForm::sqrt});
+}
+
+std::optional<UnormR> scene_unorm_r(const Scene& scene) {
+  const std::string name =
+      scene.json.value("pipeline", nlohmann::json::object()).value("profile", "");
+  if (name.empty() || name == "custom") return std::nullopt;
+  const char* r = profile(name).bias_unorm_r;
+  return r ? std::optional<UnormR>(parse_unorm_r(r)) : std::nullopt;
 }
 
 UnormR unorm_r_default(BiasApi api) {

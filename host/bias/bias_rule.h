@@ -47,6 +47,9 @@ struct BiasOptions {
 };
 
 UnormR unorm_r_default(BiasApi api);
+// The r of unorm buffers under the scene's implementation profile (pipeline.profile: llvmpipe's
+// double step), none where the scene names no profile or its profile models none.
+std::optional<UnormR> scene_unorm_r(const Scene& scene);
 
 // The offset o after the API's clamp c: min(o, c) for c > 0, max(o, c) for c < 0, o for c = 0.
 // A clamp of the other sign than the offset never binds: under LESS the bias is negative, and

@@ -143,6 +143,21 @@ TEST_CASE("audit under --profile llvmpipe agrees with llvmpipe's rendering pixel
   if (file == "decal_wall.gltf") CHECK(fights_differ == 0);
 }
 
+TEST_CASE("audit's bias under --profile llvmpipe counts llvmpipe's units (two code steps each)",
+          "[audit][cli]") {
+  const auto ideal = test::audit_json(kAuditDir + "decal_wall.gltf -t standard -f unorm24");
+  const auto mesa =
+      test::audit_json(kAuditDir + "decal_wall.gltf -t standard -f unorm24 --profile llvmpipe");
+  const auto& pi = ideal.at("setups").at(0).at("pairs").at(0);
+  const auto& pm = mesa.at("setups").at(0).at("pairs").at(0);
+  // llvmpipe needs more separation, yet fewer units: each of its units is twice as large
+  REQUIRE(pm.at("mts").get<double>() >= pi.at("mts").get<double>());
+  const int ui = pi.at("bias_units_that_resolve").get<int>(),
+            um = pm.at("bias_units_that_resolve").get<int>();
+  CAPTURE(ui, um);
+  CHECK(std::abs(um) < std::abs(ui));
+}
+
 // The default pipeline is not llvmpipe's, yet it must never be optimistic against it: every pixel
 // llvmpipe draws fighting (in the same view) is one the audit calls fighting or at risk, or one
 // whose verdict only the coverage rules decide (a seam of one surface, a coplanar pair, the border
