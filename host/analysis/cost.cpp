@@ -42,7 +42,9 @@ nlohmann::json cost_record(OpenClRuntime& rt, const Scene& scene, const EvalPair
             {"structural_cost", structural_cost(scene, pair.technique)}});
   if (const auto c = lj_config_for(pair.technique, scene.near, scene.far))
     j["lj_ae"] = json_number(lj_average_error_device(rt, *c, scene.storage_format(pair)).ae);
-  if (timing) j["ns_per_fragment_pair"] = time_probes(rt, scene, pair, at_mts).ns_per_pair();
+  // A pair with no resolved distance has no clean probe to time: no figure, not 0.
+  if (timing && !at_mts.empty())
+    j["ns_per_fragment_pair"] = time_probes(rt, scene, pair, at_mts).ns_per_pair();
   return j;
 }
 

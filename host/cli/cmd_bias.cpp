@@ -84,7 +84,7 @@ BiasOptions bias_options_of(const BiasCliOptions& o) {
     const Profile& p = profile(o.scene.profile);
     const char* r = p.bias_unorm_r;
     for (const std::string& set : p.sets)
-      if (set.rfind("pipeline.envelope=", 0) == 0 && set != "pipeline.envelope=none")
+      if (const auto [key, value] = pipeline_setting(set); key == "envelope" && value != "none")
         throw InputError(fmt::format(
             "--profile {0}: an API envelope's adversary moves one plane against another, and a "
             "bias overlay lies on its own plane: bias has no {0} emulation (measure under ideal, "

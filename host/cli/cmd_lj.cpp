@@ -122,12 +122,12 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
                      pipe.clipped)}};
     if (!timing)
       for (auto& row : cells) row.erase(row.begin() + 2);
-    text = captioned(fmt::format("Lapidous-Jiao average error: {} buffer, {} ({} storage "
-                                 "rounding), near {}, far {} (f/d "
-                                 "{}), N = {}, {} sampling",
-                                 o.buffer, f.name(), o.rounding, human(c.near), human(c.far),
-                                 human(c.far / c.near), c.samples, o.sampling),
-                     cols, cells, fmt_out);
+    text =
+        captioned(fmt::format("Lapidous-Jiao average error: {} buffer, {} ({} storage rounding), "
+                              "near {}, far {} (f/d {}), N = {}, {} sampling",
+                              o.buffer, f.name(), o.rounding, human(c.near), human(c.far),
+                              human(c.far / c.near), c.samples, o.sampling),
+                  cols, cells, fmt_out);
   }
   write_output(o.out.output, text);
 }
@@ -143,8 +143,8 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
                    [](const Ranked& a, const Ranked& b) { return a.ae < b.ae; });
   std::string text;
   const double best = ranked.front().ae;
-  // x best of a format with no finite error is none: inf / inf is no ratio
-  const auto times_best = [best](double ae) { return std::isfinite(best) ? ae / best : NAN; };
+  // x best where no format has a finite error is none: inf / inf is no ratio
+  const bool ranked_by_error = std::isfinite(best);
   if (o.out.format_out == "json") {
     nlohmann::json j = output_header("select", rt.description());
     j.update({{"buffer", o.buffer},
@@ -162,7 +162,7 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
            {"E", r.e},
            {"M", o.bits - r.e},
            {"ae", json_number(r.ae)},
-           {"x_best", std::isfinite(best) ? json_number(times_best(r.ae)) : nlohmann::json()}});
+           {"x_best", ranked_by_error ? json_number(r.ae / best) : nlohmann::json()}});
     text = j.dump(2) + "\n";
   } else {
     Cells cells;
@@ -170,14 +170,14 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
     for (const auto& r : ranked)
       cells.push_back({std::to_string(rank++), r.format, std::to_string(r.e),
                        std::to_string(o.bits - r.e), number_cell(r.ae, o.out.format_out),
-                       std::isfinite(best)         ? number_cell(times_best(r.ae), o.out.format_out)
+                       ranked_by_error             ? number_cell(r.ae / best, o.out.format_out)
                        : o.out.format_out == "csv" ? ""
                                                    : "-"});
     text = captioned(
         fmt::format("Best {}-bit storage for the {} buffer, near {}, far {} ({} sampling, N = {}):",
                     o.bits, o.buffer, human(c.near), human(c.far), o.sampling, c.samples),
         {{"rank"}, {"format", true}, {"E"}, {"M"}, {"ae"}, {"x best"}}, cells, o.out.format_out);
-    if (!std::isfinite(best) && o.out.format_out == "text")
+    if (!ranked_by_error && o.out.format_out == "text")
       text += fmt::format(
           "No {}-bit format gives the {} buffer a finite average error over [{}, {}]: past its Z "
           "pole the stored code no longer separates distances. Fewer decades (f/d), more bits or "
