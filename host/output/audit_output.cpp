@@ -293,7 +293,9 @@ std::string audit_notes(const AuditReport& r, bool timing) {
         notes += fmt::format(
             "{}: {} fights itself ({} pixels): two parts of one draw that share no corner, as in "
             "a mesh merged from several objects (gltfpack merges meshes unless -kn keeps named "
-            "nodes apart) or one passing through itself; the JSON names a triangle of each\n",
+            "nodes apart) or one passing through itself, or its own back faces behind its front "
+            "ones (the audit culls no back face: a renderer culls them for a material that is not "
+            "doubleSided); the JSON names a triangle of each\n",
             s.pair.label(), short_name(g, p.winner_draw), p.pixels);
   for (size_t k = 0; k < r.pngs.size(); ++k)
     if (!r.pngs[k].empty())

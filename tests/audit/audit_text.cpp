@@ -84,6 +84,7 @@ TEST_CASE("audit text: a pair of one draw with itself is said to be parts of one
   CHECK_THAT(text, Contains("standard/unorm24/gl: node 0/mesh 0#0 fights itself (42 pixels): two "
                             "parts of one draw"));
   CHECK_THAT(text, Contains("gltfpack"));
+  CHECK_THAT(text, Contains("its own back faces behind its front ones"));
   r.setups[0].pairs[0].front_draw = 1;  // two draws: no such note
   SceneGeometry two = g;
   two.draws.push_back(g.draws[0]);
