@@ -129,7 +129,7 @@ void run_lj(const LjOptions& o, const GlobalOptions& g) {
                               human(c.far / c.near), c.samples, o.sampling),
                   cols, cells, fmt_out);
   }
-  write_output(o.out.output, text);
+  write_output(o.out.output, for_terminal(text, o.out.format_out));
 }
 
 void run_select(const LjOptions& o, const GlobalOptions& g) {
@@ -184,7 +184,7 @@ void run_select(const LjOptions& o, const GlobalOptions& g) {
           "another buffer (depthprec lj says for how many samples).\n",
           o.bits, o.buffer, human(c.near), human(c.far));
   }
-  write_output(o.out.output, text);
+  write_output(o.out.output, for_terminal(text, o.out.format_out));
 }
 
 // The index of the best exponent width of an ae row, and whether E = 0 and E = 1 tie: LJ99 eq. 2

@@ -41,7 +41,9 @@ void run_shadow(const ShadowCliOptions& o, const GlobalOptions& g) {
   std::vector<nlohmann::json> records;
   for (size_t i = 0; i < r.setup.cascades.size(); ++i) {
     if (!g.quiet)
-      fmt::print(stderr, "depthprec: shadow: cascade {} of {}\n", i + 1, r.setup.cascades.size());
+      fmt::print(stderr, "depthprec: shadow: {} {} of {}\n",
+                 r.setup.light == LightType::spot ? "receiver distance" : "cascade", i + 1,
+                 r.setup.cascades.size());
     nlohmann::json rec = shadow_record(rt.get(), r, i);
     if (gl) rec["rendered"] = rendered_shadow_check(r, i, rec);
     records.push_back(rec);
