@@ -170,6 +170,8 @@
 /* kernel rows of one plane per work-item of mts_a_rows: consecutive rows meet the same triangle
  * records, whose comparison with the reference distance's a work-item then makes once */
 #define MTS_A_ROWS_PER_ITEM 8
+/* mts_a_rows' work-items per plane: its KH kernel rows in groups of MTS_A_ROWS_PER_ITEM */
+#define MTS_A_ROW_GROUPS(KH) (((KH) + MTS_A_ROWS_PER_ITEM - 1) / MTS_A_ROWS_PER_ITEM)
 /* Per band of cached plane A (mts_a_bands): code bounds lo, hi, bad, then the gap range */
 #define MTS_BW_GAP_LO 3
 #define MTS_BW_GAP_HI 4

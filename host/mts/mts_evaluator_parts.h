@@ -48,7 +48,7 @@ inline cl_uint band_count(const Scene& scene) {
 
 // mts_a_rows' work-items per plane: its kernel rows in groups of MTS_A_ROWS_PER_ITEM.
 inline cl_uint a_row_groups(const Scene& scene) {
-  return (static_cast<cl_uint>(scene.kernel_h) + MTS_A_ROWS_PER_ITEM - 1) / MTS_A_ROWS_PER_ITEM;
+  return MTS_A_ROW_GROUPS(static_cast<cl_uint>(scene.kernel_h));
 }
 
 // Floats per plane record (interface/mts_layout.h, the buffer layout the kernels include too).

@@ -54,7 +54,7 @@ __kernel void mts_a_rows(MTS_A_ROWS_BUFFERS(MTS_ARG_IN, MTS_ARG_OUT) const MtsAR
   const float origin_x = args.area.origin_x, origin_y = args.area.origin_y;
   const uint id = get_global_id(0);
   if (id >= items) return;
-  const uint groups = (kernel_h + MTS_A_ROWS_PER_ITEM - 1) / MTS_A_ROWS_PER_ITEM;
+  const uint groups = MTS_A_ROW_GROUPS(kernel_h);
   const uint plane = first_plane + id / groups, r0 = id % groups * MTS_A_ROWS_PER_ITEM;
   __global const float* T = tris + (size_t)plane * PLANE_STRIDE;
   const uint frame = plane % per_probe;
