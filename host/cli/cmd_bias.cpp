@@ -345,7 +345,9 @@ std::string bias_caption(const nlohmann::json& header, const BiasTable& t) {
           : "",
       bias_setting_names(api),
       header.value("clamp", 0.0) != 0
-          ? fmt::format(", clamped to {} as the API clamps it", human(header.value("clamp", 0.0)))
+          ? fmt::format(", after the API's clamp {}, which limits {} offsets only",
+                        human(header.value("clamp", 0.0)),
+                        header.value("clamp", 0.0) > 0 ? "positive" : "negative")
           : "",
       r_text, t.no_slope ? no_slope_note(header) : "",
       t.skipped.empty() ? ""
