@@ -8,6 +8,7 @@
 
 #include "host/base/errors.h"
 #include "host/base/json_number.h"
+#include "host/model/frame_setup.h"
 #include "host/mts/emulator.h"
 #include "host/mts/worst_case.h"
 
@@ -35,6 +36,14 @@ void check_content_request(const Scene& scene, double farthest, double separatio
       throw InputError(
           fmt::format("{}: the far plane ({}) must lie beyond the farthest content ({}); set --far",
                       pair.label(), scene.far, farthest));
+}
+
+double near_top(const Scene& scene, const AdviseRequest& r) {
+  return nearest_vertex_distance(scene, r.z_min) * (1 - 0x1.0p-10);
+}
+
+double tight_far(const Scene& scene, const AdviseRequest& r) {
+  return farthest_vertex_distance(scene, r.z_max + r.separation_at(r.z_max)) * (1 + 0x1.0p-10);
 }
 
 std::vector<double> advise_distances(const AdviseRequest& r) {
@@ -191,7 +200,7 @@ static nlohmann::json near_answer(OpenClRuntime& rt, const Scene& scene, const E
   // A larger near plane never costs precision at a given z (it only clips what is nearer), so
   // each set-up holds from some near plane up: the answer is the smallest. The largest tried
   // keeps the nearest content's tilted planes clear of the near plane.
-  double lo = r.z_min * r.near_floor_ratio, hi = r.z_min / kNearestContentMargin;
+  double lo = r.z_min * r.near_floor_ratio, hi = near_top(scene, r);
   if (holds(lo, &fails_at)) {
     j["smallest_near"] = lo;
     j["holds_from_floor"] = true;
@@ -212,7 +221,7 @@ static nlohmann::json near_answer(OpenClRuntime& rt, const Scene& scene, const E
   // Where one is not, the near plane moves up a step until it is.
   if (j.contains("smallest_near")) {
     double n = j["smallest_near"].get<double>(), below = 0;
-    const double top = r.z_min / kNearestContentMargin;
+    const double top = near_top(scene, r);
     int raised = 0;
     bool within = mts_within(rt, scene, pair, r, n, f);
     while (!within && n < top) {
@@ -257,7 +266,7 @@ nlohmann::json advise_record(OpenClRuntime& rt, const Scene& scene, const EvalPa
   double far_used = scene.far;
   // A set-up with a far plane may fail only because the scene's far plane spreads its codes too
   // thin (linear depth in unorm, say): then try the tightest far plane the content allows.
-  const double tight = r.z_max * kNearestContentMargin;
+  const double tight = tight_far(scene, r);
   if (!j.contains("smallest_near") && has_far_plane(pair.technique) && tight < scene.far) {
     const nlohmann::json t = near_answer(rt, scene, pair, r, tight);
     const int steps = j["near_steps"].get<int>() + t["near_steps"].get<int>();

@@ -16,10 +16,6 @@ namespace depthprec {
 
 class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
-// The largest near plane tried is the nearest content's distance over this: the scene's planes
-// are tilted and span more than the view, so at z_min they reach a little nearer than z_min.
-constexpr double kNearestContentMargin = 1.01;
-
 struct AdviseRequest {
   double z_min = 0, z_max = 0;  // the content's distances (eye space, scene units)
   double separation = 0;        // needed there: absolute, or relative to z
@@ -43,6 +39,14 @@ void validate(const AdviseRequest& r, const Scene& scene);
 // the scene (advise, world): a positive, finite separation, and every pair with a far plane
 // having it beyond the content. Throws InputError naming what is wrong.
 void check_content_request(const Scene& scene, double farthest, double separation);
+
+// The largest near plane tried: the scene's planes are tilted and span more than the view, so at
+// z_min they reach nearer than z_min (nearest_vertex_distance: z_min / 1.023 at a 60 degree view);
+// 2^-10 less keeps the vertices' rounding clear of it.
+double near_top(const Scene& scene, const AdviseRequest& r);
+// The tightest far plane tried for a set-up that fails at the scene's: 2^-10 beyond the farthest
+// vertex plane B reaches at z_max (farthest_vertex_distance at z_max plus the separation).
+double tight_far(const Scene& scene, const AdviseRequest& r);
 
 // The distances checked: z_min, z_min * 2, z_min * 4, ... below z_max, and z_max.
 std::vector<double> advise_distances(const AdviseRequest& r);

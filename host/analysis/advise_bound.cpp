@@ -53,7 +53,7 @@ bool bound_within(const Scene& scene, const EvalPair& pair, const AdviseRequest&
 
 nlohmann::json bound_answer(const Scene& scene, const EvalPair& pair, const AdviseRequest& r) {
   nlohmann::json j = nlohmann::json::object();
-  const double floor = r.z_min * r.near_floor_ratio, top = r.z_min / kNearestContentMargin;
+  const double floor = r.z_min * r.near_floor_ratio, top = near_top(scene, r);
   const auto near_ok = [&](double n) { return bound_within(scene, pair, r, n); };
   double n = 0;
   if (near_ok(floor)) {

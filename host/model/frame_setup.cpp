@@ -367,6 +367,18 @@ double seen_separation(double z, double s) {
          static_cast<double>(static_cast<float>(z));
 }
 
+double plane_side(const Scene& s, double D) {
+  return s.plane_margin * 2 * D * std::tan(s.fov_y_deg * M_PI / 360);
+}
+
+double nearest_vertex_distance(const Scene& s, double D) {
+  return D - plane_side(s, D) * std::sin(s.rotation_range_deg * M_PI / 180);
+}
+
+double farthest_vertex_distance(const Scene& s, double D) {
+  return D + plane_side(s, D) * std::sin(s.rotation_range_deg * M_PI / 180);
+}
+
 double vertex_bound(double z) {
   // z itself is rarely a binary32 (1.005 is not): B moves off A's vertex once z + s passes the
   // midpoint between fl32(z) and the next binary32 above it.

@@ -113,6 +113,17 @@ double plane_matrix_distance(const Scene& scene, double D);
 // exact geometry of the storage-limited pipeline. Row-major.
 Mat4d model_matrix_f64(const Scene& scene, const ProbeConstants& pc, double D, int frame);
 
+// The side of the measurement's square plane at eye distance D: plane_margin times the view's
+// height there, 2 D tan(fov_y / 2).
+double plane_side(const Scene& scene, double D);
+// The nearest eye distance a vertex of that plane reaches over the rotation cube: a vertex (x, y)
+// in [-0.5, 0.5]^2 sits at w = D - side (R20 x + R21 y), and the third row of R = Rx Ry Rz has
+// |R20 x + R21 y| <= sin r (r = rotation_range_deg). Wide views reach nearer: about D / 1.0034 at
+// the default 10 degrees, D / 1.023 at 60.
+double nearest_vertex_distance(const Scene& scene, double D);
+// The farthest, D + side sin r.
+double farthest_vertex_distance(const Scene& scene, double D);
+
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);
 // The vertex-precision bound (docs/spec.md 5.3): the distance from z to the midpoint between

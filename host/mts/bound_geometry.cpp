@@ -117,7 +117,7 @@ PlaneGeometry plane_geometry(const RowModel& m, double D) {
   g.D = D;
   // The binary32 side differs from this by a few u: a scaling within the plane, which moves no
   // depth; the margin keeps the ranges bounds.
-  g.side = s.plane_margin * 2 * D * std::tan(s.fov_y_deg * M_PI / 360) * (1 + 0x1.0p-18);
+  g.side = plane_side(s, D) * (1 + 0x1.0p-18);
   // A vertex (x, y) in [-0.5, 0.5]^2 sits at e_z = -D + side (R20 x + R21 y): the third row of
   // R = Rx Ry Rz has |(R20, R21)| <= sqrt(2) sin r, so |R20 x + R21 y| <= sin r.
   g.wv_lo = D - g.side * m.sin_tilt;
