@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "host/base/errors.h"
 #include "host/mts/bound_plane.h"
@@ -137,6 +138,60 @@ std::string dominant_term(const BoundCheck& v) {
   return bound::term_name(best);
 }
 
+// The separations above lo where an error bound can step up: each term is taken at magnitudes of
+// plane B (its vertices' and pixels' eye distances, clip z, window depth), each monotone in B's
+// distance, and a term's half-ulp doubles where its magnitude enters the next binade while the
+// exact gap has grown only a little. Per magnitude, every power of two it passes between lo and
+// hi, located by bisection to binary64 resolution; the check runs just above each.
+std::vector<double> binade_crossings(const RowModel& m, double z, double lo, double hi) {
+  using Magnitude = double (*)(const RowModel&, const PlaneGeometry&);
+  static const Magnitude magnitudes[] = {
+      [](const RowModel&, const PlaneGeometry& g) { return g.wv_lo; },
+      [](const RowModel&, const PlaneGeometry& g) { return g.wv_hi; },
+      [](const RowModel&, const PlaneGeometry& g) { return g.wp_lo; },
+      [](const RowModel&, const PlaneGeometry& g) { return g.wp_hi; },
+      [](const RowModel& r, const PlaneGeometry& g) { return std::fabs(-r.a * g.wv_lo + r.b); },
+      [](const RowModel& r, const PlaneGeometry& g) { return std::fabs(-r.a * g.wv_hi + r.b); },
+      [](const RowModel& r, const PlaneGeometry& g) {
+        return std::fabs(bound::exact_depth(r, g.wp_lo));
+      },
+      [](const RowModel& r, const PlaneGeometry& g) {
+        return std::fabs(bound::exact_depth(r, g.wp_hi));
+      },
+      [](const RowModel& r, const PlaneGeometry& g) {
+        return std::fabs(bound::exact_depth(r, g.wv_lo));
+      },
+      [](const RowModel& r, const PlaneGeometry& g) {
+        return std::fabs(bound::exact_depth(r, g.wv_hi));
+      },
+  };
+  const auto at = [&](Magnitude f, double s) {
+    return f(m, bound::plane_geometry(m, bound::geometry_distance(m, z + s)));
+  };
+  std::vector<double> out;
+  for (const Magnitude f : magnitudes) {
+    const double a = at(f, lo), b = at(f, hi);
+    if (!(a > 0) || !(b > 0) || !std::isfinite(a) || !std::isfinite(b)) continue;
+    const bool rising = b > a;
+    int e_a = 0, e_b = 0;
+    std::frexp(a, &e_a);
+    std::frexp(b, &e_b);
+    for (int e = std::min(e_a, e_b) + 1; e <= std::max(e_a, e_b); ++e) {
+      const double edge = std::ldexp(1.0, e - 1);  // the binade [edge, 2 edge) begins here
+      double l = lo, h = hi;  // the magnitude lies on lo's side of the edge at l, the other at h
+      for (int k = 0; k < 200 && h > std::nextafter(l, INFINITY); ++k) {
+        const double mid = 0.5 * (l + h);
+        ((at(f, mid) >= edge) == rising ? h : l) = mid;
+      }
+      out.push_back(h);
+      out.push_back(std::nextafter(h, INFINITY));
+      out.push_back(l);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace
 
 double stepped_code_drift(double codes_per_pixel, int pixels) {
@@ -216,15 +271,49 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
     }
   }
   // The bound is meant for every separation above it: the error bounds change with plane B's
-  // distance, so it is checked again at every doubling up to the search's ceiling.
-  // Where plane B leaves the shaders' range (gles_mediump's 2^14) the check ends: no content
-  // there can be drawn at all.
-  for (double t = 2 * hi; t <= cap; t *= 2) {
-    const BoundCheck at = check(m, z, t);
-    if (at.why == kBeyondShaderRange || at.why == kBeyondFar) break;
-    if (!at.holds) {
+  // distance, so it is checked again at every doubling up to the search's ceiling and on both
+  // sides of every binade edge a magnitude of plane B crosses there (binade_crossings). Where one
+  // fails, the bound is searched again above it. Where plane B leaves the shaders' range
+  // (gles_mediump's 2^14) or lies beyond the far plane the checks end: no content there can be
+  // drawn at all.
+  for (int pass = 0;; ++pass) {
+    std::vector<double> above = binade_crossings(m, z, hi, cap);
+    for (double t = 2 * hi; t <= cap; t *= 2) above.push_back(t);
+    std::sort(above.begin(), above.end());
+    double failed = 0;
+    for (const double t : above) {
+      if (!(t > hi)) continue;
+      const BoundCheck at = check(m, z, t);
+      if (at.why == kBeyondShaderRange || at.why == kBeyondFar) break;
+      if (!at.holds) failed = t;  // the last one below the ceiling counts
+    }
+    if (failed == 0) break;
+    if (pass == 8) {
       out.why = "the error bounds fail again at a larger separation";
       return out;
+    }
+    // The smallest separation above the failure that holds up to the next doubling, bisected
+    // as before: lo fails, hi holds.
+    lo = failed;
+    hi = failed;
+    do {
+      lo = hi;
+      hi *= 2;
+      if (hi > cap) {
+        out.why = "the error bounds fail again at a larger separation";
+        return out;
+      }
+      at_hi = check(m, z, hi);
+    } while (!at_hi.holds);
+    while ((hi - lo) / hi > scene.rel_precision) {
+      const double mid = 0.5 * (lo + hi);
+      BoundCheck at_mid = check(m, z, mid);
+      if (at_mid.holds) {
+        hi = mid;
+        at_hi = at_mid;
+      } else {
+        lo = mid;
+      }
     }
   }
   out.s = hi;
