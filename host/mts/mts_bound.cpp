@@ -20,13 +20,18 @@ using bound::RowModel;
 // the smaller) code. A unorm code c(d) lies within an interval of width W of d N (N the largest
 // code), W the model's (host/model/bound_model.h). A float format stores one code for an interval
 // at most its spacing wide; binary32 depth into a binary32 buffer is stored as it is, where only
-// a strict difference counts.
+// a strict difference counts. A format that flushes stores one code for [0, smallest normal).
 double storage_width(const RowModel& m, double d_min, double d_max) {
   const StorageFormat& f = m.format;
   if (f.is_unorm()) {
     const unsigned bits = f.bits();
     const double* w = m.model->unorm_width;
     return (bits <= 16 ? w[0] : bits <= 24 ? w[1] : std::max(w[2], w[1])) / f.max_code();
+  }
+  // Flushed, every depth below the smallest normal stores code 0: one code for [0, normal).
+  if (f.denormals() == Denormals::flush) {
+    const double normal = f.decode(1u << f.spec().man_bits);
+    if (d_min < normal) return std::max(f.spacing_at(d_max), normal);
   }
   if (f.name() == "float32" && d_min > 0x1.0p-126) return 0;
   return f.spacing_at(d_max);

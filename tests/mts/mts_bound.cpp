@@ -284,3 +284,14 @@ TEST_CASE("the interpolation tolerance is a setting the bound and the adversary 
   CHECK(at[0].second > 5 * at[1].second);
   CHECK(at[1].second > at[2].second);
 }
+
+TEST_CASE("a float format that flushes denormals gets no bound where its depths are subnormal",
+          "[mts][bound]") {
+  // reversed/float16 at z = 32768 writes depths near 3e-6, below float16's smallest normal
+  // (6.1e-5): flushed, both planes store code 0 at every pixel, whatever the separation.
+  const EvalPair pair{Technique::reversed, "float16", DepthRange::zero_to_one};
+  const MtsBound kept = mts_bound(load_scene("", {"pipeline.denormals=keep"}), pair, 32768);
+  const MtsBound flushed = mts_bound(load_scene("", {"pipeline.denormals=flush"}), pair, 32768);
+  CHECK(std::isfinite(kept.s));
+  CHECK(std::isinf(flushed.s));
+}
