@@ -173,6 +173,9 @@ TEST_CASE("world's limit under the guaranteed MTS: every binade below it holds, 
   const nlohmann::json j = world_bound(scene, pair, r, Transform::absolute);
   REQUIRE(j.contains("limit_bound"));
   const double R = j["limit_bound"].get<double>();
+  // a binade of the coordinates begins there, as the sampled limit's do: R = 2^k sqrt(3)
+  const double coordinate = R / std::sqrt(3.0);
+  CHECK(coordinate == Approx(std::exp2(std::round(std::log2(coordinate)))).epsilon(1e-12));
   CHECK(j["mts_bound_at_origin"].get<double>() <= 0.01);
   CHECK_FALSE(j["limit_bound_to_limit"].get<bool>());
   const auto bound_at = [&](double d) {
