@@ -226,6 +226,7 @@ void run_bias(const BiasCliOptions& o, const GlobalOptions& g) {
         header["clamp"] = b.clamp;
         header["compare"] = b.or_equal ? "or_equal" : "strict";
         header["tilt_deg"] = b.tilt_deg;
+        header["viewport"] = {scene.viewport_w, scene.viewport_h};
         header["set_factor"] = b.set_factor;
         return pair_units(scene, [&rt, &gl, &scene, &b](const EvalPair& pair) {
           return bias_record(rt, gl.get(), scene, pair, b);
@@ -328,12 +329,14 @@ std::string bias_caption(const nlohmann::json& header, const BiasTable& t) {
       "Smallest depth bias for a coplanar overlay (scene {}, {}, {} slope, compare {}{}): "
       "plane B lies in plane A, tessellated along the other diagonal, and is drawn after it with "
       "the bias; it must pass the depth test at every kernel pixel of every frame. units: the "
-      "constant term alone (factor 0); factor: the slope term alone (units 0); set units: the "
+      "constant term alone (factor 0); factor: the slope term alone (units 0), for depth slopes "
+      "per pixel of the scene's {}x{} viewport (a taller viewport at the same field of view has "
+      "flatter slopes per pixel and needs a larger factor); set units: the "
       "units needed beside the set factor -- the pair to give {}. Values are signed as you set "
       "them (negative: toward the camera under LESS). offset: the constant bias in window depth "
       "(units x r{}; r = {}); eye separation: how "
       "far it moves a fragment toward the camera at z, beside the MTS (the separation two planes "
-      "need without bias).{}{}",
+      "need without bias, at the scene's orientations: --tilt does not enter it).{}{}",
       header.value("scene_name", std::string("?")),
       header.value("source", std::string("emulated")) == "rendered"
           ? fmt::format("rendered on {}", header.value("renderer", std::string("?")))
@@ -343,7 +346,8 @@ std::string bias_caption(const nlohmann::json& header, const BiasTable& t) {
       header.value("tilt_deg", 0.0) > 0
           ? fmt::format(", planes tilted {} degrees", human(header.value("tilt_deg", 0.0)))
           : "",
-      bias_setting_names(api),
+      header.value("viewport", std::vector<int>{0, 0}).at(0),
+      header.value("viewport", std::vector<int>{0, 0}).at(1), bias_setting_names(api),
       header.value("clamp", 0.0) != 0
           ? fmt::format(", after the API's clamp {}, which limits {} offsets only",
                         human(header.value("clamp", 0.0)),
