@@ -265,16 +265,20 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
     }
     at_hi = check(m, z, hi);
   }
-  while ((hi - lo) / hi > scene.rel_precision) {
-    const double mid = 0.5 * (lo + hi);
-    BoundCheck at_mid = check(m, z, mid);
-    if (at_mid.holds) {
-      hi = mid;
-      at_hi = at_mid;
-    } else {
-      lo = mid;
+  // lo fails, hi holds: bisected to the scene's rel_precision, as the search brackets mts.
+  const auto narrow = [&] {
+    while ((hi - lo) / hi > scene.rel_precision) {
+      const double mid = 0.5 * (lo + hi);
+      BoundCheck at_mid = check(m, z, mid);
+      if (at_mid.holds) {
+        hi = mid;
+        at_hi = at_mid;
+      } else {
+        lo = mid;
+      }
     }
-  }
+  };
+  narrow();
   // The bound is meant for every separation above it: the error bounds change with plane B's
   // distance, so it is checked again at every doubling up to the search's ceiling and on both
   // sides of every binade edge a magnitude of plane B crosses there (binade_crossings). Where one
@@ -297,8 +301,7 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
       out.why = "the error bounds fail again at a larger separation";
       return out;
     }
-    // The smallest separation above the failure that holds up to the next doubling, bisected
-    // as before: lo fails, hi holds.
+    // The smallest separation above the failure that holds, doubling then bisecting as before.
     lo = failed;
     hi = failed;
     do {
@@ -310,16 +313,7 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
       }
       at_hi = check(m, z, hi);
     } while (!at_hi.holds);
-    while ((hi - lo) / hi > scene.rel_precision) {
-      const double mid = 0.5 * (lo + hi);
-      BoundCheck at_mid = check(m, z, mid);
-      if (at_mid.holds) {
-        hi = mid;
-        at_hi = at_mid;
-      } else {
-        lo = mid;
-      }
-    }
+    narrow();
   }
   out.s = hi;
   out.dominant = dominant_term(at_hi);
