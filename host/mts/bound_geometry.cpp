@@ -108,7 +108,9 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
 }
 
 double geometry_distance(const RowModel& m, double D) {
-  return m.scene->at_world_origin() ? plane_matrix_distance(*m.scene, D) : D;
+  // At the origin the model-view the GPU gets holds the translation -D rounded to binary32,
+  // whichever precision formed it (vertex_stage.cpp: rounded(M)): the planes lie at fl32(D).
+  return m.scene->at_world_origin() ? static_cast<double>(static_cast<float>(D)) : D;
 }
 
 PlaneGeometry plane_geometry(const RowModel& m, double D) {

@@ -61,9 +61,9 @@ struct PlaneGeometry {
 };
 PlaneGeometry plane_geometry(const RowModel& m, double D);
 
-// The distance a plane requested at D is built at: plane_matrix_distance at the world origin
-// (the binary32 D under float matrices), D itself away from it (its translation's rounding is a
-// vertex error there).
+// The distance a plane requested at D is drawn at: fl32(D) at the world origin (the GPU's
+// model-view holds its translation in binary32 under either matrix precision), D itself away from
+// it (its translation's rounding is a vertex error there).
 double geometry_distance(const RowModel& m, double D);
 
 // The exact window depth of eye distance w as the row's pipeline means it (with its binary32
