@@ -142,11 +142,16 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
 double shader_own(const RowModel& m, double lo, double hi) {
   const ProbeConstants& pc = m.pc;
   const double f_max = std::max(std::fabs(exact_depth(m, lo)), std::fabs(exact_depth(m, hi)));
+  // A quotient by a constant, or the product with its reciprocal (the model's reciprocal).
+  const auto over = [&](double c) {
+    return b32::quotient_by_constant_error(m.shader_rounding, f_max, c,
+                                           m.model->reciprocal_half_ulps);
+  };
   switch (m.ti.fragment) {
     case FragmentDepth::linear:
-      return hs(m, hi - pc.near) / pc.range + 2 * hs(m, f_max);
+      return hs(m, hi - pc.near) / pc.range + over(pc.range);
     case FragmentDepth::w_buffer:
-      return 2 * hs(m, f_max);
+      return over(pc.far);
     case FragmentDepth::threejs_log:
       break;  // as three.js's vertex-stage log, below
     case FragmentDepth::cesium_log: {
@@ -170,11 +175,11 @@ double shader_own(const RowModel& m, double lo, double hi) {
            0.5 * hs(m, 2 * f_max);
   }
   // Gilg's fl(ln(fl(fl(k w) + 1)) / L): the argument's roundings through the log's slope 1 / x,
-  // the log's own error, then the quotient's (or the reciprocal's and product's) two roundings.
+  // the log's own error, then the quotient's (or the reciprocal's and product's) roundings.
   const double k = pc.log_k, x_hi = k * hi + 1;
   const double arg = (b32::exact_factor(k) ? 0.0 : hs(m, k * hi)) + hs(m, x_hi);
   return (arg / (k * lo + 1) + m.model->log_half_ulps * hs(m, std::log(x_hi))) / pc.log_L +
-         2 * hs(m, f_max);
+         over(pc.log_L);
 }
 
 // (3') A mediump fragment shader's uniforms, each rounded to binary16
@@ -404,11 +409,13 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
     return out;
   }
   const double to_w = 1 / (q_min * (q_min - Eq));
-  const double ew = Eq * to_w + hu(m, g.wp_hi + Eq * to_w);
+  // w = fl(1 / q~): within the model's reciprocal_half_ulps of the correctly rounded one
+  const double w_rounding = m.model->reciprocal_half_ulps * hu(m, g.wp_hi + Eq * to_w);
+  const double ew = Eq * to_w + w_rounding;
   const double Fp = depth_slope(m, std::max(g.wp_lo - ew, 0.5 * g.wp_lo), g.wp_hi + ew);
   for (int t = 0; t < kShader; ++t) v[t] *= to_w * Fp;
   if (!m.fragment_mediump) {
-    v[kShader] = Fp * hu(m, g.wp_hi + Eq * to_w) + shader_own(m, g.wp_lo - ew, g.wp_hi + ew);
+    v[kShader] = Fp * w_rounding + shader_own(m, g.wp_lo - ew, g.wp_hi + ew);
     return out;
   }
   // In mediump: the varying's rounding through 1/q, w's rounding in binary16, the shader's own

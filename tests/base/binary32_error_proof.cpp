@@ -132,6 +132,23 @@ void divide_term(uint64_t n, Worst& w) {
     const Exact exact = xx / wx;
     w.see(static_cast<Exact>(xt * q) - exact, bound, "product with the reciprocal");
     w.see(static_cast<Exact>(xt / wt) - exact, bound, "quotient");
+    // A quotient by a constant c, correctly rounded or as x fl(1 / c), and under D3D 11's
+    // reciprocal within 1 ulp (either neighbour of the correctly rounded one).
+    const float c = random_float(-10, 30, true), r = 1.0f / c;
+    const Exact by_c = static_cast<Exact>(xt) / c;
+    const double f_max = static_cast<double>(std::fabs(by_c));
+    const double one = quotient_by_constant_error(kNearest, f_max, c);
+    w.see(static_cast<Exact>(xt / c) - by_c, one, "quotient by a constant");
+    w.see(static_cast<Exact>(xt * r) - by_c, one, "product with the constant's reciprocal");
+    // within 1 ulp: either binary32 that brackets 1 / c
+    const Exact inv = Exact(1) / c;
+    float r_below = static_cast<float>(inv);
+    if (static_cast<Exact>(r_below) > inv) r_below = std::nextafter(r_below, 0.0f);
+    const float r_ulp = rng() & 1 || static_cast<Exact>(r_below) == inv
+                            ? r_below
+                            : std::nextafter(r_below, INFINITY);
+    w.see(static_cast<Exact>(xt * r_ulp) - by_c, quotient_by_constant_error(kNearest, f_max, c, 2),
+          "product with a reciprocal within 1 ulp");
   }
 }
 
