@@ -248,7 +248,16 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
   } else if (m.vertex_log) {
     const double eF = shader_own(m, g.wv_lo, g.wv_hi) + depth_slope(m, g.wv_lo, g.wv_hi) * c.w;
     const double factor = m.pc.depth_gl ? 2 : 1;
-    const double zc = (factor * eF + hu(m, 1.0)) * g.wv_hi + hu(m, g.wv_hi);
+    double zc = (factor * eF + hu(m, 1.0)) * g.wv_hi + hu(m, g.wv_hi);
+    // A clip stage interpolates the rewritten z as it does every coordinate (clip_rounding): the
+    // rewrite (2 F - 1) w or F w, of magnitude at most w, changes across a grid triangle by at
+    // most (factor F' w + 1) dw.
+    if (m.model->clip_stage) {
+      const double n = std::max(1, m.scene->plane_subdivisions);
+      const double dz =
+          (factor * depth_slope(m, g.wv_lo, g.wv_hi) * g.wv_hi + 1) * (g.wv_hi - g.wv_lo) / n;
+      zc += 2 * (2 * hu(m, dz) + hu(m, g.wv_hi)) * b32::kMargin;
+    }
     const double zn = b32::product_error(R, g.wv_hi, zc, q_max, eq, 1.0);
     out.value = m.pc.depth_gl ? 0.5 * zn + hu(m, 1.0) : zn;
   } else {
