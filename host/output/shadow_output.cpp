@@ -32,7 +32,8 @@ std::string caption(const nlohmann::json& h) {
   return fmt::format(
       "Shadow bias, {10} light: {0}x{0} texels per {11}, {1}{2}, filter {3} (reads "
       "texels up to {4} texels away per axis), receivers up to {5} degrees from the light, light "
-      "{6} degrees above the horizon, raster bias under {7} (r = {8}). Proven under bound model "
+      "{6} degrees above the horizon, raster bias under {7} (r = {8}{12}). Proven under bound "
+      "model "
       "{9}: no receiver up to the slope limit shadows itself. constant: a depth bias alone, in r "
       "and in metres along the light. slope: the slope factor, with the constant the rounding "
       "errors alone need (err r). normal: the receiver's offset along its normal, with that same "
@@ -48,7 +49,13 @@ std::string caption(const nlohmann::json& h) {
       h.value("light", std::string()) == "spot"
           ? fmt::format("map ({} degree cone; a row per receiver distance d, its texel there)",
                         human(h.value("spot_angle_deg", 0.0)))
-          : std::string("cascade"));
+          : std::string("cascade"),
+      // A float buffer's r is 2^(e - 23), e the exponent of a caster's largest depth: the
+      // directional light's is taken where it is largest (shadow_r).
+      h.contains("r") && h.value("format", std::string()).rfind("unorm", 0) != 0
+          ? ", a float buffer's r at depths in [1/2, 1), where it is largest: a caster at depths "
+            "in [2^-k-1, 2^-k) needs 2^k times the units; constant m holds at any depth"
+          : "");
 }
 
 // The two columns that name a row: a cascade and its camera split, or (a spot light's one map) a
