@@ -379,6 +379,20 @@ double farthest_vertex_distance(const Scene& s, double D) {
   return D + plane_side(s, D) * std::sin(s.rotation_range_deg * M_PI / 180);
 }
 
+double world_grid_reach(const Scene& s, double z) {
+  if (s.at_world_origin() || vertex_path(s.pipeline) != VertexPath::model_then_view) return 0;
+  const double side = plane_side(s, farthest_vertex_distance(s, z));
+  const auto half_spacing = [&](int axis) {
+    const double m = std::fabs(s.world_position[axis]) + z + side;
+    int e = 0;
+    std::frexp(m, &e);  // m in [2^(e-1), 2^e): spacing 2^(e-24)
+    return std::ldexp(1.0, e - 25);
+  };
+  const double r = s.rotation_range_deg * M_PI / 180;
+  const double slope = std::tan(r) / std::cos(r);
+  return 2 * (half_spacing(2) + slope * (half_spacing(0) + half_spacing(1)));
+}
+
 double vertex_bound(double z) {
   // z itself is rarely a binary32 (1.005 is not): B moves off A's vertex once z + s passes the
   // midpoint between fl32(z) and the next binary32 above it.

@@ -124,6 +124,15 @@ double nearest_vertex_distance(const Scene& scene, double D);
 // The farthest, D + side sin r.
 double farthest_vertex_distance(const Scene& scene, double D);
 
+// Away from the world origin with world positions in the vertex stage (transform absolute,
+// compose separate): how far rounding a vertex's world coordinates to binary32 can move the depth
+// of the two planes at a pixel, together. Per plane, half the spacing at each coordinate's largest
+// magnitude (|world_position| + z + side): along the view (z) directly, across it (x, y) through
+// the plane's slope, at most tan r / cos r over the rotation cube. An MTS below it was decided by
+// where the planes' vertices fell between grid points (docs/mts.md, "Below the world grid"). 0
+// elsewhere (at the origin vertex_bound says it).
+double world_grid_reach(const Scene& scene, double z);
+
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.
 double seen_separation(double z, double s);
 // The vertex-precision bound (docs/spec.md 5.3): the distance from z to the midpoint between

@@ -226,6 +226,10 @@ CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double 
 
 void set_mts_bound(MtsRow& row, const Scene& scene) {
   if (row.verdict() != Verdict::resolved) return;
+  // A final row's MTS against the world grid's reach: the sampled answer's trust, beside the bound.
+  const double reach = world_grid_reach(scene, row.z);
+  row.below_world_grid = row.mts_seen < reach;
+  if (row.below_world_grid) row.world_grid_reach = reach;
   const MtsBound b = mts_bound(scene, row.pair, row.z);
   row.mts_bound = b.s;
   row.bound_model = scene.bound_model;

@@ -39,7 +39,8 @@ struct CoplanarSpread {
 CoplanarSpread coplanar_spread(const Scene& scene, const EvalPair& pair, double z);
 
 // A final row's guaranteed MTS under the scene's bound model: mts_bound, bound_model and
-// bound_note (the dominant term, or why there is none); left NaN on a row without an MTS.
+// bound_note (the dominant term, or why there is none); left NaN on a row without an MTS. Also
+// whether its MTS lies below the world grid's reach (below_world_grid).
 void set_mts_bound(MtsRow& row, const Scene& scene);
 
 // How many codes softpipe's 16-bit fast path can store away from the conversion's own interval

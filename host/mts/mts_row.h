@@ -62,6 +62,12 @@ struct MtsRow {
   // code_width (docs/mts.md, "Below one code").
   bool below_one_code = false;
   double code_width = 0;  // that width, when below_one_code
+  // Away from the world origin: a resolved MTS below world_grid_reach (host/model/frame_setup.h),
+  // the depth the rounding of the planes' world coordinates can move; which orientations meet
+  // such a rounding is a coincidence sampling finds at random (docs/mts.md, "Below the world
+  // grid").
+  bool below_world_grid = false;
+  double world_grid_reach = 0;  // that reach, when below_world_grid
   // Over every probe (search and stiffness): the largest separation that fought and the
   // smallest clean one. fight_max > clean_min is a non-monotone bracket; fight_max is then the
   // upper MTS (every clean answer lies above it). 0 / +inf when there is none.

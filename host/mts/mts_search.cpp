@@ -98,6 +98,7 @@ std::string MtsRow::flags() const {
   add(beyond_far, "beyond_far_plane");
   add(before_near, "nearer_than_near_plane");
   add(below_one_code, "below_one_code");
+  add(below_world_grid, "below_world_grid");
   return f;
 }
 

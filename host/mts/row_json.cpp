@@ -79,6 +79,7 @@ json row_to_json(const MtsRow& r, bool timing) {
     j["monotone_fight"] = number(r.monotone_fight);
   }
   if (r.below_one_code) j["code_width"] = number(r.code_width);
+  if (r.below_world_grid) j["world_grid_reach"] = number(r.world_grid_reach);
   if (r.attributed()) {
     j["storage_mts"] = number(r.storage_mts);
     j["arithmetic_mts"] = number(r.arithmetic_mts);
@@ -126,6 +127,8 @@ MtsRow row_from_json(const json& j) {
         r.before_near = true;
       else if (f == "below_one_code")
         r.below_one_code = true;
+      else if (f == "below_world_grid")
+        r.below_world_grid = true;
       else
         throw InputError(fmt::format("unknown row flag '{}'", f));
     }
@@ -156,6 +159,7 @@ MtsRow row_from_json(const json& j) {
     r.monotone_fight = read_number(j, "monotone_fight");
   }
   if (r.below_one_code) r.code_width = read_number(j, "code_width");
+  if (r.below_world_grid) r.world_grid_reach = read_number(j, "world_grid_reach");
   if (j.contains("seconds")) r.seconds = read_number(j, "seconds");
   if (j.contains("kernel_seconds")) r.kernel_seconds = read_number(j, "kernel_seconds");
   if (j.contains("frames_per_second")) r.frames_per_second = read_number(j, "frames_per_second");

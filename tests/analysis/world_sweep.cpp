@@ -187,3 +187,24 @@ TEST_CASE("world's limit under the guaranteed MTS: every binade below it holds, 
   // camera-relative rendering keeps the content's precision wherever it is.
   CHECK(world_bound(scene, pair, r, Transform::camera_relative)["limit_bound_to_limit"] == true);
 }
+
+TEST_CASE("an MTS below the world grid's reach is flagged, with the reach", "[world][mts]") {
+  // (1e4, 0, 0): x's spacing 2^-10, through the slope tan 1 deg / cos 1 deg = 0.017458, and z's
+  // 2^-22 at 1 + the plane's side (2.3 at a 60 degree view): 2 (2^-23 + 0.017458 (2^-11 +
+  // 2^-23)) = 1.729e-5 for both planes. At the origin nothing is flagged.
+  const std::string pair =
+      "mts -t reversed -f float32 --near 0.1 --far 5e4 --fov 60 --distances 1 --frames 8 "
+      "--kernel 24x24 --set sampling=paper --no-timing --format-out json";
+  const auto away = run_cli(pair + " --set world_position=[1e4,0,0]");
+  REQUIRE(away.exit_code == 0);
+  const auto row = nlohmann::json::parse(away.output)["rows"][0];
+  INFO(row.dump());
+  CHECK_THAT(row["flags"].get<std::string>(), Contains("below_world_grid"));
+  CHECK(row["world_grid_reach"].get<double>() == Approx(1.729e-5).epsilon(0.002));
+  CHECK(row["mts"].get<double>() < row["world_grid_reach"].get<double>());
+  const auto origin = run_cli(pair);
+  REQUIRE(origin.exit_code == 0);
+  const auto at0 = nlohmann::json::parse(origin.output)["rows"][0];
+  CHECK_FALSE(at0.contains("world_grid_reach"));
+  CHECK(at0["flags"].get<std::string>().find("below_world_grid") == std::string::npos);
+}
