@@ -14,6 +14,7 @@
 #include <string>
 
 #include "host/base/binary32_error.h"
+#include "host/model/bound_model.h"
 #include "host/model/storage_format.h"
 
 using namespace depthprec;
@@ -166,10 +167,13 @@ void viewport_term(uint64_t n, Worst& w) {
 }
 
 // Plane evaluation (bound_plane.cpp "Evaluation"): c0 + gx (px - x0) + gy (py - y0) as the vertex
-// form, llvmpipe's origin fma form and softpipe's quad steps, within 5 half_ulp(V + reach) +
-// 5 half_ulp(reach) + |gx| half_ulp(X) + |gy| half_ulp(Y), V = |value|, reach = |gx| X + |gy| Y,
+// form, llvmpipe's origin fma form and softpipe's quad steps, within k half_ulp(V + reach) +
+// k half_ulp(reach) + |gx| half_ulp(X) + |gy| half_ulp(Y), k the model's count (5 under binary32),
+// V = |value|, reach = |gx| X + |gy| Y,
 // X >= every |coordinate| and |px - x0|.
 void evaluation_term(uint64_t n, Worst& w) {
+  const BoundModel &all = bound_model("binary32"), &ideal = bound_model("ideal"),
+                   &llvmpipe = bound_model("llvmpipe"), &softpipe = bound_model("softpipe");
   for (uint64_t i = 0; i < n; ++i) {
     const float c0 = random_float(-8, 0, true);
     const int ge = -8 - static_cast<int>(rng() % 24);
@@ -186,20 +190,29 @@ void evaluation_term(uint64_t n, Worst& w) {
     const double Y = 2 * std::max(512.0, static_cast<double>(y0)) + 2;
     const double reach = std::fabs(gx) * X + std::fabs(gy) * Y;
     const double V = std::fabs(static_cast<double>(exact));
-    const double bound = 5 * half_ulp(V + reach) + 5 * half_ulp(reach) +
-                         std::fabs(gx) * half_ulp(X) + std::fabs(gy) * half_ulp(Y);
+    // Each form within the binary32 model's count (5 and 5), and within its own profile's model
+    // (ideal's vertex form 2 and 2, llvmpipe's fused form 3 and 3), which bound it there.
+    const double at_value = half_ulp(V + reach), at_reach = half_ulp(reach),
+                 coordinates = std::fabs(gx) * half_ulp(X) + std::fabs(gy) * half_ulp(Y);
+    const auto bound_with = [&](const BoundModel& m) {
+      return m.value_roundings * at_value + m.reach_roundings * at_reach + coordinates;
+    };
+    const double bound = bound_with(all);
     const float vertex = (c0 + gx * (px - x0)) + gy * (py - y0);
     w.see(vertex - exact, bound, "vertex-anchored plane");
+    w.see(vertex - exact, bound_with(ideal), "vertex-anchored plane, ideal");
     const float a0 = c0 - (gx * x0 + gy * y0);
     const float origin = std::fma(gy, py, std::fma(gx, px, a0));
     // llvmpipe evaluates at (px - 1/2, py - 1/2) from a0 at the half-pixel offset; the same
     // roundings, at the pixel centre here.
     w.see(origin - exact, bound, "origin-anchored fma plane");
+    w.see(origin - exact, bound_with(llvmpipe), "origin-anchored fma, llvmpipe");
     const float qxf = static_cast<float>(qx) + 0.5f, qyf = static_cast<float>(qy) + 0.5f;
     float quad = (a0 + gx * qxf) + gy * qyf;
     if (odd_x) quad = quad + gx;
     if (odd_y) quad = quad + gy;
     w.see(quad - exact, bound, "quad-stepped plane");
+    w.see(quad - exact, bound_with(softpipe), "quad-stepped plane, softpipe");
   }
 }
 
@@ -268,7 +281,12 @@ void conversion_term(uint64_t n, Worst& w) {
     const double width = std::string(name) == "unorm16"   ? 1.0078125
                          : std::string(name) == "unorm24" ? 2.0
                                                           : 3.0;
+    const int slot = std::string(name) == "unorm16" ? 0 : std::string(name) == "unorm24" ? 1 : 2;
     for (const Conversion c : {Conversion::exact, Conversion::llvmpipe, Conversion::softpipe}) {
+      // and each within its own profile's model, the tighter width that model bounds with
+      const BoundModel& own = bound_model(c == Conversion::exact      ? "ideal"
+                                          : c == Conversion::llvmpipe ? "llvmpipe"
+                                                                      : "softpipe");
       const StorageFormat f =
           StorageFormat::parse(name, depthprec::Rounding::nearest_even, Denormals::keep, c);
       const double N = f.max_code();
@@ -282,6 +300,7 @@ void conversion_term(uint64_t n, Worst& w) {
         hi = std::max(hi, off);
       }
       w.see(hi - lo, width, name);
+      w.see(hi - lo, own.unorm_width[slot], own.name);
     }
   }
 }
