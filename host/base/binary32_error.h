@@ -49,7 +49,10 @@ struct Rounding {
       std::frexp(m, &e);
       h = std::ldexp(1.0, e - 1 - bits);
     }
-    return directed ? 2 * h : h;
+    // A shader that computes in binary32 and rounds to its precision after (as the emulation
+    // does, interface/binary16.h) rounds twice: binary32's half-ulp on top (2^-13 of mediump's,
+    // 2^-7 of the ES 1.00 highp minimum's).
+    return (directed ? 2 * h : h) + binary32_error::half_ulp(m, flush, directed);
   }
 };
 

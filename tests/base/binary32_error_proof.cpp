@@ -16,6 +16,7 @@
 #include "host/base/binary32_error.h"
 #include "host/model/bound_model.h"
 #include "host/model/storage_format.h"
+#include "interface/binary16.h"
 
 using namespace depthprec;
 using namespace depthprec::binary32_error;
@@ -82,6 +83,17 @@ void half_ulp_term(uint64_t n, Worst& w) {
     w.see(err, half_ulp(bound_at), "half_ulp");
     // Flushed: a result below 2^-126 may become zero.
     if (x < 0x1.0p-126) w.see(x, half_ulp(bound_at, true), "half_ulp flushed");
+    // A shader below binary32 rounds binary32's result again (interface/binary16.h): the ES 1.00
+    // highp minimum's 17 bits within its range, mediump's binary16 below 65504.
+    const float f = static_cast<float>(x);
+    if (x > 0x1.0p-60 && x < 0x1.0p60)
+      w.see(static_cast<Exact>(dp_es2_highp(f)) - x,
+            binary32_error::Rounding{false, false, 17}.half_ulp(bound_at),
+            "ES 1.00 highp after binary32");
+    if (x < 60000)
+      w.see(static_cast<Exact>(dp_binary16(f)) - x,
+            binary32_error::Rounding{false, false, 11}.half_ulp(bound_at),
+            "mediump after binary32");
   }
 }
 
