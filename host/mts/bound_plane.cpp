@@ -104,10 +104,12 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
   } else {
     const bool single = m.scene->pipeline.matrix_precision == MatrixPrecision::single;
     const double zcol = g.side * std::sqrt(2.0) * m.sin_tilt;
+    // x_clip's row (P00 side R00, P00 side R01) times the object position in [-0.5, 0.5]^2: each
+    // term up to P00 side / 2 (|R0j| <= 1), their sum up to xc_max; y's likewise.
     c.x = hs(m, m.P00 * g.side) +
-          b32::row_rounding(R, {{0.5 * xc_max, false}, {0.5 * xc_max, false}});
+          b32::row_rounding(R, {{0.5 * m.P00 * g.side, false}, {0.5 * m.P00 * g.side, false}});
     c.y = hs(m, m.P11 * g.side) +
-          b32::row_rounding(R, {{0.5 * yc_max, false}, {0.5 * yc_max, false}});
+          b32::row_rounding(R, {{0.5 * m.P11 * g.side, false}, {0.5 * m.P11 * g.side, false}});
     c.z = hs(m, aa * zcol) + (single ? hs(m, aa * g.D) : 0.0) + hs(m, aa * g.D + ab) +
           b32::row_rounding(
               R, {{0.5 * aa * zcol, false}, {0.5 * aa * zcol, false}, {aa * g.D + ab, true}});
