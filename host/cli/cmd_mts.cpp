@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -113,6 +114,20 @@ void add_attribute_flag(CLI::App* cmd, MtsOptions& o) {
       "next to the vertex bound, and the dominant factor (docs/stability.md). About 2-3x the work");
 }
 
+// Rows that left kernel pixels uncovered (at some orientation the planes do not reach them, so
+// nothing was compared there) say why and what covers them: said once, not left to the flags.
+void note_uncovered(const Scene& scene, const std::vector<MtsRow>& rows) {
+  const auto n =
+      std::count_if(rows.begin(), rows.end(), [](const MtsRow& r) { return r.uncovered; });
+  if (n == 0) return;
+  fmt::print(stderr,
+             "depthprec: note: {} of {} rows left kernel pixels uncovered (flag uncovered): at "
+             "some orientation within {} degrees the planes, {} times the view's height "
+             "(plane_margin), do not reach every kernel pixel, and nothing is compared there; a "
+             "larger plane_margin (--set plane_margin=...) or a smaller --kernel covers them\n",
+             n, rows.size(), human(scene.rotation_range_deg), human(scene.plane_margin));
+}
+
 void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
   check_output_spares_inputs("-o", o.out.output, {{"the scene file", o.scene.scene_file}});
   if (!o.profiles.empty()) return run_profiles(o, global, wide);
@@ -179,6 +194,7 @@ void run(const MtsOptions& o, const GlobalOptions& global, bool wide) {
                   write_output("", render(to_rows(done), info));
                 });
   info.shard = o.batch.shard;
+  note_uncovered(scene, to_rows(records));
   write_batch_output(journal, o.out.output, render(to_rows(records), info));
 }
 

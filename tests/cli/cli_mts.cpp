@@ -384,3 +384,18 @@ TEST_CASE("a non_monotone row says why, and the witness survives the worst case"
   CHECK(clean < fight);
   CHECK(fight <= row["mts"].get<double>());  // the row's MTS lies above every fight it saw
 }
+
+TEST_CASE("rows that left kernel pixels uncovered say what covers them", "[cli][mts]") {
+  // At 40 degrees the default planes (1.1 times the view's height) leave the kernel's corners
+  // bare at some orientations; 3 times cover them.
+  const std::string base =
+      "mts -t standard -f unorm24 --distances 100 --frames 8 --kernel 32x32 --set sampling=paper "
+      "--set rotation_range_deg=40 --no-timing -q";
+  const auto bare = run_cli(base);
+  REQUIRE(bare.exit_code == 0);
+  CHECK_THAT(bare.output, Contains("1 of 1 rows left kernel pixels uncovered"));
+  CHECK_THAT(bare.output, Contains("--set plane_margin="));
+  const auto covered = run_cli(base + " --set plane_margin=3");
+  REQUIRE(covered.exit_code == 0);
+  CHECK_THAT(covered.output, !Contains("uncovered"));
+}
