@@ -242,8 +242,9 @@ std::string audit_caption(const AuditReport& r) {
       "drawn over front) its pixels, the front's median eye depth, the smallest separation along "
       "the ray, the set-up's MTS there, the offset the guaranteed MTS (mts_bound in JSON) asks "
       "for beyond that separation, and the fixes checked on "
-      "the pair's pixels: the nearest near plane, a constant depth bias on the front surface (API "
-      "units), other set-ups",
+      "the pair's pixels, each also within the guaranteed MTS: the nearest near plane, a "
+      "constant depth bias on the front surface (API units, moving it by at least offset_needed; "
+      "`bias` leads with the sampled answer instead), other set-ups",
       h.value("file", ""), g.triangles, g.draws.size(), g.draws.size() == 1 ? "draw" : "draws",
       h.value("camera", ""), h.value("width", 0), h.value("height", 0), over,
       human(h.value("near", 0.0)), source(h.value("near_source", ""), "znear"),
