@@ -37,9 +37,12 @@ double hs(const RowModel& m, double magnitude) {
 //   same value for both planes, counted for each all the same), and its sum with the model's
 //   product, which rounds at the eye coordinate's magnitude (the world's cancels).
 // relative_to_eye forms the eye offset in emulated double-single arithmetic from binary64 world
-// positions: within 4 u of the offset and 2^-46 of the world coordinate
-// (interface/relative_to_eye.h), doubled here. Premultiplied matrices have no eye stage: only
-// binary32 M~'s entries carry over.
+// positions: within 4 u of the offset and 2^-46 of the world coordinate, doubled here; and each
+// coordinate's low part, x less a multiple of 65536 (Cesium's split, interface/relative_to_eye.h),
+// is stored as a binary32, below min(65536, |x|): the vertex's and the eye's each round once
+// there, and the shader's difference of the two at most that magnitude (2^-8 spacing from 32768
+// on: far from the origin this is most of the vertex's error). Premultiplied matrices have no eye
+// stage: only binary32 M~'s entries carry over.
 std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
   const Scene& s = *m.scene;
   const Pipeline& p = s.pipeline;
@@ -48,7 +51,9 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
   for (int r = 0; r < 3; ++r) {
     const double e_max = r < 2 ? g.lateral : g.wv_hi;
     if (m.path == VertexPath::relative_to_eye) {
-      out[r] = 8 * hs(m, e_max) + 0x1.0p-45 * (std::fabs(W[r]) + e_max);
+      const double low = std::min(65536.0, std::fabs(W[r]) + e_max);
+      out[r] =
+          8 * hs(m, e_max) + 0x1.0p-45 * (std::fabs(W[r]) + e_max) + 2 * hu(m, low) + hs(m, low);
       continue;
     }
     const double column = r < 2 ? g.side : g.side * std::sqrt(2.0) * m.sin_tilt;

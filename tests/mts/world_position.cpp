@@ -9,6 +9,8 @@
 #include "host/base/errors.h"
 #include "host/mts/mts_bound.h"
 #include "host/mts/mts_run.h"
+#include "host/mts/refinement.h"
+#include "host/mts/worst_case.h"
 #include "interface/relative_to_eye.h"
 #include "tests/support/mts_fixture.h"
 
@@ -141,4 +143,28 @@ TEST_CASE(
   CHECK_THROWS_WITH(
       load_scene("", {"pipeline.shader_precision=mediump", "pipeline.transform=relative_to_eye"}),
       Catch::Contains("pipeline.shader_precision"));
+}
+
+TEST_CASE("far from the origin the guaranteed MTS holds under every transform", "[world][bound]") {
+  // relative_to_eye keeps a coordinate's low part, below 65536, in binary32 (Cesium's split): at
+  // (1e5, -2e5, 3e5) its 2^-8 spacing is most of a vertex's error, which the bound once took as
+  // 2^-46 of the world coordinate (1.85e-4 against an MTS of 3.6e-3 at z = 100).
+  for (const std::string transform : {"absolute", "camera_relative", "relative_to_eye"}) {
+    const Scene s = load_scene(
+        "", {"frames=12", "kernel=[32,32]", "viewport=[32,32]", "world_position=[1e5,-2e5,3e5]",
+             "pipeline.transform=" + transform, "distances=[2,100,5000,3e5]"});
+    for (const EvalPair& pair :
+         std::vector<EvalPair>{{Technique::reversed, "float32", DepthRange::zero_to_one},
+                               {Technique::standard, "unorm24", DepthRange::gl},
+                               {Technique::log_fragment, "float32", DepthRange::gl}}) {
+      PairSource<ProbeEvaluator, MtsEvaluator> source(test::runtime(), pair);
+      for (const MtsRow& r : search_sampled(source, s, pair, s.distances, {}, {})) {
+        if (r.verdict() != Verdict::resolved || !std::isfinite(r.mts_bound)) continue;
+        INFO(transform << " " << pair.label() << " z = " << r.z << ": mts " << r.mts
+                       << ", mts_bound " << r.mts_bound);
+        CHECK(r.mts_bound >= r.mts);
+        CHECK(r.mts_bound >= r.fight_max);
+      }
+    }
+  }
 }
