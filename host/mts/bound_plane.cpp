@@ -132,7 +132,8 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
     c.x += 2 * (2 * hu(m, 2 * xc_max / n) + hu(m, xc_max));
     c.y += 2 * (2 * hu(m, 2 * yc_max / n) + hu(m, yc_max));
     c.z += 2 * (2 * hu(m, aa * dw) + hu(m, zc_max));
-    c.w += 2 * (2 * hu(m, dw) + hu(m, g.wv_hi));
+    // orthographic w is 1 at every vertex, so out + t (in - out) is 1 exactly
+    if (!m.ortho) c.w += 2 * (2 * hu(m, dw) + hu(m, g.wv_hi));
   }
   c.x *= b32::kMargin;
   c.y *= b32::kMargin;
@@ -248,6 +249,11 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
   WindowError out;
   // Orthographic: w is 1 for every vertex (its row (0, 0, 0, 1) rounds nothing).
   const double w_lo = m.ortho ? 1.0 : g.wv_lo;
+  // reciprocal_error holds for an error below half of w; beyond it nothing is bounded.
+  if (!(c.w < 0.5 * w_lo)) {
+    out.value = out.x = out.y = INFINITY;
+    return out;
+  }
   const double eq = b32::reciprocal_error(R, w_lo, c.w, reciprocal_half_ulps);
   const double q_max = 1 / (w_lo - c.w);
   if (m.fragment) {

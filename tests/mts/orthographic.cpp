@@ -7,6 +7,7 @@
 
 #include "host/model/frame_setup.h"
 #include "host/model/profile.h"
+#include "host/mts/bound_plane.h"
 #include "host/mts/mts_bound.h"
 #include "host/mts/worst_case.h"
 #include "tests/support/mts_fixture.h"
@@ -112,4 +113,27 @@ TEST_CASE("orthographic refuses what it does not take yet, naming it", "[mts][or
                              "/data/audit/decal_wall.gltf' -t orthographic -q");
   CHECK(audit.exit_code == 3);
   CHECK(audit.output.find("perspective") != std::string::npos);
+}
+
+TEST_CASE("orthographic's clip stage leaves w at 1: no error term of its bound is negative",
+          "[mts][bound][orthographic]") {
+  // The clip stage's w error was taken at the eye distance (33 at z = 2.6e8), which orthographic's
+  // w = 1 cannot carry: the reciprocal's bound went negative and the clip term with it, and the
+  // bound fell to 1.5e-8 where the search's MTS is 15270 (found over random scenes).
+  const Scene s =
+      load_scene("", {"kernel=[24,24]", "viewport=[24,24]", "near=0.05", "far=1e9", "fov_y_deg=90",
+                      "rotation_range_deg=1.14", "world_position=[2000000,-1000000,500000]",
+                      "pipeline.transform=relative_to_eye"});
+  const EvalPair pair{Technique::orthographic, "unorm16", DepthRange::gl};
+  const double z = 264795741.44542086;
+  const bound::RowModel m = bound::row_model(s, pair, z);
+  for (const double sep : {1e-3, 15000.0}) {
+    const bound::PlaneGeometry g = bound::plane_geometry(m, bound::geometry_distance(m, z + sep));
+    const bound::DepthError e = bound::depth_error(m, g);
+    for (int t = 0; t < bound::kTermCount; ++t) {
+      INFO(bound::term_name(t) << " at s = " << sep);
+      CHECK(e.term[t] >= 0);
+    }
+  }
+  CHECK(mts_bound(s, pair, z).s > 15270);
 }
