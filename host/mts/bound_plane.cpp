@@ -316,12 +316,14 @@ std::array<double, 2> gradient(const RowModel& m, const PlaneGeometry& g) {
   return {k * m.tan_tilt * 2 / (s.viewport_w * m.P00), k * m.tan_tilt * 2 / (s.viewport_h * m.P11)};
 }
 
-// The value's slope along w at the vertices: how an eye-space error in z moves it.
-double value_slope(const RowModel& m, const PlaneGeometry& g) {
-  if (m.fragment) return 1 / (g.wv_lo * g.wv_lo);
-  if (m.vertex_log) return depth_slope(m, g.wv_lo, g.wv_hi);
+// How far an eye-space error of at most e in z moves the value at a vertex: its secant slope over
+// w's range widened by e (q = 1/w and the projections' b/w move by e / (w (w - e)) at most, not by
+// the tangent's e / w^2: an error near w itself, as far from the world origin, is not small).
+double value_slope(const RowModel& m, const PlaneGeometry& g, double e) {
+  if (m.fragment) return 1 / (g.wv_lo * (g.wv_lo - e));
+  if (m.vertex_log) return depth_slope(m, g.wv_lo - e, g.wv_hi + e);
   if (m.ortho) return m.scale * std::fabs(m.a);
-  return m.scale * std::fabs(m.b) / (g.wv_lo * g.wv_lo);
+  return m.scale * std::fabs(m.b) / (g.wv_lo * (g.wv_lo - e));
 }
 
 // The largest |value| at a kernel pixel.
@@ -375,18 +377,26 @@ DepthError depth_error(const RowModel& m, const PlaneGeometry& g) {
   // An eye-space error moves the vertex's window position by (W/2) d(x_ndc) with
   // x_ndc = P00 e_x / w: P00 / w per unit of e_x, |x_ndc| / w per unit of e_z (orthographic:
   // x_ndc = P00 e_x, e_z leaves it alone).
+  // With the vertex's w moved by up to e_w, x_ndc moves by (P00 |dx| + |x_ndc| |dw|) / (w - e_w).
+  // Where e_w reaches half of w nothing is bounded.
+  DepthError out;
+  auto& v = out.term;
+  const double e_w = m.ortho ? 0.0 : ee[2];
+  if (!(e_w < 0.5 * g.wv_lo)) {
+    for (double& t : v) t = INFINITY;
+    return out;
+  }
+  const double q_vertex = m.ortho ? 1.0 : 1 / (g.wv_lo - e_w);
   const double zx = m.ortho ? 0.0 : xn_max, zy = m.ortho ? 0.0 : yn_max;
-  const double geo_x = 0.5 * s.viewport_w * (m.P00 * ee[0] + zx * ee[2]) * q_max * b32::kMargin;
-  const double geo_y = 0.5 * s.viewport_h * (m.P11 * ee[1] + zy * ee[2]) * q_max * b32::kMargin;
+  const double geo_x = 0.5 * s.viewport_w * (m.P00 * ee[0] + zx * ee[2]) * q_vertex * b32::kMargin;
+  const double geo_y = 0.5 * s.viewport_h * (m.P11 * ee[1] + zy * ee[2]) * q_vertex * b32::kMargin;
   // (5) The plane at a covered pixel p. With lambda~ the computed triangle's barycentrics at p and
   // grad v the exact plane's gradient, the plane through the computed vertices is exactly
   // sum lambda~_i [(v~_i - v_i) - grad v . (x~_i - x_i)] away from the exact plane at p (write
   // v(p) = sum lambda~_i v(x~_i); v is affine). A covered pixel centre lies inside the computed
   // triangle up to its edge tests' rounding, lambda~_i >= -0.01, sum |lambda~_i| <= 1.02: each
   // vertex's error, value and position through the gradient, counts at most 1.02 times.
-  DepthError out;
-  auto& v = out.term;
-  v[kVertex] = value_slope(m, g) * ee[2] + G[0] * geo_x + G[1] * geo_y;
+  v[kVertex] = value_slope(m, g, e_w) * ee[2] + G[0] * geo_x + G[1] * geo_y;
   v[kClip] = std::max(0.0, all.value - own.value) + G[0] * (all.x - own.x) + G[1] * (all.y - own.y);
   v[kDivide] = own_cr.value;
   v[kPosition] = G[0] * own_cr.x + G[1] * own_cr.y;
