@@ -380,10 +380,16 @@ double farthest_vertex_distance(const Scene& s, double D) {
 }
 
 double world_grid_reach(const Scene& s, double z) {
-  if (s.at_world_origin() || vertex_path(s.pipeline) != VertexPath::model_then_view) return 0;
+  const VertexPath path = vertex_path(s.pipeline);
+  if (s.at_world_origin() ||
+      (path != VertexPath::model_then_view && path != VertexPath::relative_to_eye))
+    return 0;
   const double side = plane_side(s, farthest_vertex_distance(s, z));
   const auto half_spacing = [&](int axis) {
-    const double m = std::fabs(s.world_position[axis]) + z + side;
+    double m = std::fabs(s.world_position[axis]) + z + side;
+    // relative to eye keeps a coordinate's low part, below 65536, in binary32
+    // (interface/relative_to_eye.h)
+    if (path == VertexPath::relative_to_eye) m = std::min(m, std::nextafter(65536.0, 0.0));
     int e = 0;
     std::frexp(m, &e);  // m in [2^(e-1), 2^e): spacing 2^(e-24)
     return std::ldexp(1.0, e - 25);

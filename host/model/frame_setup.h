@@ -125,12 +125,13 @@ double nearest_vertex_distance(const Scene& scene, double D);
 double farthest_vertex_distance(const Scene& scene, double D);
 
 // Away from the world origin with world positions in the vertex stage (transform absolute,
-// compose separate): how far rounding a vertex's world coordinates to binary32 can move the depth
-// of the two planes at a pixel, together. Per plane, half the spacing at each coordinate's largest
-// magnitude (|world_position| + z + side): along the view (z) directly, across it (x, y) through
-// the plane's slope, at most tan r / cos r over the rotation cube. An MTS below it was decided by
-// where the planes' vertices fell between grid points (docs/mts.md, "Below the world grid"). 0
-// elsewhere (at the origin vertex_bound says it).
+// compose separate; or relative_to_eye, whose low parts are binary32 below 65536): how far
+// rounding a vertex's world coordinates to binary32 can move the depth of the two planes at a
+// pixel, together. Per plane, half the spacing at each coordinate's largest magnitude
+// (|world_position| + z + side, at most 65536 relative to eye): along the view (z) directly, across
+// it (x, y) through the plane's slope, at most tan r / cos r over the rotation cube. An MTS below
+// it was decided by where the planes' vertices fell between grid points (docs/mts.md, "Below the
+// world grid"). 0 elsewhere (at the origin vertex_bound says it).
 double world_grid_reach(const Scene& scene, double z);
 
 // fl32(z + s) - fl32(z): the separation the pipeline really sees, exact in binary64.

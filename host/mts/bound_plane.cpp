@@ -51,7 +51,7 @@ std::array<double, 3> eye_error(const RowModel& m, const PlaneGeometry& g) {
   for (int r = 0; r < 3; ++r) {
     const double e_max = r < 2 ? g.lateral : g.wv_hi;
     if (m.path == VertexPath::relative_to_eye) {
-      const double low = std::min(65536.0, std::fabs(W[r]) + e_max);
+      const double low = std::min(std::nextafter(65536.0, 0.0), std::fabs(W[r]) + e_max);
       out[r] =
           8 * hs(m, e_max) + 0x1.0p-45 * (std::fabs(W[r]) + e_max) + 2 * hu(m, low) + hs(m, low);
       continue;
