@@ -34,13 +34,17 @@ std::vector<Angles> cube_sample(const Scene& s, size_t n, uint64_t seed) {
 }
 
 // Whether any of the orientations fights (or is non-finite) at separation s of pair at z.
-bool any_fight(Scene s, const EvalPair& pair, double z, double sep, std::vector<Angles> angles) {
+bool any_fight(Scene s, const EvalPair& pair, double z, const std::vector<double>& seps,
+               std::vector<Angles> angles) {
   s.frames = static_cast<int>(angles.size());
   Orientations o;
   o.at[z] = std::move(angles);
   MtsEvaluator ev(runtime(), s, pair, o);
-  const Outcome out = ev.run({{z, sep}}).at(0).outcome;
-  return out == Outcome::fight || out == Outcome::non_finite;
+  std::vector<Probe> probes;
+  for (const double sep : seps) probes.push_back({z, sep});
+  for (const ProbeResult& r : ev.run(probes))
+    if (r.outcome == Outcome::fight || r.outcome == Outcome::non_finite) return true;
+  return false;
 }
 
 }  // namespace
@@ -94,8 +98,9 @@ TEST_CASE("the guaranteed MTS is at or above the sampled worst case on every res
   CHECK(bounded >= resolved * 9 / 10);
 }
 
-TEST_CASE("no orientation of a dense scan fights at the guaranteed MTS, under ideal and llvmpipe",
-          "[mts][bound]") {
+TEST_CASE(
+    "no orientation of a dense scan fights at or above the guaranteed MTS, ideal and llvmpipe",
+    "[mts][bound]") {
   // A dozen rows of the default scene (docs/mts.md has the scan over 10^5 orientations,
   // bench/bound_scan.sh); here 1,500 uniform orientations per row and profile, and the cube's
   // corners.
@@ -116,7 +121,8 @@ TEST_CASE("no orientation of a dense scan fights at the guaranteed MTS, under id
       const double r = s.rotation_range_deg * M_PI / 180;
       for (int c = 0; c < 8; ++c)
         angles.push_back({c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r});
-      CHECK(!any_fight(s, pair, z, b.s, angles));
+      // at the bound and above it, where the error bounds step up at binade edges
+      CHECK(!any_fight(s, pair, z, {b.s, 1.3 * b.s, 1.9 * b.s, 3.7 * b.s}, angles));
     }
   }
 }
@@ -218,7 +224,7 @@ TEST_CASE("a bound model that allows more never bounds lower", "[mts][bound]") {
                                     "gles_mediump"));
 }
 
-TEST_CASE("random scenes under ideal and llvmpipe: no fight at the guaranteed MTS",
+TEST_CASE("random scenes under ideal and llvmpipe: no fight at or above the guaranteed MTS",
           "[mts][bound][property]") {
   // Wider than the default scene: fields of view to 90 degrees, rotations to 20, margins to
   // 1.5, viewports of 16 to 64 pixels, the kernel filling them, any distance from 2^0.5 to 2^20;
@@ -258,7 +264,7 @@ TEST_CASE("random scenes under ideal and llvmpipe: no fight at the guaranteed MT
     std::vector<Angles> angles = cube_sample(s, 1500, 100 + k);
     const double r = s.rotation_range_deg * M_PI / 180;
     for (int c = 0; c < 8; ++c) angles.push_back({c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r});
-    CHECK(!any_fight(s, pair, z, b.s, angles));
+    CHECK(!any_fight(s, pair, z, {b.s, 1.9 * b.s}, angles));
   }
   CHECK(scenes >= 16);
 }
