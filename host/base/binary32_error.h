@@ -110,7 +110,7 @@ inline double product_error(const Rounding& r, double x_max, double ex, double q
 // <= f_max: as a correctly rounded quotient (one rounding), or as x times the reciprocal
 // fl(1 / c) a compiler forms in its place, that within half_ulps of 1 / c: |x| half_ulps
 // half_ulp(1 / |c|) carried, then the product's rounding. (The carried part reaches twice the
-// result's half-ulp where 1 / c sits high in its binade and x / c low in its own.)
+// result's half-ulp where 1 / c sits low in its binade and x / c high in its own.)
 inline double quotient_by_constant_error(const Rounding& r, double f_max, double c,
                                          double half_ulps = 1) {
   const double carried = f_max * std::fabs(c) * half_ulps * r.half_ulp(1.0 / std::fabs(c));

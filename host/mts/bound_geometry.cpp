@@ -110,7 +110,12 @@ RowModel row_model(const Scene& s, const EvalPair& pair, double z) {
 double geometry_distance(const RowModel& m, double D) {
   // At the origin the model-view the GPU gets holds the translation -D rounded to binary32,
   // whichever precision formed it (vertex_stage.cpp: rounded(M)): the planes lie at fl32(D).
-  return m.scene->at_world_origin() ? static_cast<double>(static_cast<float>(D)) : D;
+  // Premultiplied binary64 matrices are the exception: P M is formed from D itself, each entry
+  // rounded once (its z row's translation fl32(-a D + b), not -a fl32(D) + b), which the clip
+  // term counts against D (clip_rounding).
+  if (!m.scene->at_world_origin()) return D;
+  if (m.premultiplied && m.scene->pipeline.matrix_precision == MatrixPrecision::binary64) return D;
+  return static_cast<double>(static_cast<float>(D));
 }
 
 PlaneGeometry plane_geometry(const RowModel& m, double D) {

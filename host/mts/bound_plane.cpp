@@ -118,8 +118,11 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
     c.z = hs(m, aa * zcol) + (single ? hs(m, aa * g.D) : 0.0) + hs(m, aa * g.D + ab) +
           b32::row_rounding(
               R, {{0.5 * aa * zcol, false}, {0.5 * aa * zcol, false}, {aa * g.D + ab, true}});
-    c.w = (single ? 0.0 : hs(m, zcol) + hs(m, g.D)) +
-          b32::row_rounding(R, {{0.5 * zcol, false}, {0.5 * zcol, false}, {g.D, true}});
+    // orthographic's P M has the w row (0, 0, 0, 1): w is 1 exactly
+    c.w = m.ortho
+              ? 0.0
+              : (single ? 0.0 : hs(m, zcol) + hs(m, g.D)) +
+                    b32::row_rounding(R, {{0.5 * zcol, false}, {0.5 * zcol, false}, {g.D, true}});
   }
   if (m.model->clip_stage) {  // fixed function: binary32
     // |in - out|: both ends lie in one grid triangle (the clip stage's polygons stay inside the
@@ -134,6 +137,16 @@ Clip4 clip_rounding(const RowModel& m, const PlaneGeometry& g) {
     c.z += 2 * (2 * hu(m, aa * dw) + hu(m, zc_max));
     // orthographic w is 1 at every vertex, so out + t (in - out) is 1 exactly
     if (!m.ortho) c.w += 2 * (2 * hu(m, dw) + hu(m, g.wv_hi));
+    // Vertex-stage log depth rewrites z as (2 F - 1) w or F w, of magnitude at most w, which
+    // changes across a grid triangle by at most (factor F' w + 1) dw: the clip stage interpolates
+    // that z (window_error reads c.z so for log_vertex), not P's.
+    if (m.vertex_log) {
+      const double factor = m.pc.depth_gl ? 2 : 1;
+      const double dz = (factor * depth_slope(m, g.wv_lo, g.wv_hi) * g.wv_hi + 1) * dw;
+      c.z = 2 * (2 * hu(m, dz) + hu(m, g.wv_hi));
+    }
+  } else if (m.vertex_log) {
+    c.z = 0;  // the rewrite replaces P's z row, whose rounding the rewrite's own terms count
   }
   c.x *= b32::kMargin;
   c.y *= b32::kMargin;
@@ -156,8 +169,10 @@ double shader_own(const RowModel& m, double lo, double hi) {
                                            m.model->reciprocal_half_ulps);
   };
   switch (m.ti.fragment) {
+    // The numerator's error divided by c, or times fl(1 / c): 1 + 2^-22 covers the reciprocal's
+    // own relative error (2^-23 within 1 ulp), which kMargin does not.
     case FragmentDepth::linear:
-      return hs(m, hi - pc.near) / pc.range + over(pc.range);
+      return hs(m, hi - pc.near) / pc.range * (1 + 0x1.0p-22) + over(pc.range);
     case FragmentDepth::w_buffer:
       return over(pc.far);
     case FragmentDepth::threejs_log:
@@ -186,7 +201,8 @@ double shader_own(const RowModel& m, double lo, double hi) {
   // the log's own error, then the quotient's (or the reciprocal's and product's) roundings.
   const double k = pc.log_k, x_hi = k * hi + 1;
   const double arg = (b32::exact_factor(k) ? 0.0 : hs(m, k * hi)) + hs(m, x_hi);
-  return (arg / (k * lo + 1) + m.model->log_half_ulps * hs(m, std::log(x_hi))) / pc.log_L +
+  return (arg / (k * lo + 1) + m.model->log_half_ulps * hs(m, std::log(x_hi))) / pc.log_L *
+             (1 + 0x1.0p-22) +
          over(pc.log_L);
 }
 
@@ -261,16 +277,8 @@ WindowError window_error(const RowModel& m, const PlaneGeometry& g, const Clip4&
   } else if (m.vertex_log) {
     const double eF = shader_own(m, g.wv_lo, g.wv_hi) + depth_slope(m, g.wv_lo, g.wv_hi) * c.w;
     const double factor = m.pc.depth_gl ? 2 : 1;
-    double zc = (factor * eF + hu(m, 1.0)) * g.wv_hi + hu(m, g.wv_hi);
-    // A clip stage interpolates the rewritten z as it does every coordinate (clip_rounding): the
-    // rewrite (2 F - 1) w or F w, of magnitude at most w, changes across a grid triangle by at
-    // most (factor F' w + 1) dw.
-    if (m.model->clip_stage) {
-      const double n = std::max(1, m.scene->plane_subdivisions);
-      const double dz =
-          (factor * depth_slope(m, g.wv_lo, g.wv_hi) * g.wv_hi + 1) * (g.wv_hi - g.wv_lo) / n;
-      zc += 2 * (2 * hu(m, dz) + hu(m, g.wv_hi)) * b32::kMargin;
-    }
+    // c.z: the clip stage's interpolation of the rewritten z (clip_rounding)
+    const double zc = (factor * eF + hu(m, 1.0)) * g.wv_hi + hu(m, g.wv_hi) + c.z;
     const double zn = b32::product_error(R, g.wv_hi, zc, q_max, eq, 1.0);
     out.value = m.pc.depth_gl ? 0.5 * zn + hu(m, 1.0) : zn;
   } else {

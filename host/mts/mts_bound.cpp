@@ -169,6 +169,16 @@ std::vector<double> binade_crossings(const RowModel& m, double z, double lo, dou
       [](const RowModel& r, const PlaneGeometry& g) {
         return std::fabs(bound::exact_depth(r, g.wv_hi));
       },
+      // the plane's extent, which the lateral and set-up terms take
+      [](const RowModel&, const PlaneGeometry& g) { return g.side; },
+      [](const RowModel&, const PlaneGeometry& g) { return g.lateral; },
+      // a log shader's argument k w + 1 and its log, at the pixels' farthest w
+      [](const RowModel& r, const PlaneGeometry& g) {
+        return r.fragment ? r.pc.log_k * g.wp_hi + 1 : 0.0;
+      },
+      [](const RowModel& r, const PlaneGeometry& g) {
+        return r.fragment ? std::log(r.pc.log_k * g.wp_hi + 1) : 0.0;
+      },
   };
   const auto at = [&](Magnitude f, double s) {
     return f(m, bound::plane_geometry(m, bound::geometry_distance(m, z + s)));

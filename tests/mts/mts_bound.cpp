@@ -293,7 +293,7 @@ TEST_CASE("the interpolation tolerance is a setting the bound and the adversary 
 
 TEST_CASE("a float format that flushes denormals gets no bound where its depths are subnormal",
           "[mts][bound]") {
-  // reversed/float16 at z = 32768 writes depths near 3e-6, below float16's smallest normal
+  // reversed/float16 at z = 32768 writes depths near 3.05e-5, below float16's smallest normal
   // (6.1e-5): flushed, both planes store code 0 at every pixel, whatever the separation.
   const EvalPair pair{Technique::reversed, "float16", DepthRange::zero_to_one};
   const MtsBound kept = mts_bound(load_scene("", {"pipeline.denormals=keep"}), pair, 32768);
