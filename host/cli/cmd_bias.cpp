@@ -324,6 +324,7 @@ std::string no_slope_note(const nlohmann::json& header) {
 
 std::string bias_caption(const nlohmann::json& header, const BiasTable& t) {
   const std::string api = header.value("api", std::string("gl"));
+  const auto viewport = header.value("viewport", std::vector<int>{0, 0});
   const std::string r_text = bias_r_text(header);
   return fmt::format(
       "Smallest depth bias for a coplanar overlay (scene {}, {}, {} slope, compare {}{}): "
@@ -346,8 +347,7 @@ std::string bias_caption(const nlohmann::json& header, const BiasTable& t) {
       header.value("tilt_deg", 0.0) > 0
           ? fmt::format(", planes tilted {} degrees", human(header.value("tilt_deg", 0.0)))
           : "",
-      header.value("viewport", std::vector<int>{0, 0}).at(0),
-      header.value("viewport", std::vector<int>{0, 0}).at(1), bias_setting_names(api),
+      viewport.at(0), viewport.at(1), bias_setting_names(api),
       header.value("clamp", 0.0) != 0
           ? fmt::format(", after the API's clamp {}, which limits {} offsets only",
                         human(header.value("clamp", 0.0)),

@@ -147,7 +147,7 @@ std::string dominant_term(const BoundCheck& v) {
 // plane B (its vertices' and pixels' eye distances, clip z, window depth), each monotone in B's
 // distance, and a term's half-ulp doubles where its magnitude enters the next binade while the
 // exact gap has grown only a little. Per magnitude, every power of two it passes between lo and
-// hi, located by bisection to binary64 resolution; the check runs just above each.
+// hi, located by bisection to binary64 resolution (in no order); the check runs just above each.
 std::vector<double> binade_crossings(const RowModel& m, double z, double lo, double hi) {
   using Magnitude = double (*)(const RowModel&, const PlaneGeometry&);
   static const Magnitude magnitudes[] = {
@@ -203,7 +203,6 @@ std::vector<double> binade_crossings(const RowModel& m, double z, double lo, dou
       out.push_back(l);
     }
   }
-  std::sort(out.begin(), out.end());
   return out;
 }
 
@@ -316,7 +315,6 @@ MtsBound mts_bound(const Scene& scene, const EvalPair& pair, double z) {
       return out;
     }
     // The smallest separation above the failure that holds, doubling then bisecting as before.
-    lo = failed;
     hi = failed;
     do {
       lo = hi;
