@@ -129,6 +129,35 @@ void refine_window(Refinement<Evaluator>& m, EvaluatorSource<Evaluator>& source,
 
 }  // namespace refinement_detail
 
+// Refines the open items' answers over one chunk of orientations: probes each at its answer,
+// searches every failing orientation alone, and probes again, until the chunk passes.
+template <class Evaluator>
+void refine_chunk(Refinement<Evaluator>& m, EvaluatorSource<Evaluator>& source, const Scene& scene,
+                  const std::vector<size_t>& open, const std::vector<Angles>& part) {
+  const std::vector<size_t> slots = m.slots(open);
+  if (!slots.empty()) {
+    Scene chunk = scene;
+    chunk.frames = static_cast<int>(part.size());
+    Orientations sampled;
+    sampled.chunk = true;
+    for (const size_t s : slots) sampled.at[m.z(s)] = part;
+    const std::unique_ptr<Evaluator> ev = source.make(chunk, sampled);
+    // Slots in windows the evaluator's per-distance cache holds at once: a distance's plane
+    // A is filled once, whatever the window, and its launches do not depend on how many
+    // slots share the device.
+    const size_t window = std::max<size_t>(1, m.window(*ev));
+    for (size_t from = 0; from < slots.size(); from += window) {
+      const auto first = slots.begin() + static_cast<long>(from);
+      refinement_detail::refine_window(
+          m, source, *ev, scene, part,
+          std::vector<size_t>(first,
+                              first + static_cast<long>(std::min(window, slots.size() - from))));
+    }
+    source.retire(*ev);
+  }
+  m.chunk_done(open, slots, part.size());
+}
+
 // Refines the open items' answers over the scene's rounds until each converges or max_rounds ran.
 template <class Evaluator>
 void refine_rounds(Refinement<Evaluator>& m, EvaluatorSource<Evaluator>& source, const Scene& scene,
@@ -137,30 +166,8 @@ void refine_rounds(Refinement<Evaluator>& m, EvaluatorSource<Evaluator>& source,
     m.round_begin(open);
     // Each chunk continues the answers the chunks before it left. Every item takes the same
     // orientations: its answer depends on its own rounds only, whichever items share launches.
-    for (const std::vector<Angles>& part : round_chunks(scene, round)) {
-      const std::vector<size_t> slots = m.slots(open);
-      if (!slots.empty()) {
-        Scene chunk = scene;
-        chunk.frames = static_cast<int>(part.size());
-        Orientations sampled;
-        sampled.chunk = true;
-        for (const size_t s : slots) sampled.at[m.z(s)] = part;
-        const std::unique_ptr<Evaluator> ev = source.make(chunk, sampled);
-        // Slots in windows the evaluator's per-distance cache holds at once: a distance's plane
-        // A is filled once, whatever the window, and its launches do not depend on how many
-        // slots share the device.
-        const size_t window = std::max<size_t>(1, m.window(*ev));
-        for (size_t from = 0; from < slots.size(); from += window) {
-          const auto first = slots.begin() + static_cast<long>(from);
-          refinement_detail::refine_window(
-              m, source, *ev, scene, part,
-              std::vector<size_t>(
-                  first, first + static_cast<long>(std::min(window, slots.size() - from))));
-        }
-        source.retire(*ev);
-      }
-      m.chunk_done(open, slots, part.size());
-    }
+    for (const std::vector<Angles>& part : round_chunks(scene, round))
+      refine_chunk(m, source, scene, open, part);
     open = m.round_end(round, open);
   }
 }

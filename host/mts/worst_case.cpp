@@ -101,22 +101,15 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
   bool fails(size_t, const ProbeResult& r) const override { return r.outcome == Outcome::fight; }
   std::vector<bool> search(ProbeEvaluator& single, const Scene& one,
                            const std::vector<size_t>& slots) override {
-    std::vector<double> zs;
-    std::vector<SearchStart> starts;
-    for (const size_t i : slots) {
-      zs.push_back(rows_[i].z);
-      starts.push_back({rows_[i].hi, rows_[i].hi * kFirstStep});
-    }
-    const std::vector<MtsRow> found = search_pair(single, one, pair_, zs, {}, stop_, starts);
-    std::vector<bool> rose;
-    for (size_t k = 0; k < slots.size(); ++k) {
-      MtsRow& row = rows_[slots[k]];
-      const double before = row.hi;
-      take_search(row, found[k]);
-      rose.push_back(row.hi > before && !row.unresolvable);  // probe the chunk again above it
-    }
+    std::vector<bool> rose(slots.size(), false);
+    std::vector<size_t> pending(slots.size());
+    for (size_t k = 0; k < slots.size(); ++k) pending[k] = k;
+    if (from_scratch_) pending = search_slots(single, one, slots, pending, false, rose);
+    search_slots(single, one, slots, pending, true, rose);
     return rose;
   }
+  // The paper's frames: a failing frame is searched from scratch, on the bisection's own grid.
+  void set_from_scratch(bool on) { from_scratch_ = on; }
   void chunk_done(const std::vector<size_t>&, const std::vector<size_t>& slots, size_t n) override {
     for (const size_t i : slots) rows_[i].orientations += n;
   }
@@ -139,14 +132,71 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
   }
 
  private:
+  // Searches the slots at positions `which` of `slots` alone, upwards from each row's bracket or
+  // (from_bracket false) from scratch, and takes what rose; returns the positions that did not.
+  std::vector<size_t> search_slots(ProbeEvaluator& single, const Scene& one,
+                                   const std::vector<size_t>& slots,
+                                   const std::vector<size_t>& which, bool from_bracket,
+                                   std::vector<bool>& rose) {
+    if (which.empty()) return {};
+    std::vector<double> zs;
+    std::vector<SearchStart> starts;
+    for (const size_t k : which) {
+      const MtsRow& row = rows_[slots[k]];
+      zs.push_back(row.z);
+      if (from_bracket) starts.push_back({row.hi, row.hi * kFirstStep});
+    }
+    const std::vector<MtsRow> found = search_pair(single, one, pair_, zs, {}, stop_, starts);
+    std::vector<size_t> stayed;
+    for (size_t j = 0; j < which.size(); ++j) {
+      MtsRow& row = rows_[slots[which[j]]];
+      const double before = row.hi;
+      take_search(row, found[j]);
+      rose[which[j]] = row.hi > before && !row.unresolvable;  // probe the chunk again above it
+      if (!rose[which[j]] && !row.unresolvable) stayed.push_back(which[j]);
+    }
+    return stayed;
+  }
+
   const Scene& scene_;
   const EvalPair& pair_;
   std::vector<MtsRow>& rows_;
+  bool from_scratch_ = false;
   const std::function<bool()>& stop_;
   std::vector<double> before_;
 };
 
 }  // namespace
+
+std::vector<MtsRow> search_paper_frames(EvaluatorSource<ProbeEvaluator>& source, const Scene& scene,
+                                        const EvalPair& pair, const std::vector<double>& distances,
+                                        const std::function<bool()>& stop) {
+  std::vector<Angles> paper;
+  for (int f = 0; f < scene.frames; ++f) paper.push_back(frame_angles(scene, f));
+  std::vector<MtsRow> rows;
+  {
+    Scene one = scene;
+    one.frames = 1;
+    Orientations first;
+    for (const double z : distances) first.at[z] = {paper.front()};
+    const std::unique_ptr<ProbeEvaluator> ev = source.make(one, first);
+    rows = search_pair(*ev, one, pair, distances, {}, stop);
+    source.retire(*ev);
+  }
+  std::vector<size_t> open;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    MtsRow& r = rows[i];
+    if (r.unresolvable || r.beyond_far || r.before_near) continue;
+    open.push_back(i);
+    r.orientations = 0;  // the chunks below count every frame, the first one too
+  }
+  MtsRefinement refinement(scene, pair, rows, stop);
+  refinement.set_from_scratch(true);
+  // One chunk, as the one search's probes are: the answer is probed clean over every frame.
+  refine_chunk<ProbeEvaluator>(refinement, source, scene, open, paper);
+  for (MtsRow& r : rows) r.mts_paper = r.mts;
+  return rows;
+}
 
 void refine_worst_case(EvaluatorSource<ProbeEvaluator>& source, const Scene& scene,
                        const EvalPair& pair, std::vector<MtsRow>& rows,
@@ -177,13 +227,14 @@ std::vector<MtsRow> search_sampled(EvaluatorSource<ProbeEvaluator>& source, cons
       handed_on.emplace(r.z, bounded);
     };
   std::vector<MtsRow> rows;
-  {
+  if (worst_case) {
+    rows = search_paper_frames(source, scene, pair, distances, stop);
+    refine_worst_case(source, scene, pair, rows, stop);
+  } else {
     const std::unique_ptr<ProbeEvaluator> ev = source.make(scene, {});
-    // Under worst-case sampling a row is final only once refined.
     rows = search_pair(*ev, scene, pair, distances, final_row, stop);
     source.retire(*ev);
   }
-  if (worst_case) refine_worst_case(source, scene, pair, rows, stop);
   for (MtsRow& r : rows) {
     const auto it = handed_on.find(r.z);
     if (it != handed_on.end())

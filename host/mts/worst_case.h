@@ -29,6 +29,16 @@ void refine_worst_case(EvaluatorSource<ProbeEvaluator>& source, const Scene& sce
                        const EvalPair& pair, std::vector<MtsRow>& rows,
                        const std::function<bool()>& stop = {});
 
+// The rows of the scene's own frames (the paper's path), as the worst case's first chunk: the
+// first frame searched alone, then every frame probed at the row's answer and each one that fights
+// searched alone from scratch, on the bisection's own grid -- where each frame's fights are
+// monotone in the separation, the largest of the frames' answers is the one search_pair over all
+// frames gives, at a fraction of its probes (a clean probe near the MTS renders every frame).
+// mts_paper is that answer. stop: as for search_pair.
+std::vector<MtsRow> search_paper_frames(EvaluatorSource<ProbeEvaluator>& source, const Scene& scene,
+                                        const EvalPair& pair, const std::vector<double>& distances,
+                                        const std::function<bool()>& stop = {});
+
 // The MTS rows of these distances as the scene samples them, over the source's evaluators: the
 // search over its frames, refined to the worst case under worst-case sampling -- the one place
 // that decides it. on_row gets each row once final (under worst-case sampling, after the

@@ -139,7 +139,9 @@ TEST_CASE("tradeoff reports every ladder level against the reference with a Pare
   for (int k = 15; k < 19; ++k) {
     CHECK(j["levels"][k]["sampling"] == fmt::format("{} round{}", k - 14, k == 15 ? "" : "s"));
     CHECK(j["levels"][k]["mean_orientations"] == 100.0 * (1 << (k - 14)));
-    CHECK(j["levels"][k]["fragment_pairs"] > j["levels"][k - 1]["fragment_pairs"]);
+    // each round's orientations add work (the first round's searches take the paper's frames
+    // one at a time, not with the paper's bisection: they can cost less than it)
+    if (k > 15) CHECK(j["levels"][k]["fragment_pairs"] > j["levels"][k - 1]["fragment_pairs"]);
   }
   // coarser bisection can only widen the answer: 2^-4 is further off than 2^-10
   CHECK(j["levels"][10]["max_rel_err"].get<double>() >=
