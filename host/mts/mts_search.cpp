@@ -163,10 +163,6 @@ Verdict MtsRow::verdict() const {
   return Verdict::unresolvable;
 }
 
-namespace {
-
-// Separations of the stiffness probes: n above hi, n below lo, at relative offsets r, 8r, 64r...
-// (r the bisection's precision; below lo at most halfway to 0).
 std::vector<double> stiffness_separations(double lo, double hi, double r, int n) {
   std::vector<double> out;
   double step = r;
@@ -176,6 +172,8 @@ std::vector<double> stiffness_separations(double lo, double hi, double r, int n)
   }
   return out;
 }
+
+namespace {
 
 // A row's fields from its finished search and its stiffness probes' outcomes (extra); a row not
 // searched (plane A beyond the far plane or before the near plane) unresolvable.

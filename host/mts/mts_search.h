@@ -63,6 +63,10 @@ class Bisection {
   std::vector<std::pair<double, Outcome>> history_;
 };
 
+// Separations of the stiffness probes: n above hi, n below lo, at relative offsets r, 8r, 64r...
+// (r the bisection's precision; below lo at most halfway to 0).
+std::vector<double> stiffness_separations(double lo, double hi, double r, int n);
+
 // Where a distance's search starts when it continues an earlier one (worst-case sampling).
 struct SearchStart {
   double lo, hi;  // the bracket found so far: lo fought, hi did not

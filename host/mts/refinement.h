@@ -5,7 +5,8 @@
 // answer, until it passes. Every orientation of the chunk then passes at the answer, as the earlier
 // chunks' do (each passed at a smaller one; the searches assume a failure does not return above a
 // passing value). A measurement plugs in what its answers are, what probing one at its value and
-// searching one from its bracket mean, and when a round has converged.
+// searching one alone mean (upwards from its bracket; the MTS's paper frames: from scratch), and
+// when a round has converged. refine_chunk also runs one chunk alone (the paper's frames).
 #pragma once
 
 #include <algorithm>
@@ -82,10 +83,16 @@ class Refinement {
     return 0;
   }
   // Searches each slot alone in its orientation (one: the scene of one frame), upwards from its
-  // bracket, and takes the result: for each slot whether its answer rose (the chunk is probed
-  // again at it).
+  // bracket or as the measurement says, and takes the result: for each slot whether its answer rose
+  // (the chunk is probed again at it).
   virtual std::vector<bool> search(Evaluator& single, const Scene& one,
                                    const std::vector<size_t>& slots) = 0;
+  // A window of slots passes over the chunk's evaluator (each answer clean there): what the
+  // measurement also asks of them over the same orientations.
+  virtual void window_done(Evaluator& evaluator, const std::vector<size_t>& slots) {
+    (void)evaluator;
+    (void)slots;
+  }
   // A chunk of n orientations is done for the open items (slots: what it refined).
   virtual void chunk_done(const std::vector<size_t>& open, const std::vector<size_t>& slots,
                           size_t n) = 0;
@@ -148,10 +155,10 @@ void refine_chunk(Refinement<Evaluator>& m, EvaluatorSource<Evaluator>& source, 
     const size_t window = std::max<size_t>(1, m.window(*ev));
     for (size_t from = 0; from < slots.size(); from += window) {
       const auto first = slots.begin() + static_cast<long>(from);
-      refinement_detail::refine_window(
-          m, source, *ev, scene, part,
-          std::vector<size_t>(first,
-                              first + static_cast<long>(std::min(window, slots.size() - from))));
+      const std::vector<size_t> in_window(
+          first, first + static_cast<long>(std::min(window, slots.size() - from)));
+      refinement_detail::refine_window(m, source, *ev, scene, part, in_window);
+      m.window_done(*ev, in_window);
     }
     source.retire(*ev);
   }

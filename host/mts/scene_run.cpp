@@ -166,6 +166,8 @@ void SceneRun::plan_units() {
       std::min<size_t>(static_cast<size_t>(std::max(1, control_.jobs)), units_.size()));
   Scene round_scene = scene_;  // worst-case sampling's rounds, in chunks of round_size
   round_scene.frames = scene_.worst_case.round_size;
+  Scene one_frame = scene_;  // and its searches of one frame, every distance of a pair at once
+  one_frame.frames = 1;
   for (const Unit& u : units_) {
     std::vector<KernelVariant> variants{plan_[u.pair].variant};
     if (control_.attribute && scene_.evaluate[u.pair].format != "float32") {
@@ -175,8 +177,10 @@ void SceneRun::plan_units() {
     }
     for (const KernelVariant& v : variants) {
       prime_widths_ |= MtsEvaluator::widest_launches(scene_, v, jobs_);
-      if (scene_.sampling == Sampling::worst_case)
+      if (scene_.sampling == Sampling::worst_case) {
         prime_widths_ |= MtsEvaluator::widest_launches(round_scene, v, jobs_);
+        prime_widths_ |= MtsEvaluator::widest_launches(one_frame, v, jobs_);
+      }
     }
   }
   stats_.assign(np, PairStats{});

@@ -18,9 +18,20 @@ namespace depthprec {
 
 namespace {
 
+// A separation clean below one that fought: the row is not monotone there (the first such bracket
+// is the one it reports).
+void note_non_monotone(MtsRow& row, double clean, double fight) {
+  row.non_monotone = true;
+  if (std::isnan(row.monotone_fight)) {
+    row.monotone_clean = clean;
+    row.monotone_fight = fight;
+  }
+}
+
 // A search that continues a row's bracket over other orientations: its work always, its bracket
-// when it rose above the row's, its flags when it saw them.
-void take_search(MtsRow& row, const MtsRow& found) {
+// when it rose above the row's, its flags when it saw them. paper: the orientation is one of the
+// paper's frames, which the row's answer must hold for as one search over them all would.
+void take_search(MtsRow& row, const MtsRow& found, bool paper) {
   row.probes += found.probes;
   row.frames += found.frames;
   row.fragment_pairs += found.fragment_pairs;
@@ -32,13 +43,22 @@ void take_search(MtsRow& row, const MtsRow& found) {
   row.uncovered |= found.uncovered;
   // An orientation that fights at every separation up to the search's limit makes the worst case
   // unresolvable. One whose separations above the bracket were clipped or left pixels uncovered
-  // leaves the answer to the orientations that could be measured; its flags say so.
-  if (found.unresolvable && !found.clipped && !found.uncovered && !found.non_finite) {
+  // leaves the answer to the orientations that could be measured; its flags say so -- except a
+  // paper frame: no separation is clean over all of them, as the one search would find.
+  if (found.unresolvable && (paper || (!found.clipped && !found.uncovered && !found.non_finite))) {
     row.unresolvable = true;
+    row.clipped |= found.clipped;
     row.mts = row.hi = row.mts_seen = std::numeric_limits<double>::infinity();
     return;
   }
-  if (found.unresolvable || !(found.hi > row.hi)) return;
+  if (found.unresolvable) return;
+  if (!(found.hi > row.hi)) {
+    if (paper) {  // it failed at the row's MTS and is clean at or below it: not monotone there
+      row.clean_min = std::min(row.clean_min, found.hi);
+      note_non_monotone(row, found.hi, row.hi);
+    }
+    return;
+  }
   // Below its bracket, where it is clean again, the orientation alone fights no more and the
   // earlier ones already did not: fights are not monotone there, for the row as for it.
   row.non_monotone |= found.non_monotone;
@@ -95,21 +115,36 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
     std::vector<Probe> probes;
     for (const size_t i : slots) probes.push_back({rows_[i].z, rows_[i].hi});
     std::vector<ProbeResult> results = ev.run(probes);
-    for (size_t k = 0; k < slots.size(); ++k) take_probe(rows_[slots[k]], probes[k].s, results[k]);
+    for (size_t k = 0; k < slots.size(); ++k) {
+      take_probe(rows_[slots[k]], probes[k].s, results[k]);
+      // clipped or uncovered over the paper's frames with no one frame to blame: the one search
+      if (paper_ && fails(slots[k], results[k]) && results[k].deciding_frame < 0)
+        one_search_.push_back(slots[k]);
+    }
     return results;
   }
-  bool fails(size_t, const ProbeResult& r) const override { return r.outcome == Outcome::fight; }
+  // The rounds: a fight. The paper's frames: anything the one search would not take as clean.
+  bool fails(size_t, const ProbeResult& r) const override {
+    return paper_ ? r.outcome != Outcome::clean || r.any_uncovered : r.outcome == Outcome::fight;
+  }
   std::vector<bool> search(ProbeEvaluator& single, const Scene& one,
                            const std::vector<size_t>& slots) override {
     std::vector<bool> rose(slots.size(), false);
     std::vector<size_t> pending(slots.size());
     for (size_t k = 0; k < slots.size(); ++k) pending[k] = k;
-    if (from_scratch_) pending = search_slots(single, one, slots, pending, false, rose);
+    if (paper_) pending = search_slots(single, one, slots, pending, false, rose);
     search_slots(single, one, slots, pending, true, rose);
     return rose;
   }
-  // The paper's frames: a failing frame is searched from scratch, on the bisection's own grid.
-  void set_from_scratch(bool on) { from_scratch_ = on; }
+  // The paper's frames' stiffness probes, over all of them as the one search runs them.
+  void window_done(ProbeEvaluator& ev, const std::vector<size_t>& slots) override {
+    if (paper_) stiffness_probes(ev, slots);
+  }
+  // The refinement of the paper's frames (search_paper_frames): a frame that fails is searched
+  // from scratch, on the bisection's own grid, and the rules are the one search's.
+  void set_paper(bool on) { paper_ = on; }
+  // Rows the paper's frames left to the one search over them all.
+  const std::vector<size_t>& one_search() const { return one_search_; }
   void chunk_done(const std::vector<size_t>&, const std::vector<size_t>& slots, size_t n) override {
     for (const size_t i : slots) rows_[i].orientations += n;
   }
@@ -132,6 +167,50 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
   }
 
  private:
+  // search_pair's stiffness probes of each resolved slot, over the evaluator's frames, taken as
+  // finish_row takes them (host/mts/mts_search.cpp).
+  void stiffness_probes(ProbeEvaluator& ev, const std::vector<size_t>& slots) {
+    std::vector<Probe> probes;
+    std::vector<size_t> owner;
+    for (const size_t i : slots) {
+      const MtsRow& row = rows_[i];
+      if (row.unresolvable || scene_.stiffness_probes <= 0 ||
+          std::find(one_search_.begin(), one_search_.end(), i) != one_search_.end())
+        continue;
+      for (const double s :
+           stiffness_separations(row.lo, row.hi, scene_.rel_precision, scene_.stiffness_probes)) {
+        probes.push_back({row.z, s});
+        owner.push_back(i);
+      }
+    }
+    if (probes.empty()) return;
+    check_stop();
+    const std::vector<ProbeResult> results = ev.run(probes);
+    std::map<size_t, uint64_t> launches;  // a row's share: its busiest probe's
+    for (size_t k = 0; k < probes.size(); ++k) {
+      MtsRow& row = rows_[owner[k]];
+      const ProbeResult& r = results[k];
+      ++row.probes;
+      row.add_probe_work(r);
+      launches[owner[k]] = std::max(launches[owner[k]], r.launches);
+      const Outcome o =
+          r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
+      if (o == Outcome::fight || o == Outcome::non_finite)
+        row.fight_max = std::max(row.fight_max, probes[k].s);
+      if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, probes[k].s);
+      if (o == Outcome::non_finite) row.non_finite = true;
+    }
+    for (const auto& [i, n] : launches) {
+      MtsRow& row = rows_[i];
+      row.launches += n;
+      if (row.fight_max > row.clean_min) {
+        row.non_monotone = true;
+        row.monotone_clean = row.clean_min;
+        row.monotone_fight = row.fight_max;
+      }
+    }
+  }
+
   // Searches the slots at positions `which` of `slots` alone, upwards from each row's bracket or
   // (from_bracket false) from scratch, and takes what rose; returns the positions that did not.
   std::vector<size_t> search_slots(ProbeEvaluator& single, const Scene& one,
@@ -151,7 +230,7 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
     for (size_t j = 0; j < which.size(); ++j) {
       MtsRow& row = rows_[slots[which[j]]];
       const double before = row.hi;
-      take_search(row, found[j]);
+      take_search(row, found[j], paper_);
       rose[which[j]] = row.hi > before && !row.unresolvable;  // probe the chunk again above it
       if (!rose[which[j]] && !row.unresolvable) stayed.push_back(which[j]);
     }
@@ -161,8 +240,9 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
   const Scene& scene_;
   const EvalPair& pair_;
   std::vector<MtsRow>& rows_;
-  bool from_scratch_ = false;
   const std::function<bool()>& stop_;
+  bool paper_ = false;
+  std::vector<size_t> one_search_;
   std::vector<double> before_;
 };
 
@@ -173,9 +253,13 @@ std::vector<MtsRow> search_paper_frames(EvaluatorSource<ProbeEvaluator>& source,
                                         const std::function<bool()>& stop) {
   std::vector<Angles> paper;
   for (int f = 0; f < scene.frames; ++f) paper.push_back(frame_angles(scene, f));
+  // The single frames' searches run no stiffness probes: the one search's run over all frames
+  // once the chunk is clean (MtsRefinement::window_done).
+  Scene quiet = scene;
+  quiet.stiffness_probes = 0;
   std::vector<MtsRow> rows;
   {
-    Scene one = scene;
+    Scene one = quiet;
     one.frames = 1;
     Orientations first;
     for (const double z : distances) first.at[z] = {paper.front()};
@@ -191,9 +275,30 @@ std::vector<MtsRow> search_paper_frames(EvaluatorSource<ProbeEvaluator>& source,
     r.orientations = 0;  // the chunks below count every frame, the first one too
   }
   MtsRefinement refinement(scene, pair, rows, stop);
-  refinement.set_from_scratch(true);
+  refinement.set_paper(true);
   // One chunk, as the one search's probes are: the answer is probed clean over every frame.
-  refine_chunk<ProbeEvaluator>(refinement, source, scene, open, paper);
+  refine_chunk<ProbeEvaluator>(refinement, source, quiet, open, paper);
+  // Where the frames were clipped or left pixels uncovered with no one frame to search (near the
+  // far plane, at the plane's edge), the one search over them all decides the row, its work added.
+  if (!refinement.one_search().empty()) {
+    std::vector<double> zs;
+    for (const size_t i : refinement.one_search()) zs.push_back(rows[i].z);
+    const std::unique_ptr<ProbeEvaluator> ev = source.make(scene, {});
+    const std::vector<MtsRow> found = search_pair(*ev, scene, pair, zs, {}, stop);
+    source.retire(*ev);
+    for (size_t k = 0; k < zs.size(); ++k) {
+      MtsRow& row = rows[refinement.one_search()[k]];
+      MtsRow taken = found[k];
+      taken.probes += row.probes;
+      taken.frames += row.frames;
+      taken.fragment_pairs += row.fragment_pairs;
+      taken.launches += row.launches;
+      taken.seconds += row.seconds;
+      taken.kernel_seconds += row.kernel_seconds;
+      taken.clipped_probes += row.clipped_probes;
+      row = taken;
+    }
+  }
   for (MtsRow& r : rows) r.mts_paper = r.mts;
   return rows;
 }

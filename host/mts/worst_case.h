@@ -1,10 +1,10 @@
 // Worst-case sampling of the MTS (docs/mts.md, "The worst case"): the paper's frames sample one
 // path through the cube of orientations the scene allows (each axis within
 // ±rotation_range_deg); the worst case is the largest separation that fights for any orientation
-// in it. After the paper's search each resolved row is searched again over the sampler's rounds
-// of new orientations (host/mts/sampler.h), continuing the row's bracket, until a round raises
-// the MTS by no more than worst_case.tolerance or max_rounds ran: the MTS's part of the one
-// refinement (host/mts/refinement.h), which bias shares.
+// in it. After the paper's frames (search_paper_frames) each resolved row is searched again over
+// the sampler's rounds of new orientations (host/mts/sampler.h), continuing the row's bracket,
+// until a round raises the MTS by no more than worst_case.tolerance or max_rounds ran: the MTS's
+// part of the one refinement (host/mts/refinement.h), which bias shares.
 #pragma once
 
 #include <functional>
@@ -20,7 +20,8 @@ namespace depthprec {
 
 class OpenClRuntime;  // host/runtime/opencl_runtime.h
 
-// Refines rows (search_pair's over the scene's own frames, in any order) to the worst case with
+// Refines rows (search_paper_frames' or search_pair's over the scene's own frames, in any order)
+// to the worst case with
 // the one refinement (host/mts/refinement.h) over the source's evaluators: mts and its bracket
 // become the worst case's, mts_paper keeps the paper's, orientations and convergence say what the
 // answer rests on; the work of every round is added to the row. Rows without a resolved MTS are

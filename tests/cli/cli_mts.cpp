@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -91,6 +92,20 @@ TEST_CASE("table in every output format", "[cli][table]") {
   REQUIRE(row2 != std::string::npos);
   REQUIRE(row64 != std::string::npos);
   CHECK(row2 < row64);
+}
+
+// The worst case searches the paper's first frame at every distance of a pair at once, in an
+// evaluator of one frame whose plane-A cache holds many more distances than the paper's frames':
+// the run primes PoCL's launches for it too (a launch wider than primed is an internal error).
+TEST_CASE("a worst case over many distances launches no wider than it primed", "[cli][mts]") {
+  std::string distances;
+  for (int i = 0; i < 60; ++i)
+    distances += fmt::format("{}{:.4f}", i ? "," : "", 1.005 * std::pow(2.0, i / 2.0));
+  const auto r = run_cli("mts -t standard,reversed -f float32 --distances " + distances +
+                         " --jobs 2 --no-timing --format-out csv -q");
+  INFO(r.output.substr(0, 400));
+  REQUIRE(r.exit_code == 0);
+  CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 121);  // header and 120 rows
 }
 
 TEST_CASE("output option writes the file and an unwritable path fails before the run",

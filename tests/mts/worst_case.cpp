@@ -167,6 +167,28 @@ TEST_CASE("the paper's frames searched one by one agree with one search over the
   CHECK(equal * 3 >= rows * 2);
 }
 
+TEST_CASE("a paper frame clipped at the answer leaves the row as the one search does",
+          "[worst_case]") {
+  // Next to the far plane plane B leaves the depth range in some frames: a probe clipped there is
+  // not clean, whichever frame it is in, and no separation is clean over all of them.
+  const Scene scene =
+      load_scene("", {"kernel=[24,24]", "viewport=[24,24]", "far=1000", "distances=[999, 700]"});
+  const EvalPair pair{Technique::standard, "float32", DepthRange::gl};
+  Scene paper = scene;
+  paper.sampling = Sampling::paper;
+  const std::vector<MtsRow> worst = search_sampled(runtime(), scene, pair, scene.distances),
+                            one = search_sampled(runtime(), paper, pair, scene.distances);
+  for (size_t i = 0; i < worst.size(); ++i) {
+    INFO("z = " << worst[i].z);
+    CHECK(to_string(worst[i].verdict()) == std::string(to_string(one[i].verdict())));
+    if (worst[i].verdict() == Verdict::resolved) CHECK(worst[i].mts >= worst[i].mts_paper);
+  }
+  const auto next_to_far =
+      std::find_if(worst.begin(), worst.end(), [](const MtsRow& r) { return r.z == 999; });
+  REQUIRE(next_to_far != worst.end());
+  CHECK(next_to_far->verdict() == Verdict::clipped);
+}
+
 TEST_CASE("over random scenes the worst case is never below the paper's frames",
           "[worst_case][property]") {
   std::mt19937 rng(20261126);
