@@ -300,7 +300,7 @@ TEST_CASE("every record batch resumes and merges to the bytes of a whole run", "
        "pipelines -t standard,reversed,linear,log_fragment -f unorm24 --distances 2,1024,1048576 "
        "--kernel 60x60 --frames 20 --no-timing --format-out json"},
       {"advise",
-       "advise --range 10,1000 --separation 0.05 -t standard,reversed,linear -f unorm24 "
+       "advise --range 10,100 --separation 0.05 -t standard,reversed,linear -f unorm24 "
        "--kernel 60x60 --frames 20 --no-timing --format-out json"},
       {"world",
        "world -t standard,reversed,linear -f unorm24 --separation 0.05 --kernel 60x60 --frames 20 "
