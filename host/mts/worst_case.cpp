@@ -28,17 +28,22 @@ void note_non_monotone(MtsRow& row, double clean, double fight) {
   }
 }
 
+// Another search's work, added to the row that takes it in.
+void add_work(MtsRow& row, const MtsRow& search) {
+  row.probes += search.probes;
+  row.frames += search.frames;
+  row.fragment_pairs += search.fragment_pairs;
+  row.launches += search.launches;
+  row.seconds += search.seconds;
+  row.kernel_seconds += search.kernel_seconds;
+  row.clipped_probes += search.clipped_probes;
+}
+
 // A search that continues a row's bracket over other orientations: its work always, its bracket
 // when it rose above the row's, its flags when it saw them. paper: the orientation is one of the
 // paper's frames, which the row's answer must hold for as one search over them all would.
 void take_search(MtsRow& row, const MtsRow& found, bool paper) {
-  row.probes += found.probes;
-  row.frames += found.frames;
-  row.fragment_pairs += found.fragment_pairs;
-  row.launches += found.launches;
-  row.seconds += found.seconds;
-  row.kernel_seconds += found.kernel_seconds;
-  row.clipped_probes += found.clipped_probes;
+  add_work(row, found);
   row.non_finite |= found.non_finite;
   row.uncovered |= found.uncovered;
   // An orientation that fights at every separation up to the search's limit makes the worst case
@@ -289,13 +294,7 @@ std::vector<MtsRow> search_paper_frames(EvaluatorSource<ProbeEvaluator>& source,
     for (size_t k = 0; k < zs.size(); ++k) {
       MtsRow& row = rows[refinement.one_search()[k]];
       MtsRow taken = found[k];
-      taken.probes += row.probes;
-      taken.frames += row.frames;
-      taken.fragment_pairs += row.fragment_pairs;
-      taken.launches += row.launches;
-      taken.seconds += row.seconds;
-      taken.kernel_seconds += row.kernel_seconds;
-      taken.clipped_probes += row.clipped_probes;
+      add_work(taken, row);
       row = taken;
     }
   }
