@@ -163,6 +163,19 @@ Verdict MtsRow::verdict() const {
   return Verdict::unresolvable;
 }
 
+void note_outcome(MtsRow& row, double s, Outcome o) {
+  if (o == Outcome::fight || o == Outcome::non_finite) row.fight_max = std::max(row.fight_max, s);
+  if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
+  if (o == Outcome::non_finite) row.non_finite = true;
+}
+
+void take_monotone_bracket(MtsRow& row) {
+  if (!(row.fight_max > row.clean_min)) return;
+  row.non_monotone = true;
+  row.monotone_clean = row.clean_min;
+  row.monotone_fight = row.fight_max;
+}
+
 std::vector<double> stiffness_separations(double lo, double hi, double r, int n) {
   std::vector<double> out;
   double step = r;
@@ -195,19 +208,10 @@ void finish_row(const Scene& scene, const EvalPair& pair, const Bisection& b,
       row.below_one_code = row.mts_seen < width * (1 - 2 * scene.rel_precision);
       if (row.below_one_code) row.code_width = width;
     }
-    auto note = [&row](double s, Outcome o) {
-      if (o == Outcome::fight || o == Outcome::non_finite)
-        row.fight_max = std::max(row.fight_max, s);
-      if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, s);
-      if (o == Outcome::non_finite) row.non_finite = true;
-    };
-    for (const auto& [s, o] : b.history()) note(s, o);
-    for (const auto& [s, o] : extra) note(s, o);
-    row.non_monotone = b.non_monotone() || row.fight_max > row.clean_min;
-    if (row.fight_max > row.clean_min) {
-      row.monotone_clean = row.clean_min;
-      row.monotone_fight = row.fight_max;
-    }
+    for (const auto& [s, o] : b.history()) note_outcome(row, s, o);
+    for (const auto& [s, o] : extra) note_outcome(row, s, o);
+    row.non_monotone = b.non_monotone();
+    take_monotone_bracket(row);
     row.orientations = static_cast<uint64_t>(scene.frames);
   } else {
     row.unresolvable = true;

@@ -63,6 +63,12 @@ class Bisection {
   std::vector<std::pair<double, Outcome>> history_;
 };
 
+// A probe's outcome at separation s in the row's record: the largest fighting (or non-finite) and
+// smallest clean separation probed, and the non_finite flag.
+void note_outcome(MtsRow& row, double s, Outcome o);
+// Where a clean separation lies below a fighting one, the row is non_monotone with that bracket.
+void take_monotone_bracket(MtsRow& row);
+
 // Separations of the stiffness probes: n above hi, n below lo, at relative offsets r, 8r, 64r...
 // (r the bisection's precision; below lo at most halfway to 0).
 std::vector<double> stiffness_separations(double lo, double hi, double r, int n);

@@ -198,21 +198,12 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
       ++row.probes;
       row.add_probe_work(r);
       launches[owner[k]] = std::max(launches[owner[k]], r.launches);
-      const Outcome o =
-          r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
-      if (o == Outcome::fight || o == Outcome::non_finite)
-        row.fight_max = std::max(row.fight_max, probes[k].s);
-      if (o == Outcome::clean) row.clean_min = std::min(row.clean_min, probes[k].s);
-      if (o == Outcome::non_finite) row.non_finite = true;
+      note_outcome(row, probes[k].s,
+                   r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome);
     }
     for (const auto& [i, n] : launches) {
-      MtsRow& row = rows_[i];
-      row.launches += n;
-      if (row.fight_max > row.clean_min) {
-        row.non_monotone = true;
-        row.monotone_clean = row.clean_min;
-        row.monotone_fight = row.fight_max;
-      }
+      rows_[i].launches += n;
+      take_monotone_bracket(rows_[i]);
     }
   }
 
