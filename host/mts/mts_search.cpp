@@ -297,9 +297,7 @@ std::vector<MtsRow> search_pair(ProbeEvaluator& evaluator, const Scene& scene, c
       MtsRow& row = rows[i];
       const ProbeResult& r = results[k];
       row.add_probe_work(r);
-      // Nothing was compared at an uncovered pixel: such a probe is never clean.
-      const Outcome o =
-          r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
+      const Outcome o = search_outcome(r);
       if (owner[k].second)
         extra[i].emplace_back(probes[k].s, o);
       else

@@ -67,6 +67,10 @@ void finish_outcomes(std::vector<ProbeResult>& results, const std::vector<bool>&
     if (!decided[i] && results[i].any_clipped) results[i].outcome = Outcome::clipped;
 }
 
+Outcome search_outcome(const ProbeResult& r) {
+  return r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome;
+}
+
 const char* to_string(Outcome o) {
   switch (o) {
     case Outcome::clean:

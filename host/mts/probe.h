@@ -34,6 +34,10 @@ struct ProbeResult {
   uint64_t launches = 0;      // kernel launches this probe took part in
 };
 
+// The outcome as a search reads it: nothing was compared at an uncovered pixel, so a clean result
+// with any_uncovered is uncovered, never clean.
+Outcome search_outcome(const ProbeResult& r);
+
 // Stored codes and status (0 ok, 1 clipped, 2 non-finite, 3 uncovered) of both planes at every
 // kernel pixel of one frame, row-major from the kernel's bottom-left pixel.
 struct FrameCodes {

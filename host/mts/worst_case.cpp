@@ -130,7 +130,7 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
   }
   // The rounds: a fight. The paper's frames: anything the one search would not take as clean.
   bool fails(size_t, const ProbeResult& r) const override {
-    return paper_ ? r.outcome != Outcome::clean || r.any_uncovered : r.outcome == Outcome::fight;
+    return paper_ ? search_outcome(r) != Outcome::clean : r.outcome == Outcome::fight;
   }
   std::vector<bool> search(ProbeEvaluator& single, const Scene& one,
                            const std::vector<size_t>& slots) override {
@@ -198,8 +198,7 @@ class MtsRefinement : public Refinement<ProbeEvaluator> {
       ++row.probes;
       row.add_probe_work(r);
       launches[owner[k]] = std::max(launches[owner[k]], r.launches);
-      note_outcome(row, probes[k].s,
-                   r.outcome == Outcome::clean && r.any_uncovered ? Outcome::uncovered : r.outcome);
+      note_outcome(row, probes[k].s, search_outcome(r));
     }
     for (const auto& [i, n] : launches) {
       rows_[i].launches += n;
