@@ -29,30 +29,11 @@ uint64_t float_max_code(const ReferenceFormat& f) {
   return (static_cast<uint64_t>(top_field(f)) << f.M) + ((uint64_t{1} << f.M) - 1);
 }
 
-// unorm's code of d > 0 in T, binary64 or x87 long double, wide enough that d (2^b - 1) is exact
-// (a 24-bit significand times a b-bit integer). rint rounds ties to even in the FPU's current
-// mode; truncation of x >= 0 is rint stepped back where it rounded up (std::trunc, and a cast from
-// long double, would switch the x87 control word twice per input). r is then an integer below
-// 2^32, which binary64 holds, so the SSE conversion is exact.
-template <class T>
-uint32_t round_unorm(float d, uint64_t max, bool truncate) {
-  const T x = static_cast<T>(d) * static_cast<T>(max);
-  T r = std::rint(x);
-  if (truncate && r > x) r -= 1;
-  if (r >= static_cast<T>(max)) return static_cast<uint32_t>(max);
-  return static_cast<uint32_t>(static_cast<double>(r));
-}
-
 }  // namespace
 
 uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool flush) {
   if (!(d > 0.0f)) return 0;  // 0, negatives, NaN
-  if (f.unorm) {
-    const uint64_t max = (uint64_t{1} << f.bits) - 1;
-    // binary64's 53 bits hold the product up to 29 bits; unorm32's 56 need long double's 64
-    return f.bits <= 29 ? round_unorm<double>(d, max, truncate)
-                        : round_unorm<long double>(d, max, truncate);
-  }
+  if (f.unorm) return reference_unorm(d, f.bits, truncate);
   const uint64_t one = uint64_t{1} << f.M;
   const uint64_t max_code = float_max_code(f);
   int e = 0;
@@ -95,23 +76,10 @@ double ReferenceWalk::value(uint64_t code) const {
                     static_cast<int>(field) - f_.bias - f_.M);
 }
 
-bool ReferenceWalk::beyond(float d) const {
-  if (code_ >= max_code_) return false;
-  const bool next_even = ((code_ + 1) & 1) == 0;
-  const double v = static_cast<double>(d);
-  if (truncate_) return v >= hi_;
-  const double mid = lo_ + (hi_ - lo_) / 2;  // exact: one bit below the finer spacing
-  return v > mid || (v == mid && next_even);
-}
-
-uint32_t ReferenceWalk::next(float d) {
-  if (f_.unorm) return reference_encode(d, f_, truncate_, flush_);
-  while (beyond(d)) {
-    ++code_;
-    lo_ = hi_;
-    hi_ = code_ < max_code_ ? value(code_ + 1) : INFINITY;
-  }
-  return static_cast<uint32_t>(flush_ && code_ < (uint64_t{1} << f_.M) ? 0 : code_);
+void ReferenceWalk::step() {
+  ++code_;
+  lo_ = hi_;
+  hi_ = code_ < max_code_ ? value(code_ + 1) : INFINITY;
 }
 
 }  // namespace depthprec::test

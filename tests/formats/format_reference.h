@@ -4,6 +4,7 @@
 // two for floats, which is exact) instead of integer shift-and-round.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -23,6 +24,30 @@ ReferenceFormat reference_format(const std::string& name);
 
 uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool flush);
 
+// unorm's code of d > 0 in T, binary64 or x87 long double, wide enough that d (2^b - 1) is exact
+// (a 24-bit significand times a b-bit integer). rint rounds ties to even in the FPU's current
+// mode; truncation of x >= 0 is rint stepped back where it rounded up (std::trunc, and a cast from
+// long double, would switch the x87 control word twice per input). r is then an integer below
+// 2^32, which binary64 holds, so the SSE conversion is exact.
+template <class T>
+inline uint32_t round_unorm(float d, uint64_t max, bool truncate) {
+  const T x = static_cast<T>(d) * static_cast<T>(max);
+  T r = std::rint(x);
+  if (truncate && r > x) r -= 1;
+  if (r >= static_cast<T>(max)) return static_cast<uint32_t>(max);
+  return static_cast<uint32_t>(static_cast<double>(r));
+}
+
+// reference_encode of a unorm<bits> format. Inline, as the walk's next() is: the exhaustive
+// proof calls them once per binary32 in [0, 1], where a call's overhead was the most of their cost.
+inline uint32_t reference_unorm(float d, int bits, bool truncate) {
+  if (!(d > 0.0f)) return 0;  // 0, negatives, NaN
+  const uint64_t max = (uint64_t{1} << bits) - 1;
+  // binary64's 53 bits hold the product up to 29 bits; unorm32's 56 need long double's 64
+  return bits <= 29 ? round_unorm<double>(d, max, truncate)
+                    : round_unorm<long double>(d, max, truncate);
+}
+
 // reference_encode's codes for ascending inputs. Float formats by the definition of rounding
 // instead of by scaling: the code whose value is nearest d (ties to the even code) or, truncating,
 // the largest whose value is at most d. The walk keeps the current code and steps to the next
@@ -34,11 +59,24 @@ class ReferenceWalk {
  public:
   ReferenceWalk(const ReferenceFormat& f, bool truncate, bool flush, float first);
   // Code of d; d must be no smaller than the previous call's (or first), and in [0, 1].
-  uint32_t next(float d);
+  uint32_t next(float d) {
+    if (f_.unorm) return reference_unorm(d, f_.bits, truncate_);
+    while (beyond(d)) step();
+    return static_cast<uint32_t>(flush_ && code_ < (uint64_t{1} << f_.M) ? 0 : code_);
+  }
 
  private:
   double value(uint64_t code) const;  // the code's value, exact
-  bool beyond(float d) const;         // d rounds to code_ + 1 or above
+  void step();                        // to code_ + 1
+  // d rounds to code_ + 1 or above
+  bool beyond(float d) const {
+    if (code_ >= max_code_) return false;
+    const bool next_even = ((code_ + 1) & 1) == 0;
+    const double v = static_cast<double>(d);
+    if (truncate_) return v >= hi_;
+    const double mid = lo_ + (hi_ - lo_) / 2;  // exact: one bit below the finer spacing
+    return v > mid || (v == mid && next_even);
+  }
   ReferenceFormat f_;
   bool truncate_, flush_;
   uint64_t code_ = 0, max_code_ = 0;
