@@ -52,9 +52,20 @@ int integer(int lo, int hi) {
   return lo + static_cast<int>(rng() % static_cast<uint64_t>(hi - lo + 1));
 }
 
+// 2^e as a binary64, built from its bits for e in binary64's normal range: x * pow2(e) is
+// std::ldexp(x, e) exactly wherever the product stays normal, without the library call that took
+// a fifth of a term's run.
+double pow2(int e) {
+  const uint64_t bits = static_cast<uint64_t>(e + 1023) << 52;
+  double p;
+  std::memcpy(&p, &bits, sizeof p);
+  return p;
+}
+
 // A binary32 with a random significand and an exponent in [lo, hi], random sign unless positive.
 float random_float(int lo, int hi, bool positive = false) {
-  const float v = static_cast<float>(std::ldexp(1 + u01(), integer(lo, hi)));
+  const int e = integer(lo, hi);  // before the significand, as the trials' stream has it
+  const float v = static_cast<float>((1 + u01()) * pow2(e));
   return positive || (rng() & 1) ? v : -v;
 }
 
@@ -77,7 +88,8 @@ const binary32_error::Rounding kNearest{false, false};
 // half_ulp: rounding a real x to binary32 moves it at most half_ulp(m) for any m >= |x|.
 void half_ulp_term(uint64_t n, Worst& w) {
   for (uint64_t i = 0; i < n; ++i) {
-    const double x = std::ldexp(1 + u01(), integer(-140, 120));
+    const int e = integer(-140, 120);
+    const double x = (1 + u01()) * pow2(e);
     const double bound_at = x * (1 + (i & 3) * 0.37);
     const Exact err = static_cast<Exact>(static_cast<float>(x)) - x;
     w.see(err, half_ulp(bound_at), "half_ulp");
@@ -241,7 +253,7 @@ void setup_term(uint64_t n, Worst& w) {
     const int ge = -6 - static_cast<int>(rng() % 24);
     const double gx = random_float(ge - 2, ge), gy = random_float(ge - 2, ge);
     const double c = 0.25 + 0.7 * u01();
-    const double size = std::ldexp(1.0, static_cast<int>(rng() % 7));
+    const double size = pow2(static_cast<int>(rng() % 7));
     const float ox = static_cast<float>(512 * u01()), oy = static_cast<float>(512 * u01());
     for (int k = 0; k < 3; ++k) {
       x[k] = ox + static_cast<float>(size * u01());
