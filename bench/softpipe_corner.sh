@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The orientations bench/bound_scan.sh finds fighting at mts_bound under the softpipe profile
-# (bench/results/bound_scan-softpipe.txt), each as the scene's one frame: the MTS rendered on the
+# (bench/results/bound_scan.txt), each as the scene's one frame: the MTS rendered on the
 # real softpipe (GALLIUM_DRIVER=softpipe) against the softpipe profile's emulated MTS and the
 # bound. Prints and writes bench/results/softpipe_corner.txt (bench/results.sh).
 # Usage: bench/softpipe_corner.sh

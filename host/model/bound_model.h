@@ -24,6 +24,15 @@ struct BoundModel {
   // A unorm conversion's width in codes (code - d N within an interval this wide), for 16, 24
   // and 32 bits.
   double unorm_width[3];
+  // The widest run of binary32 depths that store one code, in codes, under any conversion the
+  // model allows, for 16, 24 and 32 bits: where each is a monotone function of the depth (the
+  // profiles' are), two depths that store one code lie at most this far apart, which is all the
+  // bound asks of the conversion (mts_bound.cpp collision_width). At most the width above, and
+  // narrower where a binary32 product rounds before the conversion: a code's run spans that
+  // rounding once, not the range of code - d N twice. 0: the width above (an API's envelope
+  // lets neighbouring depths take either of two codes, in no order; softpipe's 16-bit fast path
+  // steps codes without converting each depth).
+  double unorm_collision[3];
   double log_half_ulps;  // the shaders' log and log2
   int snap_bits;         // window positions snapped to 2^-bits; 0: as pipeline.snap says
   // Depth interpolation not otherwise specified: an error up to this fraction of the value.

@@ -37,6 +37,22 @@ double storage_width(const RowModel& m, double d_min, double d_max) {
   return f.spacing_at(d_max);
 }
 
+// The conversion's part in the gap a fight needs: two depths that store one code lie at most this
+// far apart. Every conversion the profiles use is monotone in the depth, so the depths storing a
+// code are one run of binary32 values, at most the model's collision width wide (measured over
+// every binary32 in [0, 1]: tests/base/binary32_error_proof.cpp collision): farther apart, the
+// farther depth stores a code strictly beyond the nearer one's. A model without one (an API's
+// envelope) and the float formats take storage_width, which bounds the same.
+double collision_width(const RowModel& m, double d_min, double d_max) {
+  const StorageFormat& f = m.format;
+  if (f.is_unorm()) {
+    const unsigned bits = f.bits();
+    const double c = m.model->unorm_collision[bits <= 16 ? 0 : bits <= 24 ? 1 : 2];
+    if (c > 0) return c / f.max_code();
+  }
+  return storage_width(m, d_min, d_max);
+}
+
 // softpipe's 16-bit fast path (BoundModel::unorm16_step_pixels; Mesa's sp_quad_depth_test_tmp.h):
 // a quad dx pixels into a run (one row of quads, dx <= 14) stores its first quad's codes,
 // trunc(fl(z0 N)) for each of its pixels (each from its own binary32 value, as the conversion
@@ -128,7 +144,7 @@ BoundCheck check(const RowModel& m, double z, double s) {
   const double d_min = std::max(0.0, std::min(a_lo, b.lo - EB));
   for (int t = 0; t < bound::kTermCount; ++t) v.terms[t] = eA.term[t] + eB.term[t];
   v.terms[bound::kStorage] =
-      storage_width(m, d_min, d_max) + stepped_codes(m, gA) + stepped_codes(m, gB);
+      collision_width(m, d_min, d_max) + stepped_codes(m, gA) + stepped_codes(m, gB);
   double need = 0;
   for (const double t : v.terms) need += t;
   v.holds = gap > need * binary32_error::kMargin;

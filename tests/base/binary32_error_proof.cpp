@@ -2,8 +2,9 @@
 // host/mts/bound_plane.cpp bounds): random operands through every binary32 form the model allows,
 // against an 80-bit extended (x87 long double: 64-bit significand, which holds every product of
 // two binary32 and every difference of pixel coordinates exactly) reference, never beyond the
-// bound. One ctest test per term, 10^8 trials each (TRIALS overrides). Prints the largest
-// error / bound seen: how tight each term is.
+// bound. One ctest test per term, 10^8 trials each (TRIALS overrides); the conversion's collision
+// width over every binary32 in [0, 1] instead. Prints the largest error / bound seen: how tight
+// each term is.
 //   binary32_error_proof TERM [TRIALS]
 #include <cfloat>
 #include <cmath>
@@ -299,15 +300,13 @@ void setup_term(uint64_t n, Worst& w) {
 }
 
 // The conversion's width (mts_bound.cpp storage_width): code(d) - d N stays within an interval
-// of width 1 + 2^-7 (unorm16), 2 (unorm24), 3 (unorm32) under every conversion the profiles use.
+// of the binary32 model's width (1 + 2^-7 for unorm16, 2 for unorm24, 3 for unorm32) under every
+// conversion the profiles use, and within each profile's own model's width under its own.
 void conversion_term(uint64_t n, Worst& w) {
+  const BoundModel& all = bound_model("binary32");
   for (const char* name : {"unorm16", "unorm24", "unorm32"}) {
-    const double width = std::string(name) == "unorm16"   ? 1.0078125
-                         : std::string(name) == "unorm24" ? 2.0
-                                                          : 3.0;
     const int slot = std::string(name) == "unorm16" ? 0 : std::string(name) == "unorm24" ? 1 : 2;
     for (const Conversion c : {Conversion::exact, Conversion::llvmpipe, Conversion::softpipe}) {
-      // and each within its own profile's model, the tighter width that model bounds with
       const BoundModel& own = bound_model(c == Conversion::exact      ? "ideal"
                                           : c == Conversion::llvmpipe ? "llvmpipe"
                                                                       : "softpipe");
@@ -323,9 +322,55 @@ void conversion_term(uint64_t n, Worst& w) {
         lo = std::min(lo, off);
         hi = std::max(hi, off);
       }
-      w.see(hi - lo, width, name);
+      w.see(hi - lo, all.unorm_width[slot], name);
       w.see(hi - lo, own.unorm_width[slot], own.name);
     }
+  }
+}
+
+// The collision width (mts_bound.cpp collision_width, BoundModel::unorm_collision), exhaustively:
+// for llvmpipe's and softpipe's unorm24 conversions (a binary32 product rounded before the code is
+// taken), every binary32 in [0, 1] in ascending order, the codes never falling (the conversion is
+// monotone, so the depths that store one code are a run of consecutive binary32 values), and each
+// run's (last - first) N within the binary32 model's collision width and within the conversion's
+// own profile's. The exact conversion needs no scan: its codes are round(d N) or trunc(d N) of the
+// exact product (the exhaustive format proof, tests/formats/exhaustive_formats.cpp), whose runs lie
+// in [(k - 1/2) / N, (k + 1/2) / N] or [k / N, (k + 1) / N): one code wide at most.
+void collision_term(uint64_t, Worst& w) {
+  const BoundModel& all = bound_model("binary32");
+  for (const Conversion c : {Conversion::llvmpipe, Conversion::softpipe}) {
+    const BoundModel& own = bound_model(to_string(c));
+    const StorageFormat f =
+        StorageFormat::parse("unorm24", depthprec::Rounding::nearest_even, Denormals::keep, c);
+    const Exact N = f.max_code();
+    uint32_t code = f.encode(0.0f);
+    float first = 0.0f, last = 0.0f;
+    Exact widest = 0;
+    // 0 < d < 1 straight to the conversion, which df_encode calls there (this loop then runs
+    // in three fifths of the time); 1 itself through df_encode, which stores the largest code
+    for (uint32_t bits = 1; bits <= 0x3f800000u; ++bits) {
+      float d;
+      std::memcpy(&d, &bits, sizeof d);
+      const uint32_t k = bits == 0x3f800000u         ? f.encode(d)
+                         : c == Conversion::llvmpipe ? df_encode_unorm_llvmpipe(d, f.spec())
+                                                     : df_encode_unorm_softpipe(d, f.spec());
+      if (k != code) {
+        if (k < code) {
+          std::fprintf(stderr, "unorm24/%s: code %u at %a after %u: not monotone\n", to_string(c),
+                       k, d, code);
+          w.failed = true;
+        }
+        widest = std::max(widest, (static_cast<Exact>(last) - first) * N);
+        code = k;
+        first = d;
+      }
+      last = d;
+    }
+    widest = std::max(widest, (static_cast<Exact>(last) - first) * N);
+    std::printf("  unorm24 %s: widest run %.12f codes\n", to_string(c),
+                static_cast<double>(widest));
+    w.see(widest, all.unorm_collision[1], "unorm24");
+    w.see(widest, own.unorm_collision[1], own.name);
   }
 }
 
@@ -335,7 +380,8 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(
         stderr,
-        "usage: binary32_error_proof half_ulp|row|divide|viewport|evaluation|setup|conversion "
+        "usage: binary32_error_proof half_ulp|row|divide|viewport|evaluation|setup|conversion|"
+        "collision "
         "[TRIALS]\n");
     return 2;
   }
@@ -356,11 +402,17 @@ int main(int argc, char** argv) {
     setup_term(n, w);
   else if (term == "conversion")
     conversion_term(n, w);
+  else if (term == "collision")
+    collision_term(n, w);
   else {
     std::fprintf(stderr, "unknown term '%s'\n", argv[1]);
     return 2;
   }
-  std::printf("%s: %llu trials, largest error / bound %.4f\n", term.c_str(),
-              static_cast<unsigned long long>(n), w.ratio);
+  if (term == "collision")  // exhaustive: no trials
+    std::printf("%s: every binary32 in [0, 1], largest width / bound %.4f\n", term.c_str(),
+                w.ratio);
+  else
+    std::printf("%s: %llu trials, largest error / bound %.4f\n", term.c_str(),
+                static_cast<unsigned long long>(n), w.ratio);
   return w.failed ? 1 : 0;
 }
