@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Rendered MTS rows against their mts_bound: one table line per resolved row and a summary per
 driver. Usage: bench/bound_vs_rendered.py [--bounds MTS.json] NAME=RENDERED [NAME=RENDERED ...]
-RENDERED is the JSON of `depthprec render --format-out json`, or an unfinished run's journal
-(OUTPUT.rows.jsonl); files given the same NAME are one driver's rows. --bounds takes each row's
+RENDERED is the JSON of `depthprec render --format-out json`, an unfinished run's journal
+(OUTPUT.rows.jsonl), or a table this script printed (bench/results/bound_vs_rendered*.txt: its
+rendered MTS at six significant digits, its z matched to the --bounds row within 10^-5); files
+given the same NAME are one driver's rows. --bounds takes each row's
 mts_bound from the JSON of `depthprec mts SCENE --format-out json` (the row of the same pair and
 z) instead of the rendering's own, for renderings made by an older build
 (bench/bound_vs_rendered.sh runs it on fresh renderings)."""
@@ -12,6 +14,20 @@ import sys
 
 
 def rows_of(path):
+    if path.endswith(".txt"):  # a printed table: | driver | pair | z | rendered mts | ... |
+        rows = []
+        for line in open(path):
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if not line.startswith("| ") or len(cells) != 6 or cells[0] == "driver":
+                continue
+            try:
+                z, mts = float(cells[2]), float(cells[3])
+            except ValueError:  # the header's rule
+                continue
+            technique, fmt, depth_range = cells[1].split("/")
+            rows.append({"technique": technique, "format": fmt, "depth_range": depth_range,
+                         "z": z, "mts": mts, "verdict": "resolved"})
+        return rows
     if path.endswith(".jsonl"):
         rows = []
         for line in open(path):
@@ -32,6 +48,14 @@ bounds = None
 if args[:1] == ["--bounds"]:
     bounds = {key(r): r.get("mts_bound") for r in rows_of(args[1])}
     args = args[2:]
+
+
+def bound_of(r):
+    """The --bounds row of r's pair and z; a printed z (six digits) matches within 10^-5."""
+    if key(r) in bounds:
+        return bounds[key(r)]
+    near = [k for k in bounds if k[:3] == key(r)[:3] and abs(k[3] - r["z"]) <= 1e-5 * k[3]]
+    return bounds[near[0]] if len(near) == 1 else KeyError
 runs = {}
 for a in args:
     name, path = a.split("=", 1)
@@ -45,10 +69,10 @@ for name, rows_in in runs.items():
         if r["verdict"] != "resolved":
             continue
         rows += 1
-        if bounds is not None and key(r) not in bounds:
+        b = bound_of(r) if bounds is not None else r.get("mts_bound")
+        if b is KeyError:
             unmatched += 1
             continue
-        b = bounds[key(r)] if bounds is not None else r.get("mts_bound")
         if not isinstance(b, (int, float)):
             unbounded += 1
             continue
