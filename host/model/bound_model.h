@@ -31,7 +31,8 @@ struct BoundModel {
   // narrower where a binary32 product rounds before the conversion: a code's run spans that
   // rounding once, not the range of code - d N twice. 0: the width above (an API's envelope
   // lets neighbouring depths take either of two codes, in no order; softpipe's 16-bit fast path
-  // steps codes without converting each depth).
+  // steps codes without converting each depth; unorm32, where llvmpipe's runs of 2 codes are what
+  // it renders, kept at the width's margin).
   double unorm_collision[3];
   double log_half_ulps;  // the shaders' log and log2
   int snap_bits;         // window positions snapped to 2^-bits; 0: as pipeline.snap says
