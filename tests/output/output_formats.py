@@ -89,7 +89,7 @@ COMMANDS = [
      ("round_trips", "stored", "stored")),
     ("formats", "formats", False, ["bits", "largest", "codes"], ("formats", "largest", "largest")),
     ("devices", "devices", False, ["CUs", "mem GiB"], None),
-    ("advise --range 10,1000 --separation 0.05 -t standard,linear -f unorm24 --kernel 24x24 "
+    ("advise --range 10,100 --separation 0.05 -t standard,linear -f unorm24 --kernel 24x24 "
      "--frames 4 --set worst_case.round_size=10 --no-timing -q", "advise", True,
      ["smallest near", "fails at z", "largest far", "steps"],
      None),
