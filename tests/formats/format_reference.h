@@ -25,34 +25,12 @@ ReferenceFormat reference_format(const std::string& name);
 
 uint32_t reference_encode(float d, const ReferenceFormat& f, bool truncate, bool flush);
 
-// unorm's code of d > 0 in T, binary64 or x87 long double, wide enough that d (2^b - 1) is exact
-// (a 24-bit significand times a b-bit integer). rint rounds ties to even in the FPU's current
-// mode; truncation of x >= 0 is rint stepped back where it rounded up (std::trunc, and a cast from
-// long double, would switch the x87 control word twice per input). r is then an integer below
-// 2^32, which binary64 holds, so the SSE conversion is exact.
-template <class T>
-inline uint32_t round_unorm(float d, uint64_t max, bool truncate) {
-  const T x = static_cast<T>(d) * static_cast<T>(max);
-  T r = std::rint(x);
-  if (truncate && r > x) r -= 1;
-  if (r >= static_cast<T>(max)) return static_cast<uint32_t>(max);
-  return static_cast<uint32_t>(static_cast<double>(r));
-}
-
-// reference_encode of a unorm<bits> format. Inline, as the walk's next() is: the exhaustive
-// proof calls them once per binary32 in [0, 1], where a call's overhead was the most of their cost.
-inline uint32_t reference_unorm(float d, int bits, bool truncate) {
-  if (!(d > 0.0f)) return 0;  // 0, negatives, NaN
-  const uint64_t max = (uint64_t{1} << bits) - 1;
-  // binary64's 53 bits hold the product up to 29 bits; unorm32's 56 need long double's 64
-  return bits <= 29 ? round_unorm<double>(d, max, truncate)
-                    : round_unorm<long double>(d, max, truncate);
-}
-
-// reference_unorm's codes of the binary32 values with bit patterns first, first + 1, ... (n of
-// them, all in [0, 1]) for bits <= 29, in a loop the compiler vectorizes: the same product, exact
-// in binary64, and the same rounding, rint's ties to even spelled as its addition of 2^52 (exact
-// for 0 <= x < 2^52, as the compiler inlines std::rint), without a call or a branch per input.
+// unorm's codes of the binary32 values with bit patterns first, first + 1, ... (n of them, none
+// negative or NaN) for bits <= 29, in a loop the compiler vectorizes: d (2^b - 1) is exact in
+// binary64 (a 24-bit significand times a b-bit integer), and adding 2^52 rounds it to an integer,
+// ties to even in the FPU's current mode (what std::rint compiles to; exact below 2^52, and from
+// there the code is the largest anyway). Truncation of x >= 0 is that stepped back where it
+// rounded up. The exhaustive proof takes them a block at a time, reference_unorm one by one.
 inline void reference_unorm_codes(uint32_t first, uint32_t n, int bits, bool truncate,
                                   uint32_t* out) {
   const double max = static_cast<double>((uint64_t{1} << bits) - 1);
@@ -66,6 +44,27 @@ inline void reference_unorm_codes(uint32_t first, uint32_t n, int bits, bool tru
     out[i] = r >= max ? static_cast<uint32_t>(max)
                       : static_cast<uint32_t>(static_cast<int32_t>(r));  // r < 2^29
   }
+}
+
+// reference_encode of a unorm<bits> format. Inline, as the walk's next() is: the exhaustive
+// proof calls it once per binary32 in [0, 1] for unorm32, where a call's overhead was the most of
+// its cost. unorm32's product has 56 bits, which x87 long double's 64 hold; rint there, and
+// truncation as above (std::trunc, and a cast from long double, would switch the x87 control word
+// twice per input); the integer below 2^32 then converts exactly.
+inline uint32_t reference_unorm(float d, int bits, bool truncate) {
+  if (!(d > 0.0f)) return 0;  // 0, negatives, NaN
+  if (bits <= 29) {
+    uint32_t u, code;
+    std::memcpy(&u, &d, sizeof u);
+    reference_unorm_codes(u, 1, bits, truncate, &code);
+    return code;
+  }
+  const uint64_t max = (uint64_t{1} << bits) - 1;
+  const long double x = static_cast<long double>(d) * static_cast<long double>(max);
+  long double r = std::rint(x);
+  if (truncate && r > x) r -= 1;
+  if (r >= static_cast<long double>(max)) return static_cast<uint32_t>(max);
+  return static_cast<uint32_t>(static_cast<double>(r));
 }
 
 // reference_encode's codes for ascending inputs. Float formats by the definition of rounding
