@@ -59,10 +59,6 @@ size_t MtsEvaluator::reserve_plane_a(const std::vector<Probe>& probes) {
   return distinct;
 }
 
-size_t MtsEvaluator::code_row_words() const {
-  return depthprec::code_row_words(scene_, variant_.cache_a_codes);
-}
-
 cl_uint MtsEvaluator::bands() const {
   return band_count(scene_);
 }

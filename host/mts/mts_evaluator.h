@@ -192,7 +192,6 @@ class MtsEvaluator : public ProbeEvaluator {
   // Grows the plane-A cache (emptying it) to hold the probes' distances, within max_slots_;
   // returns how many distinct distances the probes have.
   size_t reserve_plane_a(const std::vector<Probe>& probes);
-  size_t code_row_words() const;  // per kernel row of plane A's cached codes (0: not cached)
   cl_uint bands() const;
   MtsKernelArea area() const;  // the measurement kernel as every launch gets it
 
