@@ -61,6 +61,12 @@ struct BoundModel {
   int unorm16_step_pixels = 0;
 };
 
+// The entry of BoundModel's per-unorm arrays (unorm_width, unorm_collision) a unorm of `bits`
+// takes: up to 16 bits the first, up to 24 the second, more the third.
+inline int unorm_entry(unsigned bits) {
+  return bits <= 16 ? 0 : bits <= 24 ? 1 : 2;
+}
+
 const std::vector<BoundModel>& bound_models();
 const BoundModel& bound_model(const std::string& name);  // throws InputError naming the models
 // pipeline.envelope's value: "none" (nullptr) or a model with an adversary; throws InputError

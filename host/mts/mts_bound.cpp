@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "host/base/errors.h"
+#include "host/model/bound_model.h"
 #include "host/mts/bound_plane.h"
 
 namespace depthprec {
@@ -24,9 +25,9 @@ using bound::RowModel;
 double storage_width(const RowModel& m, double d_min, double d_max) {
   const StorageFormat& f = m.format;
   if (f.is_unorm()) {
-    const unsigned bits = f.bits();
     const double* w = m.model->unorm_width;
-    return (bits <= 16 ? w[0] : bits <= 24 ? w[1] : std::max(w[2], w[1])) / f.max_code();
+    const int e = unorm_entry(f.bits());
+    return (e < 2 ? w[e] : std::max(w[2], w[1])) / f.max_code();
   }
   // Flushed, every depth below the smallest normal stores code 0: one code for [0, normal).
   if (f.denormals() == Denormals::flush) {
@@ -46,8 +47,7 @@ double storage_width(const RowModel& m, double d_min, double d_max) {
 double collision_width(const RowModel& m, double d_min, double d_max) {
   const StorageFormat& f = m.format;
   if (f.is_unorm()) {
-    const unsigned bits = f.bits();
-    const double c = m.model->unorm_collision[bits <= 16 ? 0 : bits <= 24 ? 1 : 2];
+    const double c = m.model->unorm_collision[unorm_entry(f.bits())];
     if (c > 0) return c / f.max_code();
   }
   return storage_width(m, d_min, d_max);

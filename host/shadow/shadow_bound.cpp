@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "host/base/binary32_error.h"
+#include "host/model/bound_model.h"
 
 namespace depthprec {
 
@@ -130,7 +131,7 @@ ShadowBound shadow_bound(const ShadowSetup& s, size_t cascade, const BoundModel&
   // float32 buffer stores the binary32 depth itself.
   if (s.format.is_unorm()) {
     const unsigned bits = s.format.bits();
-    const double width = model.unorm_width[bits <= 16 ? 0 : bits <= 24 ? 1 : 2];
+    const double width = model.unorm_width[unorm_entry(bits)];
     t.storage =
         width / (std::ldexp(1.0, static_cast<int>(bits)) - 1) + (bits > 24 ? half_ulp(1.0) : 0.0);
   }

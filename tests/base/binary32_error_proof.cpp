@@ -305,7 +305,6 @@ void setup_term(uint64_t n, Worst& w) {
 void conversion_term(uint64_t n, Worst& w) {
   const BoundModel& all = bound_model("binary32");
   for (const char* name : {"unorm16", "unorm24", "unorm32"}) {
-    const int slot = std::string(name) == "unorm16" ? 0 : std::string(name) == "unorm24" ? 1 : 2;
     for (const Conversion c : {Conversion::exact, Conversion::llvmpipe, Conversion::softpipe}) {
       const BoundModel& own = bound_model(c == Conversion::exact      ? "ideal"
                                           : c == Conversion::llvmpipe ? "llvmpipe"
@@ -313,6 +312,7 @@ void conversion_term(uint64_t n, Worst& w) {
       const StorageFormat f =
           StorageFormat::parse(name, depthprec::Rounding::nearest_even, Denormals::keep, c);
       const double N = f.max_code();
+      const int slot = unorm_entry(f.bits());
       double lo = INFINITY, hi = -INFINITY;
       for (uint64_t i = 0; i < n / 9; ++i) {
         // a step of 2^-24 in [0, 1), or a binary32 of any binade from 2^-30 up
@@ -369,8 +369,8 @@ void collision_term(uint64_t, Worst& w) {
     widest = std::max(widest, (static_cast<Exact>(last) - first) * N);
     std::printf("  unorm24 %s: widest run %.12f codes\n", to_string(c),
                 static_cast<double>(widest));
-    w.see(widest, all.unorm_collision[1], "unorm24");
-    w.see(widest, own.unorm_collision[1], own.name);
+    w.see(widest, all.unorm_collision[unorm_entry(24)], "unorm24");
+    w.see(widest, own.unorm_collision[unorm_entry(24)], own.name);
   }
 }
 
