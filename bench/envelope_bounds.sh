@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The API envelopes' bounds against every emulated implementation (docs/spec.md 2, "Envelopes";
-# docs/mts.md, "The guaranteed bound"): the default table under the ideal, llvmpipe and softpipe
+# docs/bound.md): the default table under the ideal, llvmpipe and softpipe
 # profiles and under each envelope's adversary (d3d11, vulkan_min), whose rows carry the
 # envelope's own bound. bench/envelope_bounds.py checks each envelope's bound against every
 # profile's worst case row by row and gives, per technique, the median of its bound over the

@@ -1,5 +1,5 @@
 // Rounding-error bounds of binary32 operations, as the guaranteed MTS (host/mts/mts_bound.h,
-// docs/mts.md "The guaranteed bound") adds them up: each function bounds |computed - exact| of one
+// docs/bound.md) adds them up: each function bounds |computed - exact| of one
 // step from upper bounds on the magnitudes involved, whatever order or fusion an implementation
 // picks. tests/base/binary32_error.cpp checks each against exact arithmetic by brute force.
 #pragma once

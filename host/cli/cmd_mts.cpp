@@ -287,7 +287,7 @@ void add_mts_commands(CLI::App& app, GlobalOptions& global) {
       "convergence: what it rests on; docs/mts.md, \"The worst case\"). Beside it, mts_bound:\n"
       "the guaranteed MTS, at and above which no orientation and no implementation of the\n"
       "scene's bound_model (binary32: every profile's choices) fights, and bound_by, the error\n"
-      "term that weighs most (docs/mts.md, \"The guaranteed bound\").\n"
+      "term that weighs most (docs/bound.md).\n"
       "Examples:\n"
       "  depthprec mts -t reversed -f float32 --depth-range zero_to_one --distances 2,1024,1e6\n"
       "  depthprec mts -t standard -f unorm24 --distances 512 --set bound_model=d3d11\n"

@@ -1,4 +1,4 @@
-// The bound models of the guaranteed MTS (docs/mts.md "The guaranteed bound"): what an
+// The bound models of the guaranteed MTS (docs/bound.md): what an
 // implementation's arithmetic may do, as the error bounds of host/mts/bound_plane.cpp read it. The
 // default, binary32, holds every choice the emulated profiles make at once; a profile's own model
 // holds its choices alone; an API's envelope holds what its specification allows (the section it

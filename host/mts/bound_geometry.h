@@ -1,6 +1,6 @@
 // What the guaranteed MTS (host/mts/mts_bound.h) knows of a plane of the measurement over the whole
 // rotation cube: ranges of eye distance at its vertices and at the kernel's pixel centres, and the
-// exact depth maps and gaps the error bounds are held against (docs/mts.md "The guaranteed bound").
+// exact depth maps and gaps the error bounds are held against (docs/bound.md).
 #pragma once
 
 #include <vector>

@@ -1,5 +1,5 @@
 // How far any implementation of the bound model can store a plane's depth from its exact value at
-// any kernel pixel, over the whole rotation cube (docs/mts.md "The guaranteed bound"), term by
+// any kernel pixel, over the whole rotation cube (docs/bound.md), term by
 // term: each term is written beside the binary32 arithmetic it bounds in bound_plane.cpp.
 #pragma once
 

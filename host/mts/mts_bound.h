@@ -1,4 +1,4 @@
-// The guaranteed MTS (docs/mts.md "The guaranteed bound"): a separation at and above which plane B
+// The guaranteed MTS (docs/bound.md): a separation at and above which plane B
 // provably never wins against plane A at any pixel of the kernel, for every orientation in the
 // scene's rotation cube (the continuum, not samples), under every implementation the bound model
 // allows. It is analysis, not sampling: forward error bounds, one beside each binary32 step, added

@@ -69,8 +69,8 @@ std::string bound_grid(const Scene& scene, const std::vector<MtsRow>& rows, bool
   std::string out = md ? "\n" : "\n";
   out += fmt::format(
       "Guaranteed MTS (mts_bound, model {}): no pixel fights at or above it in any orientation "
-      "within the rotation cube under any implementation of the model (docs/mts.md, \"The "
-      "guaranteed bound\"); - = no finite bound (why: under the grid) or no MTS to bound\n\n",
+      "within the rotation cube under any implementation of the model (docs/bound.md); - = no "
+      "finite bound (why: under the grid) or no MTS to bound\n\n",
       scene.bound_model);
   out += grid(cols, cells, md);
   for (const std::string& line : rows_without_bound(scene, rows))

@@ -1,4 +1,4 @@
-// The guaranteed MTS in the tables (docs/mts.md "The guaranteed bound"): each row's mts_bound
+// The guaranteed MTS in the tables (docs/bound.md): each row's mts_bound
 // beside its sampled mts, and in the wide table a second grid of the bounds under the first.
 #pragma once
 

@@ -174,7 +174,7 @@ std::string mts_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   return out;
 }
 
-// The guaranteed MTS of each row (docs/mts.md, "The guaranteed bound"): with the sampled MTS of
+// The guaranteed MTS of each row (docs/bound.md): with the sampled MTS of
 // the table above, each answer's bracket.
 std::string bound_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   std::string model;
@@ -197,7 +197,7 @@ std::string bound_section(const Scene& scene, const std::vector<MtsRow>& rows) {
   std::string out = fmt::format(
       "<h2>Guaranteed MTS</h2>\n<p>The separation at and above which no pixel fights in any "
       "orientation within the rotation cube, under any implementation of the bound model "
-      "<code>{}</code> (docs/mts.md, \"The guaranteed bound\"). A fight was seen just below the "
+      "<code>{}</code> (docs/bound.md). A fight was seen just below the "
       "MTS above, none can happen at this: what an implementation of the model needs lies "
       "between the two. -: no finite bound (why: under the grid) or no MTS to bound.</p>\n",
       html_escape(model));

@@ -51,7 +51,7 @@ std::string implementations_output(const std::string& format) {
   return captioned(
       "The implementations depthprec emulates (--profile NAME) and the models its guaranteed MTS "
       "holds for (--set bound_model=NAME), the API envelopes among them (docs/spec.md 2, "
-      "\"Envelopes\"; docs/mts.md, \"The guaranteed bound\")",
+      "\"Envelopes\"; docs/bound.md)",
       {{"name", true}, {"kind", true}, {"what", true}, {"source", true}}, cells, format);
 }
 

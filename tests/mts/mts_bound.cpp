@@ -1,4 +1,4 @@
-// The guaranteed MTS (host/mts/mts_bound.h, docs/mts.md "The guaranteed bound"): never below the
+// The guaranteed MTS (host/mts/mts_bound.h, docs/bound.md): never below the
 // sampled worst case, never a fight at or above it in a dense scan of the rotation cube under the
 // ideal and llvmpipe profiles (each under its own bound model), the models ordered as their
 // freedoms are, and a row the model cannot bound says why.
