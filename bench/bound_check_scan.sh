@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The guaranteed MTS's condition checked densely above the bound (docs/mts.md, "The condition"):
+# The guaranteed MTS's condition checked densely above the bound (docs/bound.md, "The condition"):
 # build/bench/bound_terms --scan over the default scene's pairs at distances from Z_FROM to Z_TO
 # (default 1.005 to 4, where plane B passes w = 2 near and the standard projection's clip z
 # changes sign), every separation a factor 1.002 apart from mts_bound to 64 times it plus 4 near.

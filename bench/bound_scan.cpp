@@ -1,7 +1,7 @@
-// The guaranteed MTS against a dense scan of the rotation cube (docs/mts.md "The guaranteed
-// bound"): at a dozen rows of the default scene, under each profile and its own bound model, N
-// uniform orientations (and the cube's corners) probed at mts_bound; none may fight. Prints one
-// line per row and profile, and the total.
+// The guaranteed MTS against a dense scan of the rotation cube (docs/bound.md): at a dozen rows of
+// the default scene, under each profile and its own bound model, N uniform orientations (and the
+// cube's corners) probed at mts_bound; none may fight. Prints one line per row and profile, and
+// the total.
 //   build/bench/bound_scan [N [PROFILE]]      (default 100000, every profile)
 #include <fmt/format.h>
 

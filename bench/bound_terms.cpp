@@ -1,7 +1,7 @@
-// The guaranteed MTS's error terms for one row at one separation (docs/mts.md "The guaranteed
-// bound"): each term summed over both planes, and its share of the exact gap, to see which term a
-// bound is loose in. Without a row: mts_bound of every row of the scene (every pair at every
-// distance), and the host time they took, one after another. With --scan Z_FROM Z_TO: for every
+// The guaranteed MTS's error terms for one row at one separation (docs/bound.md): each term summed
+// over both planes, and its share of the exact gap, to see which term a bound is loose in. Without
+// a row: mts_bound of every row of the scene (every pair at every distance), and the host time
+// they took, one after another. With --scan Z_FROM Z_TO: for every
 // pair at distances a factor 1.01 apart, the bound's condition at separations a factor 1.002
 // apart from mts_bound up to 64 times it plus 4 near (so that plane B passes w = 2 near, where
 // the standard projection's clip z changes sign): every separation where it fails (the search

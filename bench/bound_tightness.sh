@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How tight the guaranteed MTS is (docs/mts.md, "How tight"): the default table, then the same
+# How tight the guaranteed MTS is (docs/bound.md, "How tight"): the default table, then the same
 # table under the llvmpipe and softpipe profiles (their own worst cases; the bound is the default
 # model's in all three), and per pair the medians bench/bound_tightness.py takes. About two
 # minutes on 2 cores, most of it softpipe's. Prints and writes bench/results/bound_tightness.txt

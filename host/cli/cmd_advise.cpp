@@ -172,7 +172,7 @@ std::string render_advise_output(const nlohmann::json& header,
                   "the far plane pulled in to the farthest content, the scene's far plane fails. "
                   "near (bound), far (bound): the same under the guaranteed MTS (mts_bound within "
                   "the separation at every distance checked: no fight on any implementation of the "
-                  "bound model, in any orientation; docs/mts.md)",
+                  "bound model, in any orientation; docs/bound.md)",
                   human(header.value("content_near", 0.0)), human(header.value("content_far", 0.0)),
                   rel ? fmt::format("{} x z", human(s)) : human(s),
                   header.value("scene_name", std::string("?")),

@@ -106,7 +106,7 @@ TEST_CASE(
   // corners.
   const std::vector<std::pair<EvalPair, double>>& rows = test::bound_scan_rows();
   // softpipe is left out: its planes meet the clip stage's thinnest fan triangles, which the
-  // model does not cover yet (docs/mts.md, "Not yet covered"; bench/bound_scan.sh finds them).
+  // model does not cover yet (docs/bound.md, "Not yet covered"; bench/bound_scan.sh finds them).
   for (const std::string prof : {"ideal", "llvmpipe"}) {
     std::vector<std::string> sets = profile(prof).sets;
     sets.push_back("bound_model=" + prof);  // the profile's own model, the tightest
