@@ -235,6 +235,10 @@ nlohmann::json sweep(WorldProbe& probe) {
 void validate(const WorldRequest& r, const Scene& scene) {
   if (!(r.z > 0) || !std::isfinite(r.z))
     throw InputError(fmt::format("--distance {}: the content's eye distance must be > 0", r.z));
+  if (!(r.z > scene.near))
+    throw InputError(
+        fmt::format("--distance {}: the content must lie beyond the near plane ({}); set --near",
+                    r.z, scene.near));
   const auto& d = r.direction;
   if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0) || !std::isfinite(d[0] + d[1] + d[2]))
     throw InputError(

@@ -9,6 +9,7 @@
 #include "host/base/errors.h"
 #include "host/cli/commands.h"
 #include "host/cli/scene_options.h"
+#include "host/output/progress.h"
 #include "host/output/report.h"
 #include "host/output/shadow_output.h"
 #include "host/output/text_table.h"
@@ -39,14 +40,16 @@ void run_shadow(const ShadowCliOptions& o, const GlobalOptions& g) {
   if (rt) header["device"] = rt->description();
   if (gl) header["renderer"] = gl->description();
   std::vector<nlohmann::json> records;
-  for (size_t i = 0; i < r.setup.cascades.size(); ++i) {
-    if (!g.quiet)
-      fmt::print(stderr, "depthprec: shadow: {} {} of {}\n",
-                 r.setup.light == LightType::spot ? "receiver distance" : "cascade", i + 1,
-                 r.setup.cascades.size());
-    nlohmann::json rec = shadow_record(rt.get(), r, i);
-    if (gl) rec["rendered"] = rendered_shadow_check(r, i, rec);
-    records.push_back(rec);
+  {
+    // On a terminal only, as every command's progress: logs and pipes stay clean.
+    Progress bar("shadow", r.setup.cascades.size(), !g.quiet && stderr_is_terminal(),
+                 r.setup.light == LightType::spot ? "receiver distances" : "cascades");
+    for (size_t i = 0; i < r.setup.cascades.size(); ++i) {
+      nlohmann::json rec = shadow_record(rt.get(), r, i);
+      if (gl) rec["rendered"] = rendered_shadow_check(r, i, rec);
+      records.push_back(rec);
+      bar.advance();
+    }
   }
   write_output(o.out.output, for_terminal(render_shadow_output(header, records, o.out.format_out),
                                           o.out.format_out));

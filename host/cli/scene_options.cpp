@@ -214,12 +214,23 @@ void add_implied(const SceneOptions& o, NamedSets& named) {
 
 void check_set_once(const std::vector<std::string>& sets,
                     const std::map<std::string, std::string>& origins) {
-  for (const auto& set : sets) {
-    const std::string key = set.substr(0, set.find('='));
+  // One key, or a block and a key inside it (pipeline and pipeline.divide).
+  const auto overlap = [](const std::string& a, const std::string& b) {
+    return a == b || a.rfind(b + ".", 0) == 0 || b.rfind(a + ".", 0) == 0;
+  };
+  for (size_t i = 0; i < sets.size(); ++i) {
+    const std::string key = sets[i].substr(0, sets[i].find('='));
     for (const auto& [k, option] : origins)
-      if (k == key || k.rfind(key + ".", 0) == 0 || key.rfind(k + ".", 0) == 0)
+      if (overlap(k, key))
         throw Error(ExitCode::usage,
-                    fmt::format("{} and --set {} both set '{}': give it once", option, set, k));
+                    fmt::format("{} and --set {} both set '{}': give it once", option, sets[i], k));
+    for (size_t j = 0; j < i; ++j) {
+      const std::string earlier = sets[j].substr(0, sets[j].find('='));
+      if (overlap(earlier, key))
+        throw Error(ExitCode::usage,
+                    fmt::format("--set {} and --set {} both set '{}': give it once", sets[j],
+                                sets[i], earlier));
+    }
   }
 }
 

@@ -23,6 +23,9 @@ void validate(const ResolveSetup& s) {
     throw InputError(fmt::format("--near must be a finite distance > 0, not {}", s.near));
   if (!(s.far > s.near))
     throw InputError(fmt::format("--far must be > near ({}), not {}", s.near, s.far));
+  // As the scenes' log_k (scene_parse.cpp): log(k w + 1) needs k > 0, and a finite one.
+  if (!(s.params.log_k > 0) || !std::isfinite(s.params.log_k))
+    throw InputError(fmt::format("--log-k must be a finite k > 0, not {}", s.params.log_k));
   if (s.technique == Technique::layered)
     throw InputError(
         "resolve: layered has one mapping per layer; ask for its layer mapping with "

@@ -125,6 +125,14 @@ void check_known_keys(const json& j, const std::set<std::string>& known, const s
 void check_user_keys(const json& j, const std::string& source, const std::string& text) {
   if (!j.is_object()) throw InputError(fmt::format("{}: a scene is a JSON object", source));
   check_known_keys(j, kTopKeys, "the scene", source, text);
+  // Blocks of settings are objects, null included: merged into the default's, anything else
+  // would replace (or, null, delete) the whole block.
+  for (const auto& [key, what] :
+       {std::pair<const char*, const char*>{"pipeline", "the pipeline's settings (docs/spec.md 2)"},
+        {"worst_case", "the worst case's settings (docs/mts.md)"}})
+    if (j.contains(key) && !j[key].is_object())
+      throw InputError(fmt::format("{}: '{}' must be an object of {}, not {}",
+                                   scene_key_where(source, text, key), key, what, j[key].dump()));
   if (j.contains("pipeline"))
     check_known_keys(j["pipeline"], kPipelineKeys, "pipeline", source, text);
   if (j.contains("worst_case"))

@@ -109,8 +109,10 @@ void read_plane_motion_fields(const Reader& r, Scene& s) {
   s.frames = r.integer("frames", 1, 1000000);
   s.delta_a = r.number("delta_a");
   s.rotation_range_deg = r.number("rotation_range_deg");
-  if (std::abs(s.rotation_range_deg) >= 45)
-    r.fail("rotation_range_deg", "must be below 45 degrees");
+  if (!(s.rotation_range_deg >= 0 && s.rotation_range_deg < 45))
+    r.fail("rotation_range_deg",
+           fmt::format("must be 0 up to below 45 degrees (each axis turns within ± it), not {}",
+                       s.rotation_range_deg));
   s.rotation_step = r.vec3("rotation_step");
   s.rotation_offset = r.vec3("rotation_offset");
 }
@@ -170,7 +172,11 @@ void read_search_fields(const Reader& r, Scene& s) {
 
 void read_worst_case(const Reader& r, WorstCaseSettings& w) {
   w.max_rounds = r.integer("worst_case.max_rounds", 1, 16);
-  w.min_rounds = r.integer("worst_case.min_rounds", 1, w.max_rounds);
+  w.min_rounds = r.integer("worst_case.min_rounds", 1, 16);
+  if (w.min_rounds > w.max_rounds)
+    r.fail("worst_case.max_rounds",
+           fmt::format("must be at least worst_case.min_rounds ({}), not {}: set both",
+                       w.min_rounds, w.max_rounds));
   w.round_size = r.integer("worst_case.round_size", 1, 1000000);
   // Rounds double: the last one renders round_size * 2^(max_rounds - 1) frames per probe.
   if ((static_cast<long long>(w.round_size) << (w.max_rounds - 1)) > 1000000)

@@ -82,6 +82,11 @@ std::vector<ShadowCascade> cascades_from_splits(const std::vector<double>& split
         fov_deg, aspect));
   if (!(caster_padding >= 0) || !std::isfinite(caster_padding))
     throw InputError(fmt::format("--caster-padding {}: metres, 0 or more", caster_padding));
+  if (!(camera_near > 0) || !std::isfinite(camera_near))
+    throw InputError(fmt::format(
+        "--camera-near {}: the camera's near plane, where the first cascade starts: metres, more "
+        "than 0",
+        camera_near));
   const double ty = std::tan(radians(fov_deg) / 2), tx = ty * aspect;
   const double k2 = tx * tx + ty * ty;  // a slice corner at distance z is z*sqrt(k2) off axis
   std::vector<ShadowCascade> out;

@@ -103,6 +103,47 @@ TEST_CASE("options are read strictly and blamed by name", "[cli][errors]") {
   CHECK_THAT(value.output, Contains("--value 1.5: depth values are in [0, 1]"));
 }
 
+TEST_CASE("a bad block, a range turned inside out and a key given twice are refused by name",
+          "[cli][errors]") {
+  // A block of settings that is not an object replaced the whole block (and crashed on it).
+  const auto block = run_cli("mts -t standard -f unorm24 --distances 2 --set pipeline=1");
+  CHECK(block.exit_code == 3);
+  CHECK_THAT(block.output, Contains("'pipeline' must be an object") && !Contains("internal"));
+  std::ofstream("/tmp/depthprec_test_null_pipeline.json") << "{\"pipeline\": null}\n";
+  const auto null_block = run_cli("mts /tmp/depthprec_test_null_pipeline.json");
+  CHECK(null_block.exit_code == 3);
+  CHECK_THAT(null_block.output, Contains(":1:2: 'pipeline' must be an object"));
+  CHECK_THAT(run_cli("mts --set worst_case=3").output, Contains("'worst_case' must be an object"));
+  // The key the user set is the one blamed, with the one it conflicts with.
+  CHECK_THAT(run_cli("mts --set worst_case.max_rounds=1").output,
+             Contains("'worst_case.max_rounds' must be at least worst_case.min_rounds (2), not 1"));
+  // A negative range turned the cube inside out, and its guaranteed MTS with it.
+  const auto range = run_cli("mts --set rotation_range_deg=-1");
+  CHECK(range.exit_code == 3);
+  CHECK_THAT(range.output, Contains("'rotation_range_deg' must be 0 up to below 45 degrees"));
+  const auto twice = run_cli("mts --set near=0.1 --set near=0.2");
+  CHECK(twice.exit_code == 2);
+  CHECK_THAT(twice.output, Contains("--set near=0.1 and --set near=0.2 both set 'near'"));
+  CHECK(run_cli("mts --set pipeline.divide=exact --set pipeline={}").exit_code == 2);
+  for (const char* k : {"0", "-1", "nan"}) {
+    const auto log_k = run_cli(std::string("resolve -t log_vertex --code 3 --log-k ") + k);
+    CHECK(log_k.exit_code == 3);
+    CHECK_THAT(log_k.output, Contains("--log-k must be a finite k > 0"));
+  }
+  const auto camera_near = run_cli("shadow --source bound --camera-near -1 -q");
+  CHECK(camera_near.exit_code == 3);
+  CHECK_THAT(camera_near.output, Contains("--camera-near -1: the camera's near plane"));
+  const auto world = run_cli("world -t standard -f unorm24 --separation 0.01 --distance 0.5 -q");
+  CHECK(world.exit_code == 3);
+  CHECK_THAT(world.output, Contains("--distance 0.5: the content must lie beyond the near plane"));
+}
+
+TEST_CASE("shadow keeps its progress off a log, as every command does", "[cli][shadow]") {
+  const auto r = run_cli("shadow --source bound -o /dev/null");
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.empty());  // stderr is not a terminal here
+}
+
 TEST_CASE("engineers' names get a did-you-mean", "[cli][errors]") {
   for (const auto& [typed, meant] : {std::pair{"d24", "unorm24"},
                                      {"D24", "unorm24"},
