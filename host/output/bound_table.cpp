@@ -47,8 +47,10 @@ std::vector<std::string> rows_without_bound(const Scene& scene, const std::vecto
     }
   std::vector<std::string> out;
   for (const auto& [why, where] : without)
-    out.push_back(fmt::format("no finite bound ({}): {} rows, {} to {}", why, where.size(),
-                              where.front(), where.back()));
+    out.push_back(where.size() == 1
+                      ? fmt::format("no finite bound ({}): 1 row, {}", why, where.front())
+                      : fmt::format("no finite bound ({}): {} rows, {} to {}", why, where.size(),
+                                    where.front(), where.back()));
   return out;
 }
 

@@ -416,3 +416,12 @@ TEST_CASE("rows that left kernel pixels uncovered say what covers them", "[cli][
   REQUIRE(covered.exit_code == 0);
   CHECK_THAT(covered.output, !Contains("uncovered"));
 }
+
+TEST_CASE("the table's note of rows without a bound counts one row as one", "[cli][bound]") {
+  // reversed/unorm24 at 2e7: no separation up to max_separation_factor z clears the bounds.
+  const auto r =
+      run_cli("table -t reversed -f unorm24 --distances 2e7 " + depthprec::test::kSmallScene);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Contains("clears the error bounds): 1 row,"));
+  CHECK_THAT(r.output, !Contains("1 rows") && !Contains(" to reversed/unorm24"));
+}
