@@ -80,7 +80,7 @@ std::string render(const Scene& scene, const std::vector<ReadbackRow>& rows, dou
       "code_gap = the distance to the farther neighbouring code (resolve's resolution)",
       scene.name, human(scene.near), human(scene.far));
   std::string text = captioned(caption, cols, cells, out.format_out);
-  if (timing && out.format_out != "csv") text += fmt::format("computed in {:.3f} s\n", seconds);
+  if (timing && out.format_out != "csv") text += fmt::format("computed in {:.3g} s\n", seconds);
   return for_terminal(text, out.format_out);
 }
 
