@@ -144,6 +144,7 @@ void note_given(const CLI::App& cmd, ViewOptions& o) {
   o.jitter_given = cmd.count("--jitter") > 0;
   o.fov_given = cmd.count("--fov-y") > 0;
   o.frames_given = cmd.count("--frames") > 0;
+  o.up_given = cmd.count("--up") > 0;
 }
 
 void check_view_options(const ViewOptions& o) {
@@ -164,6 +165,11 @@ void check_view_options(const ViewOptions& o) {
     throw Error(ExitCode::usage, "give either --camera or --eye and --target, not both");
   if (o.eye.empty() != o.target.empty())
     throw Error(ExitCode::usage, "--eye and --target go together");
+  // A file's camera has its own up (its node's rotation): an --up beside it would be dropped.
+  if (o.up_given && o.eye.empty() && o.path.empty())
+    throw Error(ExitCode::usage,
+                "--up orients the views of --eye and --target or of --path; the file's camera has "
+                "its own up: drop --up or give the view");
 }
 
 AuditViews audit_views(const ViewOptions& o, const std::string& file, const SceneGeometry& g,

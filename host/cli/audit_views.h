@@ -23,7 +23,7 @@ struct ViewOptions {
   // set-up sixteen did, for about 0.5 s more than one view at 1280x720 (docs/audit.md).
   int frames = 8;
   double jitter = NAN;  // unset: 10^-4 of the distance from the eye to the geometry's centre
-  bool fov_given = false, jitter_given = false, frames_given = false;
+  bool fov_given = false, jitter_given = false, frames_given = false, up_given = false;
 };
 
 struct AuditViews {

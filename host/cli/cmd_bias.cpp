@@ -435,7 +435,8 @@ void add_bias_command(CLI::App& app, GlobalOptions& global) {
                   "emulated (the emulated pipeline with the API's rules) or rendered (every "
                   "probe drawn with glPolygonOffset through the system's OpenGL: the driver's r "
                   "and arithmetic; no MTS column)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"emulated", "rendered"}));
   add_gl_device_option(cmd, o->gl_device);
   o->out.add_to(*cmd);
   o->batch.add_to(*cmd, "pairs (k in scene order)");

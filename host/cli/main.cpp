@@ -105,7 +105,8 @@ int run(int argc, char** argv) {
     // --help and --version through write_output, so a failed write names its reason.
     std::ostringstream out, err;
     const int rc = app.exit(e, out, err);
-    std::fputs(err.str().c_str(), stderr);
+    // CLI11's message ("--jobs: Value 0 not in range 1 to 64"), said by depthprec as every error is
+    if (!err.str().empty()) std::fputs(("depthprec: " + err.str()).c_str(), stderr);
     try {
       write_output("", out.str());
     } catch (const Error& failed) {

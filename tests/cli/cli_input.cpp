@@ -136,6 +136,18 @@ TEST_CASE("a bad block, a range turned inside out and a key given twice are refu
   const auto world = run_cli("world -t standard -f unorm24 --separation 0.01 --distance 0.5 -q");
   CHECK(world.exit_code == 3);
   CHECK_THAT(world.output, Contains("--distance 0.5: the content must lie beyond the near plane"));
+  // Option errors the parser finds are said by depthprec too, and name the option.
+  const auto jobs = run_cli("mts --jobs 0");
+  CHECK(jobs.exit_code == 2);
+  CHECK_THAT(jobs.output, StartsWith("depthprec: --jobs: Value 0 not in range"));
+  const auto source = run_cli("bias --source bogus");
+  CHECK(source.exit_code == 2);
+  CHECK_THAT(source.output, Contains("--source: bogus not in {emulated,rendered}"));
+  // An --up the file's camera would drop is refused, not ignored.
+  const auto up =
+      run_cli("audit '" DEPTHPREC_SOURCE_DIR "/data/audit/shelf_wall.gltf' --up 0,0,1 -q");
+  CHECK(up.exit_code == 2);
+  CHECK_THAT(up.output, Contains("--up orients the views of --eye and --target or of --path"));
 }
 
 TEST_CASE("shadow keeps its progress off a log, as every command does", "[cli][shadow]") {
