@@ -304,7 +304,15 @@ Scene SceneOptions::load() const {
                      " (the scene positional; each option takes one value: list several with "
                      "commas, e.g. -t standard,reversed, or repeat the option)");
   }
-  if (!techniques.empty() || !formats.empty() || !depth_ranges.empty()) replace_pairs(*this, scene);
+  if (!techniques.empty() || !formats.empty() || !depth_ranges.empty()) {
+    replace_pairs(*this, scene);
+    // Other pairs are another scene, as a --set makes one (docs/cli.md, the scene's name).
+    const std::string mark = "+set";
+    if (scene.name.size() < mark.size() ||
+        scene.name.compare(scene.name.size() - mark.size(), mark.size(), mark) != 0)
+      scene.name += mark;
+    scene.json["name"] = scene.name;
+  }
   check_pairs(scene);
   check_planes_cover_kernel(scene);
   const std::string far_given = far_option(sets, named.origins);

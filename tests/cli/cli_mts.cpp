@@ -425,3 +425,14 @@ TEST_CASE("the table's note of rows without a bound counts one row as one", "[cl
   CHECK_THAT(r.output, Contains("clears the error bounds): 1 row,"));
   CHECK_THAT(r.output, !Contains("1 rows") && !Contains(" to reversed/unorm24"));
 }
+
+TEST_CASE("pairs named on the command line make another scene, named so", "[cli]") {
+  // -t/-f/--depth-range replace the scene's pairs, as a --set changes a key: "+set", as docs/cli.md
+  // promises, so an output never labels the changed scene with the default's name alone.
+  // No other option: a --kernel or --frames adds "+set" by itself.
+  const auto r = run_cli(
+      "world -t reversed -f float32 --distance 100 --separation 0.01 --transforms absolute -q "
+      "--format-out json");
+  REQUIRE(r.exit_code == 0);
+  CHECK(nlohmann::json::parse(r.output)["scene_name"] == "gilg2021+set");
+}
