@@ -58,13 +58,24 @@ class Reader {
     return *p;
   }
 
+  // Text a number's syntax would take: digits, with a sign, a point or an exponent.
+  static bool looks_numeric(const std::string& t) {
+    return !t.empty() && t.find_first_not_of("+-.0123456789eE") == std::string::npos &&
+           t.find_first_of("0123456789") != std::string::npos;
+  }
+
   // A number; "inf" is accepted where allow_inf (JSON has no infinity).
   double number(const std::string& key, bool allow_inf = false) const {
     const nlohmann::json& v = at(key);
     if (allow_inf && v.is_string() && (v == "inf" || v == "infinity")) return INFINITY;
-    if (!v.is_number())
+    if (!v.is_number()) {
+      // A number too large for binary64 ("1e400") reaches here as the text typed.
+      if (v.is_string() && looks_numeric(v.get<std::string>()))
+        fail(key, fmt::format("must be a number{}; {} is beyond binary64's range (about 1.8e308)",
+                              allow_inf ? " or \"inf\"" : "", v.get<std::string>()));
       fail(key,
            fmt::format("must be a number{}, not {}", allow_inf ? " or \"inf\"" : "", v.dump()));
+    }
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(key, "must be finite");
     return d;

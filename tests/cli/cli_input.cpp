@@ -121,6 +121,8 @@ TEST_CASE("a bad block, a range turned inside out and a key given twice are refu
   const auto range = run_cli("mts --set rotation_range_deg=-1");
   CHECK(range.exit_code == 3);
   CHECK_THAT(range.output, Contains("'rotation_range_deg' must be 0 up to below 45 degrees"));
+  CHECK_THAT(run_cli("mts --set near=1e400").output,
+             Contains("'near' must be a number; 1e400 is beyond binary64's range"));
   const auto twice = run_cli("mts --set near=0.1 --set near=0.2");
   CHECK(twice.exit_code == 2);
   CHECK_THAT(twice.output, Contains("--set near=0.1 and --set near=0.2 both set 'near'"));
