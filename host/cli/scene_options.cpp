@@ -306,11 +306,8 @@ Scene SceneOptions::load() const {
   }
   if (!techniques.empty() || !formats.empty() || !depth_ranges.empty()) {
     replace_pairs(*this, scene);
-    // Other pairs are another scene, as a --set makes one (docs/cli.md, the scene's name).
-    const std::string mark = "+set";
-    if (scene.name.size() < mark.size() ||
-        scene.name.compare(scene.name.size() - mark.size(), mark.size(), mark) != 0)
-      scene.name += mark;
+    // Other pairs are another scene, as a --set makes one.
+    scene.name = changed_scene_name(scene.name);
     scene.json["name"] = scene.name;
   }
   check_pairs(scene);

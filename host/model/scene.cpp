@@ -294,7 +294,7 @@ Scene load_scene_text(const std::string& text, const std::string& path,
     check_user_keys(patch, "--set", "");
     // A scene changed on the command line is no longer the one its name stands for.
     if (!patch.contains("name") && merged["name"].is_string())
-      patch["name"] = merged["name"].get<std::string>() + "+set";
+      patch["name"] = changed_scene_name(merged["name"].get<std::string>());
     merged.merge_patch(patch);
     if (patch.contains("evaluate")) merged["evaluate"] = patch["evaluate"];
     if (!overrides.empty()) source += " (with --set overrides)";
@@ -305,6 +305,13 @@ Scene load_scene_text(const std::string& text, const std::string& path,
   Scene s = parse_scene(merged, source, path.empty() ? source : path, text, blame);
   if (check) check_pairs(s);
   return s;
+}
+
+std::string changed_scene_name(const std::string& name) {
+  const std::string mark = "+set";
+  const bool marked =
+      name.size() >= mark.size() && name.compare(name.size() - mark.size(), mark.size(), mark) == 0;
+  return marked ? name : name + mark;
 }
 
 Scene scene_from_json(const json& j, const std::string& source) {

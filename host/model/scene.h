@@ -186,6 +186,10 @@ struct Scene {
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
                  bool check = true, const std::map<std::string, std::string>& origins = {});
 
+// The name of a scene changed on the command line (--set, a named option, other pairs): "+set"
+// appended, once, so an output never labels it with the name of the scene it started from.
+std::string changed_scene_name(const std::string& name);
+
 // The same from the text of a scene file (path names it in errors; "" for no file).
 Scene load_scene_text(const std::string& text, const std::string& path,
                       const std::vector<std::string>& overrides = {}, bool check = true,
