@@ -58,7 +58,6 @@ void add_lj_common(CLI::App* cmd, LjOptions& o, bool with_buffer) {
       ->capture_default_str();
   cmd->add_option("--sampling", o.sampling, "uniform, or increasing (weight Ze - d)")
       ->capture_default_str();
-  o.out.add_to(*cmd);
 }
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -385,6 +384,7 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
   add_lj_common(cmd, *lj, true);
   cmd->add_option("-f,--format", lj->format, "Storage format")->capture_default_str();
   cmd->add_option("--rounding", lj->rounding, "nearest_even or truncate")->capture_default_str();
+  lj->out.add_to(*cmd);  // the output's options last, as every command lists them
   cmd->callback([lj, &global]() { run_lj(*lj, global); });
 
   auto sel = std::make_shared<LjOptions>();
@@ -397,6 +397,7 @@ void add_lj_commands(CLI::App& app, GlobalOptions& global) {
       "  depthprec select --buffer complementary_z --bits 24 --far 1e4 --sampling increasing");
   add_lj_common(scmd, *sel, true);
   scmd->add_option("--bits", sel->bits, "Buffer size in bits (2..32)")->capture_default_str();
+  sel->out.add_to(*scmd);
   scmd->callback([sel, &global]() { run_select(*sel, global); });
 
   auto tab = std::make_shared<LjOptions>();
