@@ -7,6 +7,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "tests/support/run_cli.h"
 
@@ -105,51 +107,48 @@ TEST_CASE("options are read strictly and blamed by name", "[cli][errors]") {
 
 TEST_CASE("a bad block, a range turned inside out and a key given twice are refused by name",
           "[cli][errors]") {
-  // A block of settings that is not an object replaced the whole block (and crashed on it).
-  const auto block = run_cli("mts -t standard -f unorm24 --distances 2 --set pipeline=1");
-  CHECK(block.exit_code == 3);
-  CHECK_THAT(block.output, Contains("'pipeline' must be an object") && !Contains("internal"));
   std::ofstream("/tmp/depthprec_test_null_pipeline.json") << "{\"pipeline\": null}\n";
-  const auto null_block = run_cli("mts /tmp/depthprec_test_null_pipeline.json");
-  CHECK(null_block.exit_code == 3);
-  CHECK_THAT(null_block.output, Contains(":1:2: 'pipeline' must be an object"));
-  CHECK_THAT(run_cli("mts --set worst_case=3").output, Contains("'worst_case' must be an object"));
-  // The key the user set is the one blamed, with the one it conflicts with.
-  CHECK_THAT(run_cli("mts --set worst_case.max_rounds=1").output,
-             Contains("'worst_case.max_rounds' must be at least worst_case.min_rounds (2), not 1"));
-  // A negative range turned the cube inside out, and its guaranteed MTS with it.
-  const auto range = run_cli("mts --set rotation_range_deg=-1");
-  CHECK(range.exit_code == 3);
-  CHECK_THAT(range.output, Contains("'rotation_range_deg' must be 0 up to below 45 degrees"));
-  CHECK_THAT(run_cli("mts --set near=1e400").output,
-             Contains("'near' must be a number; 1e400 is beyond binary64's range"));
-  const auto twice = run_cli("mts --set near=0.1 --set near=0.2");
-  CHECK(twice.exit_code == 2);
-  CHECK_THAT(twice.output, Contains("--set near=0.1 and --set near=0.2 both set 'near'"));
-  CHECK(run_cli("mts --set pipeline.divide=exact --set pipeline={}").exit_code == 2);
-  for (const char* k : {"0", "-1", "nan"}) {
-    const auto log_k = run_cli(std::string("resolve -t log_vertex --code 3 --log-k ") + k);
-    CHECK(log_k.exit_code == 3);
-    CHECK_THAT(log_k.output, Contains("--log-k must be a finite k > 0"));
+  struct Refused {
+    std::string command;
+    int exit_code;
+    std::string says;
+  };
+  const std::vector<Refused> refused = {
+      // A block of settings that is not an object replaced the whole block (and crashed on it).
+      {"mts -t standard -f unorm24 --distances 2 --set pipeline=1", 3,
+       "'pipeline' must be an object"},
+      {"mts /tmp/depthprec_test_null_pipeline.json", 3, ":1:2: 'pipeline' must be an object"},
+      {"mts --set worst_case=3", 3, "'worst_case' must be an object"},
+      // The key the user set is the one blamed, with the one it conflicts with.
+      {"mts --set worst_case.max_rounds=1", 3,
+       "'worst_case.max_rounds' must be at least worst_case.min_rounds (2), not 1"},
+      // A negative range turned the cube inside out, and its guaranteed MTS with it.
+      {"mts --set rotation_range_deg=-1", 3,
+       "'rotation_range_deg' must be 0 up to below 45 degrees"},
+      {"mts --set near=1e400", 3, "'near' must be a number; 1e400 is beyond binary64's range"},
+      {"mts --set near=0.1 --set near=0.2", 2, "--set near=0.1 and --set near=0.2 both set 'near'"},
+      {"mts --set pipeline.divide=exact --set pipeline={}", 2, "both set 'pipeline.divide'"},
+      {"resolve -t log_vertex --code 3 --log-k 0", 3, "--log-k must be a finite k > 0"},
+      {"resolve -t log_vertex --code 3 --log-k -1", 3, "--log-k must be a finite k > 0"},
+      {"resolve -t log_vertex --code 3 --log-k nan", 3, "--log-k must be a finite k > 0"},
+      {"shadow --source bound --camera-near -1 -q", 3, "--camera-near -1: the camera's near plane"},
+      {"world -t standard -f unorm24 --separation 0.01 --distance 0.5 -q", 3,
+       "--distance 0.5: the content must lie beyond the near plane"},
+      // Option errors the parser finds name the option.
+      {"bias --source bogus", 2, "--source: bogus not in {emulated,rendered}"},
+      // An --up the file's camera would drop is refused, not ignored.
+      {"audit '" DEPTHPREC_SOURCE_DIR "/data/audit/shelf_wall.gltf' --up 0,0,1 -q", 2,
+       "--up orients the views of --eye and --target or of --path"}};
+  for (const Refused& r : refused) {
+    INFO(r.command);
+    const auto run = run_cli(r.command);
+    CHECK(run.exit_code == r.exit_code);
+    CHECK_THAT(run.output, Contains(r.says) && !Contains("internal"));
   }
-  const auto camera_near = run_cli("shadow --source bound --camera-near -1 -q");
-  CHECK(camera_near.exit_code == 3);
-  CHECK_THAT(camera_near.output, Contains("--camera-near -1: the camera's near plane"));
-  const auto world = run_cli("world -t standard -f unorm24 --separation 0.01 --distance 0.5 -q");
-  CHECK(world.exit_code == 3);
-  CHECK_THAT(world.output, Contains("--distance 0.5: the content must lie beyond the near plane"));
-  // Option errors the parser finds are said by depthprec too, and name the option.
+  // ... and are said by depthprec, as every error is.
   const auto jobs = run_cli("mts --jobs 0");
   CHECK(jobs.exit_code == 2);
   CHECK_THAT(jobs.output, StartsWith("depthprec: --jobs: Value 0 not in range"));
-  const auto source = run_cli("bias --source bogus");
-  CHECK(source.exit_code == 2);
-  CHECK_THAT(source.output, Contains("--source: bogus not in {emulated,rendered}"));
-  // An --up the file's camera would drop is refused, not ignored.
-  const auto up =
-      run_cli("audit '" DEPTHPREC_SOURCE_DIR "/data/audit/shelf_wall.gltf' --up 0,0,1 -q");
-  CHECK(up.exit_code == 2);
-  CHECK_THAT(up.output, Contains("--up orients the views of --eye and --target or of --path"));
 }
 
 TEST_CASE("shadow keeps its progress off a log, as every command does", "[cli][shadow]") {
